@@ -1,0 +1,48 @@
+// crowdlab: one binary, many subcommands. Exit codes: 0 ok, 1 runtime failure, 2 usage/invalid input.
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <exception>
+
+#include "crowdlab_version.hpp"
+#include "experiments/cli/command_registry.hpp"
+#include "framework/core/error.hpp"
+#include "framework/core/progress.hpp"
+
+namespace crowdlab::cli {
+std::vector<CommandSetup>& command_registry() {
+  static std::vector<CommandSetup> registry;
+  return registry;
+}
+}  // namespace crowdlab::cli
+
+int main(int argc, char** argv) {
+  CLI::App app{"crowdlab " CROWDLAB_VERSION
+               ": crowd-animation perception studies, from a YAML spec to stimuli, sessions and analysis."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", CROWDLAB_VERSION);
+  bool quiet = false;
+  std::string log_level = "info";
+  app.add_flag("-q,--quiet", quiet, "Hide progress bars and info logs");
+  app.add_option("--log-level", log_level, "trace|debug|info|warn|error")->capture_default_str();
+  app.parse_complete_callback([&] {
+    spdlog::set_level(quiet ? spdlog::level::warn : spdlog::level::from_str(log_level));
+    spdlog::set_pattern("[crowdlab] %^%l%$: %v");
+    crowdlab::Progress::set_enabled(!quiet);
+  });
+  for (const auto& setup : crowdlab::cli::command_registry()) setup(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help or the usage error
+    return code == 0 ? 0 : 2;
+  } catch (const crowdlab::InputError& e) {
+    std::fprintf(stderr, "crowdlab: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "crowdlab: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages crowdlab needs, and only those that are missing.
+# Usage: scripts/install-deps.sh [--test]   (--test adds the tools the test suite uses)
+# Uses sudo when not root. Safe to run repeatedly: it does nothing when everything is present.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build_pkgs=(
+  build-essential cmake ninja-build pkg-config git
+  libeigen3-dev libyaml-cpp-dev libtinygltf-dev nlohmann-json3-dev
+  libopencv-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
+  libboost-dev libboost-math-dev libcli11-dev libspdlog-dev libfmt-dev libtbb-dev
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
+  libplplot-dev plplot-driver-cairo libfreetype-dev fonts-dejavu-core
+  libbenchmark-dev catch2
+)
+# Tools the tests drive: a virtual X server and xdotool for the study window, Node.js for the
+# Khronos glTF validator, GNU parallel for the sharding test.
+test_pkgs=(xvfb xdotool x11-apps nodejs npm parallel)
+
+want=("${build_pkgs[@]}")
+if [[ ${1:-} == --test ]]; then want+=("${test_pkgs[@]}"); fi
+
+missing=()
+for p in "${want[@]}"; do
+  # nodejs/npm may come from elsewhere on a developer machine; accept any working binary.
+  if [[ $p == nodejs ]] && command -v node >/dev/null; then continue; fi
+  if [[ $p == npm ]] && command -v npm >/dev/null; then continue; fi
+  status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
+  [[ $status == installed ]] || missing+=("$p")
+done
+
+if ((${#missing[@]})); then
+  echo "crowdlab: installing missing Debian packages: ${missing[*]}"
+  SUDO=()
+  if [[ $(id -u) -ne 0 ]]; then SUDO=(sudo); fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${SUDO[@]}" apt-get update -qq
+  "${SUDO[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+else
+  echo "crowdlab: all Debian packages present"
+fi
+
+# The Khronos glTF-Validator (npm package gltf-validator), used only by the tests, kept in .tools/.
+if [[ ${1:-} == --test ]] && [[ ! -f .tools/node_modules/gltf-validator/package.json ]]; then
+  if command -v npm >/dev/null; then
+    echo "crowdlab: installing gltf-validator into .tools/ for the glTF tests"
+    mkdir -p .tools
+    npm install --silent --no-audit --no-fund --prefix .tools gltf-validator@2 >/dev/null 2>&1 \
+      || echo "crowdlab: warning: npm could not install gltf-validator; the validator test will skip"
+  fi
+fi

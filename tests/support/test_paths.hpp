@@ -1,0 +1,30 @@
+#pragma once
+// Paths the tests need, fixed at configure time, plus access to ../shared test data (which a user's
+// machine does not have: tests that need it call shared_data_or_skip()).
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <string>
+
+namespace crowdlab::test {
+
+inline std::filesystem::path source_dir() { return CROWDLAB_SOURCE_DIR; }
+inline std::filesystem::path binary_dir() { return CROWDLAB_BINARY_DIR; }
+inline std::filesystem::path crowdlab_exe() { return CROWDLAB_EXE; }
+inline constexpr bool kSanitized = CROWDLAB_SANITIZED;
+
+/// `../shared/data/<sub>` beside the checkout, or empty when absent (a message is printed).
+inline std::filesystem::path shared_data(const std::string& sub) {
+  const auto p = source_dir().parent_path() / "shared" / "data" / sub;
+  if (!std::filesystem::exists(p)) WARN("skipping: shared test data not found at " << p.string());
+  return std::filesystem::exists(p) ? p : std::filesystem::path{};
+}
+
+/// A fresh, empty scratch directory under the build tree for one test.
+inline std::filesystem::path scratch_dir(const std::string& name) {
+  const auto p = binary_dir() / "test-scratch" / name;
+  std::filesystem::remove_all(p);
+  std::filesystem::create_directories(p);
+  return p;
+}
+
+}  // namespace crowdlab::test
