@@ -81,3 +81,19 @@ TEST_CASE("capsule volume is cylinder plus sphere") {
   const Capsule c{{0, 0, 0}, {0, 2, 0}, 0.5};
   CHECK(c.volume_m3() == Approx(M_PI * 0.25 * 2 + 4.0 / 3.0 * M_PI * 0.125));
 }
+
+#include "framework/core/closest_approach.hpp"
+
+TEST_CASE("ttca/dtca on hand-built pairs (seed 001 Eqs. 2-3)") {
+  // Head-on, 0.4 m lateral offset, closing at 2 m/s from 4 m apart: ttca 2 s, dtca 0.4 m.
+  auto ca = closest_approach({0, 0}, {1, 0}, {4, 0.4}, {-1, 0});
+  CHECK(ca.ttca_s == Approx(2.0));
+  CHECK(ca.dtca_m == Approx(0.4));
+  // Moving apart: negative ttca.
+  ca = closest_approach({0, 0}, {-1, 0}, {4, 0.4}, {1, 0});
+  CHECK(ca.ttca_s < 0.0);
+  // Same velocity: infinite ttca, dtca is the current distance.
+  ca = closest_approach({0, 0}, {1, 0}, {3, 4}, {1, 0});
+  CHECK(std::isinf(ca.ttca_s));
+  CHECK(ca.dtca_m == Approx(5.0));
+}

@@ -1,0 +1,73 @@
+#include "framework/core/stimulus_manifest.hpp"
+
+#include <fstream>
+
+#include "framework/core/csv.hpp"
+#include "framework/core/error.hpp"
+
+namespace crowdlab {
+namespace {
+const std::vector<std::string> kTrailing = {"file", "duration_s", "frames", "width", "height", "sha256",
+                                            "overlap_l", "v_i_m", "collisions", "practice"};
+}
+
+void write_manifest(const StimulusManifest& m, const std::string& csv_path) {
+  std::ofstream out(csv_path, std::ios::binary | std::ios::trunc);
+  if (!out) throw RuntimeError(csv_path + ": cannot write manifest");
+  std::vector<std::string> header = {"id"};
+  header.insert(header.end(), m.factor_names.begin(), m.factor_names.end());
+  header.insert(header.end(), kTrailing.begin(), kTrailing.end());
+  out << csv_line(header);
+  for (const StimulusEntry& e : m.entries) {
+    std::vector<std::string> row = {e.id};
+    for (const auto& f : m.factor_names) {
+      auto it = e.factors.find(f);
+      row.push_back(it == e.factors.end() ? "" : it->second);
+    }
+    row.push_back(e.file);
+    row.push_back(csv_number(e.duration_s));
+    row.push_back(std::to_string(e.frames));
+    row.push_back(std::to_string(e.width));
+    row.push_back(std::to_string(e.height));
+    row.push_back(e.sha256);
+    row.push_back(e.mean_overlap_l >= 0 ? csv_number(e.mean_overlap_l) : "");
+    row.push_back(e.v_i_m >= 0 ? csv_number(e.v_i_m) : "");
+    row.push_back(e.collisions >= 0 ? std::to_string(e.collisions) : "");
+    row.push_back(e.practice ? "1" : "0");
+    out << csv_line(row);
+  }
+  if (!out.flush()) throw RuntimeError(csv_path + ": write failed");
+}
+
+StimulusManifest read_manifest(const std::string& csv_path) {
+  const CsvTable t = read_csv(csv_path);
+  StimulusManifest m;
+  const size_t id_col = t.column("id");
+  const size_t file_col = t.column("file");
+  if (id_col != 0) throw InputError(csv_path + ": first column must be 'id'");
+  for (size_t c = 1; c < file_col; ++c) m.factor_names.push_back(t.header[c]);
+  for (const auto& name : kTrailing) t.column(name);  // all required
+  auto optional_number = [&](size_t r, const std::string& col) {
+    const size_t c = t.column(col);
+    return t.cell(r, c).empty() ? -1.0 : t.number(r, c);
+  };
+  for (size_t r = 0; r < t.rows.size(); ++r) {
+    StimulusEntry e;
+    e.id = t.cell(r, id_col);
+    for (size_t c = 1; c < file_col; ++c) e.factors[t.header[c]] = t.cell(r, c);
+    e.file = t.cell(r, file_col);
+    e.duration_s = t.number(r, t.column("duration_s"));
+    e.frames = static_cast<int>(t.number(r, t.column("frames")));
+    e.width = static_cast<int>(t.number(r, t.column("width")));
+    e.height = static_cast<int>(t.number(r, t.column("height")));
+    e.sha256 = t.cell(r, t.column("sha256"));
+    e.mean_overlap_l = optional_number(r, "overlap_l");
+    e.v_i_m = optional_number(r, "v_i_m");
+    e.collisions = static_cast<int>(optional_number(r, "collisions"));
+    e.practice = t.cell(r, t.column("practice")) == "1";
+    m.entries.push_back(std::move(e));
+  }
+  return m;
+}
+
+}  // namespace crowdlab

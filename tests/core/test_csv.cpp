@@ -1,0 +1,58 @@
+// CSV table, manifest round trip and SHA-256 known answers.
+#include <catch2/catch.hpp>
+#include <fstream>
+
+#include "framework/core/csv.hpp"
+#include "framework/core/error.hpp"
+#include "framework/core/sha256.hpp"
+#include "framework/core/stimulus_manifest.hpp"
+#include "tests/support/test_paths.hpp"
+
+using namespace crowdlab;
+
+TEST_CASE("csv parses quotes, commas and newlines, and round-trips through csv_line") {
+  const std::vector<std::string> fields = {"a,b", "say \"hi\"", "two\nlines", "plain", ""};
+  const CsvTable t = parse_csv(csv_line({"c1", "c2", "c3", "c4", "c5"}) + csv_line(fields), "mem");
+  REQUIRE(t.rows.size() == 1);
+  CHECK(t.rows[0] == fields);
+}
+
+TEST_CASE("csv errors name file, line and column") {
+  CHECK_THROWS_WITH(parse_csv("a,b\n1,2\n3\n", "x.csv"), Catch::Contains("x.csv:3"));
+  const CsvTable t = parse_csv("a,b\n1,2\n3,oops\n", "y.csv");
+  CHECK(t.number(0, 1) == 2.0);
+  CHECK_THROWS_WITH(t.number(1, 1), Catch::Contains("y.csv:3:2") && Catch::Contains("column 'b'"));
+  CHECK_THROWS_WITH(t.column("zzz"), Catch::Contains("missing column 'zzz'"));
+  CHECK_THROWS_AS(parse_csv("a\n\"open\n", "z.csv"), InputError);
+}
+
+TEST_CASE("sha256 known answers") {
+  CHECK(sha256_hex("") == "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  CHECK(sha256_hex("abc") == "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  CHECK(sha256_hex(std::string(1000, 'a')) == "41edece42d63e8d9bf515a9ba6932e1c20cbc9f5a5d134645adb5db1b9737ea3");
+}
+
+TEST_CASE("stimulus manifest round-trips") {
+  StimulusManifest m;
+  m.factor_names = {"density", "viewpoint"};
+  StimulusEntry e;
+  e.id = "density-2.22_viewpoint-V1";
+  e.factors = {{"density", "2.22"}, {"viewpoint", "V1"}};
+  e.file = "density-2.22_viewpoint-V1/V1.mp4";
+  e.duration_s = 20;
+  e.frames = 600;
+  e.width = 1920;
+  e.height = 1080;
+  e.sha256 = "ab";
+  e.mean_overlap_l = 0.25;
+  m.entries = {e};
+  const auto dir = test::scratch_dir("manifest");
+  write_manifest(m, (dir / "manifest.csv").string());
+  const StimulusManifest back = read_manifest((dir / "manifest.csv").string());
+  REQUIRE(back.entries.size() == 1);
+  CHECK(back.factor_names == m.factor_names);
+  CHECK(back.entries[0].factors == e.factors);
+  CHECK(back.entries[0].mean_overlap_l == 0.25);
+  CHECK(back.entries[0].v_i_m == -1.0);
+  CHECK(back.entries[0].frames == 600);
+}
