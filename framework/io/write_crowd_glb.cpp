@@ -3,6 +3,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
 
@@ -387,10 +388,20 @@ void write_crowd_glb(const CrowdAnimation& crowd, const std::string& path) {
   model.scenes.push_back(scene);
   model.defaultScene = 0;
   model.buffers[0].name = "crowd";
+  // Write beside the target and rename, so that an interrupted run never leaves a truncated file under
+  // the final name (resumable runs treat an existing .glb as finished).
+  const std::string partial = path + ".partial";
   tinygltf::TinyGLTF writer;
-  if (!writer.WriteGltfSceneToFile(&model, path, /*embedImages=*/false, /*embedBuffers=*/true,
-                                   /*prettyPrint=*/false, /*writeBinary=*/true))
+  if (!writer.WriteGltfSceneToFile(&model, partial, /*embedImages=*/false, /*embedBuffers=*/true,
+                                   /*prettyPrint=*/false, /*writeBinary=*/true) ||
+      !std::filesystem::is_regular_file(partial)) {
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
     throw RuntimeError(path + ": cannot write the glTF file");
+  }
+  std::error_code ec;
+  std::filesystem::rename(partial, path, ec);
+  if (ec) throw RuntimeError(path + ": cannot write the glTF file: " + ec.message());
 }
 
 }  // namespace crowdlab

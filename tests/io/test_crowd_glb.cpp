@@ -207,6 +207,9 @@ TEST_CASE("writing rejects NaN poses and bad environments, naming what is wrong"
   crowd.environment.meshes[0].triangles[0][1] = 9;
   CHECK_THROWS_WITH(write_crowd_glb(crowd, path), Catch::Contains("mesh 'ramp'"));
   CHECK_FALSE(std::filesystem::exists(path));
+  CHECK_THROWS_AS(
+      write_crowd_glb(random_crowd(5, 1, 2), (test::scratch_dir("glb-nan") / "no" / "dir.glb").string()),
+      RuntimeError);
 }
 
 TEST_CASE("truncated and garbage .glb files give InputError naming the file") {
