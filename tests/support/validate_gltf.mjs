@@ -22,13 +22,13 @@ try {
     });
     const i = report.issues;
     summaries.push({
-    file,
-    errors: i.numErrors,
-    warnings: i.numWarnings,
-    infos: i.numInfos,
-    hints: i.numHints,
-    issues: i.messages.filter((m) => m.severity <= 1).slice(0, 20)
-      .map((m) => `${m.severity === 0 ? 'ERROR' : 'WARNING'} ${m.code} ${m.pointer ?? ''}: ${m.message}`),
+      file,
+      errors: i.numErrors,
+      warnings: i.numWarnings,
+      infos: i.numInfos,
+      hints: i.numHints,
+      issues: i.messages.filter((m) => m.severity <= 1).slice(0, 20)
+        .map((m) => `${m.severity === 0 ? 'ERROR' : 'WARNING'} ${m.code} ${m.pointer ?? ''}: ${m.message}`),
     });
   }
   console.log(JSON.stringify(summaries));
