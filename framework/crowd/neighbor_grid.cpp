@@ -20,8 +20,9 @@ void NeighborGrid::set_cell_size(double cell_size_m) {
 void NeighborGrid::rebuild(const double* x, const double* y, std::size_t n) {
   count_ = n;
   std::size_t table = 16;
-  while (table < 2 * n) table *= 2;
-  mask_ = static_cast<std::uint32_t>(table - 1);
+  unsigned bits = 4;
+  while (table < 2 * n) table *= 2, ++bits;
+  shift_ = 64 - bits;
   if (bucket_start_.size() != table + 1) bucket_start_.assign(table + 1, 0);
   std::fill(bucket_start_.begin(), bucket_start_.end(), 0u);
   if (sorted_index_.size() < n) {
@@ -33,8 +34,8 @@ void NeighborGrid::rebuild(const double* x, const double* y, std::size_t n) {
     sorted_cy_.resize(n);
   }
   for (std::size_t i = 0; i < n; ++i) {
-    const auto cx = static_cast<std::int32_t>(std::floor(x[i] * inv_cell_));
-    const auto cy = static_cast<std::int32_t>(std::floor(y[i] * inv_cell_));
+    const auto cx = cell_coord(x[i] * inv_cell_);
+    const auto cy = cell_coord(y[i] * inv_cell_);
     const std::uint32_t b = bucket_of(cx, cy);
     point_bucket_[i] = b;
     ++bucket_start_[b + 1];
@@ -46,8 +47,8 @@ void NeighborGrid::rebuild(const double* x, const double* y, std::size_t n) {
     sorted_index_[slot] = static_cast<std::uint32_t>(i);
     sorted_x_[slot] = x[i];
     sorted_y_[slot] = y[i];
-    sorted_cx_[slot] = static_cast<std::int32_t>(std::floor(x[i] * inv_cell_));
-    sorted_cy_[slot] = static_cast<std::int32_t>(std::floor(y[i] * inv_cell_));
+    sorted_cx_[slot] = cell_coord(x[i] * inv_cell_);
+    sorted_cy_[slot] = cell_coord(y[i] * inv_cell_);
   }
   // Scatter advanced each start to the next bucket's start: shift back by one bucket.
   for (std::size_t b = table; b > 0; --b) bucket_start_[b] = bucket_start_[b - 1];

@@ -34,33 +34,46 @@ class NeighborGrid {
   template <class Visit>
   void for_each_within(double qx, double qy, double radius, Visit&& visit) const {
     double r2 = radius * radius;
-    const auto cx = static_cast<std::int32_t>(std::floor(qx * inv_cell_));
-    const auto cy = static_cast<std::int32_t>(std::floor(qy * inv_cell_));
+    const std::uint32_t* start = bucket_start_.data();
+    const std::uint32_t* index = sorted_index_.data();
+    const double* xs = sorted_x_.data();
+    const double* ys = sorted_y_.data();
+    const std::int32_t* cxs = sorted_cx_.data();
+    const std::int32_t* cys = sorted_cy_.data();
+    const auto cx = cell_coord(qx * inv_cell_);
+    const auto cy = cell_coord(qy * inv_cell_);
     for (std::int32_t oy = -1; oy <= 1; ++oy) {
       for (std::int32_t ox = -1; ox <= 1; ++ox) {
         const std::int32_t ccx = cx + ox, ccy = cy + oy;
         const std::uint32_t b = bucket_of(ccx, ccy);
-        for (std::uint32_t k = bucket_start_[b], e = bucket_start_[b + 1]; k < e; ++k) {
-          if (sorted_cx_[k] != ccx || sorted_cy_[k] != ccy) continue;  // hash alias
-          const double dx = sorted_x_[k] - qx, dy = sorted_y_[k] - qy;
+        for (std::uint32_t k = start[b], e = start[b + 1]; k < e; ++k) {
+          if (cxs[k] != ccx || cys[k] != ccy) continue;  // hash alias
+          const double dx = xs[k] - qx, dy = ys[k] - qy;
           const double d2 = dx * dx + dy * dy;
-          if (d2 <= r2) r2 = visit(sorted_index_[k], dx, dy, d2, r2);
+          if (d2 <= r2) r2 = visit(index[k], dx, dy, d2, r2);
         }
       }
     }
   }
 
  private:
+  /// floor() for cell indices without a libm call (x86-64 baseline has no SSE4.1 roundsd).
+  static std::int32_t cell_coord(double v) {
+    const auto i = static_cast<std::int32_t>(v);
+    return i - (v < static_cast<double>(i) ? 1 : 0);
+  }
+
+  // Fibonacci hashing of the packed cell coordinates (Knuth, TAOCP vol. 3, 6.4): the HIGH bits of
+  // the product are well mixed, so the table index takes those.
   std::uint32_t bucket_of(std::int32_t cx, std::int32_t cy) const {
-    std::uint32_t h =
-        static_cast<std::uint32_t>(cx) * 0x9E3779B1u ^ static_cast<std::uint32_t>(cy) * 0x85EBCA77u;
-    h ^= h >> 15;
-    return h & mask_;
+    const std::uint64_t key =
+        (static_cast<std::uint64_t>(static_cast<std::uint32_t>(cx)) << 32) | static_cast<std::uint32_t>(cy);
+    return static_cast<std::uint32_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
   }
 
   double cell_ = 2.0, inv_cell_ = 0.5;
   std::size_t count_ = 0;
-  std::uint32_t mask_ = 0;
+  unsigned shift_ = 60;                      // 64 - log2(table size)
   std::vector<std::uint32_t> bucket_start_;  // (table + 1) prefix sums
   std::vector<std::uint32_t> point_bucket_;  // (n) bucket of each point (scratch)
   std::vector<std::uint32_t> sorted_index_;  // (n) point index in bucket order

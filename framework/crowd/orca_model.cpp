@@ -65,12 +65,13 @@ Line agent_line(const CrowdWorld& w, std::size_t i, std::uint32_t j, double inv_
     } else {
       // Closest boundary point is on a leg (tangent from the origin to D(p, r)).
       const double leg = std::sqrt(dist2 - r2);
+      const double inv_dist2 = 1.0 / dist2;
       if (orca::det(rel_px, rel_py, wx, wy) > 0.0) {  // left leg
-        line.dx = (rel_px * leg - rel_py * r) / dist2;
-        line.dy = (rel_px * r + rel_py * leg) / dist2;
+        line.dx = (rel_px * leg - rel_py * r) * inv_dist2;
+        line.dy = (rel_px * r + rel_py * leg) * inv_dist2;
       } else {  // right leg, reversed so that the permitted side stays on the left
-        line.dx = -(rel_px * leg + rel_py * r) / dist2;
-        line.dy = -(-rel_px * r + rel_py * leg) / dist2;
+        line.dx = -(rel_px * leg + rel_py * r) * inv_dist2;
+        line.dy = -(-rel_px * r + rel_py * leg) * inv_dist2;
       }
       const double proj = rel_vx * line.dx + rel_vy * line.dy;
       ux = proj * line.dx - rel_vx, uy = proj * line.dy - rel_vy;
