@@ -7,6 +7,7 @@
 #include <string>
 
 #include "framework/core/error.hpp"
+#include "framework/core/seed.hpp"
 
 namespace crowdlab {
 namespace {
@@ -55,6 +56,12 @@ CrowdSimulation::CrowdSimulation(std::shared_ptr<const NavigationModel> model, s
   grid_.rebuild(px_.data(), py_.data(), n);
 }
 
+void CrowdSimulation::set_preferred_velocity_jitter(double mps, std::uint64_t seed) {
+  if (!(mps >= 0.0) || !std::isfinite(mps)) throw InputError("crowd simulation: jitter must be >= 0 m/s");
+  jitter_ = mps;
+  jitter_seed_ = seed;
+}
+
 void CrowdSimulation::update_preferred_velocities(double h) {
   for (std::size_t i = 0; i < px_.size(); ++i) {
     const double dx = gx_[i] - px_[i], dy = gy_[i] - py_[i];
@@ -63,6 +70,16 @@ void CrowdSimulation::update_preferred_velocities(double h) {
     const double s = dist > 1e-12 ? speed / dist : 0.0;
     pref_vx_[i] = dx * s;
     pref_vy_[i] = dy * s;
+    if (jitter_ > 0.0) {
+      // Uniform in the disc: angle and sqrt-radius from two hashed 53-bit fractions.
+      const std::uint64_t h1 =
+          mix64(jitter_seed_ ^ mix64(static_cast<std::uint64_t>(substep_count_) * 0x100000001b3ull + i));
+      const std::uint64_t h2 = mix64(h1);
+      const double a = 2.0 * 3.14159265358979323846 * static_cast<double>(h1 >> 11) * 0x1.0p-53;
+      const double rad = jitter_ * std::sqrt(static_cast<double>(h2 >> 11) * 0x1.0p-53);
+      pref_vx_[i] += rad * std::cos(a);
+      pref_vy_[i] += rad * std::sin(a);
+    }
   }
 }
 
@@ -90,6 +107,7 @@ void CrowdSimulation::substep(double h) {
     py_[i] += h * vy_[i];
   }
   grid_.rebuild(px_.data(), py_.data(), n);
+  ++substep_count_;
 }
 
 void CrowdSimulation::step() {

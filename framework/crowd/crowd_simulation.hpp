@@ -6,6 +6,7 @@
 //   v_pref = v0 * (g - p) / |g - p|, shortened to (g - p) / dt within one step of the goal.
 // Parallelism: TBB parallel_for over agent ranges; each agent writes only its own slot, so 1 or N
 // threads give bit-identical states. Buffers are sized once; a step allocates nothing.
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -43,6 +44,12 @@ class CrowdSimulation {
   const std::vector<ObstacleSegment>& obstacles() const { return obstacles_; }
   void set_goal(std::size_t i, const Vec2& goal) { gx_[i] = goal.x(), gy_[i] = goal.y(); }
 
+  /// Adds a tiny pseudo-random perturbation (uniform in a disc of radius `mps`) to every preferred
+  /// velocity, drawn from (seed, agent, substep) so it is deterministic and thread-independent.
+  /// Perfectly symmetric set-ups (agents on a circle) otherwise deadlock in ORCA; the RVO2 examples
+  /// perturb preferred velocities for the same reason (van den Berg et al. 2011, Sec. 6). 0 = off.
+  void set_preferred_velocity_jitter(double mps, std::uint64_t seed);
+
  private:
   void substep(double h);
   void update_preferred_velocities(double h);
@@ -51,6 +58,9 @@ class CrowdSimulation {
   std::vector<ObstacleSegment> obstacles_;
   double dt_ = 0.1, time_ = 0.0;
   int substeps_ = 1;
+  long long substep_count_ = 0;
+  double jitter_ = 0.0;
+  std::uint64_t jitter_seed_ = 0;
   std::vector<double> px_, py_, vx_, vy_, gx_, gy_, pref_speed_, max_speed_, radius_;
   std::vector<double> pref_vx_, pref_vy_, new_vx_, new_vy_;
   NeighborGrid grid_;
