@@ -1,11 +1,13 @@
 // Corridor scenario (seed 000 §4.1/§4.4: "walking animations for densities 2.2 to 6.6 persons/m^2
 // going through a narrow corridor", trajectories from RVO). Choices where the paper is silent:
 //   * the corridor is scenario.width_m wide (x) and runs along +Z; the crowd initially fills
-//     width x depth_m (the density's area) with N Poisson-disk positions, kept 0.25 d_hex inside the
-//     walls so nobody starts inside a wall;
+//     width x depth_m (the density's area) with N Poisson-disk positions whose centres keep one disc
+//     radius from the walls, so nobody starts inside a wall;
 //   * everyone walks toward +Z at walk_speed_mps x (1 + 0.05 N(0,1)) (clamped to +-10 %), so the
-//     flow stays a flow but neighbours still interact;
-//   * the disc radius is min(crowd.agent_radius_m, 0.49 x the placement's minimum spacing): at
+//     flow stays a flow but neighbours still interact; agents are already walking at t = 0 (a crowd
+//     starting from rest would stretch out while it accelerates, changing the density on screen);
+//   * the disc radius is min(crowd.agent_radius_m, 0.45 d_hex, 0.49 x the placement's minimum
+//     spacing), d_hex = sqrt(2 A / (sqrt(3) N)) the hexagonal-packing spacing: at
 //     6.6 per m^2 the centres are ~0.4 m apart, and a collision-free navigation model could not hold
 //     that density with 0.25 m discs; the residual 3D collisions of seed 000 come from bodies being
 //     larger than these discs. The radius used is stored per agent in the trajectories;
@@ -28,13 +30,14 @@ ScenarioResult generate_corridor_scenario(const ExperimentSpec& spec, const Cond
   const double w = sc.width_m, len = sc.depth_m;
   const int n = scenario_character_count(spec, condition, w * len);
   const double d_hex = std::sqrt(2.0 * w * len / (std::sqrt(3.0) * n));
+  // The disc radius is capped so that the placement's spacing can hold it (see above); centres keep
+  // one radius from the walls, so nobody starts inside a wall.
+  const double radius_cap = std::min(spec.crowd.agent_radius_m, 0.45 * d_hex);
+  const Polygon2 area = rectangle_polygon(w - 2.0 * radius_cap, len);
   PlacementOptions opt;
-  opt.boundary_margin_m = std::min(spec.crowd.agent_radius_m, 0.25 * d_hex);
-  // Margin applies to the walls only: place in a rectangle narrowed by the margin, length unchanged.
-  const Polygon2 area = rectangle_polygon(w - 2.0 * opt.boundary_margin_m, len);
-  opt.boundary_margin_m = 0.0;
+  opt.min_spacing_m = spec.crowd.agent_radius_m;  // as for the stationary crowd: else InputError
   const Placement placement = place_poisson_disk(area, n, derive_seed(condition.seed, "placement"), opt);
-  const double radius = std::min(spec.crowd.agent_radius_m, 0.49 * placement.min_spacing_m);
+  const double radius = std::min(radius_cap, 0.49 * placement.min_spacing_m);
 
   const double v0 = sc.walk_speed_mps;
   const double z_end = 0.5 * len + 1.2 * v0 * spec.duration_s + 5.0;
@@ -49,6 +52,7 @@ ScenarioResult generate_corridor_scenario(const ExperimentSpec& spec, const Cond
     a.radius_m = radius;
     a.preferred_speed_mps = v0 * std::clamp(1.0 + 0.05 * standard_normal(rng), 0.9, 1.1);
     a.max_speed_mps = std::max(spec.crowd.max_speed_mps, a.preferred_speed_mps);
+    a.velocity = Vec2(0.0, a.preferred_speed_mps);  // already walking when the clip starts
   }
   CrowdSimulation sim(make_navigation_model(spec.crowd), agents, walls, spec.crowd.dt_s);
   ScenarioResult r;

@@ -69,6 +69,7 @@ ScenarioResult generate_flow_scenario(const ExperimentSpec& spec, const Conditio
     a.radius_m = spec.crowd.agent_radius_m;
     a.preferred_speed_mps = v0 * std::clamp(1.0 + 0.05 * standard_normal(rng), 0.9, 1.1);
     a.max_speed_mps = std::max(spec.crowd.max_speed_mps, a.preferred_speed_mps);
+    a.velocity = Vec2(0.0, dir * a.preferred_speed_mps);  // already walking at t = 0
     agents.push_back(a);
     group.push_back(g);
     heading.push_back(dir > 0 ? 0.0 : std::numbers::pi);

@@ -1,7 +1,8 @@
 // Stationary (concert) scenario, seed 000 §4.1: characters keep their global position; the animation
 // layer makes them dance. Choices where the paper is silent:
 //   * area: scenario.width_m x depth_m centred on the origin; N Poisson-disk positions
-//     (place_poisson_disk), so 9 m^2 at 2.22..6.66 per m^2 holds 20..60 characters;
+//     (place_poisson_disk), so 9 m^2 at 2.22..6.66 per m^2 holds 20..60 characters; centres must
+//     end up at least crowd.agent_radius_m apart, else InputError (N too large for the area);
 //   * stage: a 0.6 m high box, as wide as the area, 1.5 m deep, whose near edge is 1.5 m beyond the
 //     area's front edge in the stage direction (stage_direction_deg, 0 = +Z);
 //   * sway: each root moves on a small Lissajous path, amplitude 2-4 cm (<= 10 % of the spacing)
@@ -22,7 +23,11 @@ ScenarioResult generate_stationary_scenario(const ExperimentSpec& spec, const Co
   const ScenarioSpec& sc = spec.scenario;
   const Polygon2 area = rectangle_polygon(sc.width_m, sc.depth_m);
   const int n = scenario_character_count(spec, condition, sc.width_m * sc.depth_m);
-  const Placement placement = place_poisson_disk(area, n, derive_seed(condition.seed, "placement"));
+  // Centres at least one disc radius apart: discs may overlap by up to half (residual collisions are
+  // what the studies need), but a request denser than that is an input error, not a crowd.
+  PlacementOptions opt;
+  opt.min_spacing_m = spec.crowd.agent_radius_m;
+  const Placement placement = place_poisson_disk(area, n, derive_seed(condition.seed, "placement"), opt);
 
   const double theta = sc.stage_direction_deg * std::numbers::pi / 180.0;
   const Vec2 forward(std::sin(theta), std::cos(theta));  // (x, z)
