@@ -42,8 +42,14 @@ class NeighborGrid {
     const std::int32_t* cys = sorted_cy_.data();
     const auto cx = cell_coord(qx * inv_cell_);
     const auto cy = cell_coord(qy * inv_cell_);
+    // Distance from q to the neighbouring cells' near edges: a cell farther than the (possibly
+    // shrunk) radius is skipped without touching the table.
+    const double fx = qx - cx * cell_, fy = qy - cy * cell_;
+    const double gap_x[3] = {fx, 0.0, cell_ - fx}, gap_y[3] = {fy, 0.0, cell_ - fy};
     for (std::int32_t oy = -1; oy <= 1; ++oy) {
       for (std::int32_t ox = -1; ox <= 1; ++ox) {
+        const double gx = gap_x[ox + 1], gy = gap_y[oy + 1];
+        if (gx * gx + gy * gy > r2) continue;
         const std::int32_t ccx = cx + ox, ccy = cy + oy;
         const std::uint32_t b = bucket_of(ccx, ccy);
         for (std::uint32_t k = start[b], e = start[b + 1]; k < e; ++k) {
