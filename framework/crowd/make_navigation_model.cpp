@@ -1,0 +1,57 @@
+#include "framework/crowd/make_navigation_model.hpp"
+
+#include <cmath>
+
+#include "framework/core/error.hpp"
+#include "framework/crowd/cost_gradient_model.hpp"
+#include "framework/crowd/orca_model.hpp"
+#include "framework/crowd/social_force_model.hpp"
+
+namespace crowdlab {
+
+void StraightLineModel::compute_velocities(const CrowdWorld& w, std::size_t begin, std::size_t end,
+                                           double* new_vx, double* new_vy) const {
+  for (std::size_t i = begin; i < end; ++i) {
+    double vx = w.pref_vx[i], vy = w.pref_vy[i];
+    const double s2 = vx * vx + vy * vy, vmax = w.max_speed[i];
+    if (s2 > vmax * vmax) {
+      const double s = vmax / std::sqrt(s2);
+      vx *= s, vy *= s;
+    }
+    new_vx[i] = vx;
+    new_vy[i] = vy;
+  }
+}
+
+std::shared_ptr<const NavigationModel> make_navigation_model(const CrowdSpec& c) {
+  if (!(c.agent_radius_m > 0.0 && c.agent_radius_m <= 1.0))
+    throw InputError("crowd.agent_radius_m: must be in (0, 1] m, got " + std::to_string(c.agent_radius_m));
+  if (!(c.max_speed_mps > 0.0) || !std::isfinite(c.max_speed_mps))
+    throw InputError("crowd.max_speed_mps: must be > 0");
+  if (!(c.dt_s > 0.0) || !std::isfinite(c.dt_s)) throw InputError("crowd.dt_s: must be > 0");
+  if (!(c.neighbor_distance_m > 0.0) || !std::isfinite(c.neighbor_distance_m))
+    throw InputError("crowd.neighbor_distance_m: must be > 0");
+  if (c.model == "orca") {
+    OrcaParams p;
+    p.neighbor_distance_m = c.neighbor_distance_m;
+    p.max_neighbors = c.max_neighbors;
+    p.time_horizon_s = c.time_horizon_s;
+    p.obstacle_time_horizon_s = c.obstacle_time_horizon_s;
+    return std::make_shared<OrcaModel>(p);
+  }
+  if (c.model == "social") {
+    SocialForceParams p;
+    p.neighbor_distance_m = c.neighbor_distance_m;
+    return std::make_shared<SocialForceModel>(p);
+  }
+  if (c.model == "cost") {
+    CostGradientParams p = cost_gradient_params_from_weights(c.cost_weights);
+    p.neighbor_distance_m = c.neighbor_distance_m;
+    p.max_neighbors = std::max(c.max_neighbors, 1);
+    return std::make_shared<CostGradientModel>(p);
+  }
+  if (c.model == "none") return std::make_shared<StraightLineModel>(c.neighbor_distance_m);
+  throw InputError("crowd.model: unknown model '" + c.model + "' (orca | social | cost | none)");
+}
+
+}  // namespace crowdlab

@@ -1,0 +1,57 @@
+#pragma once
+// NavigationModel: the one interface every 2D navigation model implements (ORCA, social forces,
+// cost-gradient). A model is immutable; CrowdSimulation owns the mutable state and runs each step in
+// two phases:
+//   1. compute: every agent's new velocity from the OLD state only (compute_velocities, in parallel
+//      over agent ranges, each agent writing its own slot);
+//   2. commit:  velocities and positions are updated for all agents at once.
+// So the result does not depend on agent order or on the number of threads.
+//
+// Frame: the ground plane as 2D (x, y) = world (x, z), metres, seconds.
+#include <cstddef>
+#include <limits>
+#include <string_view>
+#include <vector>
+
+#include "framework/core/math_types.hpp"
+#include "framework/crowd/neighbor_grid.hpp"
+
+namespace crowdlab {
+
+/// A static line-segment obstacle (a wall), metres. Both sides block.
+struct ObstacleSegment {
+  Vec2 a = Vec2::Zero();
+  Vec2 b = Vec2::Zero();
+};
+
+/// Read-only view of the old state handed to a model in phase 1. Arrays have `count` entries.
+struct CrowdWorld {
+  std::size_t count = 0;
+  const double* px = nullptr;  ///< positions (m)
+  const double* py = nullptr;
+  const double* vx = nullptr;  ///< current velocities (m/s)
+  const double* vy = nullptr;
+  const double* pref_vx = nullptr;  ///< preferred velocities this step (m/s)
+  const double* pref_vy = nullptr;
+  const double* radius = nullptr;      ///< disc radii (m)
+  const double* max_speed = nullptr;   ///< speed limits (m/s)
+  const NeighborGrid* grid = nullptr;  ///< built over (px, py); cell >= model's neighbour radius
+  const std::vector<ObstacleSegment>* obstacles = nullptr;
+  double dt = 0.1;  ///< the (sub)step being taken (s)
+};
+
+class NavigationModel {
+ public:
+  virtual ~NavigationModel() = default;
+  virtual std::string_view name() const = 0;
+  /// Largest step (s) the model integrates stably; the simulation subdivides its dt below this.
+  virtual double max_step_s() const { return std::numeric_limits<double>::infinity(); }
+  /// Radius (m) of the neighbourhood the model queries; the grid's cell is at least this.
+  virtual double neighbor_radius_m() const = 0;
+  /// Phase 1: new velocities of agents [begin, end) from `world`, written to new_vx/new_vy[i].
+  /// Must be thread-safe (const, no shared mutable state) and allocation-free.
+  virtual void compute_velocities(const CrowdWorld& world, std::size_t begin, std::size_t end, double* new_vx,
+                                  double* new_vy) const = 0;
+};
+
+}  // namespace crowdlab

@@ -1,0 +1,90 @@
+#pragma once
+// NeighborGrid: uniform-grid neighbour search over 2D points (Teschner et al. 2003, "Optimized Spatial
+// Hashing for Collision Detection of Deformable Objects": cells hashed into a table of ~2N buckets), so
+// memory and rebuild time are O(N) however far apart the points are.
+//
+// Rebuild is a stable counting sort of the points by bucket into reused buffers: no allocation once
+// the capacity has been reached, and the visit order is a deterministic function of the input.
+// A query scans the 3x3 cells around the query point, so every query radius must be <= cell size.
+// Entries whose cell differs from the scanned cell (hash aliases) are skipped, so nothing is visited
+// twice. Coordinates are (x, y) in metres; the crowd layer maps world (x, z) to (x, y).
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace crowdlab {
+
+class NeighborGrid {
+ public:
+  /// cell_size_m: > 0 and >= every radius later passed to for_each_within().
+  explicit NeighborGrid(double cell_size_m = 2.0);
+
+  void set_cell_size(double cell_size_m);
+  double cell_size() const { return cell_; }
+
+  /// Rebuilds the grid from n points given as separate x and y arrays (metres).
+  void rebuild(const double* x, const double* y, std::size_t n);
+
+  std::size_t size() const { return count_; }
+
+  /// Calls r2 = visit(j, dx, dy, d2, r2) for every point j with d2 = |p_j - q|^2 <= r2, where
+  /// (dx, dy) = p_j - q and r2 starts at radius^2. `radius` must be <= cell_size(). Visit returns the
+  /// squared radius it still wants (return r2 unchanged to keep it; smaller to prune, as kNN does).
+  template <class Visit>
+  void for_each_within(double qx, double qy, double radius, Visit&& visit) const {
+    double r2 = radius * radius;
+    const std::uint32_t* start = bucket_start_.data();
+    const std::uint32_t* index = sorted_index_.data();
+    const double* xs = sorted_x_.data();
+    const double* ys = sorted_y_.data();
+    const std::int32_t* cxs = sorted_cx_.data();
+    const std::int32_t* cys = sorted_cy_.data();
+    const auto cx = cell_coord(qx * inv_cell_);
+    const auto cy = cell_coord(qy * inv_cell_);
+    // Distance from q to the neighbouring cells' near edges: a cell farther than the (possibly
+    // shrunk) radius is skipped without touching the table.
+    const double fx = qx - cx * cell_, fy = qy - cy * cell_;
+    const double gap_x[3] = {fx, 0.0, cell_ - fx}, gap_y[3] = {fy, 0.0, cell_ - fy};
+    for (std::int32_t oy = -1; oy <= 1; ++oy) {
+      for (std::int32_t ox = -1; ox <= 1; ++ox) {
+        const double gx = gap_x[ox + 1], gy = gap_y[oy + 1];
+        if (gx * gx + gy * gy > r2) continue;
+        const std::int32_t ccx = cx + ox, ccy = cy + oy;
+        const std::uint32_t b = bucket_of(ccx, ccy);
+        for (std::uint32_t k = start[b], e = start[b + 1]; k < e; ++k) {
+          if (cxs[k] != ccx || cys[k] != ccy) continue;  // hash alias
+          const double dx = xs[k] - qx, dy = ys[k] - qy;
+          const double d2 = dx * dx + dy * dy;
+          if (d2 <= r2) r2 = visit(index[k], dx, dy, d2, r2);
+        }
+      }
+    }
+  }
+
+ private:
+  /// floor() for cell indices without a libm call (x86-64 baseline has no SSE4.1 roundsd).
+  static std::int32_t cell_coord(double v) {
+    const auto i = static_cast<std::int32_t>(v);
+    return i - (v < static_cast<double>(i) ? 1 : 0);
+  }
+
+  // Fibonacci hashing of the packed cell coordinates (Knuth, TAOCP vol. 3, 6.4): the HIGH bits of
+  // the product are well mixed, so the table index takes those.
+  std::uint32_t bucket_of(std::int32_t cx, std::int32_t cy) const {
+    const std::uint64_t key =
+        (static_cast<std::uint64_t>(static_cast<std::uint32_t>(cx)) << 32) | static_cast<std::uint32_t>(cy);
+    return static_cast<std::uint32_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
+  }
+
+  double cell_ = 2.0, inv_cell_ = 0.5;
+  std::size_t count_ = 0;
+  unsigned shift_ = 60;                      // 64 - log2(table size)
+  std::vector<std::uint32_t> bucket_start_;  // (table + 1) prefix sums
+  std::vector<std::uint32_t> point_bucket_;  // (n) bucket of each point (scratch)
+  std::vector<std::uint32_t> sorted_index_;  // (n) point index in bucket order
+  std::vector<double> sorted_x_, sorted_y_;  // (n) coordinates in bucket order (cache locality)
+  std::vector<std::int32_t> sorted_cx_, sorted_cy_;
+};
+
+}  // namespace crowdlab
