@@ -83,19 +83,24 @@ DancePose fist_pump(double b, double a) {
 
 DancePose jump(double b, double a) {
   DancePose p;
-  // Jumps on beats 0 and 2 (airborne for the first 35 % of the beat), crouch before and after.
+  // Jumps at the start of beats 0 and 2 (airborne for the first 35 % of the beat); a landing crouch
+  // after each and a preparatory crouch before it (position c in the 2-beat cycle, wrapped).
+  const double c = std::fmod(b, 2.0);
   const double u = frac(b);
-  const bool jump_beat = static_cast<int>(std::floor(b)) % 2 == 0;
+  const bool jump_beat = c < 1.0;
   const double air = jump_beat && u < 0.35 ? std::sin(kPi * u / 0.35) : 0.0;
   const double lift = 0.10 * a * air;
-  const double crouch =
-      0.06 * a * (std::exp(-std::pow((u - 0.42) / 0.1, 2)) + std::exp(-std::pow((u - 0.93) / 0.1, 2))) *
-      (jump_beat ? 1.0 : 0.0);
+  auto bump = [&](double centre) {
+    double d = c - centre;
+    d -= 2.0 * std::round(d / 2.0);
+    return std::exp(-d * d / (0.12 * 0.12));
+  };
+  const double crouch = 0.06 * a * (bump(0.5) + bump(1.85));
   p.pelvis_offset.y() = lift - crouch;
   for (auto& f : p.foot) f.lift = lift;
   p.spine_pitch = 0.1 * crouch / 0.06;
-  const double arms = jump_beat ? air : 0.0;
-  p.arm[0] = {0.4 + 2.1 * arms, 0.5, 0.5, 0.0};
+  const double arms = 0.5 + 0.5 * std::cos(kPi * (b - 0.15));  // up around each take-off, period 2 beats
+  p.arm[0] = {0.4 + 1.6 * a * arms, 0.5, 0.5, 0.0};
   p.arm[1] = p.arm[0];
   return p;
 }
