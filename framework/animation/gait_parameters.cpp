@@ -28,8 +28,8 @@ GaitParameters gait_parameters(double speed_mps, double height_m) {
   g.elbow_mean_rad = lerp(15.0, 30.0, t) * kDeg;
   g.elbow_swing_rad = lerp(5.0, 15.0, t) * kDeg;
   g.trunk_lean_rad = lerp(1.0, 5.0, t) * kDeg;
-  g.foot_lift_m = lerp(0.08, 0.14, t) * height_m / 1.70;
-  g.toe_off_pitch_rad = lerp(25.0, 45.0, t) * kDeg;
+  g.foot_lift_m = lerp(0.05, 0.09, t) * height_m / 1.70;
+  g.toe_off_pitch_rad = lerp(20.0, 40.0, t) * kDeg;
   return g;
 }
 

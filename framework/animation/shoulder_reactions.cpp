@@ -48,19 +48,31 @@ ShoulderReactions compute_shoulder_reactions(const CrowdTrajectories& traj,
 
   const bool forced = params.forced_count >= 0;
   const double dtca_th = forced ? std::max(params.dtca_threshold_m, 0.75) : params.dtca_threshold_m;
+  std::vector<std::vector<Vec2>> vel(agents, std::vector<Vec2>(frames));
+  for (size_t i = 0; i < agents; ++i)
+    for (size_t f = 0; f < frames; ++f) vel[i][f] = trajectory_velocity(traj, i, f);
+
+  // Forced mode: the reacting agents are drawn (seeded) among those that meet a risk at all, so that
+  // "shoulder = 1" in a pair scene with bystanders still picks one of the crossing pair.
   std::vector<bool> forced_reacts(agents, false);
   if (forced) {
+    auto has_risk = [&](size_t i) {
+      for (size_t f = 0; f < frames; ++f)
+        for (size_t j = 0; j < agents; ++j)
+          if (j != i && is_risk(closest_approach(traj.agents[i].position_m[f], vel[i][f],
+                                                 traj.agents[j].position_m[f], vel[j][f]),
+                                params.ttca_threshold_s, dtca_th))
+            return true;
+      return false;
+    };
     std::vector<size_t> order(agents);
     std::iota(order.begin(), order.end(), size_t{0});
     Rng rng(derive_seed(seed, "shoulder/forced"));
     for (size_t i = agents; i > 1; --i) std::swap(order[i - 1], order[uniform_index(rng, i)]);
+    std::stable_partition(order.begin(), order.end(), has_risk);
     for (size_t k = 0; k < std::min(agents, static_cast<size_t>(params.forced_count)); ++k)
       forced_reacts[order[k]] = true;
   }
-
-  std::vector<std::vector<Vec2>> vel(agents, std::vector<Vec2>(frames));
-  for (size_t i = 0; i < agents; ++i)
-    for (size_t f = 0; f < frames; ++f) vel[i][f] = trajectory_velocity(traj, i, f);
 
   ShoulderReactions out;
   out.weight.assign(agents, std::vector<double>(frames, 0.0));

@@ -1,4 +1,5 @@
 // Body sampling statistics and the animate_crowd entry point.
+#include <tbb/global_control.h>
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -85,4 +86,48 @@ TEST_CASE("animate_crowd: names, palettes, validity, stationary vs walking, dete
   CHECK_THROWS_AS(animate_crowd(CrowdTrajectories{}, Environment{}, spec, ctx), InputError);
   spec.body_model = "mpfb2";
   CHECK_THROWS_AS(animate_crowd(line_crowd(2, 1, 10), Environment{}, spec, ctx), InputError);
+}
+
+TEST_CASE("animate_crowd gives identical results with one thread and many; shoulder factor is honoured") {
+  AnimationSpec spec;
+  AnimationContext ctx;
+  ctx.seed = 5;
+  ctx.scenario_type = "pair_crossing";
+  ctx.shoulder_count = 2;
+  // A crossing pair 0.4 m apart plus a bystander.
+  CrowdTrajectories t;
+  t.fps = 30;
+  t.agents.resize(3);
+  for (int k = 0; k < 120; ++k) {
+    const double time = k / 30.0;
+    t.agents[0].position_m.emplace_back(-0.2, 1.3 * (time - 2.0));
+    t.agents[0].heading_rad.push_back(0.0);
+    t.agents[1].position_m.emplace_back(0.2, -1.3 * (time - 2.0));
+    t.agents[1].heading_rad.push_back(3.14159265358979);
+    t.agents[2].position_m.emplace_back(5.0, 1.0 * time);
+    t.agents[2].heading_rad.push_back(0.0);
+  }
+  CrowdAnimation one, many;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = animate_crowd(t, Environment{}, spec, ctx);
+  }
+  many = animate_crowd(t, Environment{}, spec, ctx);
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t f = 0; f < 120; ++f) {
+      CHECK(one.characters[i].frames[f].root_position_m == many.characters[i].frames[f].root_position_m);
+      for (int j = 0; j < kJointCount; ++j)
+        CHECK(one.characters[i].frames[f].local_rotations[static_cast<size_t>(j)].coeffs() ==
+              many.characters[i].frames[f].local_rotations[static_cast<size_t>(j)].coeffs());
+    }
+  // Both walkers turn their trunk (spine3 relative to pelvis) near the closest approach (t = 2 s).
+  auto trunk_twist = [](const Pose& p) {
+    return Eigen::AngleAxisd(p.local_rotations[kSpine1] * p.local_rotations[kSpine2] *
+                             p.local_rotations[kSpine3])
+        .angle();
+  };
+  for (size_t i = 0; i < 2; ++i) CHECK(trunk_twist(many.characters[i].frames[60]) > 0.4);
+  ctx.shoulder_count = 0;
+  const CrowdAnimation none = animate_crowd(t, Environment{}, spec, ctx);
+  for (size_t i = 0; i < 2; ++i) CHECK(trunk_twist(none.characters[i].frames[60]) < 0.2);
 }

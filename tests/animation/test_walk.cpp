@@ -165,3 +165,38 @@ TEST_CASE("walking is deterministic and varies across seeds") {
   }
   CHECK(differs);
 }
+
+TEST_CASE("a shoulder reaction turns the torso toward the passing side while the legs keep walking") {
+  const BodyShape s = make_procedural_body({Sex::kMale, 1.75, 1.0});
+  const AgentTrajectory t = straight_line(1.3, 4.0, 30.0);
+  std::vector<double> left(t.position_m.size(), 0.0), right;
+  for (size_t f = 30; f < 90; ++f) left[f] = std::sin(3.14159265 * (f - 30) / 60.0);  // peak 1 at frame 60
+  right = left;
+  for (double& w : right) w = -w;
+  const WalkResult plain = animate_walking(s, t, 30.0, walk_style_from_seed(1));
+  const WalkResult l = animate_walking(s, t, 30.0, walk_style_from_seed(1), left);
+  const WalkResult r = animate_walking(s, t, 30.0, walk_style_from_seed(1), right);
+  for (const WalkResult* w : {&l, &r}) {
+    CHECK(measure_foot_skate(s, w->frames, w->contact).max_m <= 0.01);
+    CHECK(w->max_ik_error_m < 1e-6);
+    CHECK(w->contact == plain.contact);  // same steps
+  }
+  // Shoulder line: left shoulder minus right shoulder, projected on the ground. Walking +Z, a
+  // reaction to the left (partner on +X) moves the left shoulder back (-Z) and presents the chest.
+  auto shoulder_line_yaw = [&](const Pose& p) {
+    const auto jp = joint_positions(s, p);
+    const Vec3 d = jp[kLeftShoulder] - jp[kRightShoulder];
+    return std::atan2(-d.z(), d.x());  // > 0 when the left shoulder is behind
+  };
+  const double base = shoulder_line_yaw(plain.frames[60]);
+  const double turned_left = shoulder_line_yaw(l.frames[60]) - base;
+  const double turned_right = shoulder_line_yaw(r.frames[60]) - base;
+  INFO("shoulder line rotation: left " << turned_left * 57.3 << " deg, right " << turned_right * 57.3
+                                       << " deg");
+  CHECK(turned_left > 25.0 * 3.14159265 / 180.0);
+  CHECK(turned_right < -25.0 * 3.14159265 / 180.0);
+  // Away from the reaction the pose is the plain walk.
+  for (int j = 0; j < kJointCount; ++j)
+    CHECK(l.frames[10].local_rotations[static_cast<size_t>(j)].angularDistance(
+              plain.frames[10].local_rotations[static_cast<size_t>(j)]) < 1e-12);
+}
