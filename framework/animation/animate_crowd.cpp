@@ -6,7 +6,11 @@
 #include <cstdio>
 #include <numeric>
 
+#include "framework/animation/bvh.hpp"
+#include "framework/animation/clip_in_place.hpp"
+#include "framework/animation/clip_loop.hpp"
 #include "framework/animation/dance_animation.hpp"
+#include "framework/animation/retarget.hpp"
 #include "framework/animation/sample_bodies.hpp"
 #include "framework/animation/shoulder_reactions.hpp"
 #include "framework/animation/walk_animation.hpp"
@@ -43,10 +47,24 @@ CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Enviro
   check_trajectories(trajectories);
   const size_t n = trajectories.agents.size();
   const auto frames = static_cast<size_t>(trajectories.frame_count());
-  if (spec.motion != "procedural")
-    throw InputError("animation.motion: '" + spec.motion +
-                     "' is not supported by animate_crowd (use 'procedural'; "
-                     "clips are imported with import_bvh + retarget_bvh)");
+  const bool stationary = context.scenario_type == "stationary";
+  const bool clips = spec.motion == "clips";
+  if (spec.motion != "procedural" && !clips)
+    throw InputError("animation.motion: '" + spec.motion + "' must be 'procedural' or 'clips'");
+  if (clips && !stationary)
+    throw InputError(
+        "animation.motion: 'clips' is supported for stationary (dancing) scenarios only; walking uses the "
+        "procedural gait");
+  if (clips && spec.dance_clips.empty())
+    throw InputError("animation.dance_clips: 'clips' motion needs at least one clip");
+  std::vector<BvhMotion> dance_clips;
+  if (clips)
+    for (const std::string& file : spec.dance_clips) {
+      const std::filesystem::path path = std::filesystem::path(file).is_absolute()
+                                             ? std::filesystem::path(file)
+                                             : context.clip_directory / file;
+      dance_clips.push_back(import_bvh(path));
+    }
   if (!context.shapes.empty() && context.shapes.size() != n)
     throw InputError("animate_crowd: " + std::to_string(context.shapes.size()) + " body shapes for " +
                      std::to_string(n) + " agents");
@@ -62,7 +80,6 @@ CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Enviro
     for (size_t i = 0; i < n; ++i) shapes[i] = make_procedural_body(params[i]);
   }
 
-  const bool stationary = context.scenario_type == "stationary";
   ShoulderReactions reactions;
   if (!stationary && (context.trigger_probability > 0.0 || context.shoulder_count >= 0)) {
     ShoulderReactionParams rp;
@@ -93,7 +110,19 @@ CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Enviro
     c.shape = shapes[i];
     c.palette = palette[i];
     const std::uint64_t cseed = derive_seed(context.seed, "character/" + c.name);
-    if (stationary) {
+    if (clips) {
+      Rng rng(derive_seed(cseed, "clip"));
+      const BvhMotion& clip = dance_clips[uniform_index(rng, dance_clips.size())];
+      const RetargetedClip r = retarget_bvh(clip, c.shape);
+      const int n_src = static_cast<int>(r.frames.size());
+      const int blend = std::min(15, n_src / 4);
+      if (n_src < 8)
+        throw InputError(clip.source + ": clip too short to loop (" + std::to_string(n_src) + " frames)");
+      const LoopedClip loop = make_seamless_loop(r.frames, blend, n_src, blend);
+      const double loop_s = static_cast<double>(loop.frames.size()) / r.fps;
+      c.frames =
+          play_clip_in_place(loop, r.fps, trajectories.agents[i], trajectories.fps, uniform01(rng) * loop_s);
+    } else if (stationary) {
       c.frames = animate_dancing(c.shape, trajectories.agents[i], trajectories.fps,
                                  dance_style_from_seed(cseed, duration))
                      .frames;

@@ -7,6 +7,10 @@
 //     bodies, unless the context supplies ready-made shapes (e.g. the MPFB2 body model);
 //   - scenario "stationary": dancing / idling in place (dance_animation.hpp), one seeded style per
 //     character, tempo fitted so the whole clip loops;
+//   - "stationary" with animation.motion = "clips": the spec's dance_clips (BVH files; relative paths
+//     are taken from AnimationContext::clip_directory) are imported once, retargeted onto each
+//     character's body, looped seamlessly and played in place from a seeded start time
+//     (clip_in_place.hpp). Walking from clips is not supported (InputError);
 //   - any other scenario: procedural walking along the trajectory (walk_animation.hpp) with shoulder
 //     reactions (shoulder_reactions.hpp) when trigger_probability > 0 or shoulder_count >= 0.
 // Characters are named "c000", "c001", ... in trajectory order; palette = a seeded permutation of
@@ -14,6 +18,7 @@
 // Characters are processed in parallel (TBB) into per-index slots: identical output for any thread
 // count. The result passes validate_crowd().
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -34,7 +39,8 @@ struct AnimationContext {
   int shoulder_count = -1;                   ///< >= 0: exactly this many characters react (pairs)
   double trigger_probability = 0.0;          ///< per-event shoulder reaction probability
   std::string condition_id;
-  std::vector<BodyShape> shapes;  ///< optional: one shape per agent (overrides sampling)
+  std::vector<BodyShape> shapes;         ///< optional: one shape per agent (overrides sampling)
+  std::filesystem::path clip_directory;  ///< base for relative clip paths (the spec file's folder)
 };
 
 /// Throws InputError for empty / inconsistent trajectories, a shapes list of the wrong size or an

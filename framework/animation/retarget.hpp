@@ -53,7 +53,8 @@ struct RetargetOptions {
   bool flatten_feet = true;  ///< step 3 above
 };
 
-RetargetedClip retarget_bvh(const BvhMotion& motion, const BodyShape& target, const RetargetOptions& options = {});
+RetargetedClip retarget_bvh(const BvhMotion& motion, const BodyShape& target,
+                            const RetargetOptions& options = {});
 
 /// Moves and turns a clip on the ground so that frame 0's root is above the origin and its heading
 /// is 0 (facing +Z). Heights are unchanged.

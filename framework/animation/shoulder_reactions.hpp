@@ -19,8 +19,9 @@
 // the length of one gait cycle at 1.1-1.3 m/s (stride frequency 0.9 Hz), i.e. one shoulder turn per
 // passing as in the paper's mocap clips. Raised-cosine blends keep the weight C1-continuous.
 // Forced mode (pair experiment, seed 001 §3: "shoulder" factor 0/1/2): exactly `forced_count` agents
-// (a seeded choice, preferring agents that meet any risk) react to every risk, the others never do; because that experiment's passing
-// distances go up to 0.70 m, the dtca threshold is raised to max(dtca_threshold, 0.75 m) there.
+// (a seeded choice, preferring agents that meet any risk) react to every risk, the others never do; because
+// that experiment's passing distances go up to 0.70 m, the dtca threshold is raised to max(dtca_threshold,
+// 0.75 m) there.
 #include <cstdint>
 #include <vector>
 

@@ -6,6 +6,7 @@
 #include <functional>
 #include <sstream>
 
+#include "framework/animation/animate_crowd.hpp"
 #include "framework/animation/bvh.hpp"
 #include "framework/animation/clip_loop.hpp"
 #include "framework/animation/retarget.hpp"
@@ -300,4 +301,37 @@ TEST_CASE("seamless loop of a real walk: no pop at the seam, ground motion conti
   CHECK(jump(sample_loop(raw, static_cast<long>(raw.frames.size()) - 1),
              sample_loop(raw, static_cast<long>(raw.frames.size()))) > seam);
   CHECK_THROWS_AS(make_seamless_loop(c.frames, 5, 10, 8), InputError);
+}
+
+TEST_CASE("stationary crowd dancing from a BVH clip: in place, varied start times, valid crowd") {
+  const auto dir = test::shared_data("bandai-namco-1");
+  if (dir.empty()) return;
+  AnimationSpec spec;
+  spec.motion = "clips";
+  spec.dance_clips = {"dataset-1_dance-short_normal_001.bvh"};
+  AnimationContext ctx;
+  ctx.seed = 8;
+  ctx.scenario_type = "stationary";
+  ctx.clip_directory = dir;
+  CrowdTrajectories t;
+  t.fps = 30;
+  t.agents.resize(4);
+  for (size_t i = 0; i < 4; ++i) {
+    t.agents[i].position_m.assign(60, Vec2(0.7 * static_cast<double>(i), 1.0));
+    t.agents[i].heading_rad.assign(60, 0.2);
+  }
+  const CrowdAnimation crowd = animate_crowd(t, Environment{}, spec, ctx);
+  CHECK_NOTHROW(validate_crowd(crowd, "clips"));
+  for (size_t i = 0; i < 4; ++i)
+    for (const Pose& p : crowd.characters[i].frames) {
+      const Vec2 d(p.root_position_m.x() - 0.7 * static_cast<double>(i), p.root_position_m.z() - 1.0);
+      CHECK(d.norm() < 0.35);  // stays at its spot
+    }
+  // Different characters are at different points of the dance.
+  CHECK(crowd.characters[0].frames[0].local_rotations[kLeftShoulder].angularDistance(
+            crowd.characters[1].frames[0].local_rotations[kLeftShoulder]) > 1e-3);
+  spec.dance_clips = {"missing.bvh"};
+  CHECK_THROWS_AS(animate_crowd(t, Environment{}, spec, ctx), InputError);
+  ctx.scenario_type = "corridor";
+  CHECK_THROWS_AS(animate_crowd(t, Environment{}, spec, ctx), InputError);
 }
