@@ -33,7 +33,7 @@ namespace {
 constexpr double kDeg = kPi / 180.0;
 constexpr double kGravity = 9.81;
 constexpr double kPadSeconds = 2.0;
-constexpr double kReachFraction = 0.985;  // keep the knee a little bent: never a locked, singular leg
+constexpr double kReachFraction = 0.995;  // keep the knee a touch bent: never a locked leg
 
 double activity_of_speed(double v) {
   return smoothstep01((v - 0.05) / 0.20);
