@@ -10,6 +10,7 @@
 #include "framework/animation/clip_in_place.hpp"
 #include "framework/animation/clip_loop.hpp"
 #include "framework/animation/dance_animation.hpp"
+#include "framework/animation/gltf_motion.hpp"
 #include "framework/animation/retarget.hpp"
 #include "framework/animation/sample_bodies.hpp"
 #include "framework/animation/shoulder_reactions.hpp"
@@ -63,7 +64,8 @@ CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Enviro
       const std::filesystem::path path = std::filesystem::path(file).is_absolute()
                                              ? std::filesystem::path(file)
                                              : context.clip_directory / file;
-      dance_clips.push_back(import_bvh(path));
+      const std::string ext = path.extension().string();
+      dance_clips.push_back(ext == ".gltf" || ext == ".glb" ? import_gltf_animation(path) : import_bvh(path));
     }
   if (!context.shapes.empty() && context.shapes.size() != n)
     throw InputError("animate_crowd: " + std::to_string(context.shapes.size()) + " body shapes for " +

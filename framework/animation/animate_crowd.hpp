@@ -7,7 +7,8 @@
 //     bodies, unless the context supplies ready-made shapes (e.g. the MPFB2 body model);
 //   - scenario "stationary": dancing / idling in place (dance_animation.hpp), one seeded style per
 //     character, tempo fitted so the whole clip loops;
-//   - "stationary" with animation.motion = "clips": the spec's dance_clips (BVH files; relative paths
+//   - "stationary" with animation.motion = "clips": the spec's dance_clips (.bvh, or .gltf/.glb skinned
+//     animations; relative paths
 //     are taken from AnimationContext::clip_directory) are imported once, retargeted onto each
 //     character's body, looped seamlessly and played in place from a seeded start time
 //     (clip_in_place.hpp). Walking from clips is not supported (InputError);
