@@ -118,7 +118,8 @@ TEST_CASE("glTF animation import: sampling, baked armature scale, retargeting ro
   CHECK(c.scale == Approx(1.0).epsilon(1e-6));
   Pose expect;
   expect.local_rotations[kLeftKnee] = Quat(Eigen::AngleAxisd(3.14159265358979 / 4, Vec3::UnitX()));
-  expect.local_rotations[kRightElbow] = Quat(Eigen::AngleAxisd(2 * 0.5236, Vec3::UnitY()));  // STEP key at t = 0.5
+  expect.local_rotations[kRightElbow] =
+      Quat(Eigen::AngleAxisd(2 * 0.5236, Vec3::UnitY()));  // STEP key at t = 0.5
   const auto a = joint_positions(s, expect), b = joint_positions(s, c.frames[15]);
   for (int j = 0; j < kJointCount; ++j)
     CHECK(((a[static_cast<size_t>(j)] - a[0]) - (b[static_cast<size_t>(j)] - b[0])).norm() < 1e-4);

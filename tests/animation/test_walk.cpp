@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "framework/animation/clip_loop.hpp"
 #include "framework/animation/foot_skate.hpp"
 #include "framework/animation/gait_parameters.hpp"
 #include "framework/animation/leg_ik.hpp"
@@ -216,5 +217,33 @@ TEST_CASE("FK round trip on generated motion: bone transforms -> pose -> bone tr
     for (int j = 0; j < kJointCount; ++j)
       CHECK((again[static_cast<size_t>(j)].translation - bones[static_cast<size_t>(j)].translation).norm() <
             1e-9);
+  }
+}
+
+TEST_CASE("procedural walking and standing idle loop without a pop through make_seamless_loop") {
+  const BodyShape s = make_procedural_body({Sex::kMale, 1.75, 1.0});
+  auto max_step = [&](const std::vector<Pose>& frames) {
+    double worst = 0;
+    for (size_t k = 1; k < frames.size(); ++k) {
+      const auto a = joint_positions(s, frames[k - 1]), b = joint_positions(s, frames[k]);
+      for (size_t j = 0; j < a.size(); ++j) worst = std::max(worst, (a[j] - b[j]).norm());
+    }
+    return worst;
+  };
+  for (double v : {0.0, 1.3}) {
+    const WalkResult w = animate_walking(s, straight_line(v, 6.0, 30.0), 30.0, walk_style_from_seed(4));
+    const double cycle_frames = v > 0 ? 30.0 * 120.0 / gait_parameters(v, 1.75).cadence_steps_per_min : 60.0;
+    const int first = 40, last = first + static_cast<int>(std::lround(2 * cycle_frames));
+    const LoopedClip loop = make_seamless_loop(w.frames, first, last, 10);
+    std::vector<Pose> played;
+    for (long k = 0; k < 3 * static_cast<long>(loop.frames.size()); ++k)
+      played.push_back(sample_loop(loop, k));
+    const double inside = max_step(loop.frames);
+    const double seam = max_step({played[loop.frames.size() - 1], played[loop.frames.size()]});
+    INFO("speed " << v << ": seam step " << seam << " m, largest in-loop step " << inside << " m");
+    CHECK(seam <= 1.2 * inside + 1e-4);
+    // Replays continue forward along the path.
+    CHECK(played.back().root_position_m.z() >
+          played.front().root_position_m.z() + 2.5 * v * 2 * cycle_frames / 30.0 - 0.2);
   }
 }
