@@ -13,24 +13,37 @@ std::vector<Pose> play_clip_in_place(const LoopedClip& loop, double clip_fps, co
     throw InputError("play_clip_in_place: empty loop or fps <= 0");
   const auto n = static_cast<long>(loop.frames.size());
   const long w = std::max(1L, std::lround(clip_fps));  // +-1 s window
-  // Clip frames with their ground deviation from the moving average, over one loop (sampled from
-  // the continued loop so the window wraps across replays seamlessly).
+  // Sample the continued loop once over [c - w, c + n + w) (c far enough into the replays that every
+  // index is >= 0), then slide the +-w window with running sums: O(n + w).
+  const long c = n * (1 + w / n);
+  std::vector<Pose> seq;
+  seq.reserve(static_cast<size_t>(n + 2 * w));
+  for (long i = c - w; i < c + n + w; ++i) seq.push_back(sample_loop(loop, i));
+  std::vector<double> unwrapped(seq.size());
+  for (size_t i = 0; i < seq.size(); ++i)
+    unwrapped[i] = i == 0 ? seq[0].heading_rad()
+                          : unwrapped[i - 1] + anim::wrap_angle(seq[i].heading_rad() - unwrapped[i - 1]);
+  Vec3 sum_pos = Vec3::Zero();
+  double sum_heading = 0;
+  for (long i = 0; i < 2 * w + 1; ++i) {
+    sum_pos += Vec3(seq[static_cast<size_t>(i)].root_position_m.x(), 0,
+                    seq[static_cast<size_t>(i)].root_position_m.z());
+    sum_heading += unwrapped[static_cast<size_t>(i)];
+  }
   std::vector<Pose> local(static_cast<size_t>(n));
+  const double count = static_cast<double>(2 * w + 1);
   for (long k = 0; k < n; ++k) {
-    const long c = k + n * (1 + w / n);  // far enough into the replays that k - w >= 0
-    Vec3 mean = Vec3::Zero();
-    double heading_sum = 0;
-    const Pose centre = sample_loop(loop, c);
-    const double h_c = centre.heading_rad();
-    for (long i = c - w; i <= c + w; ++i) {
-      const Pose p = sample_loop(loop, i);
-      mean += Vec3(p.root_position_m.x(), 0, p.root_position_m.z());
-      heading_sum += anim::wrap_angle(p.heading_rad() - h_c);
+    if (k > 0) {  // slide: drop k - 1, add k + 2w
+      const Pose& drop = seq[static_cast<size_t>(k - 1)];
+      const Pose& add = seq[static_cast<size_t>(k + 2 * w)];
+      sum_pos += Vec3(add.root_position_m.x() - drop.root_position_m.x(), 0,
+                      add.root_position_m.z() - drop.root_position_m.z());
+      sum_heading += unwrapped[static_cast<size_t>(k + 2 * w)] - unwrapped[static_cast<size_t>(k - 1)];
     }
-    mean /= static_cast<double>(2 * w + 1);
-    const double mean_heading = h_c + heading_sum / static_cast<double>(2 * w + 1);
+    const Pose& centre = seq[static_cast<size_t>(k + w)];
+    const Vec3 mean = sum_pos / count;
     // Express the pose relative to (mean position, mean heading).
-    const Quat unturn = anim::yaw(-mean_heading);
+    const Quat unturn = anim::yaw(-sum_heading / count);
     Pose p = centre;
     p.root_position_m = unturn * (centre.root_position_m - mean);
     p.local_rotations[0] = (unturn * centre.local_rotations[0]).normalized();
