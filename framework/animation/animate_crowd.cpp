@@ -1,0 +1,143 @@
+#include "framework/animation/animate_crowd.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+
+#include "framework/animation/bvh.hpp"
+#include "framework/animation/clip_in_place.hpp"
+#include "framework/animation/clip_loop.hpp"
+#include "framework/animation/dance_animation.hpp"
+#include "framework/animation/gltf_motion.hpp"
+#include "framework/animation/retarget.hpp"
+#include "framework/animation/sample_bodies.hpp"
+#include "framework/animation/shoulder_reactions.hpp"
+#include "framework/animation/walk_animation.hpp"
+#include "framework/core/error.hpp"
+#include "framework/core/seed.hpp"
+
+namespace crowdlab {
+
+namespace {
+std::string character_name(size_t i) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "c%03zu", i);
+  return buf;
+}
+
+void check_trajectories(const CrowdTrajectories& t) {
+  if (!(t.fps > 0) || !std::isfinite(t.fps)) throw InputError("animate_crowd: trajectories fps must be > 0");
+  if (t.agents.empty()) throw InputError("animate_crowd: no agents in the trajectories");
+  const size_t frames = t.agents.front().position_m.size();
+  if (frames == 0) throw InputError("animate_crowd: trajectories have no frames");
+  for (size_t i = 0; i < t.agents.size(); ++i) {
+    const AgentTrajectory& a = t.agents[i];
+    if (a.position_m.size() != frames || a.heading_rad.size() != frames)
+      throw InputError("animate_crowd: agent " + std::to_string(i) + " has " +
+                       std::to_string(a.position_m.size()) + " positions and " +
+                       std::to_string(a.heading_rad.size()) + " headings, expected " +
+                       std::to_string(frames));
+  }
+}
+}  // namespace
+
+CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Environment& environment,
+                             const AnimationSpec& spec, const AnimationContext& context) {
+  check_trajectories(trajectories);
+  const size_t n = trajectories.agents.size();
+  const auto frames = static_cast<size_t>(trajectories.frame_count());
+  const bool stationary = context.scenario_type == "stationary";
+  const bool clips = spec.motion == "clips";
+  if (spec.motion != "procedural" && !clips)
+    throw InputError("animation.motion: '" + spec.motion + "' must be 'procedural' or 'clips'");
+  if (clips && !stationary)
+    throw InputError(
+        "animation.motion: 'clips' is supported for stationary (dancing) scenarios only; walking uses the "
+        "procedural gait");
+  if (clips && spec.dance_clips.empty())
+    throw InputError("animation.dance_clips: 'clips' motion needs at least one clip");
+  std::vector<BvhMotion> dance_clips;
+  if (clips)
+    for (const std::string& file : spec.dance_clips) {
+      const std::filesystem::path path = std::filesystem::path(file).is_absolute()
+                                             ? std::filesystem::path(file)
+                                             : context.clip_directory / file;
+      const std::string ext = path.extension().string();
+      dance_clips.push_back(ext == ".gltf" || ext == ".glb" ? import_gltf_animation(path) : import_bvh(path));
+    }
+  if (!context.shapes.empty() && context.shapes.size() != n)
+    throw InputError("animate_crowd: " + std::to_string(context.shapes.size()) + " body shapes for " +
+                     std::to_string(n) + " agents");
+  if (context.shapes.empty() && spec.body_model != "procedural")
+    throw InputError("animation.body_model: '" + spec.body_model +
+                     "' needs its shapes passed in AnimationContext::shapes");
+
+  std::vector<BodyShape> shapes = context.shapes;
+  if (shapes.empty()) {
+    const std::vector<BodyParams> params =
+        sample_bodies(static_cast<int>(n), spec.female_fraction, derive_seed(context.seed, "bodies"));
+    shapes.resize(n);
+    for (size_t i = 0; i < n; ++i) shapes[i] = make_procedural_body(params[i]);
+  }
+
+  ShoulderReactions reactions;
+  if (!stationary && (context.trigger_probability > 0.0 || context.shoulder_count >= 0)) {
+    ShoulderReactionParams rp;
+    rp.ttca_threshold_s = spec.ttca_threshold_s;
+    rp.dtca_threshold_m = spec.dtca_threshold_m;
+    rp.trigger_probability = context.trigger_probability;
+    rp.forced_count = context.shoulder_count;
+    reactions = compute_shoulder_reactions(trajectories, rp, derive_seed(context.seed, "shoulder"));
+  }
+
+  // Seeded palette permutation.
+  std::vector<int> palette(n);
+  std::iota(palette.begin(), palette.end(), 0);
+  Rng prng(derive_seed(context.seed, "palette"));
+  for (size_t i = n; i > 1; --i) std::swap(palette[i - 1], palette[uniform_index(prng, i)]);
+
+  CrowdAnimation crowd;
+  crowd.environment = environment;
+  crowd.meta.fps = trajectories.fps;
+  crowd.meta.seed = context.seed;
+  crowd.meta.condition_id = context.condition_id;
+  crowd.meta.scenario = context.scenario_type;
+  crowd.characters.resize(n);
+  const double duration = static_cast<double>(frames) / trajectories.fps;
+  tbb::parallel_for(size_t{0}, n, [&](size_t i) {
+    CharacterAnimation& c = crowd.characters[i];
+    c.name = character_name(i);
+    c.shape = shapes[i];
+    c.palette = palette[i];
+    const std::uint64_t cseed = derive_seed(context.seed, "character/" + c.name);
+    if (clips) {
+      Rng rng(derive_seed(cseed, "clip"));
+      const BvhMotion& clip = dance_clips[uniform_index(rng, dance_clips.size())];
+      const RetargetedClip r = retarget_bvh(clip, c.shape);
+      const int n_src = static_cast<int>(r.frames.size());
+      const int blend = std::min(15, n_src / 4);
+      if (n_src < 8)
+        throw InputError(clip.source + ": clip too short to loop (" + std::to_string(n_src) + " frames)");
+      const LoopedClip loop = make_seamless_loop(r.frames, blend, n_src, blend);
+      const double loop_s = static_cast<double>(loop.frames.size()) / r.fps;
+      c.frames =
+          play_clip_in_place(loop, r.fps, trajectories.agents[i], trajectories.fps, uniform01(rng) * loop_s);
+    } else if (stationary) {
+      c.frames = animate_dancing(c.shape, trajectories.agents[i], trajectories.fps,
+                                 dance_style_from_seed(cseed, duration))
+                     .frames;
+    } else {
+      const std::vector<double> none;
+      c.frames =
+          animate_walking(c.shape, trajectories.agents[i], trajectories.fps, walk_style_from_seed(cseed),
+                          reactions.weight.empty() ? none : reactions.weight[i])
+              .frames;
+    }
+  });
+  validate_crowd(crowd, "animate_crowd(" + context.condition_id + ")");
+  return crowd;
+}
+
+}  // namespace crowdlab

@@ -1,0 +1,39 @@
+#pragma once
+// Analytic two-bone leg IK on the SMPL skeleton (hip -> knee -> ankle), plus the foot orientation.
+//
+// Given a pose whose pelvis (root) is already set, solve_leg_ik() writes the local rotations of the
+// hip, knee and ankle of one leg so that
+//   - the ankle joint lands exactly on `ankle_target` (world, metres) when it is reachable,
+//   - the knee bends in the plane containing the hip, the target and `knee_pole` (a world direction
+//     the knee should point toward, e.g. the foot's forward), i.e. a pure hinge about the knee's
+//     local lateral axis, and
+//   - the ankle bone's world rotation equals `foot_rotation` (e.g. yaw(heading) * pitch(heel rise)).
+// The reach is the law of cosines on the thigh and shank lengths (|offset(knee)|, |offset(ankle)|);
+// targets closer than |l1 - l2| or farther than l1 + l2 are clamped onto the reachable shell, and the
+// returned value is the remaining ankle error (metres, 0 when reachable).
+#include "framework/core/body_shape.hpp"
+#include "framework/core/pose.hpp"
+
+namespace crowdlab::anim {
+
+enum class Side { kLeft, kRight };
+
+struct LegJoints {
+  int hip, knee, ankle, foot;
+};
+LegJoints leg_joints(Side side);
+
+/// Thigh + shank length of one leg (metres).
+double leg_length(const BodyShape& shape, Side side);
+
+/// The world position of the hip joint of `side` for the pose's root position and pelvis rotation.
+Vec3 hip_position(const BodyShape& shape, const Pose& pose, Side side);
+
+double solve_leg_ik(const BodyShape& shape, Pose& pose, Side side, const Vec3& ankle_target,
+                    const Quat& foot_rotation, const Vec3& knee_pole);
+
+/// Ankle position for a foot whose ball (the SMPL "foot" joint) rests at `ball` with world rotation
+/// `foot_rotation`: ball - foot_rotation * offset(foot).
+Vec3 ankle_from_ball(const BodyShape& shape, Side side, const Vec3& ball, const Quat& foot_rotation);
+
+}  // namespace crowdlab::anim
