@@ -22,38 +22,85 @@ struct PreparedCapsule {
   Vec3 axis;      ///< unit (b - a), or zero for a sphere
   double length;  ///< |b - a|
   double radius;
+  Vec2 a2;        ///< a projected on the quadrature plane (e1, e2)
+  Vec2 b2;        ///< b projected on the quadrature plane
 };
 
-PreparedCapsule prepare(const Capsule& c) {
-  PreparedCapsule p{c.a, c.b, Vec3::Zero(), c.length_m(), c.radius_m};
+/// The quadrature frame: lines run along `dir`; (e1, e2) span the plane they are integrated over.
+struct LineFrame {
+  Vec3 dir;
+  Vec3 e1;
+  Vec3 e2;
+};
+
+PreparedCapsule prepare(const Capsule& c, const LineFrame& f) {
+  PreparedCapsule p{c.a, c.b, Vec3::Zero(), c.length_m(), c.radius_m, Vec2(c.a.dot(f.e1), c.a.dot(f.e2)),
+                    Vec2(c.b.dot(f.e1), c.b.dot(f.e2))};
   if (p.length > 1e-12) p.axis = (c.b - c.a) / p.length;
   return p;
 }
 
-/// Interval of t where o + t e_k lies within `radius` of the capsule's segment (false when empty).
-/// o has o[k] = 0. The capsule is convex, so the union of its three pieces' intervals is one interval.
-bool line_capsule_interval(const PreparedCapsule& c, const Vec3& o, int k, double radius, Interval& out) {
+/// The line direction. Preferred: the contact normal of the deepest capsule pair, across which the
+/// overlap is thinnest, so the lines cross it and its projection (what the 2D grid must resolve) is
+/// widest. But lines parallel to a cylinder make the chord length jump at its side (a discontinuity
+/// the midpoint rule integrates to first order only), so a direction is accepted only at >= 45
+/// degrees to every capsule axis involved; else of the 13 directions of a cube's axes, face and body
+/// diagonals the one whose smallest angle to any axis is largest.
+LineFrame choose_frame(std::span<const Capsule> caps, const Vec3& contact_normal) {
+  static const std::array<Vec3, 13> kCandidates = {
+      Vec3(1, 0, 0),  Vec3(0, 1, 0),  Vec3(0, 0, 1),  Vec3(1, 1, 0),  Vec3(1, -1, 0), Vec3(1, 0, 1), Vec3(1, 0, -1),
+      Vec3(0, 1, 1),  Vec3(0, 1, -1), Vec3(1, 1, 1),  Vec3(1, 1, -1), Vec3(1, -1, 1), Vec3(-1, 1, 1)};
+  auto score = [&](const Vec3& d) {  // min over capsules of sin^2(angle between d and the axis)
+    double out = 1.0;
+    for (const Capsule& c : caps) {
+      const double len = c.length_m();
+      if (len <= 1e-12) continue;
+      const double cosine = d.dot(c.b - c.a) / len;
+      out = std::min(out, 1.0 - cosine * cosine);
+    }
+    return out;
+  };
+  Vec3 best = contact_normal.normalized();
+  double best_score = score(best);
+  if (best_score < 0.5) {
+    for (const Vec3& candidate : kCandidates) {
+      const Vec3 d = candidate.normalized();
+      const double sc = score(d);
+      if (sc > best_score + 1e-12) {
+        best_score = sc;
+        best = d;
+      }
+    }
+  }
+  const Vec3 e1 = any_perpendicular(best);
+  return {best, e1, best.cross(e1)};
+}
+
+/// Interval of t where o + t e lies within `radius` of the capsule's segment (false when empty);
+/// e is unit. The capsule is convex, so the union of its three pieces' intervals is one interval.
+bool line_capsule_interval(const PreparedCapsule& c, const Vec3& o, const Vec3& e, double radius, Interval& out) {
   if (radius <= 0.0) return false;
   const double r2 = radius * radius;
   double lo = HUGE_VAL, hi = -HUGE_VAL;
   auto sphere = [&](const Vec3& centre) {
     const Vec3 w = centre - o;
-    const double d2 = w.squaredNorm() - w[k] * w[k];
+    const double t0 = w.dot(e);
+    const double d2 = w.squaredNorm() - t0 * t0;
     if (d2 > r2) return;
     const double half = std::sqrt(r2 - d2);
-    lo = std::min(lo, w[k] - half);
-    hi = std::max(hi, w[k] + half);
+    lo = std::min(lo, t0 - half);
+    hi = std::max(hi, t0 + half);
   };
   sphere(c.a);
   if (c.length > 1e-12) {
     sphere(c.b);
-    // Finite cylinder: |w_perp + t e_perp|^2 <= r^2 and 0 <= w.u + t u_k <= L.
+    // Finite cylinder: |w_perp + t e_perp|^2 <= r^2 and 0 <= w.u + t (e.u) <= L.
     const Vec3 w = o - c.a;
     const double wu = w.dot(c.axis);
     const Vec3 wp = w - wu * c.axis;
-    const double uk = c.axis[k];
-    const double qa = 1.0 - uk * uk;
-    const double qb = 2.0 * wp[k];
+    const double ue = c.axis.dot(e);
+    const double qa = 1.0 - ue * ue;
+    const double qb = 2.0 * wp.dot(e);
     const double qc = wp.squaredNorm() - r2;
     double t0 = -HUGE_VAL, t1 = HUGE_VAL;
     bool hit = true;
@@ -70,8 +117,8 @@ bool line_capsule_interval(const PreparedCapsule& c, const Vec3& o, int k, doubl
       }
     }
     if (hit) {
-      if (std::abs(uk) > 1e-14) {
-        double s0 = -wu / uk, s1 = (c.length - wu) / uk;
+      if (std::abs(ue) > 1e-14) {
+        double s0 = -wu / ue, s1 = (c.length - wu) / ue;
         if (s0 > s1) std::swap(s0, s1);
         t0 = std::max(t0, s0);
         t1 = std::min(t1, s1);
@@ -136,12 +183,10 @@ struct Chords {
 /// The quadrature state for one overlap_volume() call.
 class ColumnIntegrator {
  public:
-  ColumnIntegrator(std::vector<PreparedCapsule> caps_a, std::vector<PreparedCapsule> caps_b, int axis,
+  ColumnIntegrator(std::vector<PreparedCapsule> caps_a, std::vector<PreparedCapsule> caps_b, const LineFrame& frame,
                    const OverlapOptions& options)
-      : a_(std::move(caps_a)), b_(std::move(caps_b)), k_(axis), options_(options) {
-    i1_ = (k_ + 1) % 3;
-    i2_ = (k_ + 2) % 3;
-    const int levels = options_.max_depth + 2;
+      : a_(std::move(caps_a)), b_(std::move(caps_b)), frame_(frame), options_(options) {
+    const int levels = options_.depth + 2;
     list_a_.assign(static_cast<size_t>(levels) * a_.size(), 0);
     list_b_.assign(static_cast<size_t>(levels) * b_.size(), 0);
     iv_a_.resize(a_.size());
@@ -150,33 +195,18 @@ class ColumnIntegrator {
 
   OverlapVolume integrate(double u0, double u1, double v0, double v1) {
     const double eu = u1 - u0, ev = v1 - v0;
-    const double side = std::max(eu, ev) / 8.0;
+    const double side = std::max(eu, ev) / options_.base_cells;
     const int nu = std::max(1, static_cast<int>(std::ceil(eu / side - 1e-9)));
     const int nv = std::max(1, static_cast<int>(std::ceil(ev / side - 1e-9)));
     const double su = eu / nu, sv = ev / nv;
     const double h = 0.5 * std::hypot(su, sv);
-    // Pass 1: base-grid estimate, which sets the absolute tolerance.
-    std::vector<Chords> base(static_cast<size_t>(nu) * nv);
-    double estimate0 = 0.0;
     for (int i = 0; i < nu; ++i) {
       for (int j = 0; j < nv; ++j) {
         const double cu = u0 + (i + 0.5) * su, cv = v0 + (j + 0.5) * sv;
-        if (!filter(0, cu, cv, h)) continue;
-        base[static_cast<size_t>(i) * nv + j] = chords(0, cu, cv, h);
-        estimate0 += su * sv * base[static_cast<size_t>(i) * nv + j].nominal;
+        if (!filter(0, cu, cv, h) || chords(0, cu, cv, h).outer <= 0.0) continue;
+        refine(cu, cv, su, sv, 0);
       }
     }
-    tol_per_area_ = std::max(options_.abs_tol_m3, options_.rel_tol * estimate0) / (eu * ev);
-    // Pass 2: adaptive refinement of every base cell.
-    for (int i = 0; i < nu; ++i) {
-      for (int j = 0; j < nv; ++j) {
-        const double cu = u0 + (i + 0.5) * su, cv = v0 + (j + 0.5) * sv;
-        if (!filter(0, cu, cv, h)) continue;
-        refine(cu, cv, su, sv, 0, base[static_cast<size_t>(i) * nv + j]);
-      }
-    }
-    result_.lower_m3 = std::min(result_.lower_m3, result_.volume_m3);
-    result_.upper_m3 = std::max(result_.upper_m3, result_.volume_m3);
     return result_;
   }
 
@@ -206,8 +236,8 @@ class ColumnIntegrator {
 
   /// Whether the capsule's projection onto the (i1, i2) plane comes within radius + h of (cu, cv).
   bool reaches(const PreparedCapsule& c, double cu, double cv, double h) const {
-    const double au = c.a[i1_], av = c.a[i2_];
-    const double du = c.b[i1_] - au, dv = c.b[i2_] - av;
+    const double au = c.a2.x(), av = c.a2.y();
+    const double du = c.b2.x() - au, dv = c.b2.y() - av;
     const double len2 = du * du + dv * dv;
     double t = 0.0;
     if (len2 > 1e-24) t = std::clamp(((cu - au) * du + (cv - av) * dv) / len2, 0.0, 1.0);
@@ -223,13 +253,13 @@ class ColumnIntegrator {
     int ma = 0;
     for (int q = 0; q < na; ++q) {
       const PreparedCapsule& c = a_[static_cast<size_t>(la[q])];
-      if (line_capsule_interval(c, o, k_, c.radius + dr, iv_a_[static_cast<size_t>(ma)])) ++ma;
+      if (line_capsule_interval(c, o, frame_.dir, c.radius + dr, iv_a_[static_cast<size_t>(ma)])) ++ma;
     }
     if (ma == 0) return 0.0;
     int mb = 0;
     for (int q = 0; q < nb; ++q) {
       const PreparedCapsule& c = b_[static_cast<size_t>(lb[q])];
-      if (line_capsule_interval(c, o, k_, c.radius + dr, iv_b_[static_cast<size_t>(mb)])) ++mb;
+      if (line_capsule_interval(c, o, frame_.dir, c.radius + dr, iv_b_[static_cast<size_t>(mb)])) ++mb;
     }
     if (mb == 0) return 0.0;
     ma = merge_intervals(iv_a_.data(), ma);
@@ -237,11 +267,11 @@ class ColumnIntegrator {
     return intersection_length(iv_a_.data(), ma, iv_b_.data(), mb);
   }
 
+  /// The centre-line chords of a cell of half-diagonal h. The grown-radius chord comes first: when
+  /// it is empty the cell holds no volume and the other two are zero too.
   Chords chords(int level, double cu, double cv, double h) {
     ++result_.chord_evaluations;
-    Vec3 o = Vec3::Zero();
-    o[i1_] = cu;
-    o[i2_] = cv;
+    const Vec3 o = cu * frame_.e1 + cv * frame_.e2;
     Chords c;
     c.outer = chord(level, o, h);
     if (c.outer > 0.0) {
@@ -251,24 +281,16 @@ class ColumnIntegrator {
     return c;
   }
 
-  /// Cell centred (cu, cv) of size su x sv whose capsule lists sit at `level` and whose centre chords
-  /// are `centre`. Either accepts the 4 children's midpoint sum or recurses into them.
-  void refine(double cu, double cv, double su, double sv, int level, const Chords& centre) {
+  /// Cell centred (cu, cv) of size su x sv whose capsule lists sit at `level`. At the finest level it
+  /// adds its 4 children's midpoint sums (estimate and bracket); above, it recurses into them.
+  void refine(double cu, double cv, double su, double sv, int level) {
     const double area = su * sv, child_area = 0.25 * area;
     const double hu = 0.25 * su, hv = 0.25 * sv;
     const double child_h = 0.5 * std::hypot(0.5 * su, 0.5 * sv);
     const std::array<double, 4> du = {-hu, hu, -hu, hu}, dv = {-hv, -hv, hv, hv};
     std::array<Chords, 4> kids;
-    double fine = 0.0, upper = 0.0;
-    for (int q = 0; q < 4; ++q) {
-      kids[static_cast<size_t>(q)] = chords(level, cu + du[static_cast<size_t>(q)], cv + dv[static_cast<size_t>(q)], child_h);
-      fine += child_area * kids[static_cast<size_t>(q)].nominal;
-      upper += child_area * kids[static_cast<size_t>(q)].outer;
-    }
-    const double coarse = area * centre.nominal;
-    const double tol = tol_per_area_ * area;
-    const bool unresolved = std::abs(fine - coarse) > tol || (fine == 0.0 && upper > tol);
-    if (level >= options_.max_depth || !unresolved) {
+    for (size_t q = 0; q < 4; ++q) kids[q] = chords(level, cu + du[q], cv + dv[q], child_h);
+    if (level >= options_.depth) {
       for (const Chords& c : kids) {
         result_.volume_m3 += child_area * c.nominal;
         result_.lower_m3 += child_area * c.inner;
@@ -276,21 +298,20 @@ class ColumnIntegrator {
       }
       return;
     }
-    for (int q = 0; q < 4; ++q) {
-      const double kcu = cu + du[static_cast<size_t>(q)], kcv = cv + dv[static_cast<size_t>(q)];
+    for (size_t q = 0; q < 4; ++q) {
+      const double kcu = cu + du[q], kcv = cv + dv[q];
       // A child whose grown-radius chord is empty holds no volume (see the bound in the header).
-      if (kids[static_cast<size_t>(q)].outer <= 0.0 || !filter(level + 1, kcu, kcv, child_h)) continue;
-      refine(kcu, kcv, 0.5 * su, 0.5 * sv, level + 1, kids[static_cast<size_t>(q)]);
+      if (kids[q].outer <= 0.0 || !filter(level + 1, kcu, kcv, child_h)) continue;
+      refine(kcu, kcv, 0.5 * su, 0.5 * sv, level + 1);
     }
   }
 
   std::vector<PreparedCapsule> a_, b_;
-  int k_, i1_ = 0, i2_ = 0;
+  LineFrame frame_;
   OverlapOptions options_;
   std::vector<int> list_a_, list_b_;
   std::array<int, 64> count_a_{}, count_b_{};
   std::vector<Interval> iv_a_, iv_b_;
-  double tol_per_area_ = 0.0;
   OverlapVolume result_;
 };
 
@@ -320,36 +341,52 @@ double OverlapVolume::error_bound_m3() const { return std::max(upper_m3 - volume
 OverlapVolume overlap_volume(std::span<const Capsule> a, std::span<const Capsule> b, const OverlapOptions& options) {
   check_capsules(a, "A");
   check_capsules(b, "B");
-  if (options.max_depth < 0 || options.max_depth > 60 || !(options.rel_tol >= 0.0) || !(options.abs_tol_m3 >= 0.0))
-    throw InputError("overlap_volume: options need 0 <= max_depth <= 60 and tolerances >= 0");
+  if (options.depth < 0 || options.depth > 12 || options.base_cells < 1 || options.base_cells > 4096)
+    throw InputError("overlap_volume: options need 0 <= depth <= 12 and 1 <= base_cells <= 4096");
   // Narrow phase: keep the capsules that overlap at least one capsule of the other body; only
   // they can contribute, since (∪A) ∩ (∪B) = ∪_ij (a_i ∩ b_j). The quadrature region is the box
   // around the touching pairs' box intersections.
   std::vector<char> keep_a(a.size(), 0), keep_b(b.size(), 0);
   Box3 region;
+  double deepest = 0.0;
+  Vec3 normal = Vec3::UnitX();
   for (size_t i = 0; i < a.size(); ++i) {
     const Box3 ba = capsule_box(a[i]);
     for (size_t j = 0; j < b.size(); ++j) {
       const Box3 bb = capsule_box(b[j]);
       if ((ba.hi.array() < bb.lo.array()).any() || (bb.hi.array() < ba.lo.array()).any()) continue;
-      if (capsule_contact(a[i], b[j]).depth_m <= 0.0) continue;
+      const CapsuleContact contact = capsule_contact(a[i], b[j]);
+      if (contact.depth_m <= 0.0) continue;
+      if (contact.depth_m > deepest) {
+        deepest = contact.depth_m;
+        normal = contact.normal;
+      }
       keep_a[i] = keep_b[j] = 1;
       region.lo = region.lo.cwiseMin(ba.lo.cwiseMax(bb.lo));
       region.hi = region.hi.cwiseMax(ba.hi.cwiseMin(bb.hi));
     }
   }
-  std::vector<PreparedCapsule> pa, pb;
+  std::vector<Capsule> kept;
   for (size_t i = 0; i < a.size(); ++i)
-    if (keep_a[i]) pa.push_back(prepare(a[i]));
+    if (keep_a[i]) kept.push_back(a[i]);
+  const size_t kept_a = kept.size();
   for (size_t j = 0; j < b.size(); ++j)
-    if (keep_b[j]) pb.push_back(prepare(b[j]));
-  if (pa.empty()) return {};
-  const Vec3 extent = region.hi - region.lo;
-  int k = 0;
-  extent.maxCoeff(&k);
-  const int i1 = (k + 1) % 3, i2 = (k + 2) % 3;
-  ColumnIntegrator integrator(std::move(pa), std::move(pb), k, options);
-  OverlapVolume out = integrator.integrate(region.lo[i1], region.hi[i1], region.lo[i2], region.hi[i2]);
+    if (keep_b[j]) kept.push_back(b[j]);
+  if (kept_a == 0) return {};
+  const LineFrame frame = choose_frame(kept, normal);
+  std::vector<PreparedCapsule> pa, pb;
+  for (size_t i = 0; i < kept.size(); ++i) (i < kept_a ? pa : pb).push_back(prepare(kept[i], frame));
+  // The quadrature rectangle: the region box projected on (e1, e2).
+  Vec2 lo = Vec2::Constant(HUGE_VAL), hi = Vec2::Constant(-HUGE_VAL);
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 p((corner & 1) ? region.hi.x() : region.lo.x(), (corner & 2) ? region.hi.y() : region.lo.y(),
+                 (corner & 4) ? region.hi.z() : region.lo.z());
+    const Vec2 q(p.dot(frame.e1), p.dot(frame.e2));
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
+  ColumnIntegrator integrator(std::move(pa), std::move(pb), frame, options);
+  OverlapVolume out = integrator.integrate(lo.x(), hi.x(), lo.y(), hi.y());
   out.colliding = true;
   return out;
 }
