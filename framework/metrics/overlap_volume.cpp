@@ -174,6 +174,15 @@ double intersection_length(const Interval* x, int nx, const Interval* y, int ny)
   return total;
 }
 
+struct Box3 {
+  Vec3 lo = Vec3::Constant(HUGE_VAL);
+  Vec3 hi = Vec3::Constant(-HUGE_VAL);
+};
+
+bool boxes_overlap(const Box3& x, const Box3& y) {
+  return (x.lo.array() <= y.hi.array()).all() && (y.lo.array() <= x.hi.array()).all();
+}
+
 struct Chords {
   double inner = 0.0;    ///< chord with radii shrunk by h
   double nominal = 0.0;  ///< chord with the true radii
@@ -183,9 +192,10 @@ struct Chords {
 /// The quadrature state for one overlap_volume() call.
 class ColumnIntegrator {
  public:
+  /// Integrates vol(A ∩ B ∩ clip) for the capsule sets A, B.
   ColumnIntegrator(std::vector<PreparedCapsule> caps_a, std::vector<PreparedCapsule> caps_b, const LineFrame& frame,
-                   const OverlapOptions& options)
-      : a_(std::move(caps_a)), b_(std::move(caps_b)), frame_(frame), options_(options) {
+                   const Box3& clip, const OverlapOptions& options)
+      : a_(std::move(caps_a)), b_(std::move(caps_b)), frame_(frame), clip_(clip), options_(options) {
     const int levels = options_.depth + 2;
     list_a_.assign(static_cast<size_t>(levels) * a_.size(), 0);
     list_b_.assign(static_cast<size_t>(levels) * b_.size(), 0);
@@ -246,25 +256,47 @@ class ColumnIntegrator {
     return pu * pu + pv * pv <= reach * reach;
   }
 
+  /// Length of {t : o + t dir in A_dr ∩ B_dr ∩ clip_dr}, where X_dr grows X's radii (or the clip
+  /// box's half-extents) by dr (dr < 0 shrinks).
   double chord(int level, const Vec3& o, double dr) {
+    double tlo = -HUGE_VAL, thi = HUGE_VAL;
+    for (int k = 0; k < 3; ++k) {
+      const double lo = clip_.lo[k] - dr, hi = clip_.hi[k] + dr, dk = frame_.dir[k];
+      if (std::abs(dk) < 1e-14) {
+        if (o[k] < lo || o[k] > hi) return 0.0;
+        continue;
+      }
+      double t0 = (lo - o[k]) / dk, t1 = (hi - o[k]) / dk;
+      if (t0 > t1) std::swap(t0, t1);
+      tlo = std::max(tlo, t0);
+      thi = std::min(thi, t1);
+    }
+    if (!(tlo < thi)) return 0.0;
     const int na = count_a_[static_cast<size_t>(level)], nb = count_b_[static_cast<size_t>(level)];
     const int* la = list_a_.data() + static_cast<size_t>(level) * a_.size();
     const int* lb = list_b_.data() + static_cast<size_t>(level) * b_.size();
     int ma = 0;
     for (int q = 0; q < na; ++q) {
       const PreparedCapsule& c = a_[static_cast<size_t>(la[q])];
-      if (line_capsule_interval(c, o, frame_.dir, c.radius + dr, iv_a_[static_cast<size_t>(ma)])) ++ma;
+      if (clipped_interval(c, o, dr, tlo, thi, iv_a_[static_cast<size_t>(ma)])) ++ma;
     }
     if (ma == 0) return 0.0;
     int mb = 0;
     for (int q = 0; q < nb; ++q) {
       const PreparedCapsule& c = b_[static_cast<size_t>(lb[q])];
-      if (line_capsule_interval(c, o, frame_.dir, c.radius + dr, iv_b_[static_cast<size_t>(mb)])) ++mb;
+      if (clipped_interval(c, o, dr, tlo, thi, iv_b_[static_cast<size_t>(mb)])) ++mb;
     }
     if (mb == 0) return 0.0;
     ma = merge_intervals(iv_a_.data(), ma);
     mb = merge_intervals(iv_b_.data(), mb);
     return intersection_length(iv_a_.data(), ma, iv_b_.data(), mb);
+  }
+
+  bool clipped_interval(const PreparedCapsule& c, const Vec3& o, double dr, double tlo, double thi, Interval& out) const {
+    if (!line_capsule_interval(c, o, frame_.dir, c.radius + dr, out)) return false;
+    out.lo = std::max(out.lo, tlo);
+    out.hi = std::min(out.hi, thi);
+    return out.lo < out.hi;
   }
 
   /// The centre-line chords of a cell of half-diagonal h. The grown-radius chord comes first: when
@@ -308,6 +340,7 @@ class ColumnIntegrator {
 
   std::vector<PreparedCapsule> a_, b_;
   LineFrame frame_;
+  Box3 clip_;
   OverlapOptions options_;
   std::vector<int> list_a_, list_b_;
   std::array<int, 64> count_a_{}, count_b_{};
@@ -315,10 +348,6 @@ class ColumnIntegrator {
   OverlapVolume result_;
 };
 
-struct Box3 {
-  Vec3 lo = Vec3::Constant(HUGE_VAL);
-  Vec3 hi = Vec3::Constant(-HUGE_VAL);
-};
 
 Box3 capsule_box(const Capsule& c) {
   const Vec3 r = Vec3::Constant(c.radius_m);
@@ -343,50 +372,82 @@ OverlapVolume overlap_volume(std::span<const Capsule> a, std::span<const Capsule
   check_capsules(b, "B");
   if (options.depth < 0 || options.depth > 12 || options.base_cells < 1 || options.base_cells > 4096)
     throw InputError("overlap_volume: options need 0 <= depth <= 12 and 1 <= base_cells <= 4096");
-  // Narrow phase: keep the capsules that overlap at least one capsule of the other body; only
-  // they can contribute, since (∪A) ∩ (∪B) = ∪_ij (a_i ∩ b_j). The quadrature region is the box
-  // around the touching pairs' box intersections.
-  std::vector<char> keep_a(a.size(), 0), keep_b(b.size(), 0);
-  Box3 region;
-  double deepest = 0.0;
-  Vec3 normal = Vec3::UnitX();
+  // Narrow phase: the capsule pairs (i, j) that overlap. (∪A) ∩ (∪B) = ∪_ij (a_i ∩ b_j), and each
+  // a_i ∩ b_j lies in the intersection of the two capsules' boxes. Touching pairs are grouped into
+  // clusters whose boxes (around their pairs' box intersections) are disjoint; each cluster is
+  // integrated on its own grid, clipped to its box, so a small contact far from a large one gets its
+  // own resolution, and the clusters' volumes add up exactly.
+  struct Cluster {
+    Box3 box;
+    std::vector<char> in_a, in_b;
+    double deepest = 0.0;
+    Vec3 normal = Vec3::UnitX();
+    bool alive = true;
+  };
+  std::vector<Cluster> clusters;
   for (size_t i = 0; i < a.size(); ++i) {
     const Box3 ba = capsule_box(a[i]);
     for (size_t j = 0; j < b.size(); ++j) {
       const Box3 bb = capsule_box(b[j]);
-      if ((ba.hi.array() < bb.lo.array()).any() || (bb.hi.array() < ba.lo.array()).any()) continue;
+      if (!boxes_overlap(ba, bb)) continue;
       const CapsuleContact contact = capsule_contact(a[i], b[j]);
       if (contact.depth_m <= 0.0) continue;
-      if (contact.depth_m > deepest) {
-        deepest = contact.depth_m;
-        normal = contact.normal;
-      }
-      keep_a[i] = keep_b[j] = 1;
-      region.lo = region.lo.cwiseMin(ba.lo.cwiseMax(bb.lo));
-      region.hi = region.hi.cwiseMax(ba.hi.cwiseMin(bb.hi));
+      Cluster c{{ba.lo.cwiseMax(bb.lo), ba.hi.cwiseMin(bb.hi)}, std::vector<char>(a.size(), 0),
+                std::vector<char>(b.size(), 0), contact.depth_m, contact.normal, true};
+      c.in_a[i] = c.in_b[j] = 1;
+      clusters.push_back(std::move(c));
     }
   }
-  std::vector<Capsule> kept;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (keep_a[i]) kept.push_back(a[i]);
-  const size_t kept_a = kept.size();
-  for (size_t j = 0; j < b.size(); ++j)
-    if (keep_b[j]) kept.push_back(b[j]);
-  if (kept_a == 0) return {};
-  const LineFrame frame = choose_frame(kept, normal);
-  std::vector<PreparedCapsule> pa, pb;
-  for (size_t i = 0; i < kept.size(); ++i) (i < kept_a ? pa : pb).push_back(prepare(kept[i], frame));
-  // The quadrature rectangle: the region box projected on (e1, e2).
-  Vec2 lo = Vec2::Constant(HUGE_VAL), hi = Vec2::Constant(-HUGE_VAL);
-  for (int corner = 0; corner < 8; ++corner) {
-    const Vec3 p((corner & 1) ? region.hi.x() : region.lo.x(), (corner & 2) ? region.hi.y() : region.lo.y(),
-                 (corner & 4) ? region.hi.z() : region.lo.z());
-    const Vec2 q(p.dot(frame.e1), p.dot(frame.e2));
-    lo = lo.cwiseMin(q);
-    hi = hi.cwiseMax(q);
+  if (clusters.empty()) return {};
+  for (bool merged = true; merged;) {
+    merged = false;
+    for (size_t p = 0; p < clusters.size(); ++p) {
+      for (size_t q = p + 1; q < clusters.size(); ++q) {
+        if (!clusters[p].alive || !clusters[q].alive || !boxes_overlap(clusters[p].box, clusters[q].box)) continue;
+        Cluster& x = clusters[p];
+        Cluster& y = clusters[q];
+        x.box.lo = x.box.lo.cwiseMin(y.box.lo);
+        x.box.hi = x.box.hi.cwiseMax(y.box.hi);
+        for (size_t i = 0; i < a.size(); ++i) x.in_a[i] |= y.in_a[i];
+        for (size_t j = 0; j < b.size(); ++j) x.in_b[j] |= y.in_b[j];
+        if (y.deepest > x.deepest) {
+          x.deepest = y.deepest;
+          x.normal = y.normal;
+        }
+        y.alive = false;
+        merged = true;
+      }
+    }
   }
-  ColumnIntegrator integrator(std::move(pa), std::move(pb), frame, options);
-  OverlapVolume out = integrator.integrate(lo.x(), hi.x(), lo.y(), hi.y());
+  OverlapVolume out;
+  for (const Cluster& cluster : clusters) {
+    if (!cluster.alive) continue;
+    std::vector<Capsule> kept;
+    for (size_t i = 0; i < a.size(); ++i)
+      if (cluster.in_a[i]) kept.push_back(a[i]);
+    const size_t kept_a = kept.size();
+    for (size_t j = 0; j < b.size(); ++j)
+      if (cluster.in_b[j]) kept.push_back(b[j]);
+    const LineFrame frame = choose_frame(kept, cluster.normal);
+    std::vector<PreparedCapsule> pa, pb;
+    for (size_t i = 0; i < kept.size(); ++i) (i < kept_a ? pa : pb).push_back(prepare(kept[i], frame));
+    // The quadrature rectangle: the cluster box projected on (e1, e2).
+    Vec2 lo = Vec2::Constant(HUGE_VAL), hi = Vec2::Constant(-HUGE_VAL);
+    for (int corner = 0; corner < 8; ++corner) {
+      const Box3& r = cluster.box;
+      const Vec3 p((corner & 1) ? r.hi.x() : r.lo.x(), (corner & 2) ? r.hi.y() : r.lo.y(),
+                   (corner & 4) ? r.hi.z() : r.lo.z());
+      const Vec2 q(p.dot(frame.e1), p.dot(frame.e2));
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+    ColumnIntegrator integrator(std::move(pa), std::move(pb), frame, cluster.box, options);
+    const OverlapVolume part = integrator.integrate(lo.x(), hi.x(), lo.y(), hi.y());
+    out.volume_m3 += part.volume_m3;
+    out.lower_m3 += part.lower_m3;
+    out.upper_m3 += part.upper_m3;
+    out.chord_evaluations += part.chord_evaluations;
+  }
   out.colliding = true;
   return out;
 }

@@ -10,8 +10,10 @@
 // capsule pair (across the overlap's thinnest extent) when that is at >= 45 degrees to every capsule
 // axis involved, else along the one of 13 fixed directions (cube axes and diagonals) at the largest
 // angle to them (lines parallel to a cylinder would make the chord length jump at its side, a
-// discontinuity the midpoint rule only integrates to first order), over the region where the two bodies can overlap (the box around the
-// touching capsule pairs' box intersections, projected on the plane across the lines). Every line
+// discontinuity the midpoint rule only integrates to first order). Touching capsule pairs are
+// grouped into clusters with disjoint boxes (around the pairs' box intersections, which contain all
+// of a_i ∩ b_j); each cluster is integrated separately with chords clipped to its box, so separate
+// contacts each get a full grid and their volumes add exactly. Every line
 // meets each capsule in one interval (a capsule is convex), computed in closed form (cylinder
 // quadratic + two spheres); the union of A's intervals intersected with the union of B's gives the
 // exact chord length f(u, v) of A ∩ B on that line, so only the 2D integral v = ∫∫ f du dv is
@@ -25,7 +27,7 @@
 // Error bound (rigorous): for a cell Q of half-diagonal h, every line through Q lies within h of the
 // line through Q's centre, and the signed distance to a union of capsules is 1-Lipschitz. So the
 // chord of A ∩ B on any line in Q is at least the centre-line chord of the bodies with every radius
-// shrunk by h, and at most the one with radii grown by h. Summing area * chord over the cells gives
+// (and the cluster box) shrunk by h, and at most the one with both grown by h. Summing area * chord over the cells gives
 // lower_m3 <= v <= upper_m3, hence |volume_m3 - v| <= error_bound_m3() = max(upper - estimate,
 // estimate - lower). This bound is first order in the cell size (it charges every surface crossing
 // with a full h), so it is 10-50x wider than the actual error, which tests/metrics measure against
