@@ -34,7 +34,9 @@ struct BenchOverlapArgs {
   bool reference = false;  ///< also compare with a 16x finer grid
 };
 
-double rand_in(Rng& rng, double lo, double hi) { return lo + (hi - lo) * uniform01(rng); }
+double rand_in(Rng& rng, double lo, double hi) {
+  return lo + (hi - lo) * uniform01(rng);
+}
 
 Quat random_rotation(Rng& rng, double max_angle) {
   const Vec3 axis = Vec3(standard_normal(rng), standard_normal(rng), standard_normal(rng)).normalized();
@@ -50,8 +52,8 @@ WorldCapsules random_body(Rng& rng, const Vec3& root_xz, double heading) {
   Pose pose = Pose::rest(shape);
   pose.root_position_m += root_xz;
   pose.local_rotations[kPelvis] = Quat(Eigen::AngleAxisd(heading, Vec3::UnitY()));
-  for (int j : {kLeftShoulder, kRightShoulder, kLeftElbow, kRightElbow, kLeftHip, kRightHip, kLeftKnee, kRightKnee,
-                kSpine1, kNeck})
+  for (int j : {kLeftShoulder, kRightShoulder, kLeftElbow, kRightElbow, kLeftHip, kRightHip, kLeftKnee,
+                kRightKnee, kSpine1, kNeck})
     pose.local_rotations[static_cast<size_t>(j)] = random_rotation(rng, 0.8);
   return world_capsules(shape, pose);
 }
@@ -63,7 +65,8 @@ double median(std::vector<double> v) {
 }
 
 void run(const BenchOverlapArgs& args) {
-  if (args.pairs < 1 || args.repeats < 1) throw InputError("bench overlap: --pairs and --repeats must be >= 1");
+  if (args.pairs < 1 || args.repeats < 1)
+    throw InputError("bench overlap: --pairs and --repeats must be >= 1");
   OverlapOptions options;
   options.base_cells = args.base_cells;
   options.depth = args.depth;
@@ -74,7 +77,8 @@ void run(const BenchOverlapArgs& args) {
   fine.depth += 2;
   int attempts = 0;
   while (static_cast<int>(ms_per_pair.size()) < args.pairs) {
-    if (++attempts > 100 * args.pairs) throw RuntimeError("bench overlap: could not generate colliding pairs");
+    if (++attempts > 100 * args.pairs)
+      throw RuntimeError("bench overlap: could not generate colliding pairs");
     const WorldCapsules a = random_body(rng, Vec3::Zero(), rand_in(rng, -3.2, 3.2));
     const double angle = rand_in(rng, -3.2, 3.2), dist = rand_in(rng, 0.15, 0.45);
     const WorldCapsules b =
@@ -106,30 +110,37 @@ void run(const BenchOverlapArgs& args) {
   const double mean_bound_l = std::accumulate(bounds_l.begin(), bounds_l.end(), 0.0) / n;
   const double mean_evaluations = std::accumulate(evaluations.begin(), evaluations.end(), 0.0) / n;
   if (args.json) {
-    nlohmann::json j = {{"benchmark", "overlap"},       {"pairs", args.pairs},
-                        {"repeats", args.repeats},      {"base_cells", args.base_cells},
-                        {"depth", args.depth},          {"ms_per_pair_median", median_ms},
-                        {"ms_per_pair_mean", mean_ms},  {"ms_per_pair_max", max_ms},
-                        {"mean_volume_l", mean_volume_l}, {"mean_error_bound_l", mean_bound_l},
+    nlohmann::json j = {{"benchmark", "overlap"},
+                        {"pairs", args.pairs},
+                        {"repeats", args.repeats},
+                        {"base_cells", args.base_cells},
+                        {"depth", args.depth},
+                        {"ms_per_pair_median", median_ms},
+                        {"ms_per_pair_mean", mean_ms},
+                        {"ms_per_pair_max", max_ms},
+                        {"mean_volume_l", mean_volume_l},
+                        {"mean_error_bound_l", mean_bound_l},
                         {"mean_chord_evaluations", mean_evaluations}};
     if (!rel_diff.empty()) {
       j["reference_grid"] = {fine.base_cells, fine.depth};
       j["rel_diff_vs_reference_max"] = *std::max_element(rel_diff.begin(), rel_diff.end());
-      j["rel_diff_vs_reference_mean"] = std::accumulate(rel_diff.begin(), rel_diff.end(), 0.0) / rel_diff.size();
+      j["rel_diff_vs_reference_mean"] =
+          std::accumulate(rel_diff.begin(), rel_diff.end(), 0.0) / rel_diff.size();
       j["abs_diff_vs_reference_max_ml"] = *std::max_element(abs_diff_ml.begin(), abs_diff_ml.end());
     }
     std::printf("%s\n", j.dump().c_str());
   } else {
-    std::printf("overlap volume, %d colliding character pairs (%d repeats each, grid %d x 2^%d)\n", args.pairs,
-                args.repeats, args.base_cells, args.depth);
+    std::printf("overlap volume, %d colliding character pairs (%d repeats each, grid %d x 2^%d)\n",
+                args.pairs, args.repeats, args.base_cells, args.depth);
     std::printf("  ms per pair: median %.4f  mean %.4f  max %.4f\n", median_ms, mean_ms, max_ms);
     std::printf("  mean overlap %.3f L, mean rigorous error bound %.3f L, mean lines %.0f\n", mean_volume_l,
                 mean_bound_l, mean_evaluations);
     if (!rel_diff.empty())
-      std::printf("  vs a %d x 2^%d grid: relative difference max %.5f mean %.5f; absolute max %.2f mL\n",
-                  fine.base_cells, fine.depth, *std::max_element(rel_diff.begin(), rel_diff.end()),
-                  std::accumulate(rel_diff.begin(), rel_diff.end(), 0.0) / static_cast<double>(rel_diff.size()),
-                  *std::max_element(abs_diff_ml.begin(), abs_diff_ml.end()));
+      std::printf(
+          "  vs a %d x 2^%d grid: relative difference max %.5f mean %.5f; absolute max %.2f mL\n",
+          fine.base_cells, fine.depth, *std::max_element(rel_diff.begin(), rel_diff.end()),
+          std::accumulate(rel_diff.begin(), rel_diff.end(), 0.0) / static_cast<double>(rel_diff.size()),
+          *std::max_element(abs_diff_ml.begin(), abs_diff_ml.end()));
   }
 }
 
@@ -140,7 +151,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--pairs", args->pairs, "Colliding pairs to time")->capture_default_str();
   cmd->add_option("--repeats", args->repeats, "Timed repeats per pair (median taken)")->capture_default_str();
   cmd->add_option("--seed", args->seed, "Seed of the random poses")->capture_default_str();
-  cmd->add_option("--base-cells", args->base_cells, "Quadrature base grid cells (longer side)")->capture_default_str();
+  cmd->add_option("--base-cells", args->base_cells, "Quadrature base grid cells (longer side)")
+      ->capture_default_str();
   cmd->add_option("--depth", args->depth, "Quadrature subdivisions of each base cell")->capture_default_str();
   cmd->add_flag("--json", args->json, "Print one JSON object");
   cmd->add_flag("--reference", args->reference,

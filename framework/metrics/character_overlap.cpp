@@ -35,7 +35,8 @@ BodyBounds body_bounds(const WorldCapsules& capsules) {
   return box;
 }
 
-OverlapVolume character_overlap(const WorldCapsules& a, const WorldCapsules& b, const OverlapOptions& options) {
+OverlapVolume character_overlap(const WorldCapsules& a, const WorldCapsules& b,
+                                const OverlapOptions& options) {
   const BodyBounds ba = body_bounds(a), bb = body_bounds(b);
   if (!ba.overlaps(bb)) return {};
   std::vector<Capsule> ca, cb;
@@ -44,8 +45,8 @@ OverlapVolume character_overlap(const WorldCapsules& a, const WorldCapsules& b, 
   return overlap_volume(ca, cb, options);
 }
 
-OverlapVolume overlap_with_others(std::span<const WorldCapsules> bodies, std::span<const BodyBounds> bounds, int i,
-                                  const OverlapOptions& options) {
+OverlapVolume overlap_with_others(std::span<const WorldCapsules> bodies, std::span<const BodyBounds> bounds,
+                                  int i, const OverlapOptions& options) {
   const auto self = static_cast<size_t>(i);
   std::vector<Capsule> others;
   BodyBounds touched{Vec3::Constant(HUGE_VAL), Vec3::Constant(-HUGE_VAL)};

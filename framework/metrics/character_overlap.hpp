@@ -26,11 +26,12 @@ struct BodyBounds {
 };
 BodyBounds body_bounds(const WorldCapsules& capsules);
 
-OverlapVolume character_overlap(const WorldCapsules& a, const WorldCapsules& b, const OverlapOptions& options = {});
+OverlapVolume character_overlap(const WorldCapsules& a, const WorldCapsules& b,
+                                const OverlapOptions& options = {});
 
 /// bounds[j] must be body_bounds(bodies[j]); i indexes bodies.
-OverlapVolume overlap_with_others(std::span<const WorldCapsules> bodies, std::span<const BodyBounds> bounds, int i,
-                                  const OverlapOptions& options = {});
+OverlapVolume overlap_with_others(std::span<const WorldCapsules> bodies, std::span<const BodyBounds> bounds,
+                                  int i, const OverlapOptions& options = {});
 
 double max_penetration_depth(const WorldCapsules& a, const WorldCapsules& b);
 

@@ -73,7 +73,8 @@ CrowdMetrics measure_crowd(const CrowdAnimation& crowd, const MetricsOptions& op
   const int frames = crowd.frame_count();
   const size_t n = crowd.characters.size();
   std::vector<FrameSample> samples(static_cast<size_t>(frames));
-  tbb::parallel_for(0, frames, [&](int f) { samples[static_cast<size_t>(f)] = measure_frame(crowd, f, options); });
+  tbb::parallel_for(0, frames,
+                    [&](int f) { samples[static_cast<size_t>(f)] = measure_frame(crowd, f, options); });
 
   CrowdMetrics m;
   m.characters = static_cast<int>(n);

@@ -40,7 +40,7 @@ struct PairMetrics {
   int b = 0;
   int colliding_frames = 0;
   int collision_events = 0;
-  double volume_index_m = 0.0;   ///< Eq. 1 over this pair's frames
+  double volume_index_m = 0.0;  ///< Eq. 1 over this pair's frames
   double max_volume_m3 = 0.0;
   double max_penetration_depth_m = 0.0;
 };

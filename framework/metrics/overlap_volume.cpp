@@ -22,8 +22,8 @@ struct PreparedCapsule {
   Vec3 axis;      ///< unit (b - a), or zero for a sphere
   double length;  ///< |b - a|
   double radius;
-  Vec2 a2;        ///< a projected on the quadrature plane (e1, e2)
-  Vec2 b2;        ///< b projected on the quadrature plane
+  Vec2 a2;  ///< a projected on the quadrature plane (e1, e2)
+  Vec2 b2;  ///< b projected on the quadrature plane
 };
 
 /// The quadrature frame: lines run along `dir`; (e1, e2) span the plane they are integrated over.
@@ -34,7 +34,12 @@ struct LineFrame {
 };
 
 PreparedCapsule prepare(const Capsule& c, const LineFrame& f) {
-  PreparedCapsule p{c.a, c.b, Vec3::Zero(), c.length_m(), c.radius_m, Vec2(c.a.dot(f.e1), c.a.dot(f.e2)),
+  PreparedCapsule p{c.a,
+                    c.b,
+                    Vec3::Zero(),
+                    c.length_m(),
+                    c.radius_m,
+                    Vec2(c.a.dot(f.e1), c.a.dot(f.e2)),
                     Vec2(c.b.dot(f.e1), c.b.dot(f.e2))};
   if (p.length > 1e-12) p.axis = (c.b - c.a) / p.length;
   return p;
@@ -48,8 +53,9 @@ PreparedCapsule prepare(const Capsule& c, const LineFrame& f) {
 /// diagonals the one whose smallest angle to any axis is largest.
 LineFrame choose_frame(std::span<const Capsule> caps, const Vec3& contact_normal) {
   static const std::array<Vec3, 13> kCandidates = {
-      Vec3(1, 0, 0),  Vec3(0, 1, 0),  Vec3(0, 0, 1),  Vec3(1, 1, 0),  Vec3(1, -1, 0), Vec3(1, 0, 1), Vec3(1, 0, -1),
-      Vec3(0, 1, 1),  Vec3(0, 1, -1), Vec3(1, 1, 1),  Vec3(1, 1, -1), Vec3(1, -1, 1), Vec3(-1, 1, 1)};
+      Vec3(1, 0, 0),  Vec3(0, 1, 0),  Vec3(0, 0, 1), Vec3(1, 1, 0),  Vec3(1, -1, 0),
+      Vec3(1, 0, 1),  Vec3(1, 0, -1), Vec3(0, 1, 1), Vec3(0, 1, -1), Vec3(1, 1, 1),
+      Vec3(1, 1, -1), Vec3(1, -1, 1), Vec3(-1, 1, 1)};
   auto score = [&](const Vec3& d) {  // min over capsules of sin^2(angle between d and the axis)
     double out = 1.0;
     for (const Capsule& c : caps) {
@@ -78,7 +84,8 @@ LineFrame choose_frame(std::span<const Capsule> caps, const Vec3& contact_normal
 
 /// Interval of t where o + t e lies within `radius` of the capsule's segment (false when empty);
 /// e is unit. The capsule is convex, so the union of its three pieces' intervals is one interval.
-bool line_capsule_interval(const PreparedCapsule& c, const Vec3& o, const Vec3& e, double radius, Interval& out) {
+bool line_capsule_interval(const PreparedCapsule& c, const Vec3& o, const Vec3& e, double radius,
+                           Interval& out) {
   if (radius <= 0.0) return false;
   const double r2 = radius * radius;
   double lo = HUGE_VAL, hi = -HUGE_VAL;
@@ -193,8 +200,8 @@ struct Chords {
 class ColumnIntegrator {
  public:
   /// Integrates vol(A ∩ B ∩ clip) for the capsule sets A, B.
-  ColumnIntegrator(std::vector<PreparedCapsule> caps_a, std::vector<PreparedCapsule> caps_b, const LineFrame& frame,
-                   const Box3& clip, const OverlapOptions& options)
+  ColumnIntegrator(std::vector<PreparedCapsule> caps_a, std::vector<PreparedCapsule> caps_b,
+                   const LineFrame& frame, const Box3& clip, const OverlapOptions& options)
       : a_(std::move(caps_a)), b_(std::move(caps_b)), frame_(frame), clip_(clip), options_(options) {
     const int levels = options_.depth + 2;
     list_a_.assign(static_cast<size_t>(levels) * a_.size(), 0);
@@ -229,8 +236,8 @@ class ColumnIntegrator {
     return na > 0 && nb > 0;
   }
 
-  int filter_one(const std::vector<PreparedCapsule>& caps, std::vector<int>& lists, std::array<int, 64>& counts,
-                 int level, double cu, double cv, double h) const {
+  int filter_one(const std::vector<PreparedCapsule>& caps, std::vector<int>& lists,
+                 std::array<int, 64>& counts, int level, double cu, double cv, double h) const {
     const size_t n = caps.size();
     int* dst = lists.data() + static_cast<size_t>(level) * n;
     const int* src = level == 0 ? nullptr : lists.data() + static_cast<size_t>(level - 1) * n;
@@ -292,7 +299,8 @@ class ColumnIntegrator {
     return intersection_length(iv_a_.data(), ma, iv_b_.data(), mb);
   }
 
-  bool clipped_interval(const PreparedCapsule& c, const Vec3& o, double dr, double tlo, double thi, Interval& out) const {
+  bool clipped_interval(const PreparedCapsule& c, const Vec3& o, double dr, double tlo, double thi,
+                        Interval& out) const {
     if (!line_capsule_interval(c, o, frame_.dir, c.radius + dr, out)) return false;
     out.lo = std::max(out.lo, tlo);
     out.hi = std::min(out.hi, thi);
@@ -348,7 +356,6 @@ class ColumnIntegrator {
   OverlapVolume result_;
 };
 
-
 Box3 capsule_box(const Capsule& c) {
   const Vec3 r = Vec3::Constant(c.radius_m);
   return {c.a.cwiseMin(c.b) - r, c.a.cwiseMax(c.b) + r};
@@ -365,9 +372,12 @@ void check_capsules(std::span<const Capsule> caps, const char* which) {
 
 }  // namespace
 
-double OverlapVolume::error_bound_m3() const { return std::max(upper_m3 - volume_m3, volume_m3 - lower_m3); }
+double OverlapVolume::error_bound_m3() const {
+  return std::max(upper_m3 - volume_m3, volume_m3 - lower_m3);
+}
 
-OverlapVolume overlap_volume(std::span<const Capsule> a, std::span<const Capsule> b, const OverlapOptions& options) {
+OverlapVolume overlap_volume(std::span<const Capsule> a, std::span<const Capsule> b,
+                             const OverlapOptions& options) {
   check_capsules(a, "A");
   check_capsules(b, "B");
   if (options.depth < 0 || options.depth > 12 || options.base_cells < 1 || options.base_cells > 4096)
@@ -392,8 +402,12 @@ OverlapVolume overlap_volume(std::span<const Capsule> a, std::span<const Capsule
       if (!boxes_overlap(ba, bb)) continue;
       const CapsuleContact contact = capsule_contact(a[i], b[j]);
       if (contact.depth_m <= 0.0) continue;
-      Cluster c{{ba.lo.cwiseMax(bb.lo), ba.hi.cwiseMin(bb.hi)}, std::vector<char>(a.size(), 0),
-                std::vector<char>(b.size(), 0), contact.depth_m, contact.normal, true};
+      Cluster c{{ba.lo.cwiseMax(bb.lo), ba.hi.cwiseMin(bb.hi)},
+                std::vector<char>(a.size(), 0),
+                std::vector<char>(b.size(), 0),
+                contact.depth_m,
+                contact.normal,
+                true};
       c.in_a[i] = c.in_b[j] = 1;
       clusters.push_back(std::move(c));
     }
@@ -403,7 +417,8 @@ OverlapVolume overlap_volume(std::span<const Capsule> a, std::span<const Capsule
     merged = false;
     for (size_t p = 0; p < clusters.size(); ++p) {
       for (size_t q = p + 1; q < clusters.size(); ++q) {
-        if (!clusters[p].alive || !clusters[q].alive || !boxes_overlap(clusters[p].box, clusters[q].box)) continue;
+        if (!clusters[p].alive || !clusters[q].alive || !boxes_overlap(clusters[p].box, clusters[q].box))
+          continue;
         Cluster& x = clusters[p];
         Cluster& y = clusters[q];
         x.box.lo = x.box.lo.cwiseMin(y.box.lo);

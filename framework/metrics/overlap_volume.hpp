@@ -27,8 +27,8 @@
 // Error bound (rigorous): for a cell Q of half-diagonal h, every line through Q lies within h of the
 // line through Q's centre, and the signed distance to a union of capsules is 1-Lipschitz. So the
 // chord of A ∩ B on any line in Q is at least the centre-line chord of the bodies with every radius
-// (and the cluster box) shrunk by h, and at most the one with both grown by h. Summing area * chord over the cells gives
-// lower_m3 <= v <= upper_m3, hence |volume_m3 - v| <= error_bound_m3() = max(upper - estimate,
+// (and the cluster box) shrunk by h, and at most the one with both grown by h. Summing area * chord over the
+// cells gives lower_m3 <= v <= upper_m3, hence |volume_m3 - v| <= error_bound_m3() = max(upper - estimate,
 // estimate - lower). This bound is first order in the cell size (it charges every surface crossing
 // with a full h), so it is 10-50x wider than the actual error, which tests/metrics measure against
 // analytic volumes (< 1 % at the defaults; see `crowdlab bench overlap` for cost).
@@ -44,9 +44,9 @@ struct OverlapOptions {
 };
 
 struct OverlapVolume {
-  double volume_m3 = 0.0;  ///< the estimate of vol(A ∩ B) (m^3)
-  double lower_m3 = 0.0;   ///< rigorous lower bound (m^3)
-  double upper_m3 = 0.0;   ///< rigorous upper bound (m^3)
+  double volume_m3 = 0.0;     ///< the estimate of vol(A ∩ B) (m^3)
+  double lower_m3 = 0.0;      ///< rigorous lower bound (m^3)
+  double upper_m3 = 0.0;      ///< rigorous upper bound (m^3)
   int chord_evaluations = 0;  ///< lines evaluated (cost measure)
   bool colliding = false;     ///< some capsule of A overlaps some capsule of B (depth > 0)
 

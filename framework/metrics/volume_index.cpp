@@ -13,7 +13,8 @@ double mean_cube_root_volume(std::span<const double> volume_per_frame_m3) {
   for (size_t f = 0; f < volume_per_frame_m3.size(); ++f) {
     const double v = volume_per_frame_m3[f];
     if (!std::isfinite(v) || v < 0.0)
-      throw InputError("mean_cube_root_volume: frame " + std::to_string(f) + ": volume must be finite and >= 0");
+      throw InputError("mean_cube_root_volume: frame " + std::to_string(f) +
+                       ": volume must be finite and >= 0");
     if (v == 0.0) continue;
     sum += std::cbrt(v);
     ++n;

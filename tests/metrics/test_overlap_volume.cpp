@@ -22,7 +22,9 @@ Vec3 random_unit(Rng& rng) {
   }
 }
 
-double rand_in(Rng& rng, double lo, double hi) { return lo + (hi - lo) * uniform01(rng); }
+double rand_in(Rng& rng, double lo, double hi) {
+  return lo + (hi - lo) * uniform01(rng);
+}
 
 /// Checks estimate within 1 % of exact, and the rigorous bracket contains the exact value.
 void check_against(const OverlapVolume& v, double exact) {
@@ -34,7 +36,9 @@ void check_against(const OverlapVolume& v, double exact) {
   CHECK(std::abs(v.volume_m3 - exact) <= v.error_bound_m3() + 1e-15);
 }
 
-int cases() { return test::kSanitized ? 10 : 60; }
+int cases() {
+  return test::kSanitized ? 10 : 60;
+}
 
 }  // namespace
 
@@ -163,12 +167,14 @@ TEST_CASE("overlap is symmetric, zero when apart and counts a body's own overlap
     CHECK_FALSE(zero.colliding);
   }
   // Just touching (distance == r1 + r2 + epsilon) is zero.
-  const std::vector<Capsule> s1 = {{Vec3::Zero(), Vec3::Zero(), 0.1}}, s2 = {{Vec3(0.2000001, 0, 0), Vec3(0.2000001, 0, 0), 0.1}};
+  const std::vector<Capsule> s1 = {{Vec3::Zero(), Vec3::Zero(), 0.1}},
+                             s2 = {{Vec3(0.2000001, 0, 0), Vec3(0.2000001, 0, 0), 0.1}};
   CHECK(overlap_volume(s1, s2).volume_m3 == 0.0);
 }
 
 TEST_CASE("overlap grows monotonically with penetration depth") {
-  const std::vector<Capsule> arm = {{Vec3(-0.3, 1.2, 0), Vec3(0.3, 1.2, 0), 0.05}, {Vec3(0, 0.9, 0), Vec3(0, 1.5, 0), 0.12}};
+  const std::vector<Capsule> arm = {{Vec3(-0.3, 1.2, 0), Vec3(0.3, 1.2, 0), 0.05},
+                                    {Vec3(0, 0.9, 0), Vec3(0, 1.5, 0), 0.12}};
   double previous = 0.0;
   for (int step = 1; step <= 20; ++step) {
     const double gap = 0.33 - 0.015 * step;  // second body's axis distance from the first's centre
