@@ -6,6 +6,8 @@
 
 #include <zlib.h>
 
+#include <array>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -73,16 +75,23 @@ ShapeTarget read_target_gz(const std::filesystem::path& path, int vertex_count) 
   while (gzgets(f, buf, sizeof buf)) {
     ++line_no;
     if (buf[0] == '#' || buf[0] == '\n' || buf[0] == '\r' || buf[0] == '\0') continue;
-    std::istringstream ss(buf);
-    int idx = -1;
-    double x = 0, y = 0, z = 0;
-    if (!(ss >> idx >> x >> y >> z) || idx < 0 || idx >= vertex_count || !std::isfinite(x) ||
-        !std::isfinite(y) || !std::isfinite(z)) {
+    // strtol/strtod: several times faster than istringstream on the ~10^4-line targets.
+    char* end = nullptr;
+    const long idx = std::strtol(buf, &end, 10);
+    bool ok = end != buf;
+    std::array<double, 3> d{};
+    for (double& x : d) {
+      char* start = end;
+      x = std::strtod(start, &end);
+      ok = ok && end != start && std::isfinite(x);
+    }
+    if (!ok || idx < 0 || idx >= vertex_count) {
       gzclose(f);
       throw InputError(SourceLocation{path.string(), line_no, 0, ""},
                        "expected 'index dx dy dz' with a valid index");
     }
-    t.indices.push_back(idx);
+    const double x = d[0], y = d[1], z = d[2];
+    t.indices.push_back(static_cast<int>(idx));
     t.offsets_dm.emplace_back(x, y, z);
   }
   int err = 0;

@@ -12,6 +12,7 @@
 #include "framework/body/sample_mpfb2_bodies.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/seed.hpp"
 #include "framework/metrics/overlap_volume.hpp"
 #include "tests/support/test_paths.hpp"
 
@@ -169,7 +170,7 @@ TEST_CASE("height grows with the height macro and men are taller than women at e
 TEST_CASE("sampled bodies reach their target heights, by sex, measured on the shaped meshes") {
   const auto model = model_or_skip();
   if (!model) return;
-  const int n = test::kSanitized ? 2 : 8;
+  const int n = test::kSanitized ? 2 : 4;
   const std::vector<Mpfb2Sample> a = sample_mpfb2_bodies(*model, n, 42);
   const std::vector<Mpfb2Sample> b = sample_mpfb2_bodies(*model, 2, 42);
   CHECK(a[0].body.params.height == b[0].body.params.height);  // deterministic per index
@@ -213,4 +214,31 @@ TEST_CASE("bad MPFB2 input gives clear errors") {
     out << "v 0 0 0\nv 1 0 0\nf 1 2 9\n";
   }
   CHECK_THROWS_AS(read_obj(dir / "bad.obj"), InputError);
+}
+
+TEST_CASE("the height solver reproduces a Gaussian height distribution by sex on the shaped meshes") {
+  const auto model = model_or_skip();
+  if (!model) return;
+  const int per_sex = test::kSanitized ? 3 : 15;
+  for (const bool female : {true, false}) {
+    const HeightDistribution d = female ? kWorldFemaleHeight : kWorldMaleHeight;
+    Rng rng(derive_seed(9, female ? "f" : "m"));
+    double sum = 0.0, sum2 = 0.0;
+    for (int i = 0; i < per_sex; ++i) {
+      const double target = d.mean_m + d.sd_m * standard_normal(rng);
+      Mpfb2ShapeParams p;
+      p.gender = female ? 0.0 : 1.0;
+      bool reached = false;
+      p.height = solve_height_param(*model, p, target, reached);
+      REQUIRE(reached);
+      const double measured = body_height_from_mesh(*model, p);
+      CHECK(measured == Approx(target).margin(0.001));
+      sum += measured;
+      sum2 += measured * measured;
+    }
+    const double mean = sum / per_sex, sd = std::sqrt(std::max(0.0, sum2 / per_sex - mean * mean));
+    INFO((female ? "women" : "men") << ": mean " << mean << " sd " << sd);
+    CHECK(std::abs(mean - d.mean_m) < 4 * d.sd_m / std::sqrt(per_sex));
+    if (!test::kSanitized) CHECK(sd == Approx(d.sd_m).epsilon(0.6));
+  }
 }
