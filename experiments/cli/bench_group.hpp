@@ -1,6 +1,5 @@
 #pragma once
-// The `bench` subcommand group, shared by every `crowdlab bench <thing>` file: the first caller
-// creates it, the others get it.
+// The `crowdlab bench` subcommand group, shared by every benchmark: get it, or create it once.
 #include <CLI/CLI.hpp>
 
 namespace crowdlab::cli {
