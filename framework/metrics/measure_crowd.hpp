@@ -16,6 +16,7 @@
 //   max_error_bound_m3         the largest rigorous error bound of any single volume computed
 // Frames are measured in parallel (TBB); each frame is computed serially and reduced in frame order,
 // so results are bit-identical for any thread count.
+#include <functional>
 #include <vector>
 
 #include "framework/core/crowd_animation.hpp"
@@ -26,6 +27,8 @@ namespace crowdlab {
 struct MetricsOptions {
   OverlapOptions overlap;
   bool pair_volumes = true;  ///< also integrate every colliding pair's own volume (V per pair)
+  /// Called once per finished frame, from worker threads (e.g. Progress::advance); may be empty.
+  std::function<void()> on_frame_done;
 };
 
 struct FrameMetrics {
