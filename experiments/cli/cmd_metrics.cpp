@@ -1,0 +1,130 @@
+// `crowdlab metrics CROWD.glb [--json]`: every interpenetration measure of a crowd animation on its
+// capsule bodies (framework/metrics/measure_crowd.hpp): per-character mean overlap (seed 000 Fig. 3,
+// litres), V (seed 001 Eq. 1), maximum penetration depth, collision events, per pair and per frame.
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "experiments/cli/command_registry.hpp"
+#include "framework/core/progress.hpp"
+#include "framework/io/read_crowd_glb.hpp"
+#include "framework/metrics/measure_crowd.hpp"
+
+namespace crowdlab::cli {
+namespace {
+
+struct MetricsArgs {
+  std::string path;
+  bool json = false;
+  bool per_frame = false;
+  bool pair_volumes = true;
+  int base_cells = OverlapOptions{}.base_cells;
+  int depth = OverlapOptions{}.depth;
+};
+
+nlohmann::json to_json(const CrowdMetrics& m, bool per_frame) {
+  nlohmann::json j = {{"characters", m.characters},
+                      {"frames", m.frames},
+                      {"fps", m.fps},
+                      {"mean_character_overlap_l", m.mean_character_overlap_l},
+                      {"volume_index_m", m.volume_index_m},
+                      {"max_penetration_depth_m", m.max_penetration_depth_m},
+                      {"collision_count", m.collision_count},
+                      {"colliding_frames", m.colliding_frames},
+                      {"max_error_bound_l", 1000.0 * m.max_error_bound_m3}};
+  nlohmann::json chars = nlohmann::json::array();
+  for (double v : m.character_mean_overlap_m3) chars.push_back(1000.0 * v);
+  j["character_mean_overlap_l"] = chars;
+  nlohmann::json pairs = nlohmann::json::array();
+  for (const PairMetrics& p : m.pairs)
+    pairs.push_back({{"a", p.a},
+                     {"b", p.b},
+                     {"colliding_frames", p.colliding_frames},
+                     {"collision_events", p.collision_events},
+                     {"volume_index_m", p.volume_index_m},
+                     {"max_volume_l", 1000.0 * p.max_volume_m3},
+                     {"max_penetration_depth_m", p.max_penetration_depth_m}});
+  j["pairs"] = pairs;
+  if (per_frame) {
+    nlohmann::json mean = nlohmann::json::array(), total = nlohmann::json::array(),
+                   depth = nlohmann::json::array(), count = nlohmann::json::array();
+    for (const FrameMetrics& f : m.per_frame) {
+      mean.push_back(1000.0 * f.mean_character_overlap_m3);
+      total.push_back(1000.0 * f.total_pair_overlap_m3);
+      depth.push_back(f.max_penetration_depth_m);
+      count.push_back(f.colliding_pairs);
+    }
+    j["per_frame"] = {{"mean_character_overlap_l", mean},
+                      {"total_pair_overlap_l", total},
+                      {"max_penetration_depth_m", depth},
+                      {"colliding_pairs", count}};
+  }
+  return j;
+}
+
+void print_text(const CrowdMetrics& m, const std::string& path, bool per_frame) {
+  std::printf("%s: %d characters, %d frames at %g fps\n", path.c_str(), m.characters, m.frames, m.fps);
+  std::printf("  mean per-character overlap (seed 000 Fig. 3): %.4f L\n", m.mean_character_overlap_l);
+  std::printf("  V, mean cube root of overlap over colliding frames (seed 001 Eq. 1): %.4f m\n",
+              m.volume_index_m);
+  std::printf("  max penetration depth: %.4f m\n", m.max_penetration_depth_m);
+  std::printf("  collision events: %d (frames with a collision: %d)\n", m.collision_count,
+              m.colliding_frames);
+  std::printf("  largest rigorous error bound of one volume: %.4f L\n", 1000.0 * m.max_error_bound_m3);
+  if (!m.pairs.empty()) {
+    std::printf("  colliding pairs (a b: frames events V_m max_volume_L max_depth_m):\n");
+    for (const PairMetrics& p : m.pairs)
+      std::printf("    %d %d: %d %d %.4f %.4f %.4f\n", p.a, p.b, p.colliding_frames, p.collision_events,
+                  p.volume_index_m, 1000.0 * p.max_volume_m3, p.max_penetration_depth_m);
+  }
+  if (per_frame) {
+    std::printf("  frame mean_character_overlap_L total_pair_overlap_L max_depth_m colliding_pairs\n");
+    for (size_t f = 0; f < m.per_frame.size(); ++f) {
+      const FrameMetrics& fm = m.per_frame[f];
+      std::printf("    %zu %.5f %.5f %.4f %d\n", f, 1000.0 * fm.mean_character_overlap_m3,
+                  1000.0 * fm.total_pair_overlap_m3, fm.max_penetration_depth_m, fm.colliding_pairs);
+    }
+  }
+}
+
+void run(const MetricsArgs& args) {
+  const CrowdAnimation crowd = read_crowd_glb(args.path);
+  MetricsOptions options;
+  options.pair_volumes = args.pair_volumes;
+  options.overlap.base_cells = args.base_cells;
+  options.overlap.depth = args.depth;
+  Progress progress("metrics " + args.path, static_cast<size_t>(std::max(1, crowd.frame_count())));
+  options.on_frame_done = [&progress] { progress.advance(); };
+  const CrowdMetrics m = measure_crowd(crowd, options);
+  progress.finish();
+  if (args.json) {
+    std::printf("%s\n", to_json(m, args.per_frame).dump().c_str());
+  } else {
+    print_text(m, args.path, args.per_frame);
+  }
+}
+
+const CommandRegistration kRegistration([](CLI::App& root) {
+  auto args = std::make_shared<MetricsArgs>();
+  auto* cmd = root.add_subcommand(
+      "metrics",
+      "Interpenetration measures of a crowd .glb on its capsule bodies: per-character mean overlap "
+      "(litres), V (mean cube root of overlap volume), max penetration depth, collision events");
+  cmd->add_option("crowd", args->path, "Crowd animation (.glb written by crowdlab)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_flag("--json", args->json, "Print one JSON object");
+  cmd->add_flag("--per-frame", args->per_frame, "Also print the per-frame series");
+  cmd->add_flag("!--no-pair-volumes", args->pair_volumes,
+                "Skip the per-pair volumes (V per pair and V of the clip become 0; faster)");
+  cmd->add_option("--base-cells", args->base_cells, "Overlap quadrature base grid cells")
+      ->capture_default_str();
+  cmd->add_option("--depth", args->depth, "Overlap quadrature subdivisions per base cell")
+      ->capture_default_str();
+  cmd->callback([args] { run(*args); });
+});
+
+}  // namespace
+}  // namespace crowdlab::cli

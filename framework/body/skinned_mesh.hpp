@@ -1,0 +1,37 @@
+#pragma once
+// A skinned body mesh for the renderer: rest-pose geometry in the character frame (metres, Y-up,
+// facing +Z, feet on y = 0, pelvis above the origin: the frame of Pose::rest()), up to 4 SMPL joints
+// per vertex with weights, and a region label per vertex.
+//
+// Linear blend skinning (seed 000 Eq. 1, W(...)): with bone transforms B_j from forward_kinematics()
+// and rest joint positions p_j (rest bone frames are translations only, see body_shape.hpp),
+//   v' = sum_k w_k (R_jk (v - p_jk) + t_jk)
+#include <array>
+#include <vector>
+
+#include "framework/core/forward_kinematics.hpp"
+
+namespace crowdlab {
+
+struct SkinnedMesh {
+  std::vector<Vec3> rest_vertices_m;              ///< (V)
+  std::vector<Vec3> rest_normals;                 ///< (V) unit, area-weighted vertex normals
+  std::vector<Eigen::Vector3i> triangles;         ///< (T) counter-clockwise from outside
+  std::vector<std::array<int, 4>> joints;         ///< (V) SMPL joint indices (unused slots: 0 with weight 0)
+  std::vector<std::array<double, 4>> weights;     ///< (V) sum to 1, descending
+  std::vector<int> region;                        ///< (V) the dominant SMPL joint (body-part label)
+  std::array<Vec3, kJointCount> rest_joints_m{};  ///< rest joint positions, same frame
+};
+
+/// Posed vertex positions (world, metres) for bone transforms from forward_kinematics().
+std::vector<Vec3> skin_vertices(const SkinnedMesh& mesh, const BoneTransforms& bones);
+
+/// Area-weighted vertex normals of a triangle mesh (unit; zero where a vertex has no area).
+std::vector<Vec3> vertex_normals(const std::vector<Vec3>& vertices,
+                                 const std::vector<Eigen::Vector3i>& triangles);
+
+/// Enclosed volume by the divergence theorem (m^3 for metres); exact for a closed, consistently
+/// oriented mesh, an estimate where the mesh has holes.
+double mesh_volume(const std::vector<Vec3>& vertices, const std::vector<Eigen::Vector3i>& triangles);
+
+}  // namespace crowdlab

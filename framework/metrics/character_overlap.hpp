@@ -1,0 +1,38 @@
+#pragma once
+// Overlap between posed characters, with the broad phase of seed 000 §3.4 ("Culling"): body AABBs
+// first, then each capsule's bounding sphere against the other body's AABB, then the exact
+// capsule-capsule test inside overlap_volume().
+//   character_overlap(a, b)       v between two characters (their world capsules, metres)
+//   overlap_with_others(bodies, i) v between character i and the union of all other characters:
+//                                  vol(body_i ∩ ∪_{j != i} body_j), so a region where three bodies
+//                                  meet is counted once for i (seed 000 Figure 3's per-character
+//                                  overlap; the paper does not say how triple overlaps count).
+//   max_penetration_depth(a, b)   max over capsule pairs (one from each) of r_a + r_b - distance
+//                                  between their axes, clamped at 0 (metres).
+#include <span>
+
+#include "framework/core/forward_kinematics.hpp"
+#include "framework/metrics/overlap_volume.hpp"
+
+namespace crowdlab {
+
+/// Axis-aligned box around a body's world capsules (metres).
+struct BodyBounds {
+  Vec3 lo = Vec3::Zero();
+  Vec3 hi = Vec3::Zero();
+  bool overlaps(const BodyBounds& o) const {
+    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
+  }
+};
+BodyBounds body_bounds(const WorldCapsules& capsules);
+
+OverlapVolume character_overlap(const WorldCapsules& a, const WorldCapsules& b,
+                                const OverlapOptions& options = {});
+
+/// bounds[j] must be body_bounds(bodies[j]); i indexes bodies.
+OverlapVolume overlap_with_others(std::span<const WorldCapsules> bodies, std::span<const BodyBounds> bounds,
+                                  int i, const OverlapOptions& options = {});
+
+double max_penetration_depth(const WorldCapsules& a, const WorldCapsules& b);
+
+}  // namespace crowdlab
