@@ -1,0 +1,46 @@
+#include "framework/correction/correct_crowd.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "framework/correction/corrector.hpp"
+
+namespace crowdlab {
+
+CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams& params, Progress* progress,
+                             CorrectionReport* report) {
+  validate_crowd(crowd, "correct_crowd");
+  std::vector<BodyShape> shapes;
+  shapes.reserve(crowd.characters.size());
+  for (const CharacterAnimation& ch : crowd.characters) shapes.push_back(ch.shape);
+  Corrector corrector(std::move(shapes), params, crowd.environment, crowd.meta.fps);
+
+  CrowdAnimation out = crowd;
+  const size_t n = crowd.characters.size();
+  const int frames = crowd.frame_count();
+  std::vector<Pose> targets(n);
+  CorrectionReport r;
+  r.frames = frames;
+  double contacts = 0.0, iterations = 0.0;
+  for (int f = 0; f < frames; ++f) {
+    for (size_t c = 0; c < n; ++c) targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
+    const std::vector<Pose> corrected = corrector.step(targets);
+    for (size_t c = 0; c < n; ++c) out.characters[c].frames[static_cast<size_t>(f)] = corrected[c];
+    const StepStats& st = corrector.last_stats();
+    contacts += st.contacts();
+    iterations += st.cg_iterations;
+    if (st.rejected) ++r.rejected_steps;
+    if (!st.converged) ++r.unconverged_steps;
+    if (progress) progress->advance();
+  }
+  r.contacts_mean = frames > 0 ? contacts / frames : 0.0;
+  r.cg_iterations_mean = frames > 0 ? iterations / frames : 0.0;
+  if (r.rejected_steps > 0)
+    spdlog::warn(
+        "correct_crowd: {} of {} steps were rejected (solver did not converge); the last stable state was "
+        "kept",
+        r.rejected_steps, frames);
+  if (report) *report = r;
+  return out;
+}
+
+}  // namespace crowdlab

@@ -1,0 +1,27 @@
+#pragma once
+// Offline interface: correct a whole CrowdAnimation (seed 000's "Ours" condition). Runs the online
+// Corrector over every frame in order at the crowd's fps, with its environment, and returns a copy of
+// the crowd whose poses are the corrected ones (shapes, names, palettes, environment and metadata
+// unchanged). Throws InputError for an invalid crowd (validate_crowd: empty crowd, NaN/Inf poses,
+// missing/zero-length bones, unequal frame counts) or invalid params.
+#include "framework/core/crowd_animation.hpp"
+#include "framework/core/progress.hpp"
+#include "framework/correction/corrector_params.hpp"
+#include "framework/correction/corrector_state.hpp"
+
+namespace crowdlab {
+
+/// Summary of an offline correction.
+struct CorrectionReport {
+  int frames = 0;
+  int rejected_steps = 0;      ///< steps whose solve failed (state kept)
+  int unconverged_steps = 0;   ///< steps where CG stopped above its tolerance (result still used)
+  double contacts_mean = 0.0;  ///< mean contacts per step
+  double cg_iterations_mean = 0.0;
+};
+
+/// progress (optional) is advanced once per frame. report (optional) receives the summary.
+CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams& params,
+                             Progress* progress = nullptr, CorrectionReport* report = nullptr);
+
+}  // namespace crowdlab

@@ -1,0 +1,39 @@
+#pragma once
+// Corrector: the online interface of the collision-correction solver (seed 000 §3), usable one frame
+// at a time inside a game or VR loop:
+//
+//   Corrector corrector(shapes, params, env, fps);
+//   every frame: std::vector<Pose> corrected = corrector.step(animation_poses_this_frame);
+//
+// Inputs: one BodyShape per character (fixed for the corrector's life), the static environment, the
+// frame rate (the step is h = 1/fps). step() takes one target Pose per character (the uncorrected
+// animation at this frame) and returns the corrected poses in the same order. The first step returns
+// its targets (the state starts at rest on them). Throws InputError for bad shapes, params, fps, an
+// empty crowd, a wrong number of poses or a NaN/Inf/non-unit pose.
+#include <vector>
+
+#include "framework/core/crowd_animation.hpp"
+#include "framework/correction/corrector_model.hpp"
+#include "framework/correction/corrector_state.hpp"
+
+namespace crowdlab {
+
+class Corrector {
+ public:
+  explicit Corrector(std::vector<BodyShape> shapes, CorrectorParams params = {}, Environment env = {},
+                     double fps = 30);
+
+  /// Advances one step of h = 1/fps and returns the corrected poses.
+  std::vector<Pose> step(const std::vector<Pose>& targets);
+
+  const CorrectorModel& model() const { return model_; }
+  const CorrectorState& state() const { return state_; }
+  /// Statistics of the last step (contacts, CG iterations, convergence, rejection).
+  const StepStats& last_stats() const { return state_.stats; }
+
+ private:
+  CorrectorModel model_;
+  CorrectorState state_;
+};
+
+}  // namespace crowdlab

@@ -1,0 +1,123 @@
+#include "framework/correction/corrector_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "framework/core/error.hpp"
+#include "framework/core/forward_kinematics.hpp"
+
+namespace crowdlab {
+
+void validate_corrector_params(const CorrectorParams& p) {
+  auto check = [](double v, const char* name, double lo) {
+    if (!std::isfinite(v) || v < lo)
+      throw InputError(std::string("corrector parameter ") + name +
+                       " must be finite and >= " + std::to_string(lo) + ", got " + std::to_string(v));
+  };
+  check(p.stiffness, "stiffness", 0.0);
+  check(p.damping, "damping", 0.0);
+  check(p.stiff_joint_gain, "stiff_joint_gain", 0.0);
+  check(p.root_translation_stiffness, "root_translation_stiffness", 0.0);
+  check(p.joint_stiffness, "joint_stiffness", 0.0);
+  check(p.contact_stiffness, "contact_stiffness", 0.0);
+  check(p.ground_stiffness, "ground_stiffness", 0.0);
+  check(p.environment_stiffness, "environment_stiffness", 0.0);
+  check(p.environment_sample_spacing_m, "environment_sample_spacing_m", 1e-4);
+  check(p.body_density_kg_m3, "body_density_kg_m3", 1.0);
+  check(p.gravity_mps2, "gravity_mps2", 0.0);
+  check(p.cg_tolerance, "cg_tolerance", 1e-14);
+  check(p.max_bone_speed_mps, "max_bone_speed_mps", 1e-3);
+  if (p.cg_max_iterations < 1) throw InputError("corrector parameter cg_max_iterations must be >= 1");
+}
+
+void capsule_mass_properties(const Capsule& capsule, double density, double& mass, Mat3& inertia) {
+  const double r = capsule.radius_m, len = capsule.length_m();
+  const double m_cyl = density * std::numbers::pi * r * r * len;
+  const double m_caps = density * 4.0 / 3.0 * std::numbers::pi * r * r * r;  // both hemispheres
+  mass = m_cyl + m_caps;
+  const double axial = m_cyl * r * r / 2.0 + m_caps * 2.0 * r * r / 5.0;
+  const double perp = m_cyl * (r * r / 4.0 + len * len / 12.0) +
+                      m_caps * (2.0 * r * r / 5.0 + len * len / 4.0 + 3.0 * len * r / 8.0);
+  // Inertia in a frame whose z axis is the capsule axis, rotated into the capsule's frame.
+  const Vec3 axis = len > 1e-12 ? Vec3((capsule.b - capsule.a) / len) : Vec3::UnitY();
+  inertia = perp * Mat3::Identity() + (axial - perp) * axis * axis.transpose();
+}
+
+namespace {
+
+bool is_ancestor_or_self(int ancestor, int bone) {
+  for (int b = bone; b >= 0; b = kJointParent[static_cast<size_t>(b)])
+    if (b == ancestor) return true;
+  return false;
+}
+
+CorrectorBody make_body(BodyShape shape, const CorrectorParams& p) {
+  CorrectorBody body;
+  const BoneTransforms rest = forward_kinematics(shape, Pose::rest(shape));
+  std::array<Vec3, kJointCount> com_world{};
+  std::array<Mat3, kJointCount> inertia_world{};
+  for (size_t j = 0; j < kJointCount; ++j) {
+    const Capsule& cap = shape.capsules[j];
+    capsule_mass_properties(cap, p.body_density_kg_m3, body.mass_kg[j], body.inertia_local[j]);
+    body.com_local_m[j] = 0.5 * (cap.a + cap.b);
+    body.total_mass_kg += body.mass_kg[j];
+    com_world[j] = rest[j].apply(body.com_local_m[j]);
+    const Mat3 r = rest[j].rotation.toRotationMatrix();
+    inertia_world[j] = r * body.inertia_local[j] * r.transpose();
+  }
+  // Effective inertia of joint j: composite inertia of its subtree about the joint, rest pose
+  // (mean principal moment, trace / 3). For the root this is the whole body about the pelvis joint.
+  for (int j = 0; j < kJointCount; ++j) {
+    Mat3 composite = Mat3::Zero();
+    const Vec3 joint = rest[static_cast<size_t>(j)].translation;
+    for (int b = 0; b < kJointCount; ++b) {
+      if (!is_ancestor_or_self(j, b)) continue;
+      const Vec3 d = com_world[static_cast<size_t>(b)] - joint;
+      composite +=
+          inertia_world[static_cast<size_t>(b)] +
+          body.mass_kg[static_cast<size_t>(b)] * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
+    }
+    const double i_eff = composite.trace() / 3.0;
+    const double gain = is_stiff_joint(j) ? p.stiff_joint_gain : 1.0;
+    body.rot_stiffness[static_cast<size_t>(j)] = gain * p.stiffness * i_eff;
+    body.rot_damping[static_cast<size_t>(j)] = gain * p.damping * i_eff;
+    body.joint_stiffness[static_cast<size_t>(j)] = p.joint_stiffness * body.mass_kg[static_cast<size_t>(j)];
+  }
+  const double root_gain = p.stiff_joint_gain;
+  body.root_translation_stiffness = root_gain * p.root_translation_stiffness * body.total_mass_kg;
+  body.root_translation_damping = root_gain * p.damping * body.total_mass_kg;
+  for (int i = 0; i < kJointCount; ++i)
+    for (int j = i + 1; j < kJointCount; ++j) {
+      const bool excluded = std::find(shape.rest_contact_pairs.begin(), shape.rest_contact_pairs.end(),
+                                      std::pair<int, int>(i, j)) != shape.rest_contact_pairs.end();
+      if (!excluded) body.self_pairs.emplace_back(static_cast<std::uint8_t>(i), static_cast<std::uint8_t>(j));
+    }
+  body.shape = std::move(shape);
+  return body;
+}
+
+}  // namespace
+
+CorrectorModel make_corrector_model(std::vector<BodyShape> shapes, const CorrectorParams& params,
+                                    const Environment& env, double fps) {
+  validate_corrector_params(params);
+  if (!(fps > 0.0) || !std::isfinite(fps))
+    throw InputError("corrector fps must be > 0, got " + std::to_string(fps));
+  if (shapes.empty()) throw InputError("corrector: the crowd has no characters");
+  CorrectorModel model;
+  model.params = params;
+  model.fps = fps;
+  model.h = 1.0 / fps;
+  model.ground_plane = env.ground_plane;
+  model.bodies.reserve(shapes.size());
+  for (size_t c = 0; c < shapes.size(); ++c) {
+    validate_body_shape(shapes[c], "corrector: character " + std::to_string(c));
+    model.bodies.push_back(make_body(std::move(shapes[c]), params));
+  }
+  model.environment = EnvironmentPointTree(env, params.environment_sample_spacing_m);
+  return model;
+}
+
+}  // namespace crowdlab

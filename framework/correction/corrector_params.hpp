@@ -1,0 +1,77 @@
+#pragma once
+// CorrectorParams: every tunable constant of the collision-correction solver (seed 000 §3.2-3.4),
+// with its unit and the source of its default. The paper gives d = 0.006 and the structure of the
+// terms but not the other numbers; where it is silent the choice and its reason are written here.
+//
+// Gain normalisation (our choice, the paper is silent on units): the control gains k and d of
+// Eq. 4 are given PER UNIT OF EFFECTIVE INERTIA. Joint j's spring and damper are multiplied by the
+// composite rotational inertia of the subtree it drives (kg m^2, rest pose, about the joint), the
+// root translation by the total body mass (kg). One (k, d) pair therefore gives every joint the same
+// natural frequency sqrt(2 k) rad/s and the same damping behaviour, from the hand to the trunk, the
+// usual "inertia-scaled PD gains" choice (e.g. Tan, Liu & Turk 2011, "Stable proportional-derivative
+// controllers", §4). With this normalisation d is dimensionless in the sense of Eq. 4 (its Frobenius
+// norm of a rotation difference is ~ sqrt(2) x the angle), and the paper's d = 0.006 works unchanged.
+#include <cstdint>
+
+namespace crowdlab {
+
+struct CorrectorParams {
+  // ---- Control, Eq. 4 (spring 1/2 k ||R - R_hat||_F^2, damper 1/2 d/h^2 ||R - R_old - R_hat +
+  // R_hat_old||_F^2)
+  /// Spring k for relative joint rotations (1/s^2, per unit effective inertia). 40 gives a natural
+  /// frequency of sqrt(80) ~ 9 rad/s (1.4 Hz): soft enough that neighbours push limbs aside, stiff
+  /// enough to recover within ~0.5 s (seed 000 Fig. 4 shows recovery within about a second).
+  double stiffness = 40.0;
+  /// Damping d of Eq. 4 on the deviation velocity (dimensionless, see the header note).
+  /// Default 0.006: seed 000 §4.2 and Fig. 4.
+  double damping = 0.006;
+  /// Gain multiplier for the pelvis (root) and the feet (ankle and foot bones): seed 000 §3.3 "for the
+  /// pelvis and the feet we use higher spring and damping coefficients" (value not given; 10x chosen so
+  /// the root and the feet move ~3x less than other joints under the same push).
+  double stiff_joint_gain = 10.0;
+  /// Root translation spring (1/s^2, per kg of body mass); the root is held absolutely (seed 000 §3.3).
+  double root_translation_stiffness = 40.0;
+
+  // ---- Joints (soft constraint keeping a child's joint on its parent's attachment point)
+  /// Joint spring (1/s^2, multiplied by the child bone's mass to give N/m). 1e5 keeps the joint gap
+  /// below a millimetre under contact forces; it is stiff, which backward Euler tolerates (Gast et al.
+  /// 2015). The gap is removed anyway when the state is projected back to a pose after each step.
+  double joint_stiffness = 1.0e5;
+
+  // ---- Collisions, E = 1/2 k_delta delta^2 (seed 000 §3.4)
+  /// Penalty stiffness k_delta (N/m). 3e4 N/m: a 300 N push (a firm shove) leaves 1 cm of penetration.
+  double contact_stiffness = 3.0e4;
+  /// Ground penalty stiffness (N/m) per capsule end sphere touching y = 0.
+  double ground_stiffness = 3.0e4;
+  /// Environment penalty stiffness (N/m) per capsule, shared among the sample points it touches.
+  double environment_stiffness = 3.0e4;
+  /// Point spacing (m) used to sample static environment boxes and meshes (seed 000 §3.4).
+  double environment_sample_spacing_m = 0.03;
+
+  // ---- Inertia and gravity
+  /// Whole-body density (kg/m^3). Adult whole-body density measured by hydrostatic weighing lies in
+  /// 1010-1060 kg/m^3 (Siri 1961; Brozek et al. 1963, "Densitometric analysis of body composition");
+  /// 1045 is the middle of the lean-to-average range, matching core's ~70 L for a 75 kg man.
+  double body_density_kg_m3 = 1045.0;
+  /// Gravity (m/s^2), along -Y (E_gravity of Eq. 3).
+  double gravity_mps2 = 9.81;
+  /// When true (default) the controller adds gravity-compensation forces (Coros, van de Panne et al.
+  /// 2010, "Generalized biped walking control", §4.3): the input animation already carries its own
+  /// balance, so without contact the body reproduces it exactly instead of sagging by W / (2 k).
+  bool gravity_compensation = true;
+
+  // ---- Solver
+  // One Newton iteration per step, always (seed 000 §3.2: "just one Newton iteration per time step
+  // worked well"); the assemble stage linearises at the start-of-step state.
+  /// Preconditioned CG: stop when ||r|| <= cg_tolerance * ||b||.
+  double cg_tolerance = 1e-4;
+  int cg_max_iterations = 100;
+  /// A step is rejected (the last stable state kept) if any bone would move faster than this (m/s).
+  /// Human segment speeds stay below ~15 m/s even in throwing (Winter 2009); 50 leaves ample room.
+  double max_bone_speed_mps = 50.0;
+};
+
+/// Throws InputError naming the field when a parameter is out of range or not finite.
+void validate_corrector_params(const CorrectorParams& params);
+
+}  // namespace crowdlab

@@ -1,0 +1,98 @@
+#pragma once
+// CorrectorState: the mutable half of the solver (MuJoCo-style mjData). Sized once by
+// make_corrector_state(); the step reuses every array, so the per-step loop does not allocate once
+// the contact buffers have grown to their working size.
+//
+// Index conventions: bone arrays have model.bones() = 24 N entries, bone b of character c at c*24+b.
+// Frames/units: world frame (Y up), metres, seconds, radians. Generalised increments per bone are
+// Vec6 = (dx of the COM in m, dtheta in rad as a world-frame rotation vector).
+#include <cstdint>
+#include <vector>
+
+#include "framework/core/pose.hpp"
+#include "framework/correction/corrector_model.hpp"
+
+namespace crowdlab {
+
+/// One penalty contact, linearised (seed 000 §3.4: E = 1/2 k delta^2 on the penetration depth).
+/// delta(dq) ~= depth + w_a . dq_a + w_b . dq_b, so the Gauss-Newton Hessian is k w w^T (PSD).
+struct Contact {
+  int bone_a = -1;              ///< global bone index
+  int bone_b = -1;              ///< global bone index, or -1 for ground / environment (static side)
+  double depth_m = 0.0;         ///< penetration depth at the start of the step (> 0)
+  double stiffness = 0.0;       ///< k (N/m)
+  Vec3 normal = Vec3::UnitY();  ///< unit, from b (or the static side) toward a
+  Vec3 point_a = Vec3::Zero();  ///< contact point on a's capsule axis (world, m)
+  Vec3 point_b = Vec3::Zero();  ///< contact point on b's capsule axis (world, m); unused if static
+  Vec6 w_a = Vec6::Zero();      ///< d delta / d dq_a (filled by the assemble stage)
+  Vec6 w_b = Vec6::Zero();      ///< d delta / d dq_b
+};
+
+enum class ContactKind : std::uint8_t { kInterBody, kIntraBody, kGround, kEnvironment };
+
+/// Per-step statistics (also what the benchmark prints).
+struct StepStats {
+  int inter_body_contacts = 0;
+  int intra_body_contacts = 0;
+  int ground_contacts = 0;
+  int environment_contacts = 0;
+  int body_pairs = 0;  ///< character pairs surviving the AABB cull
+  int cg_iterations = 0;
+  double cg_relative_residual = 0.0;
+  bool converged = true;           ///< CG met its tolerance
+  bool rejected = false;           ///< the step was discarded and the last stable state kept
+  double max_penetration_m = 0.0;  ///< deepest inter-body contact found at the start of the step
+  int contacts() const {
+    return inter_body_contacts + intra_body_contacts + ground_contacts + environment_contacts;
+  }
+};
+
+struct CorrectorState {
+  bool initialized = false;
+  std::int64_t step_index = 0;
+
+  // ---- rigid-body state q (per bone), world frame
+  std::vector<Vec3> com_m;         ///< centre of mass (m)
+  std::vector<Quat> rotation;      ///< bone frame -> world
+  std::vector<Vec3> velocity_mps;  ///< COM velocity (m/s)
+  std::vector<Vec3> omega_radps;   ///< angular velocity, world frame (rad/s)
+
+  // ---- targets (per character / per bone)
+  std::vector<Pose> target, target_old;  ///< this step's and the previous step's input poses
+  std::vector<Pose> output;              ///< the projected poses returned by the step
+
+  // ---- broad/narrow phase scratch
+  std::vector<Capsule> world_capsule;                   ///< per bone, world frame
+  std::vector<Aabb> body_box;                           ///< per character, capsule AABB
+  std::vector<int> sweep_order;                         ///< characters sorted by body_box.lo.x
+  std::vector<std::pair<int, int>> body_pairs;          ///< (i < j) candidate character pairs
+  std::vector<std::vector<Contact>> per_pair_contacts;  ///< narrow-phase output per body pair
+  std::vector<std::vector<Contact>> per_body_contacts;  ///< intra/ground/env output per character
+  std::vector<std::array<int, 3>> per_body_counts;      ///< (intra, ground, env) per character
+  std::vector<Contact> contacts;                        ///< all contacts, fixed order
+  /// Contacts touching each character: CSR over characters of (contact index * 2 + side).
+  /// Entry 2k means "side a of contact k", 2k+1 "side b"; a self contact appears once (as 2k).
+  std::vector<int> incidence_offset, incidence, incidence_cursor;
+
+  // ---- linear system H dq = b (per bone blocks); tree part + contact rank-1 terms
+  std::vector<Mat6> diag;      ///< H[b,b] without contact terms
+  std::vector<Mat6> coupling;  ///< H[b, parent(b)] (child rows, parent columns); unused for roots
+  std::vector<Mat6> precond;   ///< per bone: Cholesky factor of the tree-eliminated block
+  std::vector<Vec6> rhs;       ///< b = -gradient
+  std::vector<Vec6> cg_x, cg_r, cg_z, cg_p, cg_q, cg_y;  ///< CG vectors
+  std::vector<double> contact_scalar;                    ///< per contact: k w . x during a matvec
+  std::vector<double> partial, partial2;  ///< per character: partial dot products (fixed-order reduce)
+  std::vector<char> factor_ok;            ///< per character: preconditioner blocks were SPD
+  std::vector<char> bad_character;        ///< per character: the integrated step is non-finite/too fast
+
+  // ---- two-phase commit
+  std::vector<Vec3> new_com_m;
+  std::vector<Quat> new_rotation;
+
+  StepStats stats;
+};
+
+/// A state sized for `model`, not yet initialised (the first step starts at rest on its targets).
+CorrectorState make_corrector_state(const CorrectorModel& model);
+
+}  // namespace crowdlab

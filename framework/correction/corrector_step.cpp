@@ -1,0 +1,108 @@
+#include "framework/correction/corrector_step.hpp"
+
+#include <string>
+
+#include "framework/core/error.hpp"
+#include "framework/core/forward_kinematics.hpp"
+
+namespace crowdlab {
+
+CorrectorState make_corrector_state(const CorrectorModel& model) {
+  CorrectorState s;
+  const auto n = static_cast<size_t>(model.characters());
+  const auto bones = static_cast<size_t>(model.bones());
+  s.com_m.assign(bones, Vec3::Zero());
+  s.rotation.assign(bones, Quat::Identity());
+  s.velocity_mps.assign(bones, Vec3::Zero());
+  s.omega_radps.assign(bones, Vec3::Zero());
+  s.target.assign(n, Pose{});
+  s.target_old.assign(n, Pose{});
+  s.output.assign(n, Pose{});
+  s.world_capsule.assign(bones, Capsule{});
+  s.body_box.assign(n, Aabb{});
+  s.sweep_order.assign(n, 0);
+  s.body_pairs.reserve(8 * n);
+  s.per_body_contacts.assign(n, {});
+  s.per_body_counts.assign(n, {0, 0, 0});
+  s.contacts.reserve(32 * n);
+  s.incidence_offset.assign(n + 1, 0);
+  s.incidence_cursor.assign(n, 0);
+  s.diag.assign(bones, Mat6::Zero());
+  s.coupling.assign(bones, Mat6::Zero());
+  s.precond.assign(bones, Mat6::Zero());
+  for (auto* v : {&s.rhs, &s.cg_x, &s.cg_r, &s.cg_z, &s.cg_p, &s.cg_q, &s.cg_y})
+    v->assign(bones, Vec6::Zero());
+  s.partial.assign(n, 0.0);
+  s.partial2.assign(n, 0.0);
+  s.factor_ok.assign(n, 1);
+  s.bad_character.assign(n, 0);
+  s.new_com_m.assign(bones, Vec3::Zero());
+  s.new_rotation.assign(bones, Quat::Identity());
+  return s;
+}
+
+void set_bones_from_pose(const CorrectorModel& model, int c, const Pose& pose, std::vector<Vec3>& com,
+                         std::vector<Quat>& rotation) {
+  const CorrectorBody& body = model.bodies[static_cast<size_t>(c)];
+  const BoneTransforms bones = forward_kinematics(body.shape, pose);
+  for (size_t j = 0; j < kJointCount; ++j) {
+    const size_t g = static_cast<size_t>(c) * kJointCount + j;
+    rotation[g] = bones[j].rotation;
+    com[g] = bones[j].apply(body.com_local_m[j]);
+  }
+}
+
+Pose pose_from_bones(const CorrectorModel& model, int c, const std::vector<Vec3>& com,
+                     const std::vector<Quat>& rotation) {
+  const CorrectorBody& body = model.bodies[static_cast<size_t>(c)];
+  BoneTransforms bones;
+  for (size_t j = 0; j < kJointCount; ++j) {
+    const size_t g = static_cast<size_t>(c) * kJointCount + j;
+    bones[j].rotation = rotation[g];
+    bones[j].translation = com[g] - rotation[g] * body.com_local_m[j];
+  }
+  return pose_from_bone_transforms(bones);
+}
+
+void stage_targets(const CorrectorModel& model, CorrectorState& state, const std::vector<Pose>& targets) {
+  if (targets.size() != static_cast<size_t>(model.characters()))
+    throw InputError("corrector: got " + std::to_string(targets.size()) + " target poses for " +
+                     std::to_string(model.characters()) + " characters");
+  for (size_t c = 0; c < targets.size(); ++c)
+    validate_pose(targets[c],
+                  "corrector: step " + std::to_string(state.step_index) + " character " + std::to_string(c));
+  if (!state.initialized) {
+    // Start at rest exactly on the first targets (the input animation's first frame).
+    for (int c = 0; c < model.characters(); ++c) {
+      Pose p = targets[static_cast<size_t>(c)];
+      for (Quat& q : p.local_rotations) q.normalize();
+      set_bones_from_pose(model, c, p, state.com_m, state.rotation);
+      state.target_old[static_cast<size_t>(c)] = p;
+      state.target[static_cast<size_t>(c)] = p;
+    }
+    std::fill(state.velocity_mps.begin(), state.velocity_mps.end(), Vec3::Zero());
+    std::fill(state.omega_radps.begin(), state.omega_radps.end(), Vec3::Zero());
+    state.initialized = true;
+    return;
+  }
+  for (size_t c = 0; c < targets.size(); ++c) {
+    state.target_old[c] = state.target[c];
+    state.target[c] = targets[c];
+    for (Quat& q : state.target[c].local_rotations) q.normalize();
+  }
+}
+
+const std::vector<Pose>& corrector_step(const CorrectorModel& model, CorrectorState& state,
+                                        const std::vector<Pose>& targets) {
+  stage_targets(model, state, targets);
+  state.stats = StepStats{};
+  stage_broad_phase(model, state);
+  stage_narrow_phase(model, state);
+  stage_assemble(model, state);
+  stage_solve(model, state);
+  stage_integrate(model, state);
+  ++state.step_index;
+  return state.output;
+}
+
+}  // namespace crowdlab

@@ -1,0 +1,53 @@
+#pragma once
+// One time step of the collision-correction solver (seed 000 Eq. 3, backward Euler as an
+// optimisation, one Newton iteration), as named stages run in this order:
+//
+//   stage_targets         validate the input poses, initialise the state on the first step
+//   stage_broad_phase     world capsules, body AABBs, sweep-and-prune -> candidate body pairs
+//   stage_narrow_phase    bounding spheres -> exact capsule-capsule / ground / environment contacts
+//   stage_assemble        gradient and PSD (Gauss-Newton) Hessian of E_inertia + E_gravity +
+//                         E_joints + E_control + E_collisions at the start-of-step state
+//   stage_solve           per-character tree-structured exact factorisation (preconditioner) + PCG
+//   stage_integrate       apply the increment, project to joint rotations + root position, commit
+//
+// Every stage computes from the state left by the previous one and writes only its own arrays; work
+// is split across characters (TBB) with per-index output slots and fixed-order reductions, so the
+// result is bit-identical for any thread count.
+#include <vector>
+
+#include "framework/core/pose.hpp"
+#include "framework/correction/corrector_model.hpp"
+#include "framework/correction/corrector_state.hpp"
+
+namespace crowdlab {
+
+/// Runs all stages; returns the corrected poses (also in state.output). Throws InputError for a
+/// wrong number of targets or an invalid pose. A step whose solve diverges is rejected: the state
+/// keeps its last stable value (velocities zeroed) and state.stats.rejected is set.
+const std::vector<Pose>& corrector_step(const CorrectorModel& model, CorrectorState& state,
+                                        const std::vector<Pose>& targets);
+
+void stage_targets(const CorrectorModel& model, CorrectorState& state, const std::vector<Pose>& targets);
+void stage_broad_phase(const CorrectorModel& model, CorrectorState& state);
+void stage_narrow_phase(const CorrectorModel& model, CorrectorState& state);
+void stage_assemble(const CorrectorModel& model, CorrectorState& state);
+void stage_solve(const CorrectorModel& model, CorrectorState& state);
+void stage_integrate(const CorrectorModel& model, CorrectorState& state);
+
+/// World position of bone g's frame origin (its joint), from the COM state.
+inline Vec3 bone_origin(const CorrectorModel& model, const CorrectorState& state, int g) {
+  const auto& body = model.bodies[static_cast<size_t>(g / kJointCount)];
+  return state.com_m[static_cast<size_t>(g)] -
+         state.rotation[static_cast<size_t>(g)] * body.com_local_m[static_cast<size_t>(g % kJointCount)];
+}
+
+/// Sets the bone states of character c from a pose (forward kinematics), velocities untouched.
+void set_bones_from_pose(const CorrectorModel& model, int c, const Pose& pose, std::vector<Vec3>& com,
+                         std::vector<Quat>& rotation);
+
+/// The pose of character c read back from its bone states (root position = bone 0's origin,
+/// local rotations = parent^-1 * child): the projection of seed 000 §3.2.
+Pose pose_from_bones(const CorrectorModel& model, int c, const std::vector<Vec3>& com,
+                     const std::vector<Quat>& rotation);
+
+}  // namespace crowdlab

@@ -1,0 +1,160 @@
+// Assemble the Newton system of seed 000 Eq. 3 at the start-of-step state q_old (one Newton
+// iteration; increments dq = (dx, dtheta) per bone, world frame):
+//
+//   E_inertia   = 1/(2h^2) (dq - h v_old)^T M (dq - h v_old), M = diag(m I3, I_world)   (Gast et al. 2015)
+//                 (the gyroscopic term is dropped, as is usual for one linearised step)
+//   E_gravity   = m g y_com   (cancelled by the controller's feed-forward if gravity_compensation)
+//   E_joints    = 1/2 k_J |o_child - (o_parent + R_parent offset)|^2   (soft ball joint)
+//   E_control   = Eq. 4 on relative rotations R = R_parent^T R_child (absolute for the root),
+//                 plus the same spring/damper on the root position (seed 000 §3.3)
+//   E_collision = 1/2 k delta^2 per contact (seed 000 §3.4)
+//
+// Hessians are Gauss-Newton (J^T K J, PSD): for Eq. 4 the Jacobian of the 9-vector R(w) w.r.t. the
+// world rotation increment w = dtheta_child - dtheta_parent has columns vec(R_p^T [e_k]x R_c), whose
+// Gram matrix is exactly 2 I3, so the GN Hessian of Eq. 4 is 2 (k + d/h^2) I3 on w.
+#include <tbb/parallel_for.h>
+
+#include "framework/correction/corrector_step.hpp"
+
+namespace crowdlab {
+namespace {
+
+Mat3 skew(const Vec3& v) {
+  Mat3 m;
+  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return m;
+}
+
+/// (<[e_x]x, N>, <[e_y]x, N>, <[e_z]x, N>) for the Frobenius inner product.
+Vec3 skew_projection(const Mat3& n) {
+  return {n(2, 1) - n(1, 2), n(0, 2) - n(2, 0), n(1, 0) - n(0, 1)};
+}
+
+/// Jacobian (3 x 6) of a point rigidly attached to a bone, p = com + arm: dp = dx - [arm]x dtheta.
+Eigen::Matrix<double, 3, 6> point_jacobian(const Vec3& arm) {
+  Eigen::Matrix<double, 3, 6> a;
+  a.leftCols<3>() = Mat3::Identity();
+  a.rightCols<3>() = -skew(arm);
+  return a;
+}
+
+Vec6 contact_row(const Vec3& normal, const Vec3& arm, double sign) {
+  Vec6 w;
+  w.head<3>() = sign * normal;
+  w.tail<3>() = sign * arm.cross(normal);
+  return w;
+}
+
+void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
+  const CorrectorBody& body = model.bodies[static_cast<size_t>(c)];
+  const CorrectorParams& p = model.params;
+  const double h = model.h, inv_h2 = 1.0 / (h * h);
+  const int base = c * kJointCount;
+  const Pose& target = s.target[static_cast<size_t>(c)];
+  const Pose& target_old = s.target_old[static_cast<size_t>(c)];
+  std::array<Mat3, kJointCount> rot;
+  std::array<Vec3, kJointCount> origin;
+
+  // E_inertia and E_gravity (block diagonal).
+  for (size_t j = 0; j < kJointCount; ++j) {
+    const size_t g = static_cast<size_t>(base) + j;
+    rot[j] = s.rotation[g].toRotationMatrix();
+    origin[j] = s.com_m[g] - rot[j] * body.com_local_m[j];
+    const double m = body.mass_kg[j];
+    const Mat3 inertia = rot[j] * body.inertia_local[j] * rot[j].transpose();
+    Mat6& d = s.diag[g];
+    d.setZero();
+    d.topLeftCorner<3, 3>() = (m * inv_h2) * Mat3::Identity();
+    d.bottomRightCorner<3, 3>() = inv_h2 * inertia;
+    Vec6& b = s.rhs[g];
+    b.head<3>() = (m / h) * s.velocity_mps[g];
+    b.tail<3>() = (inertia * s.omega_radps[g]) / h;
+    if (!p.gravity_compensation) b[1] -= m * p.gravity_mps2;  // -dE_gravity/dy
+    s.coupling[g].setZero();
+  }
+
+  // E_joints and E_control for every non-root joint (child j, parent pj).
+  for (size_t j = 1; j < kJointCount; ++j) {
+    const size_t pj = static_cast<size_t>(kJointParent[j]);
+    const size_t gc = static_cast<size_t>(base) + j, gp = static_cast<size_t>(base) + pj;
+    const Vec3 attach = origin[pj] + rot[pj] * body.shape.joint_offsets_m[j];
+    const Vec3 r0 = origin[j] - attach;
+    const auto a_c = point_jacobian(origin[j] - s.com_m[gc]);
+    const auto a_p = point_jacobian(attach - s.com_m[gp]);
+    const double kj = body.joint_stiffness[j];
+    s.diag[gc] += kj * a_c.transpose() * a_c;
+    s.diag[gp] += kj * a_p.transpose() * a_p;
+    s.coupling[gc] -= kj * a_c.transpose() * a_p;
+    s.rhs[gc] -= kj * a_c.transpose() * r0;
+    s.rhs[gp] += kj * a_p.transpose() * r0;
+
+    const Mat3 rel = rot[pj].transpose() * rot[j];
+    const Mat3 rel_hat = target.local_rotations[j].toRotationMatrix();
+    const Mat3 rel_hat_old = target_old.local_rotations[j].toRotationMatrix();
+    const double ks = body.rot_stiffness[j], kd = body.rot_damping[j] * inv_h2;
+    const Mat3 resid = ks * (rel - rel_hat) - kd * (rel_hat - rel_hat_old);
+    const Vec3 grad_w = skew_projection(rot[pj] * resid * rot[j].transpose());
+    const double c2 = 2.0 * (ks + kd);
+    s.diag[gc].bottomRightCorner<3, 3>() += c2 * Mat3::Identity();
+    s.diag[gp].bottomRightCorner<3, 3>() += c2 * Mat3::Identity();
+    s.coupling[gc].bottomRightCorner<3, 3>() -= c2 * Mat3::Identity();
+    s.rhs[gc].tail<3>() -= grad_w;
+    s.rhs[gp].tail<3>() += grad_w;
+  }
+
+  // Root: absolute rotation (Eq. 4 on R_root) and absolute translation of the pelvis joint.
+  {
+    const size_t g = static_cast<size_t>(base);
+    const Mat3 r_hat = target.local_rotations[0].toRotationMatrix();
+    const Mat3 r_hat_old = target_old.local_rotations[0].toRotationMatrix();
+    const double ks = body.rot_stiffness[0], kd = body.rot_damping[0] * inv_h2;
+    const Mat3 resid = ks * (rot[0] - r_hat) - kd * (r_hat - r_hat_old);
+    const Vec3 grad = skew_projection(resid * rot[0].transpose());
+    s.diag[g].bottomRightCorner<3, 3>() += 2.0 * (ks + kd) * Mat3::Identity();
+    s.rhs[g].tail<3>() -= grad;
+
+    const double kt = body.root_translation_stiffness, dt = body.root_translation_damping * inv_h2;
+    const Vec3 resid_t = kt * (origin[0] - target.root_position_m) -
+                         dt * (target.root_position_m - target_old.root_position_m);
+    const auto a = point_jacobian(origin[0] - s.com_m[g]);
+    s.diag[g] += (kt + dt) * a.transpose() * a;
+    s.rhs[g] -= a.transpose() * resid_t;
+  }
+
+  // Preconditioner blocks start from the tree part; add each incident contact's diagonal blocks.
+  for (size_t j = 0; j < kJointCount; ++j)
+    s.precond[static_cast<size_t>(base) + j] = s.diag[static_cast<size_t>(base) + j];
+  const int begin = s.incidence_offset[static_cast<size_t>(c)],
+            end = s.incidence_offset[static_cast<size_t>(c) + 1];
+  for (int e = begin; e < end; ++e) {
+    const int entry = s.incidence[static_cast<size_t>(e)];
+    const Contact& k = s.contacts[static_cast<size_t>(entry / 2)];
+    const bool side_b = (entry & 1) != 0;
+    const bool self = k.bone_b >= 0 && k.bone_b / kJointCount == k.bone_a / kJointCount;
+    auto add_side = [&](int bone, const Vec6& w) {
+      s.precond[static_cast<size_t>(bone)] += (k.stiffness * w) * w.transpose();
+      s.rhs[static_cast<size_t>(bone)] -= (k.stiffness * k.depth_m) * w;
+    };
+    if (side_b) {
+      add_side(k.bone_b, k.w_b);
+    } else {
+      add_side(k.bone_a, k.w_a);
+      if (self) add_side(k.bone_b, k.w_b);
+    }
+  }
+}
+
+}  // namespace
+
+void stage_assemble(const CorrectorModel& model, CorrectorState& state) {
+  // Contact Jacobian rows: delta decreases when a moves along +n or b along -n.
+  tbb::parallel_for(size_t{0}, state.contacts.size(), [&](size_t k) {
+    Contact& c = state.contacts[k];
+    c.w_a = contact_row(c.normal, c.point_a - state.com_m[static_cast<size_t>(c.bone_a)], -1.0);
+    if (c.bone_b >= 0)
+      c.w_b = contact_row(c.normal, c.point_b - state.com_m[static_cast<size_t>(c.bone_b)], +1.0);
+  });
+  tbb::parallel_for(0, model.characters(), [&](int c) { assemble_character(model, state, c); });
+}
+
+}  // namespace crowdlab

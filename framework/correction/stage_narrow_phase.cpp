@@ -1,0 +1,185 @@
+// Narrow phase (seed 000 §3.4): for each candidate capsule pair, "a faster sphere-sphere culling test"
+// and then the exact capsule-capsule penetration (core capsule_contact: segment-segment closest points,
+// robust for parallel and degenerate axes, normal defined when the axes intersect). Inter-body pairs
+// come from the broad phase; intra-body pairs skip those touching in T-pose; every capsule end sphere
+// is tested against the ground y = 0; capsules are tested against the environment's sample points.
+#include <algorithm>
+
+#include <tbb/parallel_for.h>
+
+#include "framework/correction/corrector_step.hpp"
+
+namespace crowdlab {
+namespace {
+
+bool spheres_overlap(const Capsule& a, const Capsule& b) {
+  const Vec3 ca = 0.5 * (a.a + a.b), cb = 0.5 * (b.a + b.b);
+  const double ra = 0.5 * (a.b - a.a).norm() + a.radius_m, rb = 0.5 * (b.b - b.a).norm() + b.radius_m;
+  return (ca - cb).squaredNorm() < (ra + rb) * (ra + rb);
+}
+
+Aabb capsule_box(const Capsule& c) {
+  Aabb box;
+  box.lo = c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m);
+  box.hi = c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m);
+  return box;
+}
+
+bool make_capsule_contact(const Capsule& ca, const Capsule& cb, int ga, int gb, double k, Contact& out) {
+  if (!spheres_overlap(ca, cb)) return false;
+  const CapsuleContact cc = capsule_contact(ca, cb);
+  if (!(cc.depth_m > 0.0)) return false;
+  out = Contact{};
+  out.bone_a = ga;
+  out.bone_b = gb;
+  out.depth_m = cc.depth_m;
+  out.stiffness = k;
+  out.normal = cc.normal;
+  out.point_a = cc.point_a;
+  out.point_b = cc.point_b;
+  return true;
+}
+
+void body_pair_contacts(const CorrectorModel& model, const CorrectorState& state, int ci, int cj,
+                        std::vector<Contact>& out) {
+  out.clear();
+  const Aabb& box_i = state.body_box[static_cast<size_t>(ci)];
+  const Aabb& box_j = state.body_box[static_cast<size_t>(cj)];
+  int list_i[kJointCount], list_j[kJointCount];
+  int ni = 0, nj = 0;
+  for (int b = 0; b < kJointCount; ++b) {
+    if (capsule_box(state.world_capsule[static_cast<size_t>(ci * kJointCount + b)]).overlaps(box_j))
+      list_i[ni++] = b;
+    if (capsule_box(state.world_capsule[static_cast<size_t>(cj * kJointCount + b)]).overlaps(box_i))
+      list_j[nj++] = b;
+  }
+  const double k = model.params.contact_stiffness;
+  Contact c;
+  for (int x = 0; x < ni; ++x)
+    for (int y = 0; y < nj; ++y) {
+      const int ga = ci * kJointCount + list_i[x], gb = cj * kJointCount + list_j[y];
+      if (make_capsule_contact(state.world_capsule[static_cast<size_t>(ga)],
+                               state.world_capsule[static_cast<size_t>(gb)], ga, gb, k, c))
+        out.push_back(c);
+    }
+}
+
+void single_body_contacts(const CorrectorModel& model, const CorrectorState& state, int ci,
+                          std::vector<Contact>& out, std::array<int, 3>& counts) {
+  out.clear();
+  const CorrectorBody& body = model.bodies[static_cast<size_t>(ci)];
+  const int base = ci * kJointCount;
+  Contact c;
+  // Intra-body (self) contacts.
+  for (const auto& [i, j] : body.self_pairs) {
+    const int ga = base + i, gb = base + j;
+    if (make_capsule_contact(state.world_capsule[static_cast<size_t>(ga)],
+                             state.world_capsule[static_cast<size_t>(gb)], ga, gb,
+                             model.params.contact_stiffness, c))
+      out.push_back(c);
+  }
+  counts[0] = static_cast<int>(out.size());
+  // Ground: each capsule end sphere against y = 0, normal +Y.
+  if (model.ground_plane) {
+    for (int b = 0; b < kJointCount; ++b) {
+      const Capsule& cap = state.world_capsule[static_cast<size_t>(base + b)];
+      for (const Vec3* end : {&cap.a, &cap.b}) {
+        const double depth = cap.radius_m - end->y();
+        if (depth <= 0.0) continue;
+        c = Contact{};
+        c.bone_a = base + b;
+        c.depth_m = depth;
+        c.stiffness = model.params.ground_stiffness;
+        c.normal = Vec3::UnitY();
+        c.point_a = *end;
+        out.push_back(c);
+      }
+    }
+  }
+  counts[1] = static_cast<int>(out.size()) - counts[0];
+  // Environment: sample points inside a capsule push it out along (axis point - sample point).
+  if (!model.environment.empty() &&
+      state.body_box[static_cast<size_t>(ci)].overlaps(model.environment.bounds())) {
+    for (int b = 0; b < kJointCount; ++b) {
+      const Capsule& cap = state.world_capsule[static_cast<size_t>(base + b)];
+      const size_t first = out.size();
+      model.environment.query(capsule_box(cap), [&](int index) {
+        const Vec3& q = model.environment.points()[static_cast<size_t>(index)];
+        const SegmentClosestPoints cp = segment_closest_points(cap.a, cap.b, q, q);
+        const double depth = cap.radius_m - cp.distance_m;
+        if (depth <= 0.0) return;
+        c = Contact{};
+        c.bone_a = base + b;
+        c.depth_m = depth;
+        if (cp.distance_m > 1e-9)
+          c.normal = (cp.point_on_p - q) / cp.distance_m;
+        else  // the sample lies on the axis: any direction across the axis separates
+          c.normal = (cap.b - cap.a).squaredNorm() > 1e-18 ? any_perpendicular(cap.b - cap.a) : Vec3::UnitY();
+        c.point_a = cp.point_on_p;
+        out.push_back(c);
+      });
+      // The capsule's environment stiffness is shared by the points it touches, so the push does not
+      // depend on the sampling density.
+      const size_t count = out.size() - first;
+      for (size_t i = first; i < out.size(); ++i)
+        out[i].stiffness = model.params.environment_stiffness / static_cast<double>(count);
+    }
+  }
+  counts[2] = static_cast<int>(out.size()) - counts[0] - counts[1];
+}
+
+}  // namespace
+
+void stage_narrow_phase(const CorrectorModel& model, CorrectorState& state) {
+  const int n = model.characters();
+  const size_t pairs = state.body_pairs.size();
+  if (state.per_pair_contacts.size() < pairs) state.per_pair_contacts.resize(pairs);
+  tbb::parallel_for(size_t{0}, pairs, [&](size_t k) {
+    body_pair_contacts(model, state, state.body_pairs[k].first, state.body_pairs[k].second,
+                       state.per_pair_contacts[k]);
+  });
+  tbb::parallel_for(0, n, [&](int c) {
+    single_body_contacts(model, state, c, state.per_body_contacts[static_cast<size_t>(c)],
+                         state.per_body_counts[static_cast<size_t>(c)]);
+  });
+
+  // Gather in a fixed order: per-character contacts (by character), then body pairs (sorted).
+  state.contacts.clear();
+  StepStats& st = state.stats;
+  for (int c = 0; c < n; ++c) {
+    const auto& list = state.per_body_contacts[static_cast<size_t>(c)];
+    state.contacts.insert(state.contacts.end(), list.begin(), list.end());
+    st.intra_body_contacts += state.per_body_counts[static_cast<size_t>(c)][0];
+    st.ground_contacts += state.per_body_counts[static_cast<size_t>(c)][1];
+    st.environment_contacts += state.per_body_counts[static_cast<size_t>(c)][2];
+  }
+  for (size_t k = 0; k < pairs; ++k) {
+    const auto& list = state.per_pair_contacts[k];
+    state.contacts.insert(state.contacts.end(), list.begin(), list.end());
+    st.inter_body_contacts += static_cast<int>(list.size());
+    for (const Contact& c : list) st.max_penetration_m = std::max(st.max_penetration_m, c.depth_m);
+  }
+
+  // Incidence lists (CSR by character) for the deterministic gather in the matrix-vector product.
+  auto& offset = state.incidence_offset;
+  std::fill(offset.begin(), offset.end(), 0);
+  for (const Contact& c : state.contacts) {
+    ++offset[static_cast<size_t>(c.bone_a / kJointCount) + 1];
+    if (c.bone_b >= 0 && c.bone_b / kJointCount != c.bone_a / kJointCount)
+      ++offset[static_cast<size_t>(c.bone_b / kJointCount) + 1];
+  }
+  for (int c = 0; c < n; ++c) offset[static_cast<size_t>(c) + 1] += offset[static_cast<size_t>(c)];
+  state.incidence.resize(static_cast<size_t>(offset[static_cast<size_t>(n)]));
+  auto& cursor = state.incidence_cursor;
+  std::copy(offset.begin(), offset.end() - 1, cursor.begin());
+  for (size_t k = 0; k < state.contacts.size(); ++k) {
+    const Contact& c = state.contacts[k];
+    const int ca = c.bone_a / kJointCount;
+    state.incidence[static_cast<size_t>(cursor[static_cast<size_t>(ca)]++)] = static_cast<int>(2 * k);
+    if (c.bone_b >= 0 && c.bone_b / kJointCount != ca)
+      state.incidence[static_cast<size_t>(cursor[static_cast<size_t>(c.bone_b / kJointCount)]++)] =
+          static_cast<int>(2 * k + 1);
+  }
+}
+
+}  // namespace crowdlab
