@@ -12,12 +12,17 @@
 
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/seed.hpp"
 #include "stimuli/egl_context.hpp"
 #include "stimuli/gl_program.hpp"
 #include "stimuli/shaders.hpp"
 
 namespace crowdlab::stimuli {
 namespace {
+
+// Grid spacing of the coarse mannequin meshes drawn into the shadow map: shadows are soft-edged and
+// seen from afar, so a 4.5 cm mesh casts the same shadow at a fraction of the vertex work.
+constexpr double kShadowVoxelM = 0.045;
 
 using Mat4f = Eigen::Matrix4f;
 
@@ -134,6 +139,37 @@ GpuMesh make_environment_mesh(const TriangleMesh& mesh) {
   return upload_static(v, idx);
 }
 
+/// A 256 x 256 tiling value-noise texture (bilinear upsampling of 32 x 32 random lattice values),
+/// mip-mapped; generated from a fixed seed so every run draws the same ground.
+GLuint make_noise_texture() {
+  constexpr int kLattice = 32, kSize = 256;
+  Rng rng(derive_seed(0x6772'6f75'6e64ULL, "ground-noise"));
+  std::vector<double> lattice(kLattice * kLattice);
+  for (double& v : lattice) v = uniform01(rng);
+  std::vector<std::uint8_t> texels(kSize * kSize);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const double fx = x * kLattice / static_cast<double>(kSize), fy = y * kLattice / static_cast<double>(kSize);
+      const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+      double u = fx - x0, w = fy - y0;
+      u = u * u * (3 - 2 * u);
+      w = w * w * (3 - 2 * w);
+      auto at = [&](int i, int j) { return lattice[static_cast<size_t>((j % kLattice) * kLattice + (i % kLattice))]; };
+      const double v = (1 - w) * ((1 - u) * at(x0, y0) + u * at(x0 + 1, y0)) + w * ((1 - u) * at(x0, y0 + 1) + u * at(x0 + 1, y0 + 1));
+      texels[static_cast<size_t>(y * kSize + x)] = static_cast<std::uint8_t>(std::lround(255.0 * v));
+    }
+  GLuint tex = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+  glTextureStorage2D(tex, 9, GL_R8, kSize, kSize);
+  glTextureSubImage2D(tex, 0, 0, 0, kSize, kSize, GL_RED, GL_UNSIGNED_BYTE, texels.data());
+  glGenerateTextureMipmap(tex);
+  glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  return tex;
+}
+
 Mat4 ortho(double half, double near_m, double far_m) {
   Mat4 m = Mat4::Identity();
   m(0, 0) = 1.0 / half;
@@ -186,7 +222,8 @@ struct Renderer::Gl {
   GpuMesh ground;
   std::vector<GpuMesh> environment_meshes;
   std::vector<Mat4> box_models;
-  std::vector<std::uint64_t> character_mesh;
+  std::vector<std::uint64_t> character_mesh, character_shadow_mesh;
+  GLuint noise_tex = 0;
   std::vector<std::array<Mat4, kJointCount>> inverse_rest;
   Vec3 bounds_lo = Vec3::Zero(), bounds_hi = Vec3::Zero();
   GLuint skin_ssbo = 0, caps_ssbo = 0;
@@ -203,6 +240,7 @@ struct Renderer::Gl {
   Gl() {
     glCreateBuffers(1, &skin_ssbo);
     glCreateBuffers(1, &caps_ssbo);
+    noise_tex = make_noise_texture();
   }
   ~Gl() {
     for (auto& [key, mesh] : mesh_cache) destroy(mesh);
@@ -212,6 +250,7 @@ struct Renderer::Gl {
     free_targets();
     glDeleteBuffers(1, &skin_ssbo);
     glDeleteBuffers(1, &caps_ssbo);
+    glDeleteTextures(1, &noise_tex);
   }
   void free_targets() {
     glDeleteFramebuffers(1, &msaa_fbo);
@@ -305,21 +344,31 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   Gl& g = *gl_;
   crowd_ = &crowd;
   const size_t n = crowd.characters.size();
-  // Build the meshes of shapes not yet cached, in parallel (one result slot per character).
+  // Build the meshes of shapes not yet cached, in parallel (one result slot per job), then upload
+  // them in job order. Each shape gets a full mesh and a coarse one for the shadow pass.
+  MannequinOptions shadow_options = mesh_options_;
+  shadow_options.voxel_m = std::max(mesh_options_.voxel_m, kShadowVoxelM);
   g.character_mesh.resize(n);
-  std::vector<MannequinMesh> built(n);
-  std::vector<char> needed(n, 0);
-  std::map<std::uint64_t, size_t> first_of_key;
+  g.character_shadow_mesh.resize(n);
+  struct Job {
+    size_t character;
+    std::uint64_t key;
+    MannequinOptions options;
+  };
+  std::vector<Job> jobs;
+  std::map<std::uint64_t, bool> queued;
   for (size_t i = 0; i < n; ++i) {
-    const std::uint64_t key = mannequin_cache_key(crowd.characters[i].shape, mesh_options_);
-    g.character_mesh[i] = key;
-    if (!g.mesh_cache.count(key) && first_of_key.emplace(key, i).second) needed[i] = 1;
+    const BodyShape& shape = crowd.characters[i].shape;
+    g.character_mesh[i] = mannequin_cache_key(shape, mesh_options_);
+    g.character_shadow_mesh[i] = mannequin_cache_key(shape, shadow_options);
+    for (const auto& [key, opts] : {std::pair{g.character_mesh[i], mesh_options_}, std::pair{g.character_shadow_mesh[i], shadow_options}})
+      if (!g.mesh_cache.count(key) && queued.emplace(key, true).second) jobs.push_back({i, key, opts});
   }
-  tbb::parallel_for(size_t{0}, n, [&](size_t i) {
-    if (needed[i]) built[i] = build_mannequin_mesh(crowd.characters[i].shape, mesh_options_);
+  std::vector<MannequinMesh> built(jobs.size());
+  tbb::parallel_for(size_t{0}, jobs.size(), [&](size_t k) {
+    built[k] = build_mannequin_mesh(crowd.characters[jobs[k].character].shape, jobs[k].options);
   });
-  for (size_t i = 0; i < n; ++i)
-    if (needed[i]) g.mesh_cache.emplace(g.character_mesh[i], upload_mannequin(built[i]));
+  for (size_t k = 0; k < jobs.size(); ++k) g.mesh_cache.emplace(jobs[k].key, upload_mannequin(built[k]));
   // Inverse bind matrices.
   g.inverse_rest.resize(n);
   for (size_t i = 0; i < n; ++i) {
@@ -444,7 +493,7 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   set_mat4(p, g.skinned_depth.uniform("u_view_proj"), light_vp);
   const int depth_base = g.skinned_depth.uniform("u_skin_base");
   for (size_t i = 0; i < n; ++i) {
-    const GpuMesh& m = g.mesh_cache.at(g.character_mesh[i]);
+    const GpuMesh& m = g.mesh_cache.at(g.character_shadow_mesh[i]);
     glProgramUniform1i(p, depth_base, static_cast<int>(i * kJointCount));
     glBindVertexArray(m.vao);
     glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
@@ -475,6 +524,7 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 1, zero);
   glClearNamedFramebufferfv(g.msaa_fbo, GL_DEPTH, 0, &one);
   glBindTextureUnit(0, g.shadow_tex);
+  glBindTextureUnit(1, g.noise_tex);
   const Mat4 shadow_matrix = light_vp;
   for (GlProgram* prog : {&g.static_lit, &g.skinned_lit}) {
     const GLuint id = prog->id();
@@ -485,21 +535,48 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
     set_vec3(id, prog->uniform("u_fill_dir"), fill);
     set_vec3(id, prog->uniform("u_rim_dir"), rim);
     glProgramUniform1i(id, prog->uniform("u_shadow_map"), 0);
+    glProgramUniform1i(id, prog->uniform("u_ground_noise"), 1);
     glProgramUniform1f(id, prog->uniform("u_shadow_texel"), 1.0f / static_cast<float>(g.shadow_size));
     set_rgb(id, prog->uniform("u_background"), options.background);
     glProgramUniform1f(id, prog->uniform("u_fog_density"), static_cast<float>(options.fog_density));
     glProgramUniform1i(id, prog->uniform("u_overlap"), options.overlap ? 1 : 0);
   }
+  // Characters first, ground last: early depth rejection then skips ground pixels behind people.
+  p = g.skinned_lit.id();
+  glUseProgram(p);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glProgramUniform1i(p, g.skinned_lit.uniform("u_material"), 0);
+  const int lit_base = g.skinned_lit.uniform("u_skin_base"), palette_loc = g.skinned_lit.uniform("u_palette");
+  const int offset_loc = g.skinned_lit.uniform("u_cap_offset"),
+            count_loc = g.skinned_lit.uniform("u_cap_count");
+  triangles_ = 0;
+  std::vector<size_t> order(n);
+  for (size_t i = 0; i < n; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {  // near to far
+    return (chars[a].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).squaredNorm() <
+           (chars[b].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).squaredNorm();
+  });
+  for (const size_t i : order) {
+    const GpuMesh& m = g.mesh_cache.at(g.character_mesh[i]);
+    const Palette& pal = palette(chars[i].palette);
+    float colours[8 * 3];
+    for (int r = 0; r < 8; ++r) {
+      const Rgb c =
+          pal.colour(static_cast<SkinRegion>(std::min(r, static_cast<int>(SkinRegion::kCount) - 1)));
+      for (int k = 0; k < 3; ++k) colours[3 * r + k] = c[static_cast<size_t>(k)] * c[static_cast<size_t>(k)];  // gamma 2.0 -> linear
+    }
+    glProgramUniform3fv(p, palette_loc, 8, colours);
+    glProgramUniform1i(p, lit_base, static_cast<int>(i * kJointCount));
+    glProgramUniform1i(p, offset_loc, g.cap_offset[i]);
+    glProgramUniform1i(p, count_loc, g.cap_count[i]);
+    glBindVertexArray(m.vao);
+    glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
+    triangles_ += static_cast<size_t>(m.count) / 3;
+  }
+  glDisable(GL_CULL_FACE);
   p = g.static_lit.id();
   glUseProgram(p);
-  glDisable(GL_CULL_FACE);
-  if (crowd_->environment.ground_plane) {
-    glProgramUniform1i(p, g.static_lit.uniform("u_material"), 1);
-    set_rgb(p, g.static_lit.uniform("u_base_color"), options.ground);
-    set_mat4(p, g.static_lit.uniform("u_model"), Mat4::Identity());
-    glBindVertexArray(g.ground.vao);
-    glDrawElements(GL_TRIANGLES, g.ground.count, GL_UNSIGNED_INT, nullptr);
-  }
   glProgramUniform1i(p, g.static_lit.uniform("u_material"), 2);
   set_rgb(p, g.static_lit.uniform("u_base_color"), options.environment);
   for (const Mat4& model : g.box_models) {
@@ -512,33 +589,13 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
     glBindVertexArray(m.vao);
     glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
   }
-  p = g.skinned_lit.id();
-  glUseProgram(p);
-  glEnable(GL_CULL_FACE);
-  glCullFace(GL_BACK);
-  glProgramUniform1i(p, g.skinned_lit.uniform("u_material"), 0);
-  const int lit_base = g.skinned_lit.uniform("u_skin_base"), palette_loc = g.skinned_lit.uniform("u_palette");
-  const int offset_loc = g.skinned_lit.uniform("u_cap_offset"),
-            count_loc = g.skinned_lit.uniform("u_cap_count");
-  triangles_ = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const GpuMesh& m = g.mesh_cache.at(g.character_mesh[i]);
-    const Palette& pal = palette(chars[i].palette);
-    float colours[8 * 3];
-    for (int r = 0; r < 8; ++r) {
-      const Rgb c =
-          pal.colour(static_cast<SkinRegion>(std::min(r, static_cast<int>(SkinRegion::kCount) - 1)));
-      std::copy(c.begin(), c.end(), colours + 3 * r);
-    }
-    glProgramUniform3fv(p, palette_loc, 8, colours);
-    glProgramUniform1i(p, lit_base, static_cast<int>(i * kJointCount));
-    glProgramUniform1i(p, offset_loc, g.cap_offset[i]);
-    glProgramUniform1i(p, count_loc, g.cap_count[i]);
-    glBindVertexArray(m.vao);
-    glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
-    triangles_ += static_cast<size_t>(m.count) / 3;
+  if (crowd_->environment.ground_plane) {
+    glProgramUniform1i(p, g.static_lit.uniform("u_material"), 1);
+    set_rgb(p, g.static_lit.uniform("u_base_color"), options.ground);
+    set_mat4(p, g.static_lit.uniform("u_model"), Mat4::Identity());
+    glBindVertexArray(g.ground.vao);
+    glDrawElements(GL_TRIANGLES, g.ground.count, GL_UNSIGNED_INT, nullptr);
   }
-  glDisable(GL_CULL_FACE);
   glBindVertexArray(0);
 
   // 4. Resolve both colour attachments.
