@@ -12,6 +12,8 @@
 namespace crowdlab::stimuli {
 namespace {
 
+thread_local const EglContext* t_current = nullptr;  // the context current on this thread
+
 std::string egl_error_text() {
   char buf[32];
   std::snprintf(buf, sizeof buf, "0x%04x", static_cast<unsigned>(eglGetError()));
@@ -67,15 +69,22 @@ EglContext::EglContext() {
 
 EglContext::~EglContext() {
   auto display = static_cast<EGLDisplay>(display_);
-  eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  if (t_current == this) {
+    eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    t_current = nullptr;
+  }
   eglDestroyContext(display, static_cast<EGLContext>(context_));
-  eglTerminate(display);
+  // No eglTerminate: the display handle is shared by every context of the process (EGL returns the
+  // same EGLDisplay for the same platform and native display), and terminating it would invalidate
+  // the other renderers' contexts.
 }
 
 void EglContext::make_current() {
+  if (t_current == this) return;
   if (!eglMakeCurrent(static_cast<EGLDisplay>(display_), EGL_NO_SURFACE, EGL_NO_SURFACE,
                       static_cast<EGLContext>(context_)))
     throw RuntimeError("EGL: eglMakeCurrent failed, error " + egl_error_text());
+  t_current = this;
 }
 
 }  // namespace crowdlab::stimuli

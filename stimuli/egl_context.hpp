@@ -21,7 +21,8 @@ class EglContext {
   EglContext(const EglContext&) = delete;
   EglContext& operator=(const EglContext&) = delete;
 
-  /// Makes the context current on the calling thread (a context is current on one thread at a time).
+  /// Makes the context current on the calling thread (a no-op when it already is). Several contexts
+  /// may coexist; each Renderer call makes its own current first.
   void make_current();
   /// GL_RENDERER and GL_VERSION strings, e.g. "llvmpipe (LLVM 15.0.6, 256 bits) / 4.5 (Core Profile)
   /// Mesa 22.3.6".

@@ -48,8 +48,8 @@ struct MannequinMesh {
 };
 
 struct MannequinOptions {
-  double voxel_m = 0.016;  ///< grid spacing of the polygonisation (metres)
-  double blend_m = 0.03;   ///< smooth-min width k at joints (metres)
+  double voxel_m = 0.02;  ///< grid spacing of the polygonisation (metres): ~12k triangles per body
+  double blend_m = 0.03;  ///< smooth-min width k at joints (metres)
 };
 
 /// Builds the mesh of `shape` in its rest pose (Pose::rest: pelvis at joint_offsets_m[0], facing +Z).

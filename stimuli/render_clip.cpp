@@ -25,7 +25,8 @@ double ms_since(Clock::time_point t) {
 }
 
 void prepare(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options) {
-  if (renderer.loaded_crowd() != &crowd) renderer.load_crowd(crowd);
+  // Always (re)load: cheap with the mesh cache, and a crowd's address says nothing about its content.
+  renderer.load_crowd(crowd);
   if (renderer.width() != options.width || renderer.height() != options.height)
     renderer.set_size(options.width, options.height, options.scene.msaa_samples,
                       options.scene.shadow_map_size);

@@ -52,7 +52,8 @@ void write_contact_sheet(Renderer& renderer, const CrowdAnimation& crowd, const 
                          int frame, const std::string& out_png);
 
 /// Renders one frame to an 8-bit BGR image, top row first (for tests and quick looks); sets
-/// *red_fraction when non-null (overlap mode).
+/// *red_fraction when non-null (overlap mode). Loads the crowd into the renderer on every call
+/// (meshes come from the cache); for many frames of one crowd use Renderer directly.
 struct BgrImage {
   int width = 0, height = 0;
   std::vector<std::uint8_t> bgr;

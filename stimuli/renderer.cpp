@@ -149,13 +149,17 @@ GLuint make_noise_texture() {
   std::vector<std::uint8_t> texels(kSize * kSize);
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) {
-      const double fx = x * kLattice / static_cast<double>(kSize), fy = y * kLattice / static_cast<double>(kSize);
+      const double fx = x * kLattice / static_cast<double>(kSize),
+                   fy = y * kLattice / static_cast<double>(kSize);
       const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
       double u = fx - x0, w = fy - y0;
       u = u * u * (3 - 2 * u);
       w = w * w * (3 - 2 * w);
-      auto at = [&](int i, int j) { return lattice[static_cast<size_t>((j % kLattice) * kLattice + (i % kLattice))]; };
-      const double v = (1 - w) * ((1 - u) * at(x0, y0) + u * at(x0 + 1, y0)) + w * ((1 - u) * at(x0, y0 + 1) + u * at(x0 + 1, y0 + 1));
+      auto at = [&](int i, int j) {
+        return lattice[static_cast<size_t>((j % kLattice) * kLattice + (i % kLattice))];
+      };
+      const double v = (1 - w) * ((1 - u) * at(x0, y0) + u * at(x0 + 1, y0)) +
+                       w * ((1 - u) * at(x0, y0 + 1) + u * at(x0 + 1, y0 + 1));
       texels[static_cast<size_t>(y * kSize + x)] = static_cast<std::uint8_t>(std::lround(255.0 * v));
     }
   GLuint tex = 0;
@@ -234,7 +238,7 @@ struct Renderer::Gl {
   int shadow_size = 0;
   GLuint pbo[2] = {0, 0};
   std::vector<float> skin_data, caps_data;
-  std::vector<int> cap_offset, cap_count;
+  std::vector<int> cap_offset, cap_count, own_offset;
   std::vector<std::uint8_t> mask_pixels;
 
   Gl() {
@@ -277,7 +281,9 @@ struct Renderer::Gl {
 
 Renderer::Renderer(MannequinOptions mesh_options)
     : gl_(std::make_unique<Gl>()), mesh_options_(mesh_options) {}
-Renderer::~Renderer() = default;
+Renderer::~Renderer() {
+  if (gl_) gl_->context.make_current();  // GL objects are deleted in this context
+}
 
 const std::string& Renderer::device() const {
   return gl_->context.renderer_description();
@@ -287,6 +293,7 @@ std::size_t Renderer::cached_meshes() const {
 }
 
 void Renderer::set_size(int width, int height, int samples, int shadow_map_size) {
+  gl_->context.make_current();
   if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
     throw InputError("render size must be in 1..16384 pixels, got " + std::to_string(width) + "x" +
                      std::to_string(height));
@@ -340,6 +347,7 @@ void Renderer::set_size(int width, int height, int samples, int shadow_map_size)
 }
 
 void Renderer::load_crowd(const CrowdAnimation& crowd) {
+  gl_->context.make_current();
   validate_crowd(crowd, "render");
   Gl& g = *gl_;
   crowd_ = &crowd;
@@ -361,7 +369,8 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
     const BodyShape& shape = crowd.characters[i].shape;
     g.character_mesh[i] = mannequin_cache_key(shape, mesh_options_);
     g.character_shadow_mesh[i] = mannequin_cache_key(shape, shadow_options);
-    for (const auto& [key, opts] : {std::pair{g.character_mesh[i], mesh_options_}, std::pair{g.character_shadow_mesh[i], shadow_options}})
+    for (const auto& [key, opts] : {std::pair{g.character_mesh[i], mesh_options_},
+                                    std::pair{g.character_shadow_mesh[i], shadow_options}})
       if (!g.mesh_cache.count(key) && queued.emplace(key, true).second) jobs.push_back({i, key, opts});
   }
   std::vector<MannequinMesh> built(jobs.size());
@@ -411,6 +420,7 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
 }
 
 void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options) {
+  gl_->context.make_current();
   if (!crowd_) throw RuntimeError("Renderer::draw: no crowd loaded");
   if (width_ == 0) throw RuntimeError("Renderer::draw: set_size() first");
   if (frame < 0 || frame >= crowd_->frame_count())
@@ -442,8 +452,17 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   g.caps_data.clear();
   g.cap_offset.assign(n, 0);
   g.cap_count.assign(n, 0);
+  g.own_offset.assign(n, 0);
   if (options.overlap) {
+    auto push_capsule = [&](const Capsule& c) {
+      g.caps_data.insert(g.caps_data.end(), {static_cast<float>(c.a.x()), static_cast<float>(c.a.y()),
+                                             static_cast<float>(c.a.z()), static_cast<float>(c.radius_m),
+                                             static_cast<float>(c.b.x()), static_cast<float>(c.b.y()),
+                                             static_cast<float>(c.b.z()), 0.0f});
+    };
     for (size_t a = 0; a < n; ++a) {
+      g.own_offset[a] = static_cast<int>(g.caps_data.size() / 8);
+      for (const Capsule& c : world[a]) push_capsule(c);
       g.cap_offset[a] = static_cast<int>(g.caps_data.size() / 8);
       for (size_t b = 0; b < n; ++b) {
         if (a == b || !boxes[a].intersects(boxes[b])) continue;
@@ -451,10 +470,7 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
           Eigen::AlignedBox3d cb(c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m),
                                  c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m));
           if (!cb.intersects(boxes[a])) continue;
-          g.caps_data.insert(g.caps_data.end(), {static_cast<float>(c.a.x()), static_cast<float>(c.a.y()),
-                                                 static_cast<float>(c.a.z()), static_cast<float>(c.radius_m),
-                                                 static_cast<float>(c.b.x()), static_cast<float>(c.b.y()),
-                                                 static_cast<float>(c.b.z()), 0.0f});
+          push_capsule(c);
           ++g.cap_count[a];
         }
       }
@@ -550,6 +566,7 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   const int lit_base = g.skinned_lit.uniform("u_skin_base"), palette_loc = g.skinned_lit.uniform("u_palette");
   const int offset_loc = g.skinned_lit.uniform("u_cap_offset"),
             count_loc = g.skinned_lit.uniform("u_cap_count");
+  const int own_loc = g.skinned_lit.uniform("u_own_offset");
   triangles_ = 0;
   std::vector<size_t> order(n);
   for (size_t i = 0; i < n; ++i) order[i] = i;
@@ -564,12 +581,14 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
     for (int r = 0; r < 8; ++r) {
       const Rgb c =
           pal.colour(static_cast<SkinRegion>(std::min(r, static_cast<int>(SkinRegion::kCount) - 1)));
-      for (int k = 0; k < 3; ++k) colours[3 * r + k] = c[static_cast<size_t>(k)] * c[static_cast<size_t>(k)];  // gamma 2.0 -> linear
+      for (int k = 0; k < 3; ++k)
+        colours[3 * r + k] = c[static_cast<size_t>(k)] * c[static_cast<size_t>(k)];  // gamma 2.0 -> linear
     }
     glProgramUniform3fv(p, palette_loc, 8, colours);
     glProgramUniform1i(p, lit_base, static_cast<int>(i * kJointCount));
     glProgramUniform1i(p, offset_loc, g.cap_offset[i]);
     glProgramUniform1i(p, count_loc, g.cap_count[i]);
+    glProgramUniform1i(p, own_loc, g.own_offset[i]);
     glBindVertexArray(m.vao);
     glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
     triangles_ += static_cast<size_t>(m.count) / 3;
@@ -609,6 +628,7 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
 }
 
 void Renderer::read_rgba(std::vector<std::uint8_t>& rgba) {
+  gl_->context.make_current();
   rgba.resize(static_cast<size_t>(width_) * height_ * 4);
   glNamedFramebufferReadBuffer(gl_->resolve_fbo, GL_COLOR_ATTACHMENT0);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, gl_->resolve_fbo);
@@ -618,6 +638,7 @@ void Renderer::read_rgba(std::vector<std::uint8_t>& rgba) {
 }
 
 void Renderer::begin_read_rgba(int slot) {
+  gl_->context.make_current();
   glNamedFramebufferReadBuffer(gl_->resolve_fbo, GL_COLOR_ATTACHMENT0);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, gl_->resolve_fbo);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, gl_->pbo[slot & 1]);
@@ -628,6 +649,7 @@ void Renderer::begin_read_rgba(int slot) {
 }
 
 void Renderer::finish_read_rgba(int slot, std::vector<std::uint8_t>& rgba) {
+  gl_->context.make_current();
   const size_t bytes = static_cast<size_t>(width_) * height_ * 4;
   rgba.resize(bytes);
   const GLuint pbo = gl_->pbo[slot & 1];
@@ -638,6 +660,7 @@ void Renderer::finish_read_rgba(int slot, std::vector<std::uint8_t>& rgba) {
 }
 
 double Renderer::overlap_fraction() {
+  gl_->context.make_current();
   Gl& g = *gl_;
   g.mask_pixels.resize(static_cast<size_t>(width_) * height_);
   glNamedFramebufferReadBuffer(g.resolve_fbo, GL_COLOR_ATTACHMENT1);

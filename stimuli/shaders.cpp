@@ -7,8 +7,12 @@
 // Shadows: a directional shadow map with hardware 2x2 percentage-closer filtering (Reeves et al. 1987).
 // Ground: a subtle 1 m checker (4.5 % contrast) times two octaves of tiling value noise from a texture.
 // Fog: exponential-squared in distance (the classic OpenGL GL_EXP2 fog), fading to the background.
-// Overlap mode (seed 000 Fig. 5): a character fragment whose world position lies inside a capsule
-// of ANOTHER character is painted red and flagged in the second render target.
+// Overlap mode (seed 000 Fig. 5, "in red, pixels of the image that contain overlapping volumes"): a
+// character fragment is painted red (and flagged in the second render target) when its visible
+// surface point lies inside a capsule of ANOTHER character, or when the pixel's ray, within 30 cm
+// behind the visible surface, passes through a point inside both this character's capsules and
+// another's. The second test is needed because an interpenetration volume is enclosed by the two
+// bodies' surfaces and is never itself the visible surface.
 #include "stimuli/shaders.hpp"
 
 namespace crowdlab::stimuli::glsl {
@@ -77,6 +81,7 @@ uniform vec3 u_background;       // sRGB
 uniform float u_fog_density;     // 0 = no fog (1/m)
 uniform int u_overlap;
 uniform int u_cap_offset;
+uniform int u_own_offset;         // this character's own 24 capsules
 uniform int u_cap_count;
 
 vec3 to_linear(vec3 c) { return c * c; }  // gamma 2.0, matching the sqrt encode below
@@ -88,13 +93,27 @@ float shadow(vec3 p, vec3 n) {
   return texture(u_shadow_map, vec3(s.xy, s.z - 0.0015));  // bilinear depth compare = 2x2 PCF
 }
 
-bool inside_other_character(vec3 p) {
-  for (int i = 0; i < u_cap_count; ++i) {
-    vec4 a = caps[2 * (u_cap_offset + i)];
-    vec3 b = caps[2 * (u_cap_offset + i) + 1].xyz;
-    vec3 ab = b - a.xyz;
+bool inside_capsules(vec3 p, int first, int count) {
+  for (int i = first; i < first + count; ++i) {
+    vec4 a = caps[2 * i];
+    vec3 ab = caps[2 * i + 1].xyz - a.xyz;
     float t = clamp(dot(p - a.xyz, ab) / max(dot(ab, ab), 1e-12), 0.0, 1.0);
-    if (length(p - (a.xyz + t * ab)) < a.w) return true;
+    vec3 d = p - (a.xyz + t * ab);
+    if (dot(d, d) < a.w * a.w) return true;
+  }
+  return false;
+}
+
+// Does the pixel's ray pass through the volume shared by this character and another one, within
+// kOverlapDepth behind the visible surface? (Depth 0 is the visible point itself.)
+bool ray_hits_overlap(vec3 p) {
+  if (u_cap_count == 0) return false;
+  const int kSteps = 11;
+  const float kOverlapDepth = 0.30;  // metres: about the depth of a torso
+  vec3 dir = normalize(p - u_eye);
+  for (int k = 0; k < kSteps; ++k) {
+    vec3 q = p + dir * (kOverlapDepth * float(k) / float(kSteps - 1));
+    if (inside_capsules(q, u_cap_offset, u_cap_count) && (k == 0 || inside_capsules(q, u_own_offset, 24))) return true;
   }
   return false;
 }
@@ -107,7 +126,7 @@ void main() {
   bool overlap = false;
   if (u_material == 0) {
     albedo = u_palette[min(v_region, 7u)];
-    overlap = u_overlap != 0 && inside_other_character(v_world);
+    overlap = u_overlap != 0 && ray_hits_overlap(v_world);
   } else if (u_material == 1) {
     vec2 g = v_world.xz;
     float checker = mod(floor(g.x) + floor(g.y), 2.0) == 0.0 ? 1.0 : 0.955;
