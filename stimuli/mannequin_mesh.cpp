@@ -12,6 +12,7 @@ namespace crowdlab::stimuli {
 namespace {
 
 constexpr double kSkinSigmaM = 0.015;  // skinning-weight falloff (see header)
+constexpr double kTrunkBlendM = 0.10;  // smooth-min width between trunk capsules (see BodyField::blend_for)
 
 /// Signed distance from p to a capsule (negative inside).
 double capsule_sdf(const Vec3& p, const Capsule& c) {
@@ -39,8 +40,25 @@ class BodyField {
     distances(p, s);
     double d = s[0];
     for (size_t j = 1; j < s.size(); ++j)
-      d = std::min(d, smooth_min(s[j], s[static_cast<size_t>(kJointParent[j])], blend_m_));
+      d = std::min(d,
+                   smooth_min(s[j], s[static_cast<size_t>(kJointParent[j])], blend_for(static_cast<int>(j))));
     return d;
+  }
+  /// The trunk is a stack of horizontal capsules (pelvis, spine1-3); a wide blend there fills the
+  /// waists between them into one smooth torso instead of a ribbed one.
+  double blend_for(int bone) const {
+    switch (bone) {
+      case kSpine1:
+      case kSpine2:
+      case kSpine3:
+        return std::max(blend_m_, kTrunkBlendM);
+      case kLeftCollar:
+      case kRightCollar:
+      case kNeck:
+        return std::max(blend_m_, 0.5 * kTrunkBlendM);
+      default:
+        return blend_m_;
+    }
   }
   Vec3 gradient(const Vec3& p, double h) const {
     Vec3 g;
@@ -135,7 +153,7 @@ std::uint64_t mannequin_cache_key(const BodyShape& shape, const MannequinOptions
   for (const Vec3& o : shape.joint_offsets_m) data.insert(data.end(), {o.x(), o.y(), o.z()});
   for (const Capsule& c : shape.capsules)
     data.insert(data.end(), {c.a.x(), c.a.y(), c.a.z(), c.b.x(), c.b.y(), c.b.z(), c.radius_m});
-  data.insert(data.end(), {options.voxel_m, options.blend_m, shape.params.height_m});
+  data.insert(data.end(), {options.voxel_m, options.blend_m, options.inset_m, shape.params.height_m});
   return stable_hash(
       std::string_view(reinterpret_cast<const char*>(data.data()), data.size() * sizeof(double)));
 }
@@ -169,7 +187,8 @@ MannequinMesh build_mannequin_mesh(const BodyShape& shape, const MannequinOption
   std::vector<float> value(static_cast<size_t>(nx) * ny * nz);
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) value[idx(i, j, k)] = static_cast<float>(field.value(point(i, j, k)));
+      for (int i = 0; i < nx; ++i)
+        value[idx(i, j, k)] = static_cast<float>(field.value(point(i, j, k)) + options.inset_m);
 
   // One vertex per crossed cell.
   MannequinMesh mesh;

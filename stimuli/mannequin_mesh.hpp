@@ -6,7 +6,8 @@
 //   smin_k(a, b) = min(a, b) - h^2 k / 4, h = max(k - |a - b|, 0) / k   (polynomial smooth minimum,
 //   Quilez, "Smooth minimum", iquilezles.org, 2013). Blending only along parent-child joints keeps
 //   limbs that merely touch in the rest pose (the thighs, arm and torso) separate, so no webbing
-//   stretches between them when they move apart.
+//   stretches between them when they move apart. The trunk (pelvis, spine1-3, collars, neck) uses a
+//   wider blend (10 cm, 5 cm) so its stacked horizontal capsules read as one torso, not ribs.
 // Polygonisation: naive surface nets (Gibson 1998, "Constrained elastic surface nets"): one vertex per
 //   grid cell that the surface crosses, at the mean of its edge crossings; one quad per crossed edge.
 // Normals: the normalised central-difference gradient of d (smooth shading).
@@ -50,6 +51,7 @@ struct MannequinMesh {
 struct MannequinOptions {
   double voxel_m = 0.02;  ///< grid spacing of the polygonisation (metres): ~12k triangles per body
   double blend_m = 0.03;  ///< smooth-min width k at joints (metres)
+  double inset_m = 0.0;   ///< polygonise the level set d = -inset_m (shrinks the body; for shadow casters)
 };
 
 /// Builds the mesh of `shape` in its rest pose (Pose::rest: pelvis at joint_offsets_m[0], facing +Z).

@@ -356,6 +356,8 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   // them in job order. Each shape gets a full mesh and a coarse one for the shadow pass.
   MannequinOptions shadow_options = mesh_options_;
   shadow_options.voxel_m = std::max(mesh_options_.voxel_m, kShadowVoxelM);
+  shadow_options.inset_m =
+      0.4 * shadow_options.voxel_m;  // keep the coarse caster inside the visible skin (no acne bands)
   g.character_mesh.resize(n);
   g.character_shadow_mesh.resize(n);
   struct Job {
