@@ -1,10 +1,9 @@
 #pragma once
-// The shared `crowdlab bench` subcommand group: every benchmark command adds itself under it.
+// The `crowdlab bench` subcommand group, shared by every benchmark: get it, or create it once.
 #include <CLI/CLI.hpp>
 
 namespace crowdlab::cli {
 
-/// Gets the `bench` subcommand of `root`, creating it on first use.
 inline CLI::App* bench_group(CLI::App& root) {
   try {
     return root.get_subcommand_ptr("bench").get();
