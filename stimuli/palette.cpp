@@ -1,0 +1,70 @@
+#include "stimuli/palette.hpp"
+
+#include <vector>
+
+namespace crowdlab::stimuli {
+namespace {
+
+constexpr Rgb rgb(int r, int g, int b) {
+  return {r / 255.0f, g / 255.0f, b / 255.0f};
+}
+
+// Skin tones, light to dark.
+constexpr Rgb kSkin[] = {rgb(241, 205, 180), rgb(226, 184, 150), rgb(198, 150, 112),
+                         rgb(160, 112, 80),  rgb(120, 80, 56),   rgb(86, 58, 42)};
+constexpr Rgb kHairBlack = rgb(30, 26, 24), kHairBrown = rgb(78, 52, 34), kHairBlond = rgb(186, 150, 96),
+              kHairAuburn = rgb(120, 58, 34), kHairGrey = rgb(150, 146, 140);
+
+const std::vector<Palette>& table() {
+  static const std::vector<Palette> palettes = {
+      {kSkin[0], kHairBrown, rgb(52, 84, 140), rgb(48, 52, 62), rgb(40, 36, 34), true, true},
+      {kSkin[2], kHairBlack, rgb(214, 210, 198), rgb(70, 88, 120), rgb(230, 230, 226), false, true},
+      {kSkin[4], kHairBlack, rgb(176, 70, 56), rgb(58, 58, 58), rgb(34, 32, 30), true, true},
+      {kSkin[1], kHairBlond, rgb(84, 124, 84), rgb(156, 132, 100), rgb(96, 64, 44), false, true},
+      {kSkin[3], kHairBlack, rgb(230, 186, 70), rgb(40, 48, 72), rgb(220, 220, 214), false, false},
+      {kSkin[0], kHairAuburn, rgb(120, 60, 110), rgb(40, 40, 46), rgb(30, 30, 30), true, true},
+      {kSkin[5], kHairBlack, rgb(236, 236, 232), rgb(92, 76, 60), rgb(60, 40, 30), false, true},
+      {kSkin[1], kHairGrey, rgb(96, 108, 120), rgb(150, 150, 140), rgb(70, 60, 52), true, true},
+      {kSkin[2], kHairBrown, rgb(40, 120, 130), rgb(200, 190, 160), rgb(200, 196, 188), false, false},
+      {kSkin[3], kHairBlack, rgb(150, 40, 60), rgb(34, 44, 70), rgb(240, 240, 236), true, true},
+      {kSkin[0], kHairBlond, rgb(244, 150, 120), rgb(80, 110, 150), rgb(230, 228, 222), false, true},
+      {kSkin[4], kHairBrown, rgb(60, 60, 66), rgb(110, 100, 80), rgb(40, 30, 26), true, true},
+      {kSkin[2], kHairAuburn, rgb(140, 160, 200), rgb(60, 60, 70), rgb(50, 40, 36), false, true},
+      {kSkin[5], kHairGrey, rgb(200, 120, 50), rgb(50, 54, 60), rgb(36, 34, 32), true, true},
+      {kSkin[1], kHairBlack, rgb(110, 150, 90), rgb(230, 224, 210), rgb(160, 120, 90), false, false},
+      {kSkin[3], kHairBrown, rgb(70, 70, 140), rgb(120, 124, 130), rgb(30, 30, 30), true, true},
+  };
+  return palettes;
+}
+
+}  // namespace
+
+Rgb Palette::colour(SkinRegion region) const {
+  switch (region) {
+    case SkinRegion::kHair:
+      return hair;
+    case SkinRegion::kShirt:
+      return shirt;
+    case SkinRegion::kSleeve:
+      return long_sleeves ? shirt : skin;
+    case SkinRegion::kTrousers:
+      return trousers;
+    case SkinRegion::kLowerLeg:
+      return long_trousers ? trousers : skin;
+    case SkinRegion::kShoes:
+      return shoes;
+    default:
+      return skin;
+  }
+}
+
+int palette_count() {
+  return static_cast<int>(table().size());
+}
+
+const Palette& palette(int index) {
+  const int n = palette_count();
+  return table()[static_cast<size_t>(((index % n) + n) % n)];
+}
+
+}  // namespace crowdlab::stimuli

@@ -1,0 +1,29 @@
+#pragma once
+// Clothing and skin palettes for mannequin characters (CharacterAnimation::palette selects one).
+// Colours are sRGB in [0, 1]. Skin tones span the range of the Fitzpatrick-scale swatches used in
+// graphics practice; clothing is muted everyday wear (no saturated pure red, which overlap mode uses).
+// A palette also says whether sleeves and lower legs are clothed (long sleeves / trousers) or skin
+// (short sleeves / shorts or skirt), which varies silhouettes as well as colours.
+#include <array>
+
+#include "stimuli/mannequin_mesh.hpp"
+
+namespace crowdlab::stimuli {
+
+using Rgb = std::array<float, 3>;
+
+struct Palette {
+  Rgb skin, hair, shirt, trousers, shoes;
+  bool long_sleeves = true;
+  bool long_trousers = true;
+
+  /// Colour of a mesh region under this palette.
+  Rgb colour(SkinRegion region) const;
+};
+
+/// Number of distinct built-in palettes (>= 12).
+int palette_count();
+/// Palette `index` modulo palette_count() (negative indices wrap too).
+const Palette& palette(int index);
+
+}  // namespace crowdlab::stimuli

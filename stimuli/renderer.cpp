@@ -1,0 +1,678 @@
+#include "stimuli/renderer.hpp"
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/glcorearb.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <numbers>
+
+#include "framework/core/error.hpp"
+#include "framework/core/forward_kinematics.hpp"
+#include "framework/core/seed.hpp"
+#include "stimuli/egl_context.hpp"
+#include "stimuli/gl_program.hpp"
+#include "stimuli/shaders.hpp"
+
+namespace crowdlab::stimuli {
+namespace {
+
+// Grid spacing of the coarse mannequin meshes drawn into the shadow map: shadows are soft-edged and
+// seen from afar, so a 4.5 cm mesh casts the same shadow at a fraction of the vertex work.
+constexpr double kShadowVoxelM = 0.045;
+
+using Mat4f = Eigen::Matrix4f;
+
+Mat4 to_matrix(const RigidTransform& t) {
+  Mat4 m = Mat4::Identity();
+  m.block<3, 3>(0, 0) = t.rotation.toRotationMatrix();
+  m.block<3, 1>(0, 3) = t.translation;
+  return m;
+}
+
+struct GpuMesh {
+  GLuint vao = 0, vbo = 0, ibo = 0;
+  GLsizei count = 0;
+};
+
+struct StaticVertex {
+  float position[3];
+  float normal[3];
+};
+
+GpuMesh upload_static(const std::vector<StaticVertex>& vertices, const std::vector<std::uint32_t>& indices) {
+  GpuMesh m;
+  glCreateVertexArrays(1, &m.vao);
+  glCreateBuffers(1, &m.vbo);
+  glCreateBuffers(1, &m.ibo);
+  glNamedBufferStorage(m.vbo, static_cast<GLsizeiptr>(vertices.size() * sizeof(StaticVertex)),
+                       vertices.data(), 0);
+  glNamedBufferStorage(m.ibo, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(),
+                       0);
+  glVertexArrayVertexBuffer(m.vao, 0, m.vbo, 0, sizeof(StaticVertex));
+  glVertexArrayElementBuffer(m.vao, m.ibo);
+  glEnableVertexArrayAttrib(m.vao, 0);
+  glEnableVertexArrayAttrib(m.vao, 1);
+  glVertexArrayAttribFormat(m.vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(StaticVertex, position));
+  glVertexArrayAttribFormat(m.vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(StaticVertex, normal));
+  glVertexArrayAttribBinding(m.vao, 0, 0);
+  glVertexArrayAttribBinding(m.vao, 1, 0);
+  m.count = static_cast<GLsizei>(indices.size());
+  return m;
+}
+
+GpuMesh upload_mannequin(const MannequinMesh& mesh) {
+  GpuMesh m;
+  glCreateVertexArrays(1, &m.vao);
+  glCreateBuffers(1, &m.vbo);
+  glCreateBuffers(1, &m.ibo);
+  glNamedBufferStorage(m.vbo, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(MannequinVertex)),
+                       mesh.vertices.data(), 0);
+  glNamedBufferStorage(m.ibo, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+                       mesh.indices.data(), 0);
+  glVertexArrayVertexBuffer(m.vao, 0, m.vbo, 0, sizeof(MannequinVertex));
+  glVertexArrayElementBuffer(m.vao, m.ibo);
+  for (GLuint a = 0; a < 5; ++a) {
+    glEnableVertexArrayAttrib(m.vao, a);
+    glVertexArrayAttribBinding(m.vao, a, 0);
+  }
+  glVertexArrayAttribFormat(m.vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(MannequinVertex, position));
+  glVertexArrayAttribFormat(m.vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(MannequinVertex, normal));
+  glVertexArrayAttribIFormat(m.vao, 2, 4, GL_UNSIGNED_BYTE, offsetof(MannequinVertex, bones));
+  glVertexArrayAttribFormat(m.vao, 3, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(MannequinVertex, weights));
+  glVertexArrayAttribIFormat(m.vao, 4, 1, GL_UNSIGNED_BYTE, offsetof(MannequinVertex, region));
+  m.count = static_cast<GLsizei>(mesh.indices.size());
+  return m;
+}
+
+void destroy(GpuMesh& m) {
+  glDeleteVertexArrays(1, &m.vao);
+  glDeleteBuffers(1, &m.vbo);
+  glDeleteBuffers(1, &m.ibo);
+  m = {};
+}
+
+/// The unit cube [-1, 1]^3 with per-face normals, counter-clockwise outside.
+GpuMesh make_unit_cube() {
+  std::vector<StaticVertex> v;
+  std::vector<std::uint32_t> idx;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int sign : {-1, 1}) {
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      const auto base = static_cast<std::uint32_t>(v.size());
+      const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+      for (const auto& c : corners) {
+        StaticVertex sv{};
+        sv.position[axis] = static_cast<float>(sign);
+        sv.position[u] = c[0] * static_cast<float>(sign);
+        sv.position[w] = c[1];
+        sv.normal[axis] = static_cast<float>(sign);
+        v.push_back(sv);
+      }
+      idx.insert(idx.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+  return upload_static(v, idx);
+}
+
+GpuMesh make_environment_mesh(const TriangleMesh& mesh) {
+  std::vector<StaticVertex> v;
+  std::vector<std::uint32_t> idx;
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    const Vec3 a = mesh.vertices_m.at(static_cast<size_t>(t.x())),
+               b = mesh.vertices_m.at(static_cast<size_t>(t.y())),
+               c = mesh.vertices_m.at(static_cast<size_t>(t.z()));
+    Vec3 n = (b - a).cross(c - a);
+    n = n.norm() > 0 ? Vec3(n.normalized()) : Vec3::UnitY();
+    for (const Vec3* p : {&a, &b, &c}) {
+      StaticVertex sv{};
+      for (int k = 0; k < 3; ++k) {
+        sv.position[k] = static_cast<float>((*p)[k]);
+        sv.normal[k] = static_cast<float>(n[k]);
+      }
+      idx.push_back(static_cast<std::uint32_t>(v.size()));
+      v.push_back(sv);
+    }
+  }
+  return upload_static(v, idx);
+}
+
+/// A 256 x 256 tiling value-noise texture (bilinear upsampling of 32 x 32 random lattice values),
+/// mip-mapped; generated from a fixed seed so every run draws the same ground.
+GLuint make_noise_texture() {
+  constexpr int kLattice = 32, kSize = 256;
+  Rng rng(derive_seed(0x6772'6f75'6e64ULL, "ground-noise"));
+  std::vector<double> lattice(kLattice * kLattice);
+  for (double& v : lattice) v = uniform01(rng);
+  std::vector<std::uint8_t> texels(kSize * kSize);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const double fx = x * kLattice / static_cast<double>(kSize),
+                   fy = y * kLattice / static_cast<double>(kSize);
+      const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+      double u = fx - x0, w = fy - y0;
+      u = u * u * (3 - 2 * u);
+      w = w * w * (3 - 2 * w);
+      auto at = [&](int i, int j) {
+        return lattice[static_cast<size_t>((j % kLattice) * kLattice + (i % kLattice))];
+      };
+      const double v = (1 - w) * ((1 - u) * at(x0, y0) + u * at(x0 + 1, y0)) +
+                       w * ((1 - u) * at(x0, y0 + 1) + u * at(x0 + 1, y0 + 1));
+      texels[static_cast<size_t>(y * kSize + x)] = static_cast<std::uint8_t>(std::lround(255.0 * v));
+    }
+  GLuint tex = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+  glTextureStorage2D(tex, 9, GL_R8, kSize, kSize);
+  glTextureSubImage2D(tex, 0, 0, 0, kSize, kSize, GL_RED, GL_UNSIGNED_BYTE, texels.data());
+  glGenerateTextureMipmap(tex);
+  glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  return tex;
+}
+
+Mat4 ortho(double half, double near_m, double far_m) {
+  Mat4 m = Mat4::Identity();
+  m(0, 0) = 1.0 / half;
+  m(1, 1) = 1.0 / half;
+  m(2, 2) = -2.0 / (far_m - near_m);
+  m(2, 3) = -(far_m + near_m) / (far_m - near_m);
+  return m;
+}
+
+/// A horizontal direction rotated by `deg` about +Y, raised by `elevation_deg`.
+Vec3 light_direction(const Vec3& horizontal_dir, double deg, double elevation_deg) {
+  const double a = deg * std::numbers::pi / 180.0, e = elevation_deg * std::numbers::pi / 180.0;
+  const Vec3 h = Eigen::AngleAxisd(a, Vec3::UnitY()) * horizontal_dir;
+  return (std::cos(e) * h + std::sin(e) * Vec3::UnitY()).normalized();
+}
+
+void set_mat4(GLuint program, int location, const Mat4& m) {
+  const Mat4f f = m.cast<float>();
+  glProgramUniformMatrix4fv(program, location, 1, GL_FALSE, f.data());
+}
+void set_vec3(GLuint program, int location, const Vec3& v) {
+  glProgramUniform3f(program, location, static_cast<float>(v.x()), static_cast<float>(v.y()),
+                     static_cast<float>(v.z()));
+}
+void set_rgb(GLuint program, int location, const Rgb& c) {
+  glProgramUniform3f(program, location, c[0], c[1], c[2]);
+}
+
+}  // namespace
+
+Rgb parse_hex_colour(const std::string& text, const std::string& context) {
+  std::string hex = !text.empty() && text[0] == '#' ? text.substr(1) : text;
+  if (hex.size() != 6 || hex.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos)
+    throw InputError(context + ": colour must be \"#rrggbb\", got \"" + text + "\"");
+  Rgb c{};
+  for (int i = 0; i < 3; ++i)
+    c[static_cast<size_t>(i)] =
+        static_cast<float>(std::stoi(hex.substr(static_cast<size_t>(2 * i), 2), nullptr, 16)) / 255.0f;
+  return c;
+}
+
+struct Renderer::Gl {
+  EglContext context;
+  GlProgram skinned_lit{glsl::kSkinnedVertex, glsl::kLitFragment, "skinned_lit"};
+  GlProgram static_lit{glsl::kStaticVertex, glsl::kLitFragment, "static_lit"};
+  GlProgram skinned_depth{glsl::kSkinnedVertex, glsl::kDepthFragment, "skinned_depth"};
+  GlProgram static_depth{glsl::kStaticVertex, glsl::kDepthFragment, "static_depth"};
+  std::map<std::uint64_t, GpuMesh> mesh_cache;
+  GpuMesh cube = make_unit_cube();
+  GpuMesh ground;
+  std::vector<GpuMesh> environment_meshes;
+  std::vector<Mat4> box_models;
+  std::vector<std::uint64_t> character_mesh, character_shadow_mesh;
+  GLuint noise_tex = 0;
+  std::vector<std::array<Mat4, kJointCount>> inverse_rest;
+  Vec3 bounds_lo = Vec3::Zero(), bounds_hi = Vec3::Zero();
+  GLuint skin_ssbo = 0, caps_ssbo = 0;
+  GLsizeiptr skin_capacity = 0, caps_capacity = 0;
+  GLuint msaa_fbo = 0, msaa_color = 0, msaa_mask = 0, msaa_depth = 0;
+  GLuint resolve_fbo = 0, resolve_color = 0, resolve_mask = 0;
+  GLuint shadow_fbo = 0, shadow_tex = 0;
+  int shadow_size = 0;
+  GLuint pbo[2] = {0, 0};
+  std::vector<float> skin_data, caps_data;
+  std::vector<int> cap_offset, cap_count, own_offset;
+  std::vector<std::uint8_t> mask_pixels;
+
+  Gl() {
+    glCreateBuffers(1, &skin_ssbo);
+    glCreateBuffers(1, &caps_ssbo);
+    noise_tex = make_noise_texture();
+  }
+  ~Gl() {
+    for (auto& [key, mesh] : mesh_cache) destroy(mesh);
+    destroy(cube);
+    destroy(ground);
+    for (GpuMesh& m : environment_meshes) destroy(m);
+    free_targets();
+    glDeleteBuffers(1, &skin_ssbo);
+    glDeleteBuffers(1, &caps_ssbo);
+    glDeleteTextures(1, &noise_tex);
+  }
+  void free_targets() {
+    glDeleteFramebuffers(1, &msaa_fbo);
+    glDeleteFramebuffers(1, &resolve_fbo);
+    glDeleteFramebuffers(1, &shadow_fbo);
+    const GLuint rbs[] = {msaa_color, msaa_mask, msaa_depth, resolve_color, resolve_mask};
+    glDeleteRenderbuffers(5, rbs);
+    glDeleteTextures(1, &shadow_tex);
+    glDeleteBuffers(2, pbo);
+    msaa_fbo = resolve_fbo = shadow_fbo = shadow_tex = 0;
+    pbo[0] = pbo[1] = 0;
+  }
+  /// Grows a buffer (never shrinks) and uploads data.
+  static void upload(GLuint buffer, GLsizeiptr& capacity, const std::vector<float>& data) {
+    const auto bytes = static_cast<GLsizeiptr>(std::max<size_t>(data.size(), 4) * sizeof(float));
+    if (bytes > capacity) {
+      glNamedBufferData(buffer, bytes, nullptr, GL_DYNAMIC_DRAW);
+      capacity = bytes;
+    }
+    if (!data.empty())
+      glNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data());
+  }
+};
+
+Renderer::Renderer(MannequinOptions mesh_options)
+    : gl_(std::make_unique<Gl>()), mesh_options_(mesh_options) {}
+Renderer::~Renderer() {
+  if (gl_) gl_->context.make_current();  // GL objects are deleted in this context
+}
+
+const std::string& Renderer::device() const {
+  return gl_->context.renderer_description();
+}
+std::size_t Renderer::cached_meshes() const {
+  return gl_->mesh_cache.size();
+}
+
+void Renderer::set_size(int width, int height, int samples, int shadow_map_size) {
+  gl_->context.make_current();
+  if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
+    throw InputError("render size must be in 1..16384 pixels, got " + std::to_string(width) + "x" +
+                     std::to_string(height));
+  Gl& g = *gl_;
+  GLint max_samples = 1;
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  samples = std::clamp(samples, 1, static_cast<int>(max_samples));
+  g.free_targets();
+  width_ = width;
+  height_ = height;
+  glCreateFramebuffers(1, &g.msaa_fbo);
+  GLuint rbs[5];
+  glCreateRenderbuffers(5, rbs);
+  g.msaa_color = rbs[0];
+  g.msaa_mask = rbs[1];
+  g.msaa_depth = rbs[2];
+  g.resolve_color = rbs[3];
+  g.resolve_mask = rbs[4];
+  glNamedRenderbufferStorageMultisample(g.msaa_color, samples, GL_RGBA8, width, height);
+  glNamedRenderbufferStorageMultisample(g.msaa_mask, samples, GL_R8, width, height);
+  glNamedRenderbufferStorageMultisample(g.msaa_depth, samples, GL_DEPTH_COMPONENT24, width, height);
+  glNamedFramebufferRenderbuffer(g.msaa_fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, g.msaa_color);
+  glNamedFramebufferRenderbuffer(g.msaa_fbo, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, g.msaa_mask);
+  glNamedFramebufferRenderbuffer(g.msaa_fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, g.msaa_depth);
+  const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(g.msaa_fbo, 2, both);
+  glCreateFramebuffers(1, &g.resolve_fbo);
+  glNamedRenderbufferStorage(g.resolve_color, GL_RGBA8, width, height);
+  glNamedRenderbufferStorage(g.resolve_mask, GL_R8, width, height);
+  glNamedFramebufferRenderbuffer(g.resolve_fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, g.resolve_color);
+  glNamedFramebufferRenderbuffer(g.resolve_fbo, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, g.resolve_mask);
+  g.shadow_size = shadow_map_size;
+  glCreateTextures(GL_TEXTURE_2D, 1, &g.shadow_tex);
+  glTextureStorage2D(g.shadow_tex, 1, GL_DEPTH_COMPONENT24, shadow_map_size, shadow_map_size);
+  glTextureParameteri(g.shadow_tex, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  glTextureParameteri(g.shadow_tex, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  glTextureParameteri(g.shadow_tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(g.shadow_tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(g.shadow_tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(g.shadow_tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glCreateFramebuffers(1, &g.shadow_fbo);
+  glNamedFramebufferTexture(g.shadow_fbo, GL_DEPTH_ATTACHMENT, g.shadow_tex, 0);
+  glNamedFramebufferDrawBuffer(g.shadow_fbo, GL_NONE);
+  glNamedFramebufferReadBuffer(g.shadow_fbo, GL_NONE);
+  for (GLuint fbo : {g.msaa_fbo, g.resolve_fbo, g.shadow_fbo})
+    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw RuntimeError("OpenGL: a framebuffer is incomplete (" + device() + ")");
+  glCreateBuffers(2, g.pbo);
+  for (GLuint pbo : g.pbo)
+    glNamedBufferData(pbo, static_cast<GLsizeiptr>(width) * height * 4, nullptr, GL_STREAM_READ);
+}
+
+void Renderer::load_crowd(const CrowdAnimation& crowd) {
+  gl_->context.make_current();
+  validate_crowd(crowd, "render");
+  Gl& g = *gl_;
+  crowd_ = &crowd;
+  const size_t n = crowd.characters.size();
+  // Build the meshes of shapes not yet cached, in parallel (one result slot per job), then upload
+  // them in job order. Each shape gets a full mesh and a coarse one for the shadow pass.
+  MannequinOptions shadow_options = mesh_options_;
+  shadow_options.voxel_m = std::max(mesh_options_.voxel_m, kShadowVoxelM);
+  shadow_options.inset_m =
+      0.4 * shadow_options.voxel_m;  // keep the coarse caster inside the visible skin (no acne bands)
+  g.character_mesh.resize(n);
+  g.character_shadow_mesh.resize(n);
+  struct Job {
+    size_t character;
+    std::uint64_t key;
+    MannequinOptions options;
+  };
+  std::vector<Job> jobs;
+  std::map<std::uint64_t, bool> queued;
+  for (size_t i = 0; i < n; ++i) {
+    const BodyShape& shape = crowd.characters[i].shape;
+    g.character_mesh[i] = mannequin_cache_key(shape, mesh_options_);
+    g.character_shadow_mesh[i] = mannequin_cache_key(shape, shadow_options);
+    for (const auto& [key, opts] : {std::pair{g.character_mesh[i], mesh_options_},
+                                    std::pair{g.character_shadow_mesh[i], shadow_options}})
+      if (!g.mesh_cache.count(key) && queued.emplace(key, true).second) jobs.push_back({i, key, opts});
+  }
+  std::vector<MannequinMesh> built(jobs.size());
+  tbb::parallel_for(size_t{0}, jobs.size(), [&](size_t k) {
+    built[k] = build_mannequin_mesh(crowd.characters[jobs[k].character].shape, jobs[k].options);
+  });
+  for (size_t k = 0; k < jobs.size(); ++k) g.mesh_cache.emplace(jobs[k].key, upload_mannequin(built[k]));
+  // Inverse bind matrices.
+  g.inverse_rest.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const BodyShape& shape = crowd.characters[i].shape;
+    const BoneTransforms rest = forward_kinematics(shape, Pose::rest(shape));
+    for (size_t j = 0; j < rest.size(); ++j) g.inverse_rest[i][j] = to_matrix(rest[j]).inverse();
+  }
+  // Environment.
+  for (GpuMesh& m : g.environment_meshes) destroy(m);
+  g.environment_meshes.clear();
+  for (const TriangleMesh& m : crowd.environment.meshes)
+    if (!m.triangles.empty()) g.environment_meshes.push_back(make_environment_mesh(m));
+  g.box_models.clear();
+  Vec3 lo = Vec3::Constant(1e30), hi = Vec3::Constant(-1e30);
+  for (const Box& b : crowd.environment.boxes) {
+    Mat4 model = Mat4::Identity();
+    model.block<3, 3>(0, 0) = b.rotation.normalized().toRotationMatrix() * b.half_extents_m.asDiagonal();
+    model.block<3, 1>(0, 3) = b.center_m;
+    g.box_models.push_back(model);
+    const double r = b.half_extents_m.norm();
+    lo = lo.cwiseMin(b.center_m - Vec3::Constant(r));
+    hi = hi.cwiseMax(b.center_m + Vec3::Constant(r));
+  }
+  for (const CharacterAnimation& c : crowd.characters)
+    for (const Pose& p : c.frames) {
+      lo = lo.cwiseMin(p.root_position_m - Vec3(1.0, 1.2, 1.0));
+      hi = hi.cwiseMax(p.root_position_m + Vec3(1.0, 1.2, 1.0));
+    }
+  lo.y() = std::min(lo.y(), 0.0);
+  g.bounds_lo = lo;
+  g.bounds_hi = hi;
+  destroy(g.ground);
+  const Vec3 c = 0.5 * (lo + hi);
+  const float half = 150.0f, cx = static_cast<float>(c.x()), cz = static_cast<float>(c.z());
+  std::vector<StaticVertex> quad = {{{cx - half, 0, cz - half}, {0, 1, 0}},
+                                    {{cx - half, 0, cz + half}, {0, 1, 0}},
+                                    {{cx + half, 0, cz + half}, {0, 1, 0}},
+                                    {{cx + half, 0, cz - half}, {0, 1, 0}}};
+  g.ground = upload_static(quad, {0, 1, 2, 0, 2, 3});
+}
+
+void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options) {
+  gl_->context.make_current();
+  if (!crowd_) throw RuntimeError("Renderer::draw: no crowd loaded");
+  if (width_ == 0) throw RuntimeError("Renderer::draw: set_size() first");
+  if (frame < 0 || frame >= crowd_->frame_count())
+    throw InputError("frame " + std::to_string(frame) + " out of range [0, " +
+                     std::to_string(crowd_->frame_count()) + ")");
+  Gl& g = *gl_;
+  const auto& chars = crowd_->characters;
+  const size_t n = chars.size();
+
+  // 1. Skin matrices and (overlap mode) candidate capsules, computed on the CPU.
+  g.skin_data.resize(n * kJointCount * 16);
+  std::vector<WorldCapsules> world(n);
+  std::vector<Eigen::AlignedBox3d> boxes(n);
+  tbb::parallel_for(size_t{0}, n, [&](size_t i) {
+    const BoneTransforms bones =
+        forward_kinematics(chars[i].shape, chars[i].frames[static_cast<size_t>(frame)]);
+    for (size_t j = 0; j < bones.size(); ++j) {
+      const Mat4f skin = (to_matrix(bones[j]) * g.inverse_rest[i][j]).cast<float>();
+      std::memcpy(&g.skin_data[(i * kJointCount + j) * 16], skin.data(), 16 * sizeof(float));
+    }
+    world[i] = world_capsules(chars[i].shape, bones);
+    boxes[i].setEmpty();
+    for (const Capsule& c : world[i]) {
+      boxes[i].extend(c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m));
+      boxes[i].extend(c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m));
+    }
+  });
+  Gl::upload(g.skin_ssbo, g.skin_capacity, g.skin_data);
+  g.caps_data.clear();
+  g.cap_offset.assign(n, 0);
+  g.cap_count.assign(n, 0);
+  g.own_offset.assign(n, 0);
+  if (options.overlap) {
+    auto push_capsule = [&](const Capsule& c) {
+      g.caps_data.insert(g.caps_data.end(), {static_cast<float>(c.a.x()), static_cast<float>(c.a.y()),
+                                             static_cast<float>(c.a.z()), static_cast<float>(c.radius_m),
+                                             static_cast<float>(c.b.x()), static_cast<float>(c.b.y()),
+                                             static_cast<float>(c.b.z()), 0.0f});
+    };
+    for (size_t a = 0; a < n; ++a) {
+      g.own_offset[a] = static_cast<int>(g.caps_data.size() / 8);
+      for (const Capsule& c : world[a]) push_capsule(c);
+      g.cap_offset[a] = static_cast<int>(g.caps_data.size() / 8);
+      for (size_t b = 0; b < n; ++b) {
+        if (a == b || !boxes[a].intersects(boxes[b])) continue;
+        for (const Capsule& c : world[b]) {
+          Eigen::AlignedBox3d cb(c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m),
+                                 c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m));
+          if (!cb.intersects(boxes[a])) continue;
+          push_capsule(c);
+          ++g.cap_count[a];
+        }
+      }
+    }
+  }
+  Gl::upload(g.caps_ssbo, g.caps_capacity, g.caps_data);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g.skin_ssbo);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g.caps_ssbo);
+
+  // Lights relative to the camera's horizontal viewing direction (three-point lighting).
+  Vec3 view_h(camera.target.x() - camera.eye.x(), 0.0, camera.target.z() - camera.eye.z());
+  view_h = view_h.norm() > 1e-6 ? Vec3(view_h.normalized()) : Vec3(-Vec3::UnitZ());
+  const Vec3 key = light_direction(-view_h, 35.0, 50.0);
+  const Vec3 fill = light_direction(-view_h, -60.0, 20.0);
+  const Vec3 rim = light_direction(view_h, 20.0, 35.0);
+  const Vec3 centre = 0.5 * (g.bounds_lo + g.bounds_hi);
+  const double radius = 0.5 * (g.bounds_hi - g.bounds_lo).norm() + 0.5;
+  Camera light_cam;
+  light_cam.eye = centre + key * (radius + 1.0);
+  light_cam.target = centre;
+  const Mat4 light_vp = ortho(radius, 0.5, 2.0 * radius + 2.0) * light_cam.view();
+  const Mat4 view_proj = camera.projection() * camera.view();
+
+  // 2. Shadow pass.
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glBindFramebuffer(GL_FRAMEBUFFER, g.shadow_fbo);
+  glViewport(0, 0, g.shadow_size, g.shadow_size);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_FRONT);  // back faces cast the shadow: less acne on lit surfaces
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.5f, 2.0f);
+  GLuint p = g.skinned_depth.id();
+  glUseProgram(p);
+  set_mat4(p, g.skinned_depth.uniform("u_view_proj"), light_vp);
+  const int depth_base = g.skinned_depth.uniform("u_skin_base");
+  for (size_t i = 0; i < n; ++i) {
+    const GpuMesh& m = g.mesh_cache.at(g.character_shadow_mesh[i]);
+    glProgramUniform1i(p, depth_base, static_cast<int>(i * kJointCount));
+    glBindVertexArray(m.vao);
+    glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
+  }
+  p = g.static_depth.id();
+  glUseProgram(p);
+  set_mat4(p, g.static_depth.uniform("u_view_proj"), light_vp);
+  glDisable(GL_CULL_FACE);
+  for (const Mat4& model : g.box_models) {
+    set_mat4(p, g.static_depth.uniform("u_model"), model);
+    glBindVertexArray(g.cube.vao);
+    glDrawElements(GL_TRIANGLES, g.cube.count, GL_UNSIGNED_INT, nullptr);
+  }
+  set_mat4(p, g.static_depth.uniform("u_model"), Mat4::Identity());
+  for (const GpuMesh& m : g.environment_meshes) {
+    glBindVertexArray(m.vao);
+    glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
+  }
+  glDisable(GL_POLYGON_OFFSET_FILL);
+
+  // 3. Colour pass.
+  glBindFramebuffer(GL_FRAMEBUFFER, g.msaa_fbo);
+  glViewport(0, 0, width_, height_);
+  const float bg[4] = {options.background[0], options.background[1], options.background[2], 1.0f};
+  const float zero[4] = {0, 0, 0, 0};
+  const float one = 1.0f;
+  glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 0, bg);
+  glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 1, zero);
+  glClearNamedFramebufferfv(g.msaa_fbo, GL_DEPTH, 0, &one);
+  glBindTextureUnit(0, g.shadow_tex);
+  glBindTextureUnit(1, g.noise_tex);
+  const Mat4 shadow_matrix = light_vp;
+  for (GlProgram* prog : {&g.static_lit, &g.skinned_lit}) {
+    const GLuint id = prog->id();
+    set_mat4(id, prog->uniform("u_view_proj"), view_proj);
+    set_mat4(id, prog->uniform("u_light_view_proj"), shadow_matrix);
+    set_vec3(id, prog->uniform("u_eye"), camera.eye);
+    set_vec3(id, prog->uniform("u_key_dir"), key);
+    set_vec3(id, prog->uniform("u_fill_dir"), fill);
+    set_vec3(id, prog->uniform("u_rim_dir"), rim);
+    glProgramUniform1i(id, prog->uniform("u_shadow_map"), 0);
+    glProgramUniform1i(id, prog->uniform("u_ground_noise"), 1);
+    glProgramUniform1f(id, prog->uniform("u_shadow_texel"), 1.0f / static_cast<float>(g.shadow_size));
+    set_rgb(id, prog->uniform("u_background"), options.background);
+    glProgramUniform1f(id, prog->uniform("u_fog_density"), static_cast<float>(options.fog_density));
+    glProgramUniform1i(id, prog->uniform("u_overlap"), options.overlap ? 1 : 0);
+  }
+  // Characters first, ground last: early depth rejection then skips ground pixels behind people.
+  p = g.skinned_lit.id();
+  glUseProgram(p);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glProgramUniform1i(p, g.skinned_lit.uniform("u_material"), 0);
+  const int lit_base = g.skinned_lit.uniform("u_skin_base"), palette_loc = g.skinned_lit.uniform("u_palette");
+  const int offset_loc = g.skinned_lit.uniform("u_cap_offset"),
+            count_loc = g.skinned_lit.uniform("u_cap_count");
+  const int own_loc = g.skinned_lit.uniform("u_own_offset");
+  triangles_ = 0;
+  std::vector<size_t> order(n);
+  for (size_t i = 0; i < n; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {  // near to far
+    return (chars[a].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).squaredNorm() <
+           (chars[b].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).squaredNorm();
+  });
+  for (const size_t i : order) {
+    const GpuMesh& m = g.mesh_cache.at(g.character_mesh[i]);
+    const Palette& pal = palette(chars[i].palette);
+    float colours[8 * 3];
+    for (int r = 0; r < 8; ++r) {
+      const Rgb c =
+          pal.colour(static_cast<SkinRegion>(std::min(r, static_cast<int>(SkinRegion::kCount) - 1)));
+      for (int k = 0; k < 3; ++k)
+        colours[3 * r + k] = c[static_cast<size_t>(k)] * c[static_cast<size_t>(k)];  // gamma 2.0 -> linear
+    }
+    glProgramUniform3fv(p, palette_loc, 8, colours);
+    glProgramUniform1i(p, lit_base, static_cast<int>(i * kJointCount));
+    glProgramUniform1i(p, offset_loc, g.cap_offset[i]);
+    glProgramUniform1i(p, count_loc, g.cap_count[i]);
+    glProgramUniform1i(p, own_loc, g.own_offset[i]);
+    glBindVertexArray(m.vao);
+    glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
+    triangles_ += static_cast<size_t>(m.count) / 3;
+  }
+  glDisable(GL_CULL_FACE);
+  p = g.static_lit.id();
+  glUseProgram(p);
+  glProgramUniform1i(p, g.static_lit.uniform("u_material"), 2);
+  set_rgb(p, g.static_lit.uniform("u_base_color"), options.environment);
+  for (const Mat4& model : g.box_models) {
+    set_mat4(p, g.static_lit.uniform("u_model"), model);
+    glBindVertexArray(g.cube.vao);
+    glDrawElements(GL_TRIANGLES, g.cube.count, GL_UNSIGNED_INT, nullptr);
+  }
+  set_mat4(p, g.static_lit.uniform("u_model"), Mat4::Identity());
+  for (const GpuMesh& m : g.environment_meshes) {
+    glBindVertexArray(m.vao);
+    glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
+  }
+  if (crowd_->environment.ground_plane) {
+    glProgramUniform1i(p, g.static_lit.uniform("u_material"), 1);
+    set_rgb(p, g.static_lit.uniform("u_base_color"), options.ground);
+    set_mat4(p, g.static_lit.uniform("u_model"), Mat4::Identity());
+    glBindVertexArray(g.ground.vao);
+    glDrawElements(GL_TRIANGLES, g.ground.count, GL_UNSIGNED_INT, nullptr);
+  }
+  glBindVertexArray(0);
+
+  // 4. Resolve both colour attachments.
+  for (GLenum attachment : {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1}) {
+    glNamedFramebufferReadBuffer(g.msaa_fbo, attachment);
+    glNamedFramebufferDrawBuffer(g.resolve_fbo, attachment);
+    glBlitNamedFramebuffer(g.msaa_fbo, g.resolve_fbo, 0, 0, width_, height_, 0, 0, width_, height_,
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void Renderer::read_rgba(std::vector<std::uint8_t>& rgba) {
+  gl_->context.make_current();
+  rgba.resize(static_cast<size_t>(width_) * height_ * 4);
+  glNamedFramebufferReadBuffer(gl_->resolve_fbo, GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, gl_->resolve_fbo);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+}
+
+void Renderer::begin_read_rgba(int slot) {
+  gl_->context.make_current();
+  glNamedFramebufferReadBuffer(gl_->resolve_fbo, GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, gl_->resolve_fbo);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, gl_->pbo[slot & 1]);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+}
+
+void Renderer::finish_read_rgba(int slot, std::vector<std::uint8_t>& rgba) {
+  gl_->context.make_current();
+  const size_t bytes = static_cast<size_t>(width_) * height_ * 4;
+  rgba.resize(bytes);
+  const GLuint pbo = gl_->pbo[slot & 1];
+  const void* data = glMapNamedBufferRange(pbo, 0, static_cast<GLsizeiptr>(bytes), GL_MAP_READ_BIT);
+  if (!data) throw RuntimeError("OpenGL: mapping the pixel buffer failed");
+  std::memcpy(rgba.data(), data, bytes);
+  glUnmapNamedBuffer(pbo);
+}
+
+double Renderer::overlap_fraction() {
+  gl_->context.make_current();
+  Gl& g = *gl_;
+  g.mask_pixels.resize(static_cast<size_t>(width_) * height_);
+  glNamedFramebufferReadBuffer(g.resolve_fbo, GL_COLOR_ATTACHMENT1);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, g.resolve_fbo);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width_, height_, GL_RED, GL_UNSIGNED_BYTE, g.mask_pixels.data());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  size_t red = 0;
+  for (std::uint8_t v : g.mask_pixels) red += v >= 128;
+  return static_cast<double>(red) / static_cast<double>(g.mask_pixels.size());
+}
+
+}  // namespace crowdlab::stimuli

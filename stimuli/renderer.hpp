@@ -1,0 +1,90 @@
+#pragma once
+// Renderer: the OpenGL scene renderer for crowd stimuli. It owns the headless EGL context (reused
+// across clips), the GPU mesh cache (one mannequin mesh per distinct body shape) and the frame
+// buffers. One Renderer per thread; all calls must come from the thread that created it.
+//
+// Per frame:
+//   1. CPU: forward kinematics -> skin matrices (bone_world(frame) * bone_world(rest)^-1) for every
+//      character, uploaded to one SSBO; in overlap mode also every character's candidate capsules of
+//      OTHER characters (those whose bounding boxes meet its own), so each fragment tests only a few.
+//   2. Shadow pass: characters and environment into a depth map from the key light (orthographic,
+//      fitted to the crowd's clip-wide bounds).
+//   3. Colour pass into a 4x multisampled FBO (colour + overlap mask + depth): ground, environment,
+//      characters (back faces culled; the mannequin surface is closed).
+//   4. Resolve (blit) to single-sample buffers; pixels are then read back, optionally through a pair
+//      of pixel-buffer objects so that the read of frame f overlaps the rendering of frame f + 1 on GPUs.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "framework/core/crowd_animation.hpp"
+#include "stimuli/camera.hpp"
+#include "stimuli/mannequin_mesh.hpp"
+#include "stimuli/palette.hpp"
+
+namespace crowdlab::stimuli {
+
+struct SceneOptions {
+  bool overlap = false;                       ///< paint fragments inside other characters red
+  Rgb background = {0.847f, 0.867f, 0.890f};  ///< sRGB clear colour (#d8dde3)
+  double fog_density = 0.0;                   ///< EXP2 fog density (1/m); 0 = off
+  int msaa_samples = 4;
+  int shadow_map_size = 2048;
+  Rgb ground = {0.64f, 0.62f, 0.58f};       ///< sRGB base colour of the ground
+  Rgb environment = {0.78f, 0.76f, 0.72f};  ///< sRGB colour of boxes and meshes
+};
+
+/// Parses "#rrggbb" (or "rrggbb"); throws InputError otherwise.
+Rgb parse_hex_colour(const std::string& text, const std::string& context);
+
+class Renderer {
+ public:
+  explicit Renderer(MannequinOptions mesh_options = {});
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// GL_RENDERER / GL_VERSION of the context.
+  const std::string& device() const;
+
+  /// (Re)allocates the frame buffers for width x height pixels (> 0) and `samples` MSAA samples.
+  void set_size(int width, int height, int samples = 4, int shadow_map_size = 2048);
+
+  /// Prepares a crowd: builds (in parallel, cached across crowds) and uploads the mannequin meshes of
+  /// all body shapes, the environment geometry and the clip-wide bounds used by the shadow map.
+  /// Validates the crowd (InputError on bad input). The crowd must outlive later draw() calls.
+  void load_crowd(const CrowdAnimation& crowd);
+
+  /// Renders frame `frame` of the loaded crowd from `camera` into the resolved buffers.
+  void draw(int frame, const Camera& camera, const SceneOptions& options);
+
+  /// Reads the resolved colour buffer as width*height RGBA, bottom row first (synchronous).
+  void read_rgba(std::vector<std::uint8_t>& rgba);
+  /// Asynchronous read: starts copying the resolved colour buffer into PBO `slot` (0 or 1)...
+  void begin_read_rgba(int slot);
+  /// ...and waits for PBO `slot`'s pixels and copies them out (width*height RGBA, bottom row first).
+  void finish_read_rgba(int slot, std::vector<std::uint8_t>& rgba);
+
+  /// Fraction of the image's pixels whose visible surface lies inside another character (overlap
+  /// mode; the resolved mask >= 0.5, i.e. at least half the MSAA samples), of the last draw().
+  double overlap_fraction();
+
+  /// The crowd of the last load_crowd() (nullptr before).
+  const CrowdAnimation* loaded_crowd() const { return crowd_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  /// Number of distinct meshes in the cache and triangles drawn per character pass in the last draw.
+  std::size_t cached_meshes() const;
+  std::size_t triangles_per_frame() const { return triangles_; }
+
+ private:
+  struct Gl;
+  std::unique_ptr<Gl> gl_;
+  MannequinOptions mesh_options_;
+  const CrowdAnimation* crowd_ = nullptr;
+  int width_ = 0, height_ = 0;
+  std::size_t triangles_ = 0;
+};
+
+}  // namespace crowdlab::stimuli

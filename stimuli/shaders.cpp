@@ -1,0 +1,163 @@
+// Lighting model (standard film/photography three-point lighting, e.g. Birn, "Digital Lighting and
+// Rendering", 3rd ed., 2014, ch. 4): a key light with shadows (Lambert + Blinn-Phong highlight), a
+// fill light at about a third of the key from the other side, a rim light from behind the subject
+// that outlines silhouettes against the background, plus hemisphere ambient (sky above, ground
+// bounce below). Shading is done in linear RGB and gamma-encoded at the end with gamma 2.0 (sqrt),
+// a close, much cheaper stand-in for sRGB's ~2.2 on CPU rasterisers.
+// Shadows: a directional shadow map with hardware 2x2 percentage-closer filtering (Reeves et al. 1987).
+// Ground: a subtle 1 m checker (4.5 % contrast) times two octaves of tiling value noise from a texture.
+// Fog: exponential-squared in distance (the classic OpenGL GL_EXP2 fog), fading to the background.
+// Overlap mode (seed 000 Fig. 5, "in red, pixels of the image that contain overlapping volumes"): a
+// character fragment is painted red (and flagged in the second render target) when its visible
+// surface point lies inside a capsule of ANOTHER character, or when the pixel's ray, within 30 cm
+// behind the visible surface, passes through a point inside both this character's capsules and
+// another's. The second test is needed because an interpenetration volume is enclosed by the two
+// bodies' surfaces and is never itself the visible surface.
+#include "stimuli/shaders.hpp"
+
+namespace crowdlab::stimuli::glsl {
+
+const char* const kSkinnedVertex = R"(#version 450 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in uvec4 a_bones;
+layout(location = 3) in vec4 a_weights;
+layout(location = 4) in uint a_region;
+layout(std430, binding = 0) readonly buffer SkinMatrices { mat4 skin[]; };
+uniform mat4 u_view_proj;
+uniform int u_skin_base;
+out vec3 v_world;
+out vec3 v_normal;
+flat out uint v_region;
+void main() {
+  mat4 m = a_weights.x * skin[u_skin_base + int(a_bones.x)] + a_weights.y * skin[u_skin_base + int(a_bones.y)] +
+           a_weights.z * skin[u_skin_base + int(a_bones.z)] + a_weights.w * skin[u_skin_base + int(a_bones.w)];
+  vec4 world = m * vec4(a_position, 1.0);
+  v_world = world.xyz;
+  v_normal = mat3(m) * a_normal;
+  v_region = a_region;
+  gl_Position = u_view_proj * world;
+}
+)";
+
+const char* const kStaticVertex = R"(#version 450 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+uniform mat4 u_view_proj;
+uniform mat4 u_model;
+out vec3 v_world;
+out vec3 v_normal;
+flat out uint v_region;
+void main() {
+  vec4 world = u_model * vec4(a_position, 1.0);
+  v_world = world.xyz;
+  v_normal = mat3(u_model) * a_normal;
+  v_region = 0u;
+  gl_Position = u_view_proj * world;
+}
+)";
+
+const char* const kDepthFragment = R"(#version 450 core
+void main() {}
+)";
+
+const char* const kLitFragment = R"(#version 450 core
+in vec3 v_world;
+in vec3 v_normal;
+flat in uint v_region;
+layout(location = 0) out vec4 o_color;
+layout(location = 1) out float o_overlap;
+layout(std430, binding = 1) readonly buffer OverlapCapsules { vec4 caps[]; };  // (a, r), (b, 0) pairs
+uniform int u_material;          // 0 character, 1 ground, 2 flat colour
+uniform vec3 u_palette[8];       // LINEAR colour per SkinRegion
+uniform vec3 u_base_color;       // sRGB, material 2
+uniform vec3 u_eye;
+uniform vec3 u_key_dir, u_fill_dir, u_rim_dir;  // unit, toward the lights
+uniform mat4 u_light_view_proj;
+uniform sampler2DShadow u_shadow_map;
+uniform sampler2D u_ground_noise;  // tiling value noise in [0, 1], 1 texel = 5 cm
+uniform float u_shadow_texel;
+uniform vec3 u_background;       // sRGB
+uniform float u_fog_density;     // 0 = no fog (1/m)
+uniform int u_overlap;
+uniform int u_cap_offset;
+uniform int u_own_offset;         // this character's own 24 capsules
+uniform int u_cap_count;
+
+vec3 to_linear(vec3 c) { return c * c; }  // gamma 2.0, matching the sqrt encode below
+
+float shadow(vec3 p, vec3 n) {
+  vec4 l = u_light_view_proj * vec4(p + n * 0.02, 1.0);
+  vec3 s = l.xyz / l.w * 0.5 + 0.5;
+  if (s.x < 0.0 || s.x > 1.0 || s.y < 0.0 || s.y > 1.0 || s.z > 1.0) return 1.0;
+  return texture(u_shadow_map, vec3(s.xy, s.z - 0.0015));  // bilinear depth compare = 2x2 PCF
+}
+
+bool inside_capsules(vec3 p, int first, int count) {
+  for (int i = first; i < first + count; ++i) {
+    vec4 a = caps[2 * i];
+    vec3 ab = caps[2 * i + 1].xyz - a.xyz;
+    float t = clamp(dot(p - a.xyz, ab) / max(dot(ab, ab), 1e-12), 0.0, 1.0);
+    vec3 d = p - (a.xyz + t * ab);
+    if (dot(d, d) < a.w * a.w) return true;
+  }
+  return false;
+}
+
+// Does the pixel's ray pass through the volume shared by this character and another one, within
+// kOverlapDepth behind the visible surface? (Depth 0 is the visible point itself.)
+bool ray_hits_overlap(vec3 p) {
+  if (u_cap_count == 0) return false;
+  const int kSteps = 11;
+  const float kOverlapDepth = 0.30;  // metres: about the depth of a torso
+  vec3 dir = normalize(p - u_eye);
+  for (int k = 0; k < kSteps; ++k) {
+    vec3 q = p + dir * (kOverlapDepth * float(k) / float(kSteps - 1));
+    if (inside_capsules(q, u_cap_offset, u_cap_count) && (k == 0 || inside_capsules(q, u_own_offset, 24))) return true;
+  }
+  return false;
+}
+
+void main() {
+  vec3 n = normalize(v_normal);
+  if (!gl_FrontFacing) n = -n;
+  vec3 albedo;
+  float specular = 0.06;
+  bool overlap = false;
+  if (u_material == 0) {
+    albedo = u_palette[min(v_region, 7u)];
+    overlap = u_overlap != 0 && ray_hits_overlap(v_world);
+  } else if (u_material == 1) {
+    vec2 g = v_world.xz;
+    float checker = mod(floor(g.x) + floor(g.y), 2.0) == 0.0 ? 1.0 : 0.955;
+    float grain = 0.92 + 0.08 * texture(u_ground_noise, g * 0.078).r + 0.05 * texture(u_ground_noise, g * 0.0061).r;
+    albedo = to_linear(u_base_color) * checker * grain;
+    specular = 0.02;
+  } else {
+    albedo = to_linear(u_base_color);
+  }
+  vec3 v = normalize(u_eye - v_world);
+  float sh = shadow(v_world, n);
+  float key = max(dot(n, u_key_dir), 0.0) * sh;
+  float fill = max(dot(n, u_fill_dir), 0.0);
+  float grazing = 1.0 - max(dot(n, v), 0.0);
+  float rim = grazing * grazing * grazing * max(dot(n, u_rim_dir) + 0.3, 0.0);
+  vec3 sky = vec3(0.62, 0.68, 0.78), bounce = vec3(0.42, 0.39, 0.35);
+  vec3 ambient = mix(bounce, sky, 0.5 + 0.5 * n.y) * 0.42;
+  vec3 h = normalize(u_key_dir + v);
+  float nh = max(dot(n, h), 0.0);
+  nh *= nh; nh *= nh; nh *= nh; nh *= nh; nh *= nh;  // ^32 by squaring (cheaper than pow on CPU rasterisers)
+  float spec = nh * specular * sh;
+  vec3 color = albedo * (ambient + vec3(1.0, 0.97, 0.92) * 1.05 * key + vec3(0.75, 0.82, 1.0) * 0.32 * fill) +
+               vec3(spec) + (u_material == 0 ? vec3(0.22) * rim * albedo + vec3(0.05) * rim : vec3(0.0));
+  if (overlap) color = vec3(0.9, 0.02, 0.02) * (0.45 + 0.55 * max(dot(n, u_key_dir), 0.0) * sh + 0.3 * fill);
+  if (u_fog_density > 0.0) {
+    float d = length(u_eye - v_world) * u_fog_density;
+    color = mix(to_linear(u_background), color, exp(-d * d));
+  }
+  o_color = vec4(sqrt(clamp(color, 0.0, 1.0)), 1.0);  // gamma 2.0 encode (sqrt: far cheaper than pow on llvmpipe)
+  o_overlap = overlap ? 1.0 : 0.0;
+}
+)";
+
+}  // namespace crowdlab::stimuli::glsl

@@ -1,0 +1,159 @@
+#include "stimuli/video_encoder.hpp"
+
+extern "C" {
+#include <libavcodec/avcodec.h>
+#include <libavformat/avformat.h>
+#include <libavutil/opt.h>
+#include <libswscale/swscale.h>
+}
+
+#include <cmath>
+
+#include "framework/core/error.hpp"
+
+namespace crowdlab::stimuli {
+namespace {
+
+std::string av_error(int code) {
+  char buf[AV_ERROR_MAX_STRING_SIZE] = {0};
+  av_strerror(code, buf, sizeof buf);
+  return buf;
+}
+
+}  // namespace
+
+void validate_video_settings(const VideoSettings& s) {
+  if (s.width < 16 || s.height < 16 || s.width % 2 != 0 || s.height % 2 != 0)
+    throw InputError("video size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                     " is invalid: width and height must be even and >= 16 (H.264 yuv420p)");
+  if (!(s.fps > 0.0 && s.fps <= 240.0))
+    throw InputError("video fps must be in (0, 240], got " + std::to_string(s.fps));
+  if (s.crf < 0 || s.crf > 51) throw InputError("video crf must be in 0..51, got " + std::to_string(s.crf));
+}
+
+struct VideoEncoder::Impl {
+  AVFormatContext* format = nullptr;
+  AVCodecContext* codec = nullptr;
+  AVStream* stream = nullptr;
+  AVFrame* frame = nullptr;
+  AVPacket* packet = nullptr;
+  SwsContext* sws = nullptr;
+  bool open = false;
+
+  ~Impl() {
+    sws_freeContext(sws);
+    av_packet_free(&packet);
+    av_frame_free(&frame);
+    avcodec_free_context(&codec);
+    if (format) {
+      if (format->pb) avio_closep(&format->pb);
+      avformat_free_context(format);
+    }
+  }
+
+  void drain(bool flush) {
+    for (;;) {
+      const int r = avcodec_receive_packet(codec, packet);
+      if (r == AVERROR(EAGAIN) || (flush && r == AVERROR_EOF)) return;
+      if (r < 0) throw RuntimeError("H.264 encoding failed: " + av_error(r));
+      av_packet_rescale_ts(packet, codec->time_base, stream->time_base);
+      packet->stream_index = stream->index;
+      const int w = av_interleaved_write_frame(format, packet);
+      if (w < 0) throw RuntimeError("writing the video failed: " + av_error(w));
+    }
+  }
+};
+
+VideoEncoder::VideoEncoder(const std::string& path, const VideoSettings& s)
+    : impl_(std::make_unique<Impl>()) {
+  validate_video_settings(s);
+  Impl& m = *impl_;
+  if (avformat_alloc_output_context2(&m.format, nullptr, "mp4", path.c_str()) < 0 || !m.format)
+    throw RuntimeError("cannot create an MP4 container for " + path);
+  const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
+  if (!codec) codec = avcodec_find_encoder(AV_CODEC_ID_H264);
+  if (!codec) throw RuntimeError("no H.264 encoder in this libavcodec (install libx264 support)");
+  m.stream = avformat_new_stream(m.format, nullptr);
+  m.codec = avcodec_alloc_context3(codec);
+  if (!m.stream || !m.codec) throw RuntimeError("libav: out of memory");
+  const AVRational rate = std::abs(s.fps - std::round(s.fps)) < 1e-9
+                              ? AVRational{static_cast<int>(std::lround(s.fps)), 1}
+                              : av_d2q(s.fps, 100000);
+  m.codec->width = s.width;
+  m.codec->height = s.height;
+  m.codec->pix_fmt = AV_PIX_FMT_YUV420P;
+  m.codec->time_base = av_inv_q(rate);
+  m.codec->framerate = rate;
+  m.codec->gop_size = std::max(1, static_cast<int>(std::lround(2.0 * s.fps)));  // a keyframe every 2 s
+  m.codec->color_range = AVCOL_RANGE_MPEG;
+  m.codec->colorspace = AVCOL_SPC_BT709;
+  m.codec->color_primaries = AVCOL_PRI_BT709;
+  m.codec->color_trc = AVCOL_TRC_BT709;
+  if (m.format->oformat->flags & AVFMT_GLOBALHEADER) m.codec->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
+  AVDictionary* codec_opts = nullptr;
+  av_dict_set(&codec_opts, "crf", std::to_string(s.crf).c_str(), 0);
+  av_dict_set(&codec_opts, "preset", s.preset.c_str(), 0);
+  int r = avcodec_open2(m.codec, codec, &codec_opts);
+  av_dict_free(&codec_opts);
+  if (r < 0) throw RuntimeError("cannot open the H.264 encoder: " + av_error(r));
+  avcodec_parameters_from_context(m.stream->codecpar, m.codec);
+  m.stream->time_base = m.codec->time_base;
+  m.stream->avg_frame_rate = rate;
+  if ((r = avio_open(&m.format->pb, path.c_str(), AVIO_FLAG_WRITE)) < 0)
+    throw RuntimeError("cannot write " + path + ": " + av_error(r));
+  AVDictionary* mux_opts = nullptr;
+  av_dict_set(&mux_opts, "movflags", "+faststart", 0);
+  r = avformat_write_header(m.format, &mux_opts);
+  av_dict_free(&mux_opts);
+  if (r < 0) throw RuntimeError("cannot write the MP4 header of " + path + ": " + av_error(r));
+  m.open = true;
+  m.frame = av_frame_alloc();
+  m.packet = av_packet_alloc();
+  m.frame->format = AV_PIX_FMT_YUV420P;
+  m.frame->width = s.width;
+  m.frame->height = s.height;
+  if (!m.frame || !m.packet || av_frame_get_buffer(m.frame, 0) < 0)
+    throw RuntimeError("libav: out of memory");
+  // RGB (full range, sRGB-encoded) -> BT.709 limited-range YUV, the convention players assume for HD.
+  m.sws = sws_getContext(s.width, s.height, AV_PIX_FMT_RGBA, s.width, s.height, AV_PIX_FMT_YUV420P,
+                         SWS_BICUBIC, nullptr, nullptr, nullptr);
+  if (!m.sws) throw RuntimeError("libswscale: cannot convert RGBA to yuv420p");
+  const int* coeffs = sws_getCoefficients(SWS_CS_ITU709);
+  sws_setColorspaceDetails(m.sws, coeffs, 1, coeffs, 0, 0, 1 << 16, 1 << 16);
+}
+
+VideoEncoder::~VideoEncoder() {
+  try {
+    close();
+  } catch (...) {
+    // Destructors must not throw; close() explicitly to see errors.
+  }
+}
+
+void VideoEncoder::add_frame(const std::uint8_t* rgba, bool bottom_up) {
+  Impl& m = *impl_;
+  if (!m.open) throw RuntimeError("VideoEncoder: add_frame after close");
+  if (av_frame_make_writable(m.frame) < 0) throw RuntimeError("libav: frame not writable");
+  const int stride = 4 * m.codec->width;
+  const std::uint8_t* src =
+      bottom_up ? rgba + static_cast<std::ptrdiff_t>(stride) * (m.codec->height - 1) : rgba;
+  const int src_stride[1] = {bottom_up ? -stride : stride};
+  sws_scale(m.sws, &src, src_stride, 0, m.codec->height, m.frame->data, m.frame->linesize);
+  m.frame->pts = frames_++;
+  const int r = avcodec_send_frame(m.codec, m.frame);
+  if (r < 0) throw RuntimeError("H.264 encoding failed: " + av_error(r));
+  m.drain(false);
+}
+
+void VideoEncoder::close() {
+  Impl& m = *impl_;
+  if (!m.open) return;
+  m.open = false;
+  const int r = avcodec_send_frame(m.codec, nullptr);
+  if (r < 0) throw RuntimeError("flushing the H.264 encoder failed: " + av_error(r));
+  m.drain(true);
+  const int t = av_write_trailer(m.format);
+  if (t < 0) throw RuntimeError("writing the MP4 trailer failed: " + av_error(t));
+}
+
+}  // namespace crowdlab::stimuli
