@@ -140,9 +140,9 @@ struct ExperimentSpec {
   ProtocolSpec protocol;
   OutputSpec outputs;
 
-  const Factor* factor(const std::string& name) const {
+  const Factor* factor(const std::string& factor_name) const {
     for (const Factor& f : factors)
-      if (f.name == name) return &f;
+      if (f.name == factor_name) return &f;
     return nullptr;
   }
 };
