@@ -125,11 +125,11 @@ ResponseLog ResponseLog::reopen(const std::string& path, const std::vector<std::
   if (line_end.size() != table.rows.size())
     throw InputError(path + ": rows contain embedded newlines; not a crowdlab response log");
   std::map<int, int> rows_of_trial;
-  std::vector<int> trial_of_row;
+  std::vector<int> trial_of_row, session_of_row;
   for (size_t r = 0; r < table.rows.size(); ++r) {
     const int trial = parse_int(table.cell(r, trial_col), path, table.line_numbers[r], trial_column);
     const int session = parse_int(table.cell(r, session_col), path, table.line_numbers[r], session_column);
-    recovered.max_session = std::max(recovered.max_session, session);
+    session_of_row.push_back(session);
     trial_of_row.push_back(trial);
     ++rows_of_trial[trial];
   }
@@ -148,6 +148,7 @@ ResponseLog ResponseLog::reopen(const std::string& path, const std::vector<std::
                            std::to_string(rows_of_trial[trial_of_row[r]]) + " rows, expected " +
                            std::to_string(rows_per_trial) + " (the log was edited or is corrupted)");
   for (const auto& [trial, n] : rows_of_trial) recovered.completed_trials.insert(trial);
+  for (size_t r = 0; r < rows_kept; ++r) recovered.max_session = std::max(recovered.max_session, session_of_row[r]);
   recovered.rows = static_cast<long>(rows_kept);
   keep = rows_kept == 0 ? header_line.size() : line_end[rows_kept - 1];
   recovered.dropped_bytes = static_cast<long>(text.size() - keep);
