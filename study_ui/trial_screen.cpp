@@ -7,7 +7,7 @@ namespace crowdlab::study {
 namespace {
 
 const cv::Scalar kBackground(236, 233, 230), kCell(252, 251, 250), kInk(40, 36, 32), kMuted(120, 114, 108);
-const cv::Scalar kAccent(196, 112, 28), kAccentLight(250, 226, 200), kGreen(92, 160, 56), kDisabled(196, 192, 188);
+const cv::Scalar kAccent(196, 112, 28), kGreen(92, 160, 56), kDisabled(196, 192, 188);
 const cv::Scalar kBorder(214, 208, 202);
 
 void fill_round_rect(cv::Mat& img, cv::Rect r, int radius, cv::Scalar color) {
@@ -89,45 +89,37 @@ TrialLayout layout_trial_screen(cv::Size canvas, const std::vector<StudyQuestion
   return L;
 }
 
-void draw_trial_panel(cv::Mat& img, const TrialLayout& L, const std::vector<StudyQuestion>& questions,
-                      const TrialScreenState& state, const TextRenderer& text) {
+void draw_trial_static(cv::Mat& img, const TrialLayout& L, const std::vector<StudyQuestion>& questions,
+                       const std::string& header, bool enabled, const TextRenderer& text) {
   img.setTo(kBackground);
   const int margin = std::max(6, L.canvas.height / 60);
-  text.draw(img, state.header, {margin, margin / 4}, L.small_px, kMuted);
+  text.draw(img, header, {margin, margin / 4}, L.small_px, kMuted);
   cv::rectangle(img, L.video_area, cv::Scalar(24, 24, 24), cv::FILLED);
-  const int scale_focus = state.first_unanswered(questions, QuestionKind::scale);
-  const int yesno_focus = state.first_unanswered(questions, QuestionKind::yesno);
   for (size_t i = 0; i < questions.size(); ++i) {
     const StudyQuestion& q = questions[i];
     const cv::Rect cell = L.cells[i];
-    const bool focused = state.questions_enabled && (static_cast<int>(i) == scale_focus || static_cast<int>(i) == yesno_focus);
-    fill_round_rect(img, cell, margin / 2, focused ? kAccentLight : kCell);
-    if (focused) cv::rectangle(img, cell, kAccent, 1, cv::LINE_AA);
+    fill_round_rect(img, cell, margin / 2, kCell);
     // Statement: up to two lines, shrinking the font when it does not fit.
     int px = L.body_px;
     std::vector<std::string> lines = text.wrap(q.text, px, cell.width - 2 * margin);
     while (lines.size() > 2 && px > 10) lines = text.wrap(q.text, --px, cell.width - 2 * margin);
     for (size_t l = 0; l < lines.size() && l < 2; ++l)
       text.draw(img, lines[l], {cell.x + margin, cell.y + margin / 2 + static_cast<int>(l) * TextRenderer::line_height(px)},
-                px, state.questions_enabled ? kInk : kMuted);
+                px, enabled ? kInk : kMuted);
   }
   for (const TrialLayout::Target& t : L.targets) {
     if (t.question < 0) continue;
     const StudyQuestion& q = questions[static_cast<size_t>(t.question)];
-    const bool selected = state.answers[static_cast<size_t>(t.question)] == t.value;
-    const cv::Scalar ink = state.questions_enabled ? kInk : kDisabled;
+    const cv::Scalar ink = enabled ? kInk : kDisabled;
     if (q.kind == QuestionKind::yesno) {
-      fill_round_rect(img, t.rect, t.rect.height / 2, selected ? kAccent : kCell);
-      if (!selected) cv::rectangle(img, t.rect, kBorder, 1, cv::LINE_AA);
-      draw_centered(img, text, t.value == 1 ? "Yes (Y)" : "No (N)", t.rect, L.small_px,
-                    selected ? cv::Scalar(255, 255, 255) : ink);
+      fill_round_rect(img, t.rect, 3, kCell);
+      cv::rectangle(img, t.rect, kBorder, 1, cv::LINE_AA);
+      draw_centered(img, text, t.value == 1 ? "Yes (Y)" : "No (N)", t.rect, L.small_px, ink);
       continue;
     }
     const cv::Point c(t.rect.x + t.rect.width / 2, t.rect.y + t.rect.height / 2);
-    const int r = t.rect.width / 2;
-    if (selected) cv::circle(img, c, r, kAccent, cv::FILLED, cv::LINE_AA);
-    cv::circle(img, c, r, selected ? kAccent : kMuted, 2, cv::LINE_AA);
-    draw_centered(img, text, std::to_string(t.value), t.rect, L.small_px, selected ? cv::Scalar(255, 255, 255) : ink);
+    cv::circle(img, c, t.rect.width / 2, kMuted, 2, cv::LINE_AA);
+    draw_centered(img, text, std::to_string(t.value), t.rect, L.small_px, ink);
     const int label_y = t.rect.y + t.rect.height + 2;
     if (t.value == 1 && !q.low_label.empty())
       text.draw(img, q.low_label, {t.rect.x, label_y}, L.small_px * 9 / 10, kMuted);
@@ -136,10 +128,38 @@ void draw_trial_panel(cv::Mat& img, const TrialLayout& L, const std::vector<Stud
       text.draw(img, q.high_label, {t.rect.x + t.rect.width - w, label_y}, L.small_px * 9 / 10, kMuted);
     }
   }
+}
+
+void draw_trial_answers(cv::Mat& img, const TrialLayout& L, const std::vector<StudyQuestion>& questions,
+                        const TrialScreenState& state, const TextRenderer& text) {
+  const int margin = std::max(6, L.canvas.height / 60);
+  const int scale_focus = state.first_unanswered(questions, QuestionKind::scale);
+  const int yesno_focus = state.first_unanswered(questions, QuestionKind::yesno);
+  for (size_t i = 0; i < questions.size() && state.questions_enabled; ++i)
+    if (static_cast<int>(i) == scale_focus || static_cast<int>(i) == yesno_focus)
+      cv::rectangle(img, L.cells[i], kAccent, 2, cv::LINE_AA);  // where the keys go
+  for (const TrialLayout::Target& t : L.targets) {
+    if (t.question < 0 || state.answers[static_cast<size_t>(t.question)] != t.value) continue;
+    const StudyQuestion& q = questions[static_cast<size_t>(t.question)];
+    if (q.kind == QuestionKind::yesno) {
+      fill_round_rect(img, t.rect, 3, kAccent);
+      draw_centered(img, text, t.value == 1 ? "Yes (Y)" : "No (N)", t.rect, L.small_px, cv::Scalar(255, 255, 255));
+      continue;
+    }
+    const cv::Point c(t.rect.x + t.rect.width / 2, t.rect.y + t.rect.height / 2);
+    cv::circle(img, c, t.rect.width / 2 + 1, kAccent, cv::FILLED, cv::LINE_AA);
+    draw_centered(img, text, std::to_string(t.value), t.rect, L.small_px, cv::Scalar(255, 255, 255));
+  }
   const bool ready = state.all_answered();
   fill_round_rect(img, L.next_button, margin / 2, ready ? kGreen : kDisabled);
   draw_centered(img, text, ready ? "Next (Enter)" : "Answer every question", L.next_button, L.small_px,
                 cv::Scalar(255, 255, 255));
+}
+
+void draw_trial_panel(cv::Mat& img, const TrialLayout& L, const std::vector<StudyQuestion>& questions,
+                      const TrialScreenState& state, const TextRenderer& text) {
+  draw_trial_static(img, L, questions, state.header, state.questions_enabled, text);
+  draw_trial_answers(img, L, questions, state, text);
   if (state.confirm_abort) draw_abort_confirmation(img, text);
 }
 

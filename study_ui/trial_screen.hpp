@@ -49,7 +49,14 @@ struct TrialLayout {
 
 TrialLayout layout_trial_screen(cv::Size canvas, const std::vector<StudyQuestion>& questions);
 
-/// Draws everything but the video (background, header, questions, Next, confirmation overlay).
+/// The parts of the trial screen that do not change while the participant answers: background,
+/// header, statements, unselected scales and labels (FreeType text: tens of ms, so drawn once).
+void draw_trial_static(cv::Mat& canvas, const TrialLayout& layout, const std::vector<StudyQuestion>& questions,
+                       const std::string& header, bool enabled, const TextRenderer& text);
+/// Over a static panel: the selected answers, the focus frame and the Next button (cheap).
+void draw_trial_answers(cv::Mat& canvas, const TrialLayout& layout, const std::vector<StudyQuestion>& questions,
+                        const TrialScreenState& state, const TextRenderer& text);
+/// Everything but the video (static + answers + confirmation overlay).
 void draw_trial_panel(cv::Mat& canvas, const TrialLayout& layout, const std::vector<StudyQuestion>& questions,
                       const TrialScreenState& state, const TextRenderer& text);
 

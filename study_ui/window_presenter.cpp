@@ -79,7 +79,9 @@ WindowPresenter::WindowPresenter(const WindowOptions& options) {
   if ((display == nullptr || *display == '\0') && (wayland == nullptr || *wayland == '\0'))
     throw RuntimeError("no display (DISPLAY is not set): run on a desktop, under Xvfb, or use --responses/--simulate");
   impl_ = std::make_unique<Impl>(options);
-  cv::namedWindow(kWindow, cv::WINDOW_NORMAL);
+  // GUI_NORMAL: no Qt toolbar or status bar (Debian's OpenCV highgui uses the Qt backend), so the
+  // canvas fills the window and mouse coordinates are canvas coordinates.
+  cv::namedWindow(kWindow, cv::WINDOW_NORMAL | cv::WINDOW_KEEPRATIO | cv::WINDOW_GUI_NORMAL);
   if (options.fullscreen) {
     cv::setWindowProperty(kWindow, cv::WND_PROP_FULLSCREEN, cv::WINDOW_FULLSCREEN);
     cv::imshow(kWindow, cv::Mat(480, 640, CV_8UC3, cv::Scalar(236, 233, 230)));
@@ -162,12 +164,15 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
   const std::string tag = "trial_" + std::to_string(req.trial->index);
 
   TrialOutcome out;
-  cv::Mat panel(m.canvas_size, CV_8UC3), canvas(m.canvas_size, CV_8UC3);
-  bool panel_dirty = true, redraw = true, snap_onset = true, snap_answered = true;
+  cv::Mat static_panel(m.canvas_size, CV_8UC3), panel(m.canvas_size, CV_8UC3), canvas(m.canvas_size, CV_8UC3);
+  bool static_dirty = true, panel_dirty = true, redraw = true, snap_onset = true, snap_answered = true;
   const double period_ms = 1000.0 / video.fps();
   Clock::time_point onset;
   long shown = -1;
   bool video_done = false;
+  // The static panel (FreeType text, tens of ms) is drawn before onset, so it costs no frame.
+  draw_trial_static(static_panel, layout, qs, state.header, state.questions_enabled, m.text);
+  static_dirty = false;
   m.clicks.clear();
 
   auto answer = [&](int q, int value, double rt_ms) {
@@ -182,7 +187,7 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
     long due = static_cast<long>(std::floor(ms_since(onset) / period_ms));
     if (!req.loop_video && due >= video.frame_count()) {
       due = video.frame_count() - 1;
-      if (!video_done) video_done = true, state.questions_enabled = true, panel_dirty = true;
+      if (!video_done) video_done = true, state.questions_enabled = true, static_dirty = panel_dirty = true;
     }
     const cv::Mat* frame = nullptr;
     if (due != shown) {
@@ -193,10 +198,13 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
       redraw = true;
     }
     // 2. Compose: the panel only when answers changed, the video every frame.
+    if (static_dirty) {
+      draw_trial_static(static_panel, layout, qs, state.header, state.questions_enabled, m.text);
+      static_dirty = false;
+    }
     if (panel_dirty) {
-      TrialScreenState plain = state;
-      plain.confirm_abort = false;
-      draw_trial_panel(panel, layout, qs, plain, m.text);
+      static_panel.copyTo(panel);
+      draw_trial_answers(panel, layout, qs, state, m.text);
       panel_dirty = false;
       redraw = true;
       frame = &video.frame(shown);

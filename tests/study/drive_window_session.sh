@@ -35,7 +35,7 @@ window() {
   xdotool windowfocus --sync "$wid" 2>/dev/null || true
   echo "$wid"
 }
-key() { xdotool key --delay 60 "$@"; sleep 0.12; }
+key() { xdotool key --delay 150 "$@"; sleep 0.15; }
 click_target() {  # click_target QUESTION VALUE
   local x y
   read -r x y < <(awk -v q="$1" -v v="$2" '$1==q && $2==v {print $3, $4}' "$TARGETS")
