@@ -37,7 +37,8 @@ std::vector<int> williams_row(int n, std::uint64_t row) {
   std::vector<int> out(static_cast<size_t>(n));
   for (int j = 0; j < n; ++j) {
     const int base = (j % 2 == 1) ? (j + 1) / 2 : (j == 0 ? 0 : n - j / 2);
-    out[static_cast<size_t>(j)] = static_cast<int>((static_cast<std::uint64_t>(base) + row) % static_cast<std::uint64_t>(n));
+    out[static_cast<size_t>(j)] =
+        static_cast<int>((static_cast<std::uint64_t>(base) + row) % static_cast<std::uint64_t>(n));
   }
   return out;
 }
@@ -45,11 +46,12 @@ std::vector<int> williams_row(int n, std::uint64_t row) {
 std::vector<Trial> build_trial_list(const ProtocolSpec& protocol, const StimulusManifest& manifest,
                                     std::uint64_t spec_seed, const std::string& participant) {
   const std::string& block_by = protocol.block_by;
-  if (!block_by.empty() &&
-      std::find(manifest.factor_names.begin(), manifest.factor_names.end(), block_by) == manifest.factor_names.end())
+  if (!block_by.empty() && std::find(manifest.factor_names.begin(), manifest.factor_names.end(), block_by) ==
+                               manifest.factor_names.end())
     throw InputError(SourceLocation{"", 0, 0, "protocol.blocks"},
                      "block factor '" + block_by + "' is not a column of the stimulus manifest");
-  if (protocol.block_order != "random" && protocol.block_order != "fixed" && protocol.block_order != "latin_square")
+  if (protocol.block_order != "random" && protocol.block_order != "fixed" &&
+      protocol.block_order != "latin_square")
     throw InputError(SourceLocation{"", 0, 0, "protocol.block_order"},
                      "unknown block order '" + protocol.block_order + "' (random | fixed | latin_square)");
 
@@ -89,8 +91,8 @@ std::vector<Trial> build_trial_list(const ProtocolSpec& protocol, const Stimulus
   }
 
   std::vector<Trial> trials;
-  auto append = [&](std::vector<StimulusEntry> entries, const std::string& block, int block_number, bool practice,
-                    const std::string& stream) {
+  auto append = [&](std::vector<StimulusEntry> entries, const std::string& block, int block_number,
+                    bool practice, const std::string& stream) {
     Rng rng(derive_seed(seed, stream));
     shuffle_in_place(entries, rng);
     for (StimulusEntry& e : entries) {

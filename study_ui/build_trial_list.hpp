@@ -26,9 +26,9 @@
 namespace crowdlab::study {
 
 struct Trial {
-  int index = 0;          ///< 1-based position in the participant's sequence
-  std::string block;      ///< block name (level of block_by, "all", or "practice")
-  int block_number = 0;   ///< 1-based position of the block in this participant's order (0 = practice)
+  int index = 0;         ///< 1-based position in the participant's sequence
+  std::string block;     ///< block name (level of block_by, "all", or "practice")
+  int block_number = 0;  ///< 1-based position of the block in this participant's order (0 = practice)
   StimulusEntry stimulus;
   bool practice = false;
 };

@@ -24,7 +24,8 @@ std::vector<size_t> dv_items(const ProtocolSpec& protocol, const std::vector<Stu
     if (c.id == dv) {
       std::vector<size_t> items;
       for (const auto& item : c.items) items.push_back(index_of(item));
-      if (items.empty()) throw InputError(SourceLocation{"", 0, 0, "--dv"}, "composite '" + dv + "' has no items");
+      if (items.empty())
+        throw InputError(SourceLocation{"", 0, 0, "--dv"}, "composite '" + dv + "' has no items");
       return items;
     }
   for (size_t i = 0; i < questions.size(); ++i)
@@ -40,7 +41,8 @@ std::vector<PowerRow> estimate_power(const ExperimentSpec& spec, const StimulusM
   std::string dv = opt.dv;
   const std::vector<size_t> items = dv_items(spec.protocol, questions, dv);
   if (opt.simulations < 1) throw InputError(SourceLocation{"", 0, 0, "--simulations"}, "must be >= 1");
-  if (!(opt.alpha > 0 && opt.alpha < 1)) throw InputError(SourceLocation{"", 0, 0, "--alpha"}, "must be in (0, 1)");
+  if (!(opt.alpha > 0 && opt.alpha < 1))
+    throw InputError(SourceLocation{"", 0, 0, "--alpha"}, "must be in (0, 1)");
   std::vector<const StimulusEntry*> at_a, at_b;
   for (const StimulusEntry& e : manifest.entries) {
     if (e.practice) continue;
@@ -49,8 +51,10 @@ std::vector<PowerRow> estimate_power(const ExperimentSpec& spec, const StimulusM
     if (it->second == opt.level_a) at_a.push_back(&e);
     if (it->second == opt.level_b) at_b.push_back(&e);
   }
-  if (std::find(manifest.factor_names.begin(), manifest.factor_names.end(), opt.factor) == manifest.factor_names.end())
-    throw InputError(SourceLocation{"", 0, 0, "--contrast"}, "factor '" + opt.factor + "' is not in the manifest");
+  if (std::find(manifest.factor_names.begin(), manifest.factor_names.end(), opt.factor) ==
+      manifest.factor_names.end())
+    throw InputError(SourceLocation{"", 0, 0, "--contrast"},
+                     "factor '" + opt.factor + "' is not in the manifest");
   if (at_a.empty() || at_b.empty())
     throw InputError(SourceLocation{"", 0, 0, "--contrast"},
                      "no test stimuli at " + opt.factor + "=" + (at_a.empty() ? opt.level_a : opt.level_b));
@@ -77,8 +81,8 @@ std::vector<PowerRow> estimate_power(const ExperimentSpec& spec, const StimulusM
     for (int s = 0; s < opt.simulations; ++s) {
       std::vector<double> diffs;
       for (int i = 0; i < n; ++i) {
-        const std::uint64_t seed =
-            derive_seed(opt.seed, "power:n" + std::to_string(n) + ":s" + std::to_string(s) + ":o" + std::to_string(i));
+        const std::uint64_t seed = derive_seed(
+            opt.seed, "power:n" + std::to_string(n) + ":s" + std::to_string(s) + ":o" + std::to_string(i));
         const Observer o = draw_observer(model, seed);
         Rng rng(derive_seed(seed, "answers"));
         const double a = mean_dv(o, at_a, rng);

@@ -18,10 +18,10 @@
 namespace crowdlab::study {
 
 struct PowerOptions {
-  std::string factor;         ///< contrast factor, e.g. "method"
-  std::string level_a;        ///< reference level, e.g. "baseline"
-  std::string level_b;        ///< tested level, e.g. "ours"
-  std::string dv;             ///< question or composite id ("" = first composite, else first question)
+  std::string factor;   ///< contrast factor, e.g. "method"
+  std::string level_a;  ///< reference level, e.g. "baseline"
+  std::string level_b;  ///< tested level, e.g. "ours"
+  std::string dv;       ///< question or composite id ("" = first composite, else first question)
   std::vector<int> sample_sizes = {10, 20, 30};
   int simulations = 200;
   double alpha = 0.05;
@@ -30,9 +30,9 @@ struct PowerOptions {
 
 struct PowerRow {
   int n = 0;
-  double power = 0.0;              ///< fraction of simulations with p < alpha
-  double mean_difference = 0.0;    ///< mean over simulations of mean(B - A), dv units
-  double mean_cohens_dz = 0.0;     ///< mean over simulations
+  double power = 0.0;            ///< fraction of simulations with p < alpha
+  double mean_difference = 0.0;  ///< mean over simulations of mean(B - A), dv units
+  double mean_cohens_dz = 0.0;   ///< mean over simulations
   int simulations = 0;
 };
 

@@ -23,7 +23,9 @@ PairedTTest paired_t_test(const std::vector<double>& d) {
   const double sd = std::sqrt(ss / (n - 1.0));
   r.df = n - 1.0;
   if (sd == 0.0) {
-    r.t = r.mean_difference == 0.0 ? 0.0 : std::copysign(std::numeric_limits<double>::infinity(), r.mean_difference);
+    r.t = r.mean_difference == 0.0
+              ? 0.0
+              : std::copysign(std::numeric_limits<double>::infinity(), r.mean_difference);
     r.p_two_sided = r.mean_difference == 0.0 ? 1.0 : 0.0;
     r.cohens_dz = r.t;
     return r;

@@ -17,8 +17,8 @@ enum class ScreenKind { instructions, consent, practice_intro, block_intro, brea
 /// One answer as given: the raw response and its response time from stimulus onset.
 struct Answer {
   std::string question_id;
-  int raw = 0;         ///< 1..k for scales, 1 = yes / 0 = no
-  double rt_ms = 0.0;  ///< from stimulus onset (first frame on screen) to the answer
+  int raw = 0;                ///< 1..k for scales, 1 = yes / 0 = no
+  double rt_ms = 0.0;         ///< from stimulus onset (first frame on screen) to the answer
   std::string timestamp_utc;  ///< ISO 8601, when the answer was given
 };
 

@@ -16,7 +16,9 @@
 namespace crowdlab::study {
 namespace {
 
-std::string errno_text() { return std::strerror(errno); }
+std::string errno_text() {
+  return std::strerror(errno);
+}
 
 void write_all(int fd, const std::string& bytes, const std::string& path) {
   size_t done = 0;
@@ -75,7 +77,8 @@ void write_file_atomically(const std::string& path, const std::string& text) {
     throw;
   }
   ::close(fd);
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw RuntimeError(path + ": rename failed: " + errno_text());
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw RuntimeError(path + ": rename failed: " + errno_text());
   fsync_parent_directory(path);
 }
 
@@ -148,7 +151,8 @@ ResponseLog ResponseLog::reopen(const std::string& path, const std::vector<std::
                            std::to_string(rows_of_trial[trial_of_row[r]]) + " rows, expected " +
                            std::to_string(rows_per_trial) + " (the log was edited or is corrupted)");
   for (const auto& [trial, n] : rows_of_trial) recovered.completed_trials.insert(trial);
-  for (size_t r = 0; r < rows_kept; ++r) recovered.max_session = std::max(recovered.max_session, session_of_row[r]);
+  for (size_t r = 0; r < rows_kept; ++r)
+    recovered.max_session = std::max(recovered.max_session, session_of_row[r]);
   recovered.rows = static_cast<long>(rows_kept);
   keep = rows_kept == 0 ? header_line.size() : line_end[rows_kept - 1];
   recovered.dropped_bytes = static_cast<long>(text.size() - keep);
@@ -167,7 +171,8 @@ ResponseLog ResponseLog::reopen(const std::string& path, const std::vector<std::
 void ResponseLog::append_trial(const std::vector<std::vector<std::string>>& rows) {
   std::string bytes;
   for (const auto& row : rows) {
-    if (row.size() != columns_) throw RuntimeError(path_ + ": internal error: row has the wrong number of fields");
+    if (row.size() != columns_)
+      throw RuntimeError(path_ + ": internal error: row has the wrong number of fields");
     std::vector<std::string> clean = row;
     for (std::string& f : clean)
       for (char& c : f)

@@ -20,11 +20,11 @@
 namespace crowdlab::study {
 
 struct RecoveredLog {
-  std::set<int> completed_trials;   ///< trial indices with all their rows on disk
-  int max_session = 0;              ///< highest session number in the file
-  long rows = 0;                    ///< complete rows kept
-  long dropped_bytes = 0;           ///< bytes of torn or incomplete tail removed
-  int dropped_rows = 0;             ///< complete rows of an incomplete last trial removed
+  std::set<int> completed_trials;  ///< trial indices with all their rows on disk
+  int max_session = 0;             ///< highest session number in the file
+  long rows = 0;                   ///< complete rows kept
+  long dropped_bytes = 0;          ///< bytes of torn or incomplete tail removed
+  int dropped_rows = 0;            ///< complete rows of an incomplete last trial removed
 };
 
 class ResponseLog {
@@ -51,7 +51,8 @@ class ResponseLog {
   const std::string& path() const { return path_; }
 
  private:
-  ResponseLog(std::string path, int fd, size_t columns) : path_(std::move(path)), fd_(fd), columns_(columns) {}
+  ResponseLog(std::string path, int fd, size_t columns)
+      : path_(std::move(path)), fd_(fd), columns_(columns) {}
   std::string path_;
   int fd_ = -1;
   size_t columns_ = 0;

@@ -19,8 +19,8 @@ namespace crowdlab::study {
 namespace fs = std::filesystem;
 namespace {
 
-const std::vector<std::string> kFixedColumns = {"participant", "session",  "block",         "trial",
-                                                "stimulus",    "question", "response",      "reverse_coded",
+const std::vector<std::string> kFixedColumns = {"participant", "session",   "block",    "trial",
+                                                "stimulus",    "question",  "response", "reverse_coded",
                                                 "rt_ms",       "timestamp", "practice"};
 
 nlohmann::json read_metadata(const std::string& path) {
@@ -33,7 +33,8 @@ nlohmann::json read_metadata(const std::string& path) {
   }
 }
 
-std::vector<std::vector<std::string>> trial_rows(const std::string& participant, int session, const Trial& trial,
+std::vector<std::vector<std::string>> trial_rows(const std::string& participant, int session,
+                                                 const Trial& trial,
                                                  const std::vector<std::string>& factor_names,
                                                  const std::vector<StudyQuestion>& questions,
                                                  const std::vector<Answer>& answers) {
@@ -41,8 +42,8 @@ std::vector<std::vector<std::string>> trial_rows(const std::string& participant,
   for (size_t i = 0; i < questions.size(); ++i) {
     const StudyQuestion& q = questions[i];
     const Answer& a = answers[i];
-    std::vector<std::string> row = {participant, std::to_string(session), trial.block, std::to_string(trial.index),
-                                    trial.stimulus.id};
+    std::vector<std::string> row = {participant, std::to_string(session), trial.block,
+                                    std::to_string(trial.index), trial.stimulus.id};
     for (const auto& f : factor_names) {
       auto it = trial.stimulus.factors.find(f);
       row.push_back(it == trial.stimulus.factors.end() ? "" : it->second);
@@ -58,16 +59,18 @@ std::vector<std::vector<std::string>> trial_rows(const std::string& participant,
   return rows;
 }
 
-void check_answers(const TrialOutcome& outcome, const std::vector<StudyQuestion>& questions, const Trial& trial) {
+void check_answers(const TrialOutcome& outcome, const std::vector<StudyQuestion>& questions,
+                   const Trial& trial) {
   if (outcome.answers.size() != questions.size())
     throw RuntimeError("trial " + std::to_string(trial.index) + ": presenter returned " +
-                       std::to_string(outcome.answers.size()) + " answers for " + std::to_string(questions.size()) +
-                       " questions");
+                       std::to_string(outcome.answers.size()) + " answers for " +
+                       std::to_string(questions.size()) + " questions");
   for (size_t i = 0; i < questions.size(); ++i) {
     const Answer& a = outcome.answers[i];
-    if (a.question_id != questions[i].id || !questions[i].valid(a.raw) || !std::isfinite(a.rt_ms) || a.rt_ms < 0)
-      throw RuntimeError("trial " + std::to_string(trial.index) + ": invalid answer to " + questions[i].id + " (" +
-                         std::to_string(a.raw) + ")");
+    if (a.question_id != questions[i].id || !questions[i].valid(a.raw) || !std::isfinite(a.rt_ms) ||
+        a.rt_ms < 0)
+      throw RuntimeError("trial " + std::to_string(trial.index) + ": invalid answer to " + questions[i].id +
+                         " (" + std::to_string(a.raw) + ")");
   }
 }
 
@@ -76,7 +79,8 @@ void check_answers(const TrialOutcome& outcome, const std::vector<StudyQuestion>
 void check_participant_id(const std::string& participant) {
   bool ok = !participant.empty() && participant.size() <= 64;
   for (char c : participant)
-    ok = ok && ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-');
+    ok = ok &&
+         ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-');
   if (!ok)
     throw InputError(SourceLocation{"", 0, 0, "--participant"},
                      "participant id '" + participant + "' must be 1-64 characters of A-Z a-z 0-9 _ -");
@@ -94,8 +98,8 @@ std::vector<std::string> response_header(const std::vector<std::string>& factor_
   return header;
 }
 
-SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& manifest, const SessionOptions& opt,
-                          Presenter& presenter) {
+SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& manifest,
+                          const SessionOptions& opt, Presenter& presenter) {
   check_participant_id(opt.participant);
   const std::vector<StudyQuestion> questions = resolve_questions(spec.protocol);
   const std::vector<Trial> trials = build_trial_list(spec.protocol, manifest, spec.seed, opt.participant);
@@ -123,8 +127,9 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     log.emplace(ResponseLog::reopen(result.csv_path, header, "trial", "session",
                                     static_cast<int>(questions.size()), recovered));
     if (recovered.dropped_bytes > 0)
-      spdlog::warn("{}: dropped {} byte(s) of an interrupted trial ({} complete row(s) of it); it will be asked again",
-                   result.csv_path, recovered.dropped_bytes, recovered.dropped_rows);
+      spdlog::warn(
+          "{}: dropped {} byte(s) of an interrupted trial ({} complete row(s) of it); it will be asked again",
+          result.csv_path, recovered.dropped_bytes, recovered.dropped_rows);
   } else {
     log.emplace(ResponseLog::create(result.csv_path, header));
   }
@@ -152,13 +157,16 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     meta["runs"] = nlohmann::json::array();
     meta["start_utc"] = iso8601_utc_now();
   }
-  nlohmann::json run = {{"session", session},
-                        {"start_utc", iso8601_utc_now()},
-                        {"end_utc", nullptr},
-                        {"status", "running"},
-                        {"presenter", opt.presenter_name},
-                        {"screen", {{"width", screen.width}, {"height", screen.height}, {"kind", screen.kind}}},
-                        {"resumed_at_trials_done", result.trials_already_done}};
+  for (auto& earlier : meta["runs"])
+    if (earlier.value("status", "") == "running") earlier["status"] = "interrupted";  // killed or crashed
+  nlohmann::json run = {
+      {"session", session},
+      {"start_utc", iso8601_utc_now()},
+      {"end_utc", nullptr},
+      {"status", "running"},
+      {"presenter", opt.presenter_name},
+      {"screen", {{"width", screen.width}, {"height", screen.height}, {"kind", screen.kind}}},
+      {"resumed_at_trials_done", result.trials_already_done}};
   meta["runs"].push_back(run);
   meta["end_utc"] = nullptr;
   auto save_meta = [&](const std::string& status) {
@@ -184,7 +192,8 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     return result;
   };
   const ProtocolSpec& p = spec.protocol;
-  if (!p.instructions.empty() && !presenter.show_screen(ScreenKind::instructions, "Instructions", p.instructions))
+  if (!p.instructions.empty() &&
+      !presenter.show_screen(ScreenKind::instructions, "Instructions", p.instructions))
     return abort_session();
   if (result.trials_already_done == 0 && !p.consent.empty() &&
       !presenter.show_screen(ScreenKind::consent, "Consent", p.consent))
@@ -208,8 +217,9 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     }
     if (!t.practice && (in_practice || t.block != current_block) && (multiple_blocks || in_practice)) {
       const std::string title = multiple_blocks ? "Part " + std::to_string(t.block_number) : "Main part";
-      const std::string body = in_practice ? "The practice is over. The experiment starts now.\n\nPress any key."
-                                           : "Press any key to continue.";
+      const std::string body = in_practice
+                                   ? "The practice is over. The experiment starts now.\n\nPress any key."
+                                   : "Press any key to continue.";
       if (!presenter.show_screen(ScreenKind::block_intro, title, body)) return abort_session();
     }
     in_practice = t.practice;
@@ -227,15 +237,16 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     result.frames_dropped += outcome.frames_dropped;
     if (outcome.aborted) return abort_session();
     check_answers(outcome, questions, t);
-    log->append_trial(trial_rows(opt.participant, session, t, manifest.factor_names, questions, outcome.answers));
+    log->append_trial(
+        trial_rows(opt.participant, session, t, manifest.factor_names, questions, outcome.answers));
     ++result.trials_done_now;
     if (outcome.frames_dropped > 0)
       spdlog::info("trial {} ({}): {} of {} frame(s) dropped", t.index, t.stimulus.id, outcome.frames_dropped,
                    outcome.frames_shown + outcome.frames_dropped);
     if (!t.practice) ++test_done;
+    save_meta("running");  // progress and dropped frames survive a kill too
     const bool last = t.index == static_cast<int>(trials.size());
     if (!last && !t.practice && p.break_every > 0 && test_done % p.break_every == 0) {
-      save_meta("running");
       if (!presenter.show_screen(ScreenKind::break_screen, "Break", p.break_text)) return abort_session();
     }
   }

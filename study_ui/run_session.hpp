@@ -25,11 +25,12 @@
 namespace crowdlab::study {
 
 struct SessionOptions {
-  std::string participant;   ///< [A-Za-z0-9_-], 1..64 characters
-  std::string stimuli_dir;   ///< folder of manifest.csv (stimulus paths are relative to it)
-  std::string out_dir;       ///< created when absent
-  bool resume = false;       ///< continue a session that was interrupted
-  std::string presenter_name = "window";  ///< recorded in the metadata ("window", "scripted", "simulated:...")
+  std::string participant;  ///< [A-Za-z0-9_-], 1..64 characters
+  std::string stimuli_dir;  ///< folder of manifest.csv (stimulus paths are relative to it)
+  std::string out_dir;      ///< created when absent
+  bool resume = false;      ///< continue a session that was interrupted
+  std::string presenter_name =
+      "window";              ///< recorded in the metadata ("window", "scripted", "simulated:...")
   bool verify_files = true;  ///< check existence + sha256 of every stimulus before starting
 };
 

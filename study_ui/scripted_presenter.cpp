@@ -21,7 +21,8 @@ ScriptedPresenter::ScriptedPresenter(const std::string& csv_path, int delay_ms)
     e.line = t.line_numbers[i];
     if (has_rt && !t.cell(i, t.column("rt_ms")).empty()) {
       e.rt_ms = t.number(i, t.column("rt_ms"));
-      if (e.rt_ms < 0) throw InputError(SourceLocation{csv_path, e.line, 0, "rt_ms"}, "negative response time");
+      if (e.rt_ms < 0)
+        throw InputError(SourceLocation{csv_path, e.line, 0, "rt_ms"}, "negative response time");
     }
     if (!answers_.emplace(std::make_pair(t.cell(i, s), t.cell(i, q)), e).second)
       throw InputError(SourceLocation{csv_path, e.line, 0, "stimulus,question"},
@@ -31,19 +32,22 @@ ScriptedPresenter::ScriptedPresenter(const std::string& csv_path, int delay_ms)
 
 bool ScriptedPresenter::parse_response(const StudyQuestion& q, const std::string& text, int& raw) {
   std::string t = text;
-  std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(t.begin(), t.end(), t.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (q.kind == QuestionKind::yesno) {
     if (t == "yes" || t == "y" || t == "1") return raw = 1, true;
     if (t == "no" || t == "n" || t == "0") return raw = 0, true;
     return false;
   }
-  if (t.empty() || t.size() > 3 || !std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; }))
+  if (t.empty() || t.size() > 3 ||
+      !std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; }))
     return false;
   raw = std::stoi(t);
   return q.valid(raw);
 }
 
-void ScriptedPresenter::check(const StimulusManifest& manifest, const std::vector<StudyQuestion>& questions) const {
+void ScriptedPresenter::check(const StimulusManifest& manifest,
+                              const std::vector<StudyQuestion>& questions) const {
   std::vector<std::string> problems;
   for (const StimulusEntry& e : manifest.entries)
     for (const StudyQuestion& q : questions) {
@@ -56,8 +60,8 @@ void ScriptedPresenter::check(const StimulusManifest& manifest, const std::vecto
                            "' is not a valid answer to " + q.id);
     }
   if (problems.empty()) return;
-  std::string msg = path_ + ": the scripted responses do not cover the session (" + std::to_string(problems.size()) +
-                    " problem(s)):";
+  std::string msg = path_ + ": the scripted responses do not cover the session (" +
+                    std::to_string(problems.size()) + " problem(s)):";
   for (size_t i = 0; i < problems.size() && i < 20; ++i) msg += "\n  " + problems[i];
   throw InputError(msg);
 }
@@ -71,10 +75,12 @@ TrialOutcome ScriptedPresenter::run_trial(const TrialRequest& request) {
     Answer a;
     a.question_id = q.id;
     if (it == answers_.end() || !parse_response(q, it->second.response, a.raw))
-      throw InputError(path_ + ": no valid answer for stimulus " + request.trial->stimulus.id + ", question " + q.id);
-    a.rt_ms = it->second.rt_ms >= 0
-                  ? it->second.rt_ms
-                  : std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - onset).count();
+      throw InputError(path_ + ": no valid answer for stimulus " + request.trial->stimulus.id +
+                       ", question " + q.id);
+    a.rt_ms =
+        it->second.rt_ms >= 0
+            ? it->second.rt_ms
+            : std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - onset).count();
     a.timestamp_utc = iso8601_utc_now();
     out.answers.push_back(std::move(a));
   }

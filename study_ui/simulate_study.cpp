@@ -20,9 +20,10 @@ std::string simulated_participant_id(int i) {
   return buf;
 }
 
-std::string simulate_study(const ExperimentSpec& spec, const StimulusManifest& manifest, const ObserverModel& model,
-                           const SimulateStudyOptions& opt) {
-  if (opt.observers < 1) throw InputError(SourceLocation{"", 0, 0, "--observers"}, "need at least 1 observer");
+std::string simulate_study(const ExperimentSpec& spec, const StimulusManifest& manifest,
+                           const ObserverModel& model, const SimulateStudyOptions& opt) {
+  if (opt.observers < 1)
+    throw InputError(SourceLocation{"", 0, 0, "--observers"}, "need at least 1 observer");
   if (opt.verify_files) verify_stimuli(manifest, opt.stimuli_dir);
   const std::string merged = (std::filesystem::path(opt.out_dir) / "responses.csv").string();
   if (std::filesystem::exists(merged))

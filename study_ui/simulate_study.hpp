@@ -23,8 +23,8 @@ struct SimulateStudyOptions {
 
 /// Returns the path of the merged responses.csv. Throws InputError when out_dir already holds
 /// participant files (a data set is never overwritten silently).
-std::string simulate_study(const ExperimentSpec& spec, const StimulusManifest& manifest, const ObserverModel& model,
-                           const SimulateStudyOptions& options);
+std::string simulate_study(const ExperimentSpec& spec, const StimulusManifest& manifest,
+                           const ObserverModel& model, const SimulateStudyOptions& options);
 
 /// "S001".."Snnn": the simulated participant id of observer i (0-based), zero-padded to 3 digits.
 std::string simulated_participant_id(int i);

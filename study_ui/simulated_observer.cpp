@@ -9,7 +9,9 @@
 namespace crowdlab::study {
 namespace {
 
-double logistic(double x) { return 1.0 / (1.0 + std::exp(-x)); }
+double logistic(double x) {
+  return 1.0 / (1.0 + std::exp(-x));
+}
 
 double parse_number(const std::string& text, const std::string& key) {
   double v = 0.0;
@@ -54,23 +56,37 @@ void ObserverModel::set(const std::string& assignment) {
     level_effects[rest.substr(0, dot) + "=" + rest.substr(dot + 1)] = v;
     return;
   }
-  if (starts("d_crit.")) { d_crit_m[key.substr(7)] = v; return; }
-  if (starts("v_crit.")) { v_crit_m[key.substr(7)] = v; return; }
-  const std::map<std::string, double*> fields = {
-      {"d_crit_sd_m", &d_crit_sd_m},       {"d_scale_m", &d_scale_m},
-      {"v_crit_sd_m", &v_crit_sd_m},       {"v_scale_m", &v_scale_m},
-      {"slope_log_sd", &slope_log_sd},     {"lapse", &lapse},
-      {"realism_mean", &realism_mean},     {"realism_sd", &realism_sd},
-      {"shoulder_effect", &shoulder_effect}, {"trigger_effect", &trigger_effect},
-      {"overlap_weight", &overlap_weight}, {"collision_weight", &collision_weight},
-      {"trial_noise_sd", &trial_noise_sd}, {"item_noise_sd", &item_noise_sd},
-      {"effect_sd_fraction", &effect_sd_fraction}, {"rt_median_ms", &rt_median_ms},
-      {"rt_log_sd", &rt_log_sd}};
+  if (starts("d_crit.")) {
+    d_crit_m[key.substr(7)] = v;
+    return;
+  }
+  if (starts("v_crit.")) {
+    v_crit_m[key.substr(7)] = v;
+    return;
+  }
+  const std::map<std::string, double*> fields = {{"d_crit_sd_m", &d_crit_sd_m},
+                                                 {"d_scale_m", &d_scale_m},
+                                                 {"v_crit_sd_m", &v_crit_sd_m},
+                                                 {"v_scale_m", &v_scale_m},
+                                                 {"slope_log_sd", &slope_log_sd},
+                                                 {"lapse", &lapse},
+                                                 {"realism_mean", &realism_mean},
+                                                 {"realism_sd", &realism_sd},
+                                                 {"shoulder_effect", &shoulder_effect},
+                                                 {"trigger_effect", &trigger_effect},
+                                                 {"overlap_weight", &overlap_weight},
+                                                 {"collision_weight", &collision_weight},
+                                                 {"trial_noise_sd", &trial_noise_sd},
+                                                 {"item_noise_sd", &item_noise_sd},
+                                                 {"effect_sd_fraction", &effect_sd_fraction},
+                                                 {"rt_median_ms", &rt_median_ms},
+                                                 {"rt_log_sd", &rt_log_sd}};
   auto it = fields.find(key);
   if (it == fields.end()) throw InputError(SourceLocation{"", 0, 0, key}, "unknown observer-model parameter");
   const bool must_be_positive = key.find("scale") != std::string::npos || key == "rt_median_ms";
-  if ((must_be_positive && v <= 0) || (key != "realism_mean" && key != "shoulder_effect" && key != "trigger_effect" &&
-                                       key != "overlap_weight" && key != "collision_weight" && v < 0) ||
+  if ((must_be_positive && v <= 0) ||
+      (key != "realism_mean" && key != "shoulder_effect" && key != "trigger_effect" &&
+       key != "overlap_weight" && key != "collision_weight" && v < 0) ||
       (key == "lapse" && v > 1))
     throw InputError(SourceLocation{"", 0, 0, key}, "value out of range: " + assignment.substr(eq + 1));
   *it->second = v;
@@ -80,7 +96,8 @@ Observer draw_observer(const ObserverModel& m, std::uint64_t seed) {
   Observer o;
   o.seed = seed;
   Rng rng(derive_seed(seed, "observer"));
-  for (const auto& [level, mean] : m.d_crit_m) o.d_crit_m[level] = mean + m.d_crit_sd_m * standard_normal(rng);
+  for (const auto& [level, mean] : m.d_crit_m)
+    o.d_crit_m[level] = mean + m.d_crit_sd_m * standard_normal(rng);
   for (const auto& [level, mean] : m.v_crit_m)
     o.v_crit_m[level] = std::max(1e-4, mean + m.v_crit_sd_m * standard_normal(rng));
   o.d_scale_m = m.d_scale_m * std::exp(m.slope_log_sd * standard_normal(rng));
@@ -93,10 +110,13 @@ Observer draw_observer(const ObserverModel& m, std::uint64_t seed) {
 double collision_probability(const Observer& o, const StimulusEntry& s) {
   const std::string shoulder = factor_level(s, "shoulder");
   double d = 0.0;
-  if (numeric_level(s, "distance", d)) return logistic(-(d - threshold_for(o.d_crit_m, shoulder)) / o.d_scale_m);
+  if (numeric_level(s, "distance", d))
+    return logistic(-(d - threshold_for(o.d_crit_m, shoulder)) / o.d_scale_m);
   double v = -1.0;
-  if (s.v_i_m >= 0) v = s.v_i_m;
-  else if (s.mean_overlap_l >= 0) v = std::cbrt(s.mean_overlap_l / 1000.0);
+  if (s.v_i_m >= 0)
+    v = s.v_i_m;
+  else if (s.mean_overlap_l >= 0)
+    v = std::cbrt(s.mean_overlap_l / 1000.0);
   if (v < 0) return -1.0;
   return logistic((v - threshold_for(o.v_crit_m, shoulder)) / o.v_scale_m);
 }
@@ -130,7 +150,8 @@ std::vector<Answer> simulate_answers(const ObserverModel& m, const Observer& o, 
       if (q.reverse) z = -z;
       const int k = q.points;
       a.raw = std::clamp(1 + static_cast<int>(std::floor(k * logistic(z))), 1, k);
-      if (uniform01(rng) < m.lapse) a.raw = 1 + static_cast<int>(uniform_index(rng, static_cast<std::uint64_t>(k)));
+      if (uniform01(rng) < m.lapse)
+        a.raw = 1 + static_cast<int>(uniform_index(rng, static_cast<std::uint64_t>(k)));
     }
     rt += m.rt_median_ms * std::exp(m.rt_log_sd * standard_normal(rng));
     a.rt_ms = rt;

@@ -84,7 +84,7 @@ double collision_probability(const Observer& observer, const StimulusEntry& stim
 
 /// One answer per question for one presentation of `stimulus`, deterministic in `rng`.
 std::vector<Answer> simulate_answers(const ObserverModel& model, const Observer& observer,
-                                     const StimulusEntry& stimulus, const std::vector<StudyQuestion>& questions,
-                                     Rng& rng);
+                                     const StimulusEntry& stimulus,
+                                     const std::vector<StudyQuestion>& questions, Rng& rng);
 
 }  // namespace crowdlab::study

@@ -66,7 +66,8 @@ std::vector<StudyQuestion> resolve_questions(const ProtocolSpec& protocol) {
   if (type != "likert" && points == 6 && protocol.scale_labels.empty()) points = 7;  // seed 001 uses 1..7
   std::string low = "I strongly disagree", high = "I fully agree";  // seed 000 §4.4.1 anchors
   if (type != "likert") low = "not very natural", high = "very natural";
-  if (protocol.scale_labels.size() >= 2) low = protocol.scale_labels.front(), high = protocol.scale_labels.back();
+  if (protocol.scale_labels.size() >= 2)
+    low = protocol.scale_labels.front(), high = protocol.scale_labels.back();
 
   std::vector<StudyQuestion> out;
   if (protocol.questions.empty()) {
@@ -103,9 +104,11 @@ std::vector<StudyQuestion> resolve_questions(const ProtocolSpec& protocol) {
   }
   std::set<std::string> ids;
   for (const StudyQuestion& q : out) {
-    if (q.id.empty()) throw InputError(SourceLocation{"", 0, 0, "protocol.questions"}, "a question has no id");
+    if (q.id.empty())
+      throw InputError(SourceLocation{"", 0, 0, "protocol.questions"}, "a question has no id");
     if (!ids.insert(q.id).second)
-      throw InputError(SourceLocation{"", 0, 0, "protocol.questions"}, "duplicate question id '" + q.id + "'");
+      throw InputError(SourceLocation{"", 0, 0, "protocol.questions"},
+                       "duplicate question id '" + q.id + "'");
     if (q.kind == QuestionKind::scale && (q.points < 2 || q.points > 11))
       throw InputError(SourceLocation{"", 0, 0, "protocol.questions." + q.id + ".points"},
                        "a scale needs 2..11 points, got " + std::to_string(q.points));

@@ -26,9 +26,9 @@ struct StudyQuestion {
   std::string id;
   std::string text;
   QuestionKind kind = QuestionKind::scale;
-  int points = 6;                  ///< k for a scale (2..11); 2 for yes/no
-  std::string low_label;           ///< label under the lowest point ("" = none)
-  std::string high_label;          ///< label under the highest point
+  int points = 6;                         ///< k for a scale (2..11); 2 for yes/no
+  std::string low_label;                  ///< label under the lowest point ("" = none)
+  std::string high_label;                 ///< label under the highest point
   std::vector<std::string> point_labels;  ///< one per point when the spec gives them all
   bool reverse = false;
 

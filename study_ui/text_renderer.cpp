@@ -11,7 +11,8 @@ namespace crowdlab::study {
 
 TextRenderer::TextRenderer(const std::string& font_path) {
   if (!std::filesystem::is_regular_file(font_path))
-    throw RuntimeError(font_path + ": font not found (install fonts-dejavu-core or pass another TrueType font)");
+    throw RuntimeError(font_path +
+                       ": font not found (install fonts-dejavu-core or pass another TrueType font)");
   ft_ = cv::freetype::createFreeType2();
   try {
     ft_->loadFontData(font_path, 0);
@@ -27,7 +28,8 @@ cv::Size TextRenderer::measure(const std::string& text, int px) const {
   return {s.width, line_height(px)};
 }
 
-void TextRenderer::draw(cv::Mat& canvas, const std::string& text, cv::Point top_left, int px, cv::Scalar color) const {
+void TextRenderer::draw(cv::Mat& canvas, const std::string& text, cv::Point top_left, int px,
+                        cv::Scalar color) const {
   if (text.empty()) return;
   // cv::freetype places `org` on the baseline (bottomLeftOrigin = true); DejaVu's ascent is ~0.93 em,
   // centred in a 1.3 em line box.

@@ -14,16 +14,18 @@ void fill_round_rect(cv::Mat& img, cv::Rect r, int radius, cv::Scalar color) {
   radius = std::min({radius, r.width / 2, r.height / 2});
   cv::rectangle(img, {r.x + radius, r.y, r.width - 2 * radius, r.height}, color, cv::FILLED);
   cv::rectangle(img, {r.x, r.y + radius, r.width, r.height - 2 * radius}, color, cv::FILLED);
-  for (cv::Point c : {cv::Point(r.x + radius, r.y + radius), cv::Point(r.x + r.width - radius - 1, r.y + radius),
-                      cv::Point(r.x + radius, r.y + r.height - radius - 1),
-                      cv::Point(r.x + r.width - radius - 1, r.y + r.height - radius - 1)})
+  for (cv::Point c :
+       {cv::Point(r.x + radius, r.y + radius), cv::Point(r.x + r.width - radius - 1, r.y + radius),
+        cv::Point(r.x + radius, r.y + r.height - radius - 1),
+        cv::Point(r.x + r.width - radius - 1, r.y + r.height - radius - 1)})
     cv::circle(img, c, radius, color, cv::FILLED, cv::LINE_AA);
 }
 
 void draw_centered(cv::Mat& img, const TextRenderer& text, const std::string& s, cv::Rect box, int px,
                    cv::Scalar color) {
   const cv::Size size = text.measure(s, px);
-  text.draw(img, s, {box.x + (box.width - size.width) / 2, box.y + (box.height - size.height) / 2}, px, color);
+  text.draw(img, s, {box.x + (box.width - size.width) / 2, box.y + (box.height - size.height) / 2}, px,
+            color);
 }
 
 }  // namespace
@@ -36,8 +38,10 @@ int TrialScreenState::first_unanswered(const std::vector<StudyQuestion>& qs, Que
 
 cv::Rect fit_rect(cv::Size frame, cv::Rect area) {
   if (frame.width <= 0 || frame.height <= 0) return area;
-  const double s = std::min(static_cast<double>(area.width) / frame.width, static_cast<double>(area.height) / frame.height);
-  const int w = std::max(1, static_cast<int>(frame.width * s)), h = std::max(1, static_cast<int>(frame.height * s));
+  const double s = std::min(static_cast<double>(area.width) / frame.width,
+                            static_cast<double>(area.height) / frame.height);
+  const int w = std::max(1, static_cast<int>(frame.width * s)),
+            h = std::max(1, static_cast<int>(frame.height * s));
   return {area.x + (area.width - w) / 2, area.y + (area.height - h) / 2, w, h};
 }
 
@@ -54,8 +58,8 @@ TrialLayout layout_trial_screen(cv::Size canvas, const std::vector<StudyQuestion
   const int rows = (n + columns - 1) / columns;
   // A cell: two lines of statement, the answer row (circles), one line of end labels.
   const int circle_d = std::max(18, H * 40 / 1000);
-  const int cell_h = 2 * TextRenderer::line_height(L.body_px) + circle_d + TextRenderer::line_height(L.small_px) +
-                     margin;
+  const int cell_h =
+      2 * TextRenderer::line_height(L.body_px) + circle_d + TextRenderer::line_height(L.small_px) + margin;
   const int next_h = std::max(28, H * 55 / 1000);
   const int grid_h = rows * (cell_h + margin / 2);
   const int video_h = std::max(H / 5, H - header_h - grid_h - next_h - 3 * margin);
@@ -80,7 +84,8 @@ TrialLayout layout_trial_screen(cv::Size canvas, const std::vector<StudyQuestion
       const int step = std::min(usable / k, circle_d * 2);
       const int x0 = cell.x + (cell.width - step * k) / 2;
       for (int v = 1; v <= k; ++v)
-        L.targets.push_back({{x0 + (v - 1) * step + (step - circle_d) / 2, answer_y, circle_d, circle_d}, i, v});
+        L.targets.push_back(
+            {{x0 + (v - 1) * step + (step - circle_d) / 2, answer_y, circle_d, circle_d}, i, v});
     }
   }
   const int next_w = std::max(120, W * 16 / 100);
@@ -104,7 +109,8 @@ void draw_trial_static(cv::Mat& img, const TrialLayout& L, const std::vector<Stu
     std::vector<std::string> lines = text.wrap(q.text, px, cell.width - 2 * margin);
     while (lines.size() > 2 && px > 10) lines = text.wrap(q.text, --px, cell.width - 2 * margin);
     for (size_t l = 0; l < lines.size() && l < 2; ++l)
-      text.draw(img, lines[l], {cell.x + margin, cell.y + margin / 2 + static_cast<int>(l) * TextRenderer::line_height(px)},
+      text.draw(img, lines[l],
+                {cell.x + margin, cell.y + margin / 2 + static_cast<int>(l) * TextRenderer::line_height(px)},
                 px, enabled ? kInk : kMuted);
   }
   for (const TrialLayout::Target& t : L.targets) {
@@ -143,7 +149,8 @@ void draw_trial_answers(cv::Mat& img, const TrialLayout& L, const std::vector<St
     const StudyQuestion& q = questions[static_cast<size_t>(t.question)];
     if (q.kind == QuestionKind::yesno) {
       fill_round_rect(img, t.rect, 3, kAccent);
-      draw_centered(img, text, t.value == 1 ? "Yes (Y)" : "No (N)", t.rect, L.small_px, cv::Scalar(255, 255, 255));
+      draw_centered(img, text, t.value == 1 ? "Yes (Y)" : "No (N)", t.rect, L.small_px,
+                    cv::Scalar(255, 255, 255));
       continue;
     }
     const cv::Point c(t.rect.x + t.rect.width / 2, t.rect.y + t.rect.height / 2);
@@ -173,7 +180,8 @@ void draw_video_frame(cv::Mat& canvas, const TrialLayout& L, const cv::Mat& fram
     cv::resize(frame, roi, r.size(), 0, 0, cv::INTER_AREA);
 }
 
-std::optional<TrialLayout::Target> hit_test(const TrialLayout& L, const TrialScreenState& state, cv::Point p) {
+std::optional<TrialLayout::Target> hit_test(const TrialLayout& L, const TrialScreenState& state,
+                                            cv::Point p) {
   if (state.confirm_abort) return std::nullopt;
   for (const TrialLayout::Target& t : L.targets) {
     if (!t.rect.contains(p)) continue;
@@ -184,8 +192,8 @@ std::optional<TrialLayout::Target> hit_test(const TrialLayout& L, const TrialScr
   return std::nullopt;
 }
 
-void draw_text_screen(cv::Mat& img, const std::string& title, const std::string& body, const std::string& hint,
-                      const TextRenderer& text) {
+void draw_text_screen(cv::Mat& img, const std::string& title, const std::string& body,
+                      const std::string& hint, const TextRenderer& text) {
   img.setTo(kBackground);
   const int H = img.rows, W = img.cols;
   const int title_px = std::max(16, H * 45 / 1000), body_px = std::max(13, H * 28 / 1000);
@@ -208,13 +216,14 @@ void draw_abort_confirmation(cv::Mat& img, const TextRenderer& text) {
   const cv::Rect box(W / 4, H / 3, W / 2, H / 3);
   fill_round_rect(img, box, H / 60, kCell);
   const int px = std::max(14, H * 32 / 1000);
-  draw_centered(img, text, "Quit the session?", {box.x, box.y + box.height / 6, box.width, TextRenderer::line_height(px)},
-                px, kInk);
+  draw_centered(img, text, "Quit the session?",
+                {box.x, box.y + box.height / 6, box.width, TextRenderer::line_height(px)}, px, kInk);
   const int small = std::max(11, H * 22 / 1000);
   draw_centered(img, text, "Y = quit (your answers so far are saved)",
                 {box.x, box.y + box.height / 2, box.width, TextRenderer::line_height(small)}, small, kInk);
   draw_centered(img, text, "any other key = continue",
-                {box.x, box.y + box.height / 2 + TextRenderer::line_height(small), box.width, TextRenderer::line_height(small)},
+                {box.x, box.y + box.height / 2 + TextRenderer::line_height(small), box.width,
+                 TextRenderer::line_height(small)},
                 small, kMuted);
 }
 

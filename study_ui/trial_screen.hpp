@@ -20,10 +20,10 @@
 namespace crowdlab::study {
 
 struct TrialScreenState {
-  std::vector<int> answers;        ///< per question: raw answer or -1
-  bool questions_enabled = true;   ///< false while a play-once clip is still running
-  bool confirm_abort = false;      ///< Esc pressed: show the quit confirmation
-  std::string header;              ///< e.g. "Trial 3 of 40"
+  std::vector<int> answers;       ///< per question: raw answer or -1
+  bool questions_enabled = true;  ///< false while a play-once clip is still running
+  bool confirm_abort = false;     ///< Esc pressed: show the quit confirmation
+  std::string header;             ///< e.g. "Trial 3 of 40"
   bool all_answered() const {
     for (int a : answers)
       if (a < 0) return false;
@@ -51,11 +51,13 @@ TrialLayout layout_trial_screen(cv::Size canvas, const std::vector<StudyQuestion
 
 /// The parts of the trial screen that do not change while the participant answers: background,
 /// header, statements, unselected scales and labels (FreeType text: tens of ms, so drawn once).
-void draw_trial_static(cv::Mat& canvas, const TrialLayout& layout, const std::vector<StudyQuestion>& questions,
-                       const std::string& header, bool enabled, const TextRenderer& text);
+void draw_trial_static(cv::Mat& canvas, const TrialLayout& layout,
+                       const std::vector<StudyQuestion>& questions, const std::string& header, bool enabled,
+                       const TextRenderer& text);
 /// Over a static panel: the selected answers, the focus frame and the Next button (cheap).
-void draw_trial_answers(cv::Mat& canvas, const TrialLayout& layout, const std::vector<StudyQuestion>& questions,
-                        const TrialScreenState& state, const TextRenderer& text);
+void draw_trial_answers(cv::Mat& canvas, const TrialLayout& layout,
+                        const std::vector<StudyQuestion>& questions, const TrialScreenState& state,
+                        const TextRenderer& text);
 /// Everything but the video (static + answers + confirmation overlay).
 void draw_trial_panel(cv::Mat& canvas, const TrialLayout& layout, const std::vector<StudyQuestion>& questions,
                       const TrialScreenState& state, const TextRenderer& text);
@@ -67,11 +69,12 @@ void draw_video_frame(cv::Mat& canvas, const TrialLayout& layout, const cv::Mat&
 cv::Rect fit_rect(cv::Size frame_size, cv::Rect area);
 
 /// The target under a click, if any (a disabled Next button is not a target).
-std::optional<TrialLayout::Target> hit_test(const TrialLayout& layout, const TrialScreenState& state, cv::Point p);
+std::optional<TrialLayout::Target> hit_test(const TrialLayout& layout, const TrialScreenState& state,
+                                            cv::Point p);
 
 /// A full-canvas text screen: title, wrapped body, and a hint line at the bottom.
-void draw_text_screen(cv::Mat& canvas, const std::string& title, const std::string& body, const std::string& hint,
-                      const TextRenderer& text);
+void draw_text_screen(cv::Mat& canvas, const std::string& title, const std::string& body,
+                      const std::string& hint, const TextRenderer& text);
 
 /// Darkens the canvas and draws the "Quit the session?" box.
 void draw_abort_confirmation(cv::Mat& canvas, const TextRenderer& text);

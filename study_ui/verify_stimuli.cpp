@@ -13,7 +13,8 @@ std::string stimulus_path(const std::string& stimuli_dir, const StimulusEntry& e
   return (p.is_absolute() ? p : std::filesystem::path(stimuli_dir) / p).lexically_normal().string();
 }
 
-std::vector<std::string> find_stimulus_problems(const StimulusManifest& manifest, const std::string& stimuli_dir) {
+std::vector<std::string> find_stimulus_problems(const StimulusManifest& manifest,
+                                                const std::string& stimuli_dir) {
   std::vector<std::string> problems;
   std::map<std::string, std::string> hash_of;  // path -> sha256 (hash each file once)
   for (const StimulusEntry& e : manifest.entries) {
@@ -42,8 +43,8 @@ std::vector<std::string> find_stimulus_problems(const StimulusManifest& manifest
       }
     }
     if (it->second != e.sha256)
-      problems.push_back(e.id + ": " + path + ": sha256 mismatch (manifest " + e.sha256 + ", file " + it->second +
-                         "): corrupted or replaced");
+      problems.push_back(e.id + ": " + path + ": sha256 mismatch (manifest " + e.sha256 + ", file " +
+                         it->second + "): corrupted or replaced");
   }
   return problems;
 }

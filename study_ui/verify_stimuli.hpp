@@ -14,7 +14,8 @@ namespace crowdlab::study {
 std::string stimulus_path(const std::string& stimuli_dir, const StimulusEntry& entry);
 
 /// Returns one message per problem ("<id>: <file>: missing" / "empty" / "sha256 mismatch ...").
-std::vector<std::string> find_stimulus_problems(const StimulusManifest& manifest, const std::string& stimuli_dir);
+std::vector<std::string> find_stimulus_problems(const StimulusManifest& manifest,
+                                                const std::string& stimuli_dir);
 
 /// Throws InputError listing every problem (exit code 2), or returns when all files are intact.
 void verify_stimuli(const StimulusManifest& manifest, const std::string& stimuli_dir);

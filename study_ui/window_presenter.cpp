@@ -23,7 +23,9 @@ constexpr const char* kWindow = "crowdlab study";
 constexpr int kEsc = 27;
 constexpr double kDebounceMs = 300.0;
 
-bool is_enter(int key) { return key == 13 || key == 10 || key == 0xff0d || key == 0xff8d || key == 32; }
+bool is_enter(int key) {
+  return key == 13 || key == 10 || key == 0xff0d || key == 0xff8d || key == 32;
+}
 
 /// Digit 1..9 from the top row or the keypad, else 0.
 int digit_of(int key) {
@@ -32,16 +34,24 @@ int digit_of(int key) {
   return 0;
 }
 
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
 
 const char* screen_name(ScreenKind kind) {
   switch (kind) {
-    case ScreenKind::instructions: return "instructions";
-    case ScreenKind::consent: return "consent";
-    case ScreenKind::practice_intro: return "practice";
-    case ScreenKind::block_intro: return "block";
-    case ScreenKind::break_screen: return "break";
-    case ScreenKind::finished: return "finished";
+    case ScreenKind::instructions:
+      return "instructions";
+    case ScreenKind::consent:
+      return "consent";
+    case ScreenKind::practice_intro:
+      return "practice";
+    case ScreenKind::block_intro:
+      return "block";
+    case ScreenKind::break_screen:
+      return "break";
+    case ScreenKind::finished:
+      return "finished";
   }
   return "screen";
 }
@@ -77,7 +87,8 @@ WindowPresenter::WindowPresenter(const WindowOptions& options) {
   const char* display = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
   if ((display == nullptr || *display == '\0') && (wayland == nullptr || *wayland == '\0'))
-    throw RuntimeError("no display (DISPLAY is not set): run on a desktop, under Xvfb, or use --responses/--simulate");
+    throw RuntimeError(
+        "no display (DISPLAY is not set): run on a desktop, under Xvfb, or use --responses/--simulate");
   impl_ = std::make_unique<Impl>(options);
   // GUI_NORMAL: no Qt toolbar or status bar (Debian's OpenCV highgui uses the Qt backend), so the
   // canvas fills the window and mouse coordinates are canvas coordinates.
@@ -87,7 +98,8 @@ WindowPresenter::WindowPresenter(const WindowOptions& options) {
     cv::imshow(kWindow, cv::Mat(480, 640, CV_8UC3, cv::Scalar(236, 233, 230)));
     for (int i = 0; i < 5; ++i) cv::waitKey(40);  // let the window manager apply full screen
     const cv::Rect r = cv::getWindowImageRect(kWindow);
-    impl_->canvas_size = (r.width >= 320 && r.height >= 240) ? r.size() : cv::Size(options.width, options.height);
+    impl_->canvas_size =
+        (r.width >= 320 && r.height >= 240) ? r.size() : cv::Size(options.width, options.height);
   } else {
     impl_->canvas_size = {options.width, options.height};
     cv::resizeWindow(kWindow, options.width, options.height);
@@ -105,13 +117,15 @@ WindowPresenter::~WindowPresenter() {
   }
 }
 
-ScreenInfo WindowPresenter::screen() const { return {impl_->canvas_size.width, impl_->canvas_size.height, "window"}; }
+ScreenInfo WindowPresenter::screen() const {
+  return {impl_->canvas_size.width, impl_->canvas_size.height, "window"};
+}
 
 bool WindowPresenter::show_screen(ScreenKind kind, const std::string& title, const std::string& body) {
   Impl& m = *impl_;
   const bool consent = kind == ScreenKind::consent;
-  const std::string hint = consent ? "Press Y if you agree to take part, N if you do not"
-                                   : "Press any key (or click) to continue";
+  const std::string hint =
+      consent ? "Press Y if you agree to take part, N if you do not" : "Press any key (or click) to continue";
   cv::Mat canvas(m.canvas_size, CV_8UC3);
   draw_text_screen(canvas, title, body, hint, m.text);
   cv::Mat shown = canvas.clone();
@@ -158,8 +172,8 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
   TrialScreenState state;
   state.answers.assign(qs.size(), -1);
   state.questions_enabled = req.loop_video;
-  state.header = (req.trial->practice ? "Practice - trial " : "Trial ") + std::to_string(req.trial->index) + " of " +
-                 std::to_string(req.trial_count);
+  state.header = (req.trial->practice ? "Practice - trial " : "Trial ") + std::to_string(req.trial->index) +
+                 " of " + std::to_string(req.trial_count);
   std::vector<Answer> answers(qs.size());
   const std::string tag = "trial_" + std::to_string(req.trial->index);
 
@@ -250,8 +264,10 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
       const cv::Point p = m.clicks.front();
       m.clicks.pop_front();
       if (auto hit = hit_test(layout, state, p)) {
-        if (hit->question < 0) next = true;
-        else answer(hit->question, hit->value, now_ms);
+        if (hit->question < 0)
+          next = true;
+        else
+          answer(hit->question, hit->value, now_ms);
       }
     }
     if (state.questions_enabled && key != -1) {

@@ -31,7 +31,7 @@ namespace crowdlab::study {
 
 struct WindowOptions {
   bool fullscreen = true;
-  int width = 1280;    ///< canvas size when not full screen
+  int width = 1280;  ///< canvas size when not full screen
   int height = 720;
   std::string font_path = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
   std::string snapshot_dir;

@@ -25,7 +25,7 @@ xdotool getdisplaygeometry >/dev/null
 
 log() { echo "[drive] $*"; }
 wait_file() {  # wait_file PATH [seconds]
-  for _ in $(seq $(( ${2:-20} * 10 ))); do [[ -s "$1" ]] && { sleep 0.15; return 0; }; sleep 0.1; done
+  for _ in $(seq $(( ${2:-20} * 10 ))); do [[ -s "$1" ]] && { sleep 0.4; return 0; }; sleep 0.1; done
   echo "[drive] timeout waiting for $1" >&2; return 1
 }
 window() {

@@ -27,15 +27,16 @@ inline void write_test_clip(const std::string& path, int variant, int frames = 1
 
 /// A manifest over the crossing of `factors` (one clip per cell) plus `practice` practice clips.
 /// Clip files are shared between cells with the same variant to keep tests fast.
-inline StimulusManifest make_stimuli(const std::filesystem::path& dir,
-                                     const std::vector<std::pair<std::string, std::vector<std::string>>>& factors,
-                                     int practice = 0) {
+inline StimulusManifest make_stimuli(
+    const std::filesystem::path& dir,
+    const std::vector<std::pair<std::string, std::vector<std::string>>>& factors, int practice = 0) {
   std::filesystem::create_directories(dir / "clips");
   StimulusManifest m;
   for (const auto& f : factors) m.factor_names.push_back(f.first);
   size_t cells = 1;
   for (const auto& f : factors) cells *= f.second.size();
-  auto add = [&](const std::string& id, std::map<std::string, std::string> levels, int variant, bool is_practice) {
+  auto add = [&](const std::string& id, std::map<std::string, std::string> levels, int variant,
+                 bool is_practice) {
     const std::string file = "clips/v" + std::to_string(variant) + ".mp4";
     if (!std::filesystem::exists(dir / file)) write_test_clip((dir / file).string(), variant);
     StimulusEntry e;

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -53,6 +54,11 @@ factors:
   distance: [0.35]
 protocol:
   type: 2afc
+  scale: {points: 7, labels: ["not very natural", "very natural"]}
+  loop_video: false
+  questions:
+    - {id: collision, kind: yesno, text: "Did the characters go through each other?"}
+    - {id: naturalness, text: "How natural was the interaction?"}
 )";
 
 std::string slurp(const fs::path& p) {
@@ -71,7 +77,8 @@ fs::path likert_script(const fs::path& dir, const StimulusManifest& m) {
   std::string s = "stimulus,question,response\n";
   int n = 0;
   for (const auto& e : m.entries)
-    for (int q = 1; q <= 6; ++q) s += e.id + ",Q" + std::to_string(q) + "," + std::to_string(1 + (n++ % 6)) + "\n";
+    for (int q = 1; q <= 6; ++q)
+      s += e.id + ",Q" + std::to_string(q) + "," + std::to_string(1 + (n++ % 6)) + "\n";
   return write_text(dir / "script.csv", s);
 }
 
@@ -86,18 +93,24 @@ std::map<std::pair<std::string, std::string>, std::string> answers(const fs::pat
   return out;
 }
 
-bool have_tool(const std::string& name) { return std::system(("command -v " + name + " >/dev/null 2>&1").c_str()) == 0; }
+bool have_tool(const std::string& name) {
+  return std::system(("command -v " + name + " >/dev/null 2>&1").c_str()) == 0;
+}
 
 }  // namespace
 
-TEST_CASE("crowdlab study --responses: a scripted session, used ids refused, corrupted stimuli caught", "[study]") {
+TEST_CASE("crowdlab study --responses: a scripted session, used ids refused, corrupted stimuli caught",
+          "[study]") {
   const auto dir = test::scratch_dir("study-cli");
-  const auto m = test::make_stimuli(dir / "stimuli", {{"method", {"baseline", "ours"}}, {"viewpoint", {"V1", "V3"}}});
+  const auto m =
+      test::make_stimuli(dir / "stimuli", {{"method", {"baseline", "ours"}}, {"viewpoint", {"V1", "V3"}}});
   const auto spec = write_text(dir / "spec.yaml", kLikertYaml);
   const auto script = likert_script(dir, m);
-  const std::vector<std::string> base = {"study", spec.string(), "--participant", "P07", "--stimuli",
-                                         (dir / "stimuli").string(), "--out", (dir / "out").string(),
-                                         "--responses", script.string()};
+  const std::vector<std::string> base = {"study",         spec.string(),
+                                         "--participant", "P07",
+                                         "--stimuli",     (dir / "stimuli").string(),
+                                         "--out",         (dir / "out").string(),
+                                         "--responses",   script.string()};
   auto r = test::run_cli(base);
   INFO(r.out << r.err);
   REQUIRE(r.exit_code == 0);
@@ -122,13 +135,14 @@ TEST_CASE("crowdlab study --responses: a scripted session, used ids refused, cor
 
 TEST_CASE("SIGKILL during a session, then --resume: complete, no duplicates, same answers", "[study]") {
   const auto dir = test::scratch_dir("study-kill");
-  const auto m = test::make_stimuli(dir / "stimuli", {{"method", {"baseline", "ours"}}, {"viewpoint", {"V1", "V3"}}}, 2);
+  const auto m =
+      test::make_stimuli(dir / "stimuli", {{"method", {"baseline", "ours"}}, {"viewpoint", {"V1", "V3"}}}, 2);
   const auto spec = write_text(dir / "spec.yaml", kLikertYaml);
   const auto script = likert_script(dir, m);
   auto args = [&](const fs::path& out) {
-    return std::vector<std::string>{"study", spec.string(), "--participant", "P11", "--stimuli",
-                                    (dir / "stimuli").string(), "--out", out.string(), "--responses",
-                                    script.string(), "-q"};
+    return std::vector<std::string>{
+        "-q",    "study",      spec.string(), "--participant", "P11", "--stimuli", (dir / "stimuli").string(),
+        "--out", out.string(), "--responses", script.string()};
   };
   REQUIRE(test::run_cli(args(dir / "reference")).exit_code == 0);
   const auto expected = answers(dir / "reference" / "P11.csv");
@@ -174,6 +188,7 @@ TEST_CASE("SIGKILL during a session, then --resume: complete, no duplicates, sam
   CHECK(slurp(csv).back() == '\n');
   const std::string meta = slurp(dir / "killed" / "P11.json");
   CHECK(meta.find("\"complete\"") != std::string::npos);
+  CHECK(meta.find("\"interrupted\"") != std::string::npos);  // the killed run
 }
 
 TEST_CASE("crowdlab simulate-study and power", "[study]") {
@@ -186,8 +201,8 @@ TEST_CASE("crowdlab simulate-study and power", "[study]") {
   REQUIRE(r.exit_code == 0);
   CHECK(read_csv((dir / "sim" / "responses.csv").string()).rows.size() == 4u * 4u * 6u);
   r = test::run_cli({"-q", "power", spec.string(), "--stimuli", (dir / "stimuli").string(), "--contrast",
-                     "method:baseline,ours", "--effect", "1.0", "--dv", "Q_CR", "--n", "4,12", "--simulations", "40",
-                     "--json"});
+                     "method:baseline,ours", "--effect", "1.0", "--dv", "Q_CR", "--n", "4,12",
+                     "--simulations", "40", "--json"});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find("\"power\"") != std::string::npos);
@@ -195,13 +210,15 @@ TEST_CASE("crowdlab simulate-study and power", "[study]") {
             .exit_code == 2);
 }
 
-TEST_CASE("participant test: the real window under Xvfb, driven by xdotool, killed and resumed", "[study][window]") {
+TEST_CASE("participant test: the real window under Xvfb, driven by xdotool, killed and resumed",
+          "[study][window]") {
   if (!have_tool("Xvfb") || !have_tool("xdotool")) {
     WARN("skipping: Xvfb or xdotool not installed");
     return;
   }
   const auto dir = test::scratch_dir("study-window");
-  const auto m = test::make_stimuli(dir / "stimuli", {{"method", {"baseline", "ours"}}, {"viewpoint", {"V1", "V3"}}});
+  const auto m =
+      test::make_stimuli(dir / "stimuli", {{"method", {"baseline", "ours"}}, {"viewpoint", {"V1", "V3"}}});
   test::make_stimuli(dir / "afc", {{"shoulder", {"0"}}, {"distance", {"0.35"}}});
   const auto likert = write_text(dir / "likert.yaml", kLikertYaml);
   const auto afc = write_text(dir / "afc.yaml", kAfcYaml);
@@ -211,15 +228,17 @@ TEST_CASE("participant test: the real window under Xvfb, driven by xdotool, kill
   std::string targets;
   for (const auto& t : layout.targets)
     targets += std::to_string(t.question) + " " + std::to_string(t.value) + " " +
-               std::to_string(t.rect.x + t.rect.width / 2) + " " + std::to_string(t.rect.y + t.rect.height / 2) + "\n";
+               std::to_string(t.rect.x + t.rect.width / 2) + " " +
+               std::to_string(t.rect.y + t.rect.height / 2) + "\n";
   write_text(dir / "targets.txt", targets);
   // Both sessions write to one output folder; each spec has its own stimuli.
   const std::string display = std::to_string(90 + getpid() % 9);
-  const std::string cmd = test::shell_quote((test::source_dir() / "tests/study/drive_window_session.sh").string()) +
-                          " " + test::shell_quote(test::crowdlab_exe().string()) + " " + likert.string() + " " +
-                          (dir / "stimuli").string() + " " + afc.string() + " " + (dir / "afc").string() + " " + (dir / "out").string() + " " +
-                          (dir / "snap").string() + " " + (dir / "targets.txt").string() + " " + display + " > " +
-                          (dir / "drive.log").string() + " 2>&1";
+  const std::string cmd =
+      test::shell_quote((test::source_dir() / "tests/study/drive_window_session.sh").string()) + " " +
+      test::shell_quote(test::crowdlab_exe().string()) + " " + likert.string() + " " +
+      (dir / "stimuli").string() + " " + afc.string() + " " + (dir / "afc").string() + " " +
+      (dir / "out").string() + " " + (dir / "snap").string() + " " + (dir / "targets.txt").string() + " " +
+      display + " > " + (dir / "drive.log").string() + " 2>&1";
   const int rc = std::system(cmd.c_str());
   INFO(slurp(dir / "drive.log"));
   REQUIRE(rc == 0);
@@ -236,8 +255,10 @@ TEST_CASE("participant test: the real window under Xvfb, driven by xdotool, kill
     sessions.insert(t.cell(r, t.column("session")));
     CHECK(std::stod(t.cell(r, t.column("rt_ms"))) > 0.0);
   }
-  CHECK(trial1 == std::map<std::string, std::string>{{"Q1", "4"}, {"Q2", "2"}, {"Q3", "5"}, {"Q4", "1"}, {"Q5", "6"}, {"Q6", "3"}});
-  CHECK(trial2 == std::map<std::string, std::string>{{"Q1", "6"}, {"Q2", "1"}, {"Q3", "4"}, {"Q4", "2"}, {"Q5", "6"}, {"Q6", "1"}});
+  CHECK(trial1 == std::map<std::string, std::string>{
+                      {"Q1", "4"}, {"Q2", "2"}, {"Q3", "5"}, {"Q4", "1"}, {"Q5", "6"}, {"Q6", "3"}});
+  CHECK(trial2 == std::map<std::string, std::string>{
+                      {"Q1", "6"}, {"Q2", "1"}, {"Q3", "4"}, {"Q4", "2"}, {"Q5", "6"}, {"Q6", "1"}});
   CHECK(sessions == std::set<std::string>{"1", "2"});  // trials 3-4 answered after the resume
   const auto afc_rows = answers(dir / "out" / "A01.csv");
   CHECK(afc_rows.at({"1", "collision"}).ends_with("|1"));

@@ -75,8 +75,8 @@ TEST_CASE("spec questions are validated", "[study]") {
 }
 
 namespace {
-StimulusManifest synthetic_manifest(int per_block, const std::vector<std::string>& blocks, int practice_per_block,
-                                    int global_practice) {
+StimulusManifest synthetic_manifest(int per_block, const std::vector<std::string>& blocks,
+                                    int practice_per_block, int global_practice) {
   StimulusManifest m;
   m.factor_names = {"scenario", "density"};
   for (const auto& b : blocks)
@@ -141,23 +141,26 @@ TEST_CASE("trial lists: every stimulus once, practice first, blocks contiguous, 
     CHECK(build_trial_list(p, m, 7, id)[20].stimulus.id == trials[20].stimulus.id);  // deterministic
     orders.insert(order);
   }
-  CHECK(orders.size() == 40);              // every participant a different order
-  CHECK(first_block_count["A"] >= 8);      // random block order: both blocks first, often
+  CHECK(orders.size() == 40);          // every participant a different order
+  CHECK(first_block_count["A"] >= 8);  // random block order: both blocks first, often
   CHECK(first_block_count["B"] >= 8);
 }
 
 TEST_CASE("Latin-square block order: Williams rows are permutations and balance positions and carry-over",
           "[study]") {
   for (int n : {2, 3, 4, 5, 6, 8}) {
-    std::vector<std::vector<int>> position_count(static_cast<size_t>(n), std::vector<int>(static_cast<size_t>(n), 0));
+    std::vector<std::vector<int>> position_count(static_cast<size_t>(n),
+                                                 std::vector<int>(static_cast<size_t>(n), 0));
     std::map<std::pair<int, int>, int> adjacent;
     for (int r = 0; r < n; ++r) {
       const auto row = williams_row(n, static_cast<std::uint64_t>(r));
       std::vector<int> sorted = row;
       std::sort(sorted.begin(), sorted.end());
       for (int i = 0; i < n; ++i) CHECK(sorted[static_cast<size_t>(i)] == i);
-      for (int i = 0; i < n; ++i) ++position_count[static_cast<size_t>(row[static_cast<size_t>(i)])][static_cast<size_t>(i)];
-      for (int i = 0; i + 1 < n; ++i) ++adjacent[{row[static_cast<size_t>(i)], row[static_cast<size_t>(i) + 1]}];
+      for (int i = 0; i < n; ++i)
+        ++position_count[static_cast<size_t>(row[static_cast<size_t>(i)])][static_cast<size_t>(i)];
+      for (int i = 0; i + 1 < n; ++i)
+        ++adjacent[{row[static_cast<size_t>(i)], row[static_cast<size_t>(i) + 1]}];
     }
     for (const auto& counts : position_count)
       for (int c : counts) CHECK(c == 1);  // each block once in each position over n participants
@@ -174,8 +177,10 @@ TEST_CASE("Latin-square block order: Williams rows are permutations and balance 
   const auto t2 = build_trial_list(p, m, 1, "P02");
   const std::vector<std::string> names = {"A", "B", "C", "D"};
   for (int k = 0; k < 4; ++k) {
-    CHECK(t1[static_cast<size_t>(3 * k)].block == names[static_cast<size_t>(williams_row(4, 1)[static_cast<size_t>(k)])]);
-    CHECK(t2[static_cast<size_t>(3 * k)].block == names[static_cast<size_t>(williams_row(4, 2)[static_cast<size_t>(k)])]);
+    CHECK(t1[static_cast<size_t>(3 * k)].block ==
+          names[static_cast<size_t>(williams_row(4, 1)[static_cast<size_t>(k)])]);
+    CHECK(t2[static_cast<size_t>(3 * k)].block ==
+          names[static_cast<size_t>(williams_row(4, 2)[static_cast<size_t>(k)])]);
   }
   p.block_by = "nope";
   CHECK_THROWS_AS(build_trial_list(p, m, 1, "P01"), InputError);
@@ -233,7 +238,8 @@ TEST_CASE("simulated observers: psychometric curves fall with distance and rise 
   }
 }
 
-TEST_CASE("simulated answers: valid, deterministic, 'ours' rated higher, more overlap rated lower", "[study]") {
+TEST_CASE("simulated answers: valid, deterministic, 'ours' rated higher, more overlap rated lower",
+          "[study]") {
   ObserverModel model;
   ProtocolSpec p;
   const auto questions = resolve_questions(p);

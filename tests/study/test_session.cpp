@@ -36,8 +36,9 @@ fs::path write_script(const fs::path& dir, const StimulusManifest& m, const std:
   for (const auto& e : m.entries)
     for (const auto& q : qs) {
       const int raw = q.kind == QuestionKind::yesno ? (n % 2) : 1 + n % q.points;
-      out << e.id << "," << q.id << "," << (q.kind == QuestionKind::yesno ? (raw ? "yes" : "no") : std::to_string(raw))
-          << "," << 500 + 10 * n << "\n";
+      out << e.id << "," << q.id << ","
+          << (q.kind == QuestionKind::yesno ? (raw ? "yes" : "no") : std::to_string(raw)) << ","
+          << 500 + 10 * n << "\n";
       ++n;
     }
   return path;
@@ -59,7 +60,8 @@ std::map<std::pair<int, std::string>, std::string> answer_map(const CsvTable& t)
 
 TEST_CASE("scripted Likert session writes one fsync'd tidy row per answer", "[study]") {
   const auto dir = test::scratch_dir("study-scripted");
-  const auto m = test::make_stimuli(dir / "stimuli", {{"density", {"2.22", "6.66"}}, {"method", {"baseline", "ours"}}}, 2);
+  const auto m = test::make_stimuli(dir / "stimuli",
+                                    {{"density", {"2.22", "6.66"}}, {"method", {"baseline", "ours"}}}, 2);
   ExperimentSpec spec = test::likert_spec();
   spec.protocol.break_every = 2;
   const auto qs = resolve_questions(spec.protocol);
@@ -104,7 +106,8 @@ TEST_CASE("scripted Likert session writes one fsync'd tidy row per answer", "[st
 
 TEST_CASE("a torn write at any byte is repaired on resume: no duplicate, no missing row", "[study]") {
   const auto dir = test::scratch_dir("study-torn");
-  const auto m = test::make_stimuli(dir / "stimuli", {{"shoulder", {"0", "1", "2"}}, {"distance", {"0.2", "0.5"}}}, 1);
+  const auto m =
+      test::make_stimuli(dir / "stimuli", {{"shoulder", {"0", "1", "2"}}, {"distance", {"0.2", "0.5"}}}, 1);
   const ExperimentSpec spec = test::afc_spec();
   const auto qs = resolve_questions(spec.protocol);
   const fs::path script = write_script(dir, m, qs);
@@ -145,8 +148,9 @@ TEST_CASE("the response log refuses a foreign header and an incomplete middle tr
   }
   CHECK_THROWS_AS(ResponseLog::create(path, header), InputError);
   RecoveredLog rec;
-  CHECK_THROWS_AS(ResponseLog::reopen(path, {"x", "session", "trial", "question"}, "trial", "session", 2, rec),
-                  InputError);
+  CHECK_THROWS_AS(
+      ResponseLog::reopen(path, {"x", "session", "trial", "question"}, "trial", "session", 2, rec),
+      InputError);
   {
     ResponseLog log = ResponseLog::reopen(path, header, "trial", "session", 2, rec);
     CHECK(rec.completed_trials == std::set<int>{1, 2});
@@ -188,7 +192,8 @@ TEST_CASE("missing or corrupted stimuli stop the session before it starts", "[st
 
 TEST_CASE("simulated study: same format as real sessions, reproducible, merged file", "[study]") {
   const auto dir = test::scratch_dir("study-sim");
-  const auto m = test::make_stimuli(dir / "stimuli", {{"method", {"baseline", "ours"}}, {"viewpoint", {"V1", "V3"}}}, 1);
+  const auto m =
+      test::make_stimuli(dir / "stimuli", {{"method", {"baseline", "ours"}}, {"viewpoint", {"V1", "V3"}}}, 1);
   const ExperimentSpec spec = test::likert_spec();
   SimulateStudyOptions opt;
   opt.observers = 5;
