@@ -1,6 +1,7 @@
 #include "study_ui/simulated_observer.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 
@@ -37,6 +38,13 @@ double threshold_for(const std::map<std::string, double>& by_level, const std::s
   auto it = by_level.find(level.empty() ? "0" : level);
   if (it != by_level.end()) return it->second;
   return by_level.empty() ? 0.0 : by_level.begin()->second;  // unknown level: the no-shoulder value
+}
+
+bool mentions_collisions(const StudyQuestion& q) {
+  std::string t = q.id + " " + q.text;
+  std::transform(t.begin(), t.end(), t.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return t.find("collision") != std::string::npos;
 }
 
 }  // namespace
@@ -147,7 +155,7 @@ std::vector<Answer> simulate_answers(const ObserverModel& m, const Observer& o, 
       a.raw = uniform01(rng) < p_yes ? 1 : 0;
     } else {
       double z = latent + m.item_noise_sd * standard_normal(rng);
-      if (q.reverse) z = -z;
+      if (q.reverse || mentions_collisions(q)) z = -z;  // a negative item: agreement falls with realism
       const int k = q.points;
       a.raw = std::clamp(1 + static_cast<int>(std::floor(k * logistic(z))), 1, k);
       if (uniform01(rng) < m.lapse)

@@ -20,7 +20,9 @@
 //       - overlap_weight * cbrt(overlap_l) (realism falls with overlap, seed 000 Fig. 9)
 //       - collision_weight * P(collision perceived) (seed 001 §3.3: naturalness correlates
 //         negatively with perceived collisions) + N(0, trial_noise_sd)
-//   item answer: z = L + N(0, item_noise_sd), negated for reverse-keyed items; a k-point answer is
+//   item answer: z = L + N(0, item_noise_sd), negated for negative items (reverse-keyed ones, and items
+//   whose id or text mentions collisions, e.g. seed 001 §4.2.2 "How often did you see collisions
+//   between characters?", which specs keep unreversed as its own dependent variable); a k-point answer is
 //   1 + floor(k * logistic(z)) (clamped to 1..k). Each observer scales every effect by their own
 //   factor ~ N(1, effect_sd_fraction) (observer noise).
 // Response times: stimulus onset to the first answer, then between answers, each lognormal with

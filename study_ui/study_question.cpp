@@ -47,7 +47,7 @@ std::vector<StudyQuestion> default_questions(const std::string& type, int points
   }
   if (type == "rating") {
     return {scale_question("collisions", "How often did you see collisions between characters?", 7, "never",
-                           "very often", true),
+                           "very often", false),
             scale_question("naturalness", "How natural was the way the characters moved in the crowd?", 7,
                            "not very natural", "very natural", false)};
   }

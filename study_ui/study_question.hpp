@@ -8,9 +8,9 @@
 //   2afc   : seed 001 §3.1.5, "Did the characters go through each other?" (yes/no, keys y/n), then
 //            "How natural was the interaction?" 1 (not very natural) .. 7 (very natural).
 //   rating : seed 001 §4.2.2, "How often did you see collisions between characters?" 1 (never) ..
-//            7 (very often), flagged reverse-keyed here so that its reverse-coded value, like every
-//            other item's, grows with perceived realism; and "How natural was the way the characters
-//            moved in the crowd?" 1 (not very natural) .. 7 (very natural).
+//            7 (very often) and "How natural was the way the characters moved in the crowd?"
+//            1 (not very natural) .. 7 (very natural); neither is reverse-keyed (seed 001 analyses
+//            them as two separate dependent variables, §4.2.3).
 // Reverse coding (seed 000 §4.4.3): Q̄ = (k + 1) - Q for a k-point item (7 - Q on 6 points).
 // A yes/no answer is recorded as 1 = yes, 0 = no; it is never reverse-coded.
 #include <string>

@@ -40,14 +40,15 @@ cv::Mat VideoSource::scaled(const cv::Mat& raw) const {
 const cv::Mat& VideoSource::frame(long k) {
   if (!frames_.empty()) return frames_[static_cast<size_t>(k % count_)];
   long target = count_ > 0 ? k % count_ : k;
-  if (target < next_in_stream_) {  // wrapped: rewind
+  if (target == current_index_ && !current_.empty()) return current_;  // the same frame again (redraw)
+  if (target < next_in_stream_) {                                      // wrapped: rewind
     cap_.set(cv::CAP_PROP_POS_FRAMES, 0);
     next_in_stream_ = 0;
   }
   while (next_in_stream_ < target && cap_.grab()) ++next_in_stream_;
   cv::Mat raw;
   if (cap_.read(raw)) {
-    ++next_in_stream_;
+    current_index_ = next_in_stream_++;
     current_ = scaled(raw);
   } else if (current_.empty()) {
     throw RuntimeError(path_ + ": decoding failed");

@@ -32,6 +32,7 @@ class VideoSource {
   std::vector<cv::Mat> frames_;
   cv::VideoCapture cap_;
   long next_in_stream_ = 0;
+  long current_index_ = -1;
   cv::Mat current_;
 };
 

@@ -301,3 +301,30 @@ TEST_CASE("power by simulation grows with n and effect, and is about alpha with 
   opt.factor = "viewpoint";
   CHECK_THROWS_AS(estimate_power(spec, m, model, opt), InputError);
 }
+
+TEST_CASE("simulated ratings: collision frequency rises and naturalness falls with overlap", "[study]") {
+  ObserverModel model;
+  ProtocolSpec p;
+  p.type = "rating";
+  p.questions = {
+      {"collisions", "How often did you see collisions between characters?", false, "scale", 7, {}},
+      {"naturalness", "How natural was the way the characters moved in the crowd?", false, "scale", 7, {}}};
+  const auto questions = resolve_questions(p);
+  StimulusEntry sparse, dense;
+  sparse.mean_overlap_l = 0.01;
+  dense.mean_overlap_l = 2.0;
+  double collisions[2] = {0, 0}, natural[2] = {0, 0};
+  for (int i = 0; i < 300; ++i) {
+    const Observer o = draw_observer(model, static_cast<std::uint64_t>(i));
+    Rng rng(static_cast<std::uint64_t>(i) + 1000);
+    int k = 0;
+    for (const StimulusEntry* s : {&sparse, &dense}) {
+      const auto a = simulate_answers(model, o, *s, questions, rng);
+      collisions[k] += a[0].raw;
+      natural[k] += a[1].raw;
+      ++k;
+    }
+  }
+  CHECK(collisions[1] > collisions[0] + 300 * 0.5);
+  CHECK(natural[1] < natural[0] - 300 * 0.5);
+}
