@@ -65,13 +65,13 @@ void fsync_parent_directory(const std::string& path) {
   if (rc != 0) throw RuntimeError(dir.string() + ": directory fsync failed: " + errno_text());
 }
 
-void write_file_atomically(const std::string& path, const std::string& text) {
+void write_file_atomically(const std::string& path, const std::string& text, bool durable) {
   const std::string tmp = path + ".tmp";
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw RuntimeError(tmp + ": cannot create: " + errno_text());
   try {
     write_all(fd, text, tmp);
-    fsync_or_throw(fd, tmp);
+    if (durable) fsync_or_throw(fd, tmp);
   } catch (...) {
     ::close(fd);
     throw;
@@ -79,11 +79,11 @@ void write_file_atomically(const std::string& path, const std::string& text) {
   ::close(fd);
   if (std::rename(tmp.c_str(), path.c_str()) != 0)
     throw RuntimeError(path + ": rename failed: " + errno_text());
-  fsync_parent_directory(path);
+  if (durable) fsync_parent_directory(path);
 }
 
 ResponseLog::ResponseLog(ResponseLog&& other) noexcept
-    : path_(std::move(other.path_)), fd_(other.fd_), columns_(other.columns_) {
+    : path_(std::move(other.path_)), fd_(other.fd_), columns_(other.columns_), durable_(other.durable_) {
   other.fd_ = -1;
 }
 
@@ -91,22 +91,25 @@ ResponseLog::~ResponseLog() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-ResponseLog ResponseLog::create(const std::string& path, const std::vector<std::string>& header) {
+ResponseLog ResponseLog::create(const std::string& path, const std::vector<std::string>& header,
+                                bool durable) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_APPEND | O_CLOEXEC, 0644);
   if (fd < 0) {
     if (errno == EEXIST) throw InputError(path + ": already exists (use --resume to continue that session)");
     throw RuntimeError(path + ": cannot create the response log: " + errno_text());
   }
-  ResponseLog log(path, fd, header.size());
+  ResponseLog log(path, fd, header.size(), durable);
   write_all(fd, csv_line(header), path);
-  fsync_or_throw(fd, path);
-  fsync_parent_directory(path);
+  if (durable) {
+    fsync_or_throw(fd, path);
+    fsync_parent_directory(path);
+  }
   return log;
 }
 
 ResponseLog ResponseLog::reopen(const std::string& path, const std::vector<std::string>& header,
                                 const std::string& trial_column, const std::string& session_column,
-                                int rows_per_trial, RecoveredLog& recovered) {
+                                int rows_per_trial, RecoveredLog& recovered, bool durable) {
   recovered = RecoveredLog{};
   const std::string text = read_all(path);
   const std::string header_line = csv_line(header);
@@ -159,7 +162,7 @@ ResponseLog ResponseLog::reopen(const std::string& path, const std::vector<std::
 
   const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
   if (fd < 0) throw RuntimeError(path + ": cannot open for appending: " + errno_text());
-  ResponseLog log(path, fd, header.size());
+  ResponseLog log(path, fd, header.size(), durable);
   if (keep != text.size()) {
     if (::ftruncate(fd, static_cast<off_t>(keep)) != 0)
       throw RuntimeError(path + ": cannot truncate the torn tail: " + errno_text());
@@ -180,7 +183,7 @@ void ResponseLog::append_trial(const std::vector<std::vector<std::string>>& rows
     bytes += csv_line(clean);
   }
   write_all(fd_, bytes, path_);
-  fsync_or_throw(fd_, path_);
+  if (durable_) fsync_or_throw(fd_, path_);
 }
 
 }  // namespace crowdlab::study

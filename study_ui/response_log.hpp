@@ -36,13 +36,15 @@ class ResponseLog {
   ~ResponseLog();
 
   /// Creates `path` (which must not exist) holding the header line; fsyncs it and its directory.
-  static ResponseLog create(const std::string& path, const std::vector<std::string>& header);
+  /// durable = false skips every fsync (synthetic data that can be regenerated: simulate-study).
+  static ResponseLog create(const std::string& path, const std::vector<std::string>& header,
+                            bool durable = true);
 
   /// Opens an existing log for appending after repairing its tail (see above). `trial_column` names
   /// the trial index column; a trial is complete when it has `rows_per_trial` rows.
   static ResponseLog reopen(const std::string& path, const std::vector<std::string>& header,
                             const std::string& trial_column, const std::string& session_column,
-                            int rows_per_trial, RecoveredLog& recovered);
+                            int rows_per_trial, RecoveredLog& recovered, bool durable = true);
 
   /// Appends rows (each header.size() fields) with one write and fsyncs. Throws RuntimeError on any
   /// I/O failure (disk full, ...), so the engine stops before showing the next trial.
@@ -51,17 +53,19 @@ class ResponseLog {
   const std::string& path() const { return path_; }
 
  private:
-  ResponseLog(std::string path, int fd, size_t columns)
-      : path_(std::move(path)), fd_(fd), columns_(columns) {}
+  ResponseLog(std::string path, int fd, size_t columns, bool durable)
+      : path_(std::move(path)), fd_(fd), columns_(columns), durable_(durable) {}
   std::string path_;
   int fd_ = -1;
   size_t columns_ = 0;
+  bool durable_ = true;
 };
 
 /// fsync()s the directory containing `path` (best effort is not enough: throws RuntimeError).
 void fsync_parent_directory(const std::string& path);
 
-/// Writes `text` to `path` atomically: temp file, fsync, rename, fsync of the directory.
-void write_file_atomically(const std::string& path, const std::string& text);
+/// Writes `text` to `path` atomically: temp file, fsync, rename, fsync of the directory (the fsyncs
+/// are skipped when durable = false; the rename keeps it atomic).
+void write_file_atomically(const std::string& path, const std::string& text, bool durable = true);
 
 }  // namespace crowdlab::study

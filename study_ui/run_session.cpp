@@ -125,13 +125,13 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
   std::optional<ResponseLog> log;
   if (fs::exists(result.csv_path)) {
     log.emplace(ResponseLog::reopen(result.csv_path, header, "trial", "session",
-                                    static_cast<int>(questions.size()), recovered));
+                                    static_cast<int>(questions.size()), recovered, opt.durable));
     if (recovered.dropped_bytes > 0)
       spdlog::warn(
           "{}: dropped {} byte(s) of an interrupted trial ({} complete row(s) of it); it will be asked again",
           result.csv_path, recovered.dropped_bytes, recovered.dropped_rows);
   } else {
-    log.emplace(ResponseLog::create(result.csv_path, header));
+    log.emplace(ResponseLog::create(result.csv_path, header, opt.durable));
   }
   for (const Trial& t : trials)
     if (recovered.completed_trials.count(t.index)) ++result.trials_already_done;
@@ -178,7 +178,7 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     r["trials_done"] = result.trials_already_done + result.trials_done_now;
     meta["status"] = status;
     if (status == "complete") meta["end_utc"] = r["end_utc"];
-    write_file_atomically(result.json_path, meta.dump(2) + "\n");
+    write_file_atomically(result.json_path, meta.dump(2) + "\n", opt.durable);
   };
   save_meta("running");
   spdlog::info("participant {}: session {}, {} trial(s), {} already done", opt.participant, session,

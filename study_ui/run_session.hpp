@@ -32,6 +32,7 @@ struct SessionOptions {
   std::string presenter_name =
       "window";              ///< recorded in the metadata ("window", "scripted", "simulated:...")
   bool verify_files = true;  ///< check existence + sha256 of every stimulus before starting
+  bool durable = true;       ///< fsync every trial; false only for regenerable synthetic data
 };
 
 struct SessionResult {

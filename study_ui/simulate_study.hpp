@@ -3,7 +3,8 @@
 // n observers S001..Snnn, run_session() with a SimulatedPresenter writes Sxxx.csv + Sxxx.json, and
 // the per-participant CSVs are concatenated (one header) into DIR/responses.csv.
 // Observer i's seed is derive_seed(seed, "observer:" + id), so the data set is reproducible and
-// adding observers leaves the earlier ones unchanged.
+// adding observers leaves the earlier ones unchanged. The per-trial fsync of real sessions is skipped
+// (the data set is regenerable from its seed); the merged file is still written atomically.
 #include <cstdint>
 #include <string>
 
