@@ -196,7 +196,9 @@ const CommandRegistration kPower([](CLI::App& root) {
   cmd->add_option(
          "--effect", a->effect,
          "Simulated effect of level B: shift of the observers' latent realism (logit units; 0.8 is the "
-         "default observer model's method effect)")
+         "default observer model's method effect). The stimuli's metrics add their own difference through "
+         "the overlap_weight and collision_weight terms; --observer overlap_weight=0,collision_weight=0 "
+         "simulates --effect alone")
       ->capture_default_str();
   cmd->add_option("--dv", a->dv,
                   "Question or composite id to test (default: first composite, else first question)");
