@@ -1,0 +1,61 @@
+#pragma once
+// Presenter: everything the session engine needs from "a participant in front of a screen", so that
+// the engine (run_session) has no I/O of its own. Three implementations:
+//   WindowPresenter    the native full-screen window (OpenCV highgui, FreeType text)
+//   ScriptedPresenter  replays answers from a CSV (--responses)
+//   SimulatedPresenter answers as a simulated observer (--simulate)
+#include <string>
+#include <vector>
+
+#include "study_ui/build_trial_list.hpp"
+#include "study_ui/study_question.hpp"
+
+namespace crowdlab::study {
+
+enum class ScreenKind { instructions, consent, practice_intro, block_intro, break_screen, finished };
+
+/// One answer as given: the raw response and its response time from stimulus onset.
+struct Answer {
+  std::string question_id;
+  int raw = 0;                ///< 1..k for scales, 1 = yes / 0 = no
+  double rt_ms = 0.0;         ///< from stimulus onset (first frame on screen) to the answer
+  std::string timestamp_utc;  ///< ISO 8601, when the answer was given
+};
+
+struct TrialRequest {
+  const Trial* trial = nullptr;
+  std::string video_path;  ///< absolute path of the stimulus file
+  const std::vector<StudyQuestion>* questions = nullptr;
+  int trial_count = 0;     ///< total trials in the session (for "trial i of n")
+  bool loop_video = true;  ///< loop until answered; otherwise play once, then ask
+  double fps = 30.0;       ///< playback rate when the file does not say
+};
+
+struct TrialOutcome {
+  bool aborted = false;         ///< the participant confirmed Esc: stop the session, keep what is saved
+  std::vector<Answer> answers;  ///< one per question, in question order (empty when aborted)
+  long frames_shown = 0;
+  long frames_dropped = 0;
+};
+
+struct ScreenInfo {
+  int width = 0;
+  int height = 0;
+  std::string kind;  ///< "window", "scripted", "simulated"
+};
+
+class Presenter {
+ public:
+  virtual ~Presenter() = default;
+  virtual ScreenInfo screen() const = 0;
+  /// Shows a text screen and waits for the participant. Returns false when they abort (Esc, confirmed)
+  /// or, for consent, decline.
+  virtual bool show_screen(ScreenKind kind, const std::string& title, const std::string& text) = 0;
+  /// Plays the stimulus and collects one answer per question.
+  virtual TrialOutcome run_trial(const TrialRequest& request) = 0;
+};
+
+/// Current UTC time as ISO 8601 with milliseconds, e.g. 2026-11-22T02:13:07.123Z.
+std::string iso8601_utc_now();
+
+}  // namespace crowdlab::study

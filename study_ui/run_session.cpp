@@ -1,0 +1,261 @@
+#include "study_ui/run_session.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "crowdlab_version.hpp"
+#include "framework/core/csv.hpp"
+#include "framework/core/error.hpp"
+#include "framework/core/sha256.hpp"
+#include "study_ui/response_log.hpp"
+#include "study_ui/verify_stimuli.hpp"
+
+namespace crowdlab::study {
+namespace fs = std::filesystem;
+namespace {
+
+const std::vector<std::string> kFixedColumns = {"participant", "session",   "block",    "trial",
+                                                "stimulus",    "question",  "response", "reverse_coded",
+                                                "rt_ms",       "timestamp", "practice"};
+
+nlohmann::json read_metadata(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return nlohmann::json::object();
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path + ": session metadata is not valid JSON: " + e.what());
+  }
+}
+
+std::vector<std::vector<std::string>> trial_rows(const std::string& participant, int session,
+                                                 const Trial& trial,
+                                                 const std::vector<std::string>& factor_names,
+                                                 const std::vector<StudyQuestion>& questions,
+                                                 const std::vector<Answer>& answers) {
+  std::vector<std::vector<std::string>> rows;
+  for (size_t i = 0; i < questions.size(); ++i) {
+    const StudyQuestion& q = questions[i];
+    const Answer& a = answers[i];
+    std::vector<std::string> row = {participant, std::to_string(session), trial.block,
+                                    std::to_string(trial.index), trial.stimulus.id};
+    for (const auto& f : factor_names) {
+      auto it = trial.stimulus.factors.find(f);
+      row.push_back(it == trial.stimulus.factors.end() ? "" : it->second);
+    }
+    row.push_back(q.id);
+    row.push_back(std::to_string(a.raw));
+    row.push_back(std::to_string(reverse_coded(q, a.raw)));
+    row.push_back(csv_number(std::round(a.rt_ms * 10.0) / 10.0));
+    row.push_back(a.timestamp_utc);
+    row.push_back(trial.practice ? "1" : "0");
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+void check_answers(const TrialOutcome& outcome, const std::vector<StudyQuestion>& questions,
+                   const Trial& trial) {
+  if (outcome.answers.size() != questions.size())
+    throw RuntimeError("trial " + std::to_string(trial.index) + ": presenter returned " +
+                       std::to_string(outcome.answers.size()) + " answers for " +
+                       std::to_string(questions.size()) + " questions");
+  for (size_t i = 0; i < questions.size(); ++i) {
+    const Answer& a = outcome.answers[i];
+    if (a.question_id != questions[i].id || !questions[i].valid(a.raw) || !std::isfinite(a.rt_ms) ||
+        a.rt_ms < 0)
+      throw RuntimeError("trial " + std::to_string(trial.index) + ": invalid answer to " + questions[i].id +
+                         " (" + std::to_string(a.raw) + ")");
+  }
+}
+
+}  // namespace
+
+void check_participant_id(const std::string& participant) {
+  bool ok = !participant.empty() && participant.size() <= 64;
+  for (char c : participant)
+    ok = ok &&
+         ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-');
+  if (!ok)
+    throw InputError(SourceLocation{"", 0, 0, "--participant"},
+                     "participant id '" + participant + "' must be 1-64 characters of A-Z a-z 0-9 _ -");
+}
+
+std::vector<std::string> response_header(const std::vector<std::string>& factor_names) {
+  std::vector<std::string> header(kFixedColumns.begin(), kFixedColumns.begin() + 5);
+  for (const auto& f : factor_names) {
+    for (const auto& fixed : kFixedColumns)
+      if (f == fixed)
+        throw InputError("factor '" + f + "' clashes with the response column of the same name; rename it");
+    header.push_back(f);
+  }
+  header.insert(header.end(), kFixedColumns.begin() + 5, kFixedColumns.end());
+  return header;
+}
+
+SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& manifest,
+                          const SessionOptions& opt, Presenter& presenter) {
+  check_participant_id(opt.participant);
+  const std::vector<StudyQuestion> questions = resolve_questions(spec.protocol);
+  const std::vector<Trial> trials = build_trial_list(spec.protocol, manifest, spec.seed, opt.participant);
+  const std::vector<std::string> header = response_header(manifest.factor_names);
+  if (opt.verify_files) verify_stimuli(manifest, opt.stimuli_dir);
+
+  SessionResult result;
+  fs::create_directories(opt.out_dir);
+  result.csv_path = (fs::path(opt.out_dir) / (opt.participant + ".csv")).string();
+  result.json_path = (fs::path(opt.out_dir) / (opt.participant + ".json")).string();
+  result.trials_total = static_cast<int>(trials.size());
+  const bool used = fs::exists(result.csv_path) || fs::exists(result.json_path);
+  if (used && !opt.resume)
+    throw InputError(SourceLocation{"", 0, 0, "--participant"},
+                     "participant '" + opt.participant + "' already has a session in " + opt.out_dir +
+                         " (use --resume to continue it, or another id)");
+
+  nlohmann::json meta = read_metadata(result.json_path);
+  if (meta.contains("spec_hash") && meta["spec_hash"] != spec.source_hash)
+    throw InputError(result.json_path + ": this participant's session used another spec (hash " +
+                     meta["spec_hash"].get<std::string>() + "); refusing to mix data");
+  RecoveredLog recovered;
+  std::optional<ResponseLog> log;
+  if (fs::exists(result.csv_path)) {
+    log.emplace(ResponseLog::reopen(result.csv_path, header, "trial", "session",
+                                    static_cast<int>(questions.size()), recovered, opt.durable));
+    if (recovered.dropped_bytes > 0)
+      spdlog::warn(
+          "{}: dropped {} byte(s) of an interrupted trial ({} complete row(s) of it); it will be asked again",
+          result.csv_path, recovered.dropped_bytes, recovered.dropped_rows);
+  } else {
+    log.emplace(ResponseLog::create(result.csv_path, header, opt.durable));
+  }
+  for (const Trial& t : trials)
+    if (recovered.completed_trials.count(t.index)) ++result.trials_already_done;
+  if (static_cast<int>(recovered.completed_trials.size()) != result.trials_already_done)
+    throw InputError(result.csv_path + ": holds trial indices this spec and manifest do not produce");
+  const int session = recovered.max_session + 1;
+
+  const ScreenInfo screen = presenter.screen();
+  if (!meta.contains("participant")) {
+    meta["participant"] = opt.participant;
+    meta["spec_name"] = spec.name;
+    meta["spec_path"] = spec.source_path;
+    meta["spec_hash"] = spec.source_hash;
+    meta["spec_seed"] = spec.seed;
+    meta["participant_seed"] = participant_seed(spec.seed, opt.participant);
+    meta["crowdlab_version"] = CROWDLAB_VERSION;
+    meta["protocol"] = spec.protocol.type;
+    meta["trials"] = trials.size();
+    meta["questions"] = nlohmann::json::array();
+    for (const auto& q : questions) meta["questions"].push_back({{"id", q.id}, {"reverse", q.reverse}});
+    const std::string manifest_csv = (fs::path(opt.stimuli_dir) / "manifest.csv").string();
+    meta["manifest_sha256"] = fs::exists(manifest_csv) ? sha256_file_hex(manifest_csv) : "";
+    meta["runs"] = nlohmann::json::array();
+    meta["start_utc"] = iso8601_utc_now();
+  }
+  for (auto& earlier : meta["runs"])
+    if (earlier.value("status", "") == "running") earlier["status"] = "interrupted";  // killed or crashed
+  nlohmann::json run = {
+      {"session", session},
+      {"start_utc", iso8601_utc_now()},
+      {"end_utc", nullptr},
+      {"status", "running"},
+      {"presenter", opt.presenter_name},
+      {"screen", {{"width", screen.width}, {"height", screen.height}, {"kind", screen.kind}}},
+      {"resumed_at_trials_done", result.trials_already_done}};
+  meta["runs"].push_back(run);
+  meta["end_utc"] = nullptr;
+  auto save_meta = [&](const std::string& status) {
+    auto& r = meta["runs"].back();
+    r["status"] = status;
+    if (status != "running") r["end_utc"] = iso8601_utc_now();
+    r["frames_shown"] = result.frames_shown;
+    r["frames_dropped"] = result.frames_dropped;
+    r["trials_done"] = result.trials_already_done + result.trials_done_now;
+    meta["status"] = status;
+    if (status == "complete") meta["end_utc"] = r["end_utc"];
+    write_file_atomically(result.json_path, meta.dump(2) + "\n", opt.durable);
+  };
+  save_meta("running");
+  spdlog::info("participant {}: session {}, {} trial(s), {} already done", opt.participant, session,
+               trials.size(), result.trials_already_done);
+
+  auto abort_session = [&] {
+    result.aborted = true;
+    save_meta("aborted");
+    spdlog::warn("participant {}: session aborted after {} trial(s); resume with --resume", opt.participant,
+                 result.trials_already_done + result.trials_done_now);
+    return result;
+  };
+  const ProtocolSpec& p = spec.protocol;
+  if (!p.instructions.empty() &&
+      !presenter.show_screen(ScreenKind::instructions, "Instructions", p.instructions))
+    return abort_session();
+  if (result.trials_already_done == 0 && !p.consent.empty() &&
+      !presenter.show_screen(ScreenKind::consent, "Consent", p.consent))
+    return abort_session();
+
+  std::string current_block;
+  bool in_practice = false;
+  int test_done = 0;  // test trials done (all runs), for breaks
+  for (const Trial& t : trials)
+    if (!t.practice && recovered.completed_trials.count(t.index)) ++test_done;
+  bool multiple_blocks = false;
+  for (const Trial& t : trials) multiple_blocks = multiple_blocks || (!t.practice && t.block_number > 1);
+
+  for (const Trial& t : trials) {
+    if (recovered.completed_trials.count(t.index)) continue;
+    if (t.practice && !in_practice) {
+      if (!presenter.show_screen(ScreenKind::practice_intro, "Practice",
+                                 "The next videos are practice examples, to get used to the task.\n"
+                                 "Your answers to them are not analysed.\n\nPress any key to start."))
+        return abort_session();
+    }
+    if (!t.practice && (in_practice || t.block != current_block) && (multiple_blocks || in_practice)) {
+      const std::string title = multiple_blocks ? "Part " + std::to_string(t.block_number) : "Main part";
+      const std::string body = in_practice
+                                   ? "The practice is over. The experiment starts now.\n\nPress any key."
+                                   : "Press any key to continue.";
+      if (!presenter.show_screen(ScreenKind::block_intro, title, body)) return abort_session();
+    }
+    in_practice = t.practice;
+    current_block = t.block;
+
+    TrialRequest req;
+    req.trial = &t;
+    req.video_path = stimulus_path(opt.stimuli_dir, t.stimulus);
+    req.questions = &questions;
+    req.trial_count = static_cast<int>(trials.size());
+    req.loop_video = p.loop_video;
+    req.fps = spec.fps;
+    TrialOutcome outcome = presenter.run_trial(req);
+    result.frames_shown += outcome.frames_shown;
+    result.frames_dropped += outcome.frames_dropped;
+    if (outcome.aborted) return abort_session();
+    check_answers(outcome, questions, t);
+    log->append_trial(
+        trial_rows(opt.participant, session, t, manifest.factor_names, questions, outcome.answers));
+    ++result.trials_done_now;
+    if (outcome.frames_dropped > 0)
+      spdlog::info("trial {} ({}): {} of {} frame(s) dropped", t.index, t.stimulus.id, outcome.frames_dropped,
+                   outcome.frames_shown + outcome.frames_dropped);
+    if (!t.practice) ++test_done;
+    save_meta("running");  // progress and dropped frames survive a kill too
+    const bool last = t.index == static_cast<int>(trials.size());
+    if (!last && !t.practice && p.break_every > 0 && test_done % p.break_every == 0) {
+      if (!presenter.show_screen(ScreenKind::break_screen, "Break", p.break_text)) return abort_session();
+    }
+  }
+  result.complete = true;
+  save_meta("complete");
+  presenter.show_screen(ScreenKind::finished, "Thank you",
+                        "The session is complete. Thank you for taking part!\n\nPress any key to close.");
+  spdlog::info("participant {}: complete, responses in {}", opt.participant, result.csv_path);
+  return result;
+}
+
+}  // namespace crowdlab::study

@@ -1,0 +1,59 @@
+#pragma once
+// run_session: the study session engine. No I/O of its own beyond the response log and metadata;
+// the participant side is a Presenter (window, scripted replay or simulated observer).
+//
+// Files, per participant P in out_dir:
+//   P.csv   tidy responses, one row per answer (response_log.hpp for the durability rules):
+//           participant,session,block,trial,stimulus,<factor columns>,question,response,reverse_coded,
+//           rt_ms,timestamp,practice
+//           session: 1 for the first run, +1 for each --resume; trial: 1-based index in this
+//           participant's order; response: raw (1..k, or 1 = yes / 0 = no); reverse_coded: (k+1) - raw
+//           for reverse-keyed items; rt_ms: stimulus onset to answer; timestamp: ISO 8601 UTC;
+//           practice: 1 for practice trials (never analysed).
+//   P.json  session metadata: spec name/hash/seed, crowdlab version, participant seed, trial count,
+//           manifest sha256, and one entry per run (start, end, status, screen, dropped frames).
+// Order of events: validate ids -> build trials -> verify every stimulus file -> refuse a used id
+// unless resume -> instructions, consent -> trials (practice intro, block intros, breaks every
+// protocol.break_every test trials) -> finished screen. Every trial's rows are on disk (fsync'd)
+// before the next trial starts.
+#include <string>
+
+#include "framework/core/stimulus_manifest.hpp"
+#include "framework/spec/experiment_spec.hpp"
+#include "study_ui/presenter.hpp"
+
+namespace crowdlab::study {
+
+struct SessionOptions {
+  std::string participant;  ///< [A-Za-z0-9_-], 1..64 characters
+  std::string stimuli_dir;  ///< folder of manifest.csv (stimulus paths are relative to it)
+  std::string out_dir;      ///< created when absent
+  bool resume = false;      ///< continue a session that was interrupted
+  std::string presenter_name =
+      "window";              ///< recorded in the metadata ("window", "scripted", "simulated:...")
+  bool verify_files = true;  ///< check existence + sha256 of every stimulus before starting
+  bool durable = true;       ///< fsync every trial; false only for regenerable synthetic data
+};
+
+struct SessionResult {
+  std::string csv_path;
+  std::string json_path;
+  int trials_total = 0;
+  int trials_already_done = 0;  ///< completed before this run (resume)
+  int trials_done_now = 0;
+  bool complete = false;
+  bool aborted = false;
+  long frames_dropped = 0;
+  long frames_shown = 0;
+};
+
+/// Validates a participant id; throws InputError when it is empty, too long, or has other characters.
+void check_participant_id(const std::string& participant);
+
+/// The response CSV header for a manifest's factor columns.
+std::vector<std::string> response_header(const std::vector<std::string>& factor_names);
+
+SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& manifest,
+                          const SessionOptions& options, Presenter& presenter);
+
+}  // namespace crowdlab::study

@@ -1,0 +1,230 @@
+#include "study_ui/trial_screen.hpp"
+
+#include <algorithm>
+#include <opencv2/imgproc.hpp>
+
+namespace crowdlab::study {
+namespace {
+
+const cv::Scalar kBackground(236, 233, 230), kCell(252, 251, 250), kInk(40, 36, 32), kMuted(120, 114, 108);
+const cv::Scalar kAccent(196, 112, 28), kGreen(92, 160, 56), kDisabled(196, 192, 188);
+const cv::Scalar kBorder(214, 208, 202);
+
+void fill_round_rect(cv::Mat& img, cv::Rect r, int radius, cv::Scalar color) {
+  radius = std::min({radius, r.width / 2, r.height / 2});
+  cv::rectangle(img, {r.x + radius, r.y, r.width - 2 * radius, r.height}, color, cv::FILLED);
+  cv::rectangle(img, {r.x, r.y + radius, r.width, r.height - 2 * radius}, color, cv::FILLED);
+  for (cv::Point c :
+       {cv::Point(r.x + radius, r.y + radius), cv::Point(r.x + r.width - radius - 1, r.y + radius),
+        cv::Point(r.x + radius, r.y + r.height - radius - 1),
+        cv::Point(r.x + r.width - radius - 1, r.y + r.height - radius - 1)})
+    cv::circle(img, c, radius, color, cv::FILLED, cv::LINE_AA);
+}
+
+void draw_centered(cv::Mat& img, const TextRenderer& text, const std::string& s, cv::Rect box, int px,
+                   cv::Scalar color) {
+  const cv::Size size = text.measure(s, px);
+  text.draw(img, s, {box.x + (box.width - size.width) / 2, box.y + (box.height - size.height) / 2}, px,
+            color);
+}
+
+}  // namespace
+
+int TrialScreenState::first_unanswered(const std::vector<StudyQuestion>& qs, QuestionKind kind) const {
+  for (size_t i = 0; i < qs.size() && i < answers.size(); ++i)
+    if (qs[i].kind == kind && answers[i] < 0) return static_cast<int>(i);
+  return -1;
+}
+
+cv::Rect fit_rect(cv::Size frame, cv::Rect area) {
+  if (frame.width <= 0 || frame.height <= 0) return area;
+  const double s = std::min(static_cast<double>(area.width) / frame.width,
+                            static_cast<double>(area.height) / frame.height);
+  const int w = std::max(1, static_cast<int>(frame.width * s)),
+            h = std::max(1, static_cast<int>(frame.height * s));
+  return {area.x + (area.width - w) / 2, area.y + (area.height - h) / 2, w, h};
+}
+
+TrialLayout layout_trial_screen(cv::Size canvas, const std::vector<StudyQuestion>& questions) {
+  TrialLayout L;
+  L.canvas = canvas;
+  const int W = canvas.width, H = canvas.height;
+  L.body_px = std::max(12, H * 26 / 1000);
+  L.small_px = std::max(10, H * 20 / 1000);
+  const int margin = std::max(6, H / 60);
+  const int header_h = TextRenderer::line_height(L.small_px) + margin / 2;
+  const int n = static_cast<int>(questions.size());
+  const int columns = n > 3 ? 2 : 1;
+  const int rows = (n + columns - 1) / columns;
+  // A cell: two lines of statement, the answer row (circles), one line of end labels.
+  const int circle_d = std::max(18, H * 40 / 1000);
+  const int cell_h =
+      2 * TextRenderer::line_height(L.body_px) + circle_d + TextRenderer::line_height(L.small_px) + margin;
+  const int next_h = std::max(28, H * 55 / 1000);
+  const int grid_h = rows * (cell_h + margin / 2);
+  const int video_h = std::max(H / 5, H - header_h - grid_h - next_h - 3 * margin);
+  L.video_area = {margin, header_h, W - 2 * margin, video_h};
+  const int grid_top = header_h + video_h + margin;
+  const int col_w = (W - 2 * margin - (columns - 1) * margin) / columns;
+  for (int i = 0; i < n; ++i) {
+    const int r = i / columns, c = i % columns;
+    const cv::Rect cell(margin + c * (col_w + margin), grid_top + r * (cell_h + margin / 2), col_w, cell_h);
+    L.cells.push_back(cell);
+    const StudyQuestion& q = questions[static_cast<size_t>(i)];
+    const int answer_y = cell.y + margin / 2 + 2 * TextRenderer::line_height(L.body_px);
+    if (q.kind == QuestionKind::yesno) {
+      const int bw = std::min(col_w / 3, circle_d * 4);
+      const int gap = circle_d;
+      const int x0 = cell.x + (cell.width - 2 * bw - gap) / 2;
+      L.targets.push_back({{x0, answer_y, bw, circle_d}, i, 1});
+      L.targets.push_back({{x0 + bw + gap, answer_y, bw, circle_d}, i, 0});
+    } else {
+      const int k = q.points;
+      const int usable = cell.width - 2 * margin;
+      const int step = std::min(usable / k, circle_d * 2);
+      const int x0 = cell.x + (cell.width - step * k) / 2;
+      for (int v = 1; v <= k; ++v)
+        L.targets.push_back(
+            {{x0 + (v - 1) * step + (step - circle_d) / 2, answer_y, circle_d, circle_d}, i, v});
+    }
+  }
+  const int next_w = std::max(120, W * 16 / 100);
+  L.next_button = {W - margin - next_w, H - margin - next_h, next_w, next_h};
+  L.targets.push_back({L.next_button, -1, 0});
+  return L;
+}
+
+void draw_trial_static(cv::Mat& img, const TrialLayout& L, const std::vector<StudyQuestion>& questions,
+                       const std::string& header, bool enabled, const TextRenderer& text) {
+  img.setTo(kBackground);
+  const int margin = std::max(6, L.canvas.height / 60);
+  text.draw(img, header, {margin, margin / 4}, L.small_px, kMuted);
+  cv::rectangle(img, L.video_area, cv::Scalar(24, 24, 24), cv::FILLED);
+  for (size_t i = 0; i < questions.size(); ++i) {
+    const StudyQuestion& q = questions[i];
+    const cv::Rect cell = L.cells[i];
+    fill_round_rect(img, cell, margin / 2, kCell);
+    // Statement: up to two lines, shrinking the font when it does not fit.
+    int px = L.body_px;
+    std::vector<std::string> lines = text.wrap(q.text, px, cell.width - 2 * margin);
+    while (lines.size() > 2 && px > 10) lines = text.wrap(q.text, --px, cell.width - 2 * margin);
+    for (size_t l = 0; l < lines.size() && l < 2; ++l)
+      text.draw(img, lines[l],
+                {cell.x + margin, cell.y + margin / 2 + static_cast<int>(l) * TextRenderer::line_height(px)},
+                px, enabled ? kInk : kMuted);
+  }
+  for (const TrialLayout::Target& t : L.targets) {
+    if (t.question < 0) continue;
+    const StudyQuestion& q = questions[static_cast<size_t>(t.question)];
+    const cv::Scalar ink = enabled ? kInk : kDisabled;
+    if (q.kind == QuestionKind::yesno) {
+      fill_round_rect(img, t.rect, 3, kCell);
+      cv::rectangle(img, t.rect, kBorder, 1, cv::LINE_AA);
+      draw_centered(img, text, t.value == 1 ? "Yes (Y)" : "No (N)", t.rect, L.small_px, ink);
+      continue;
+    }
+    const cv::Point c(t.rect.x + t.rect.width / 2, t.rect.y + t.rect.height / 2);
+    cv::circle(img, c, t.rect.width / 2, kMuted, 2, cv::LINE_AA);
+    draw_centered(img, text, std::to_string(t.value), t.rect, L.small_px, ink);
+    const int label_y = t.rect.y + t.rect.height + 2;
+    if (t.value == 1 && !q.low_label.empty())
+      text.draw(img, q.low_label, {t.rect.x, label_y}, L.small_px * 9 / 10, kMuted);
+    if (t.value == q.points && !q.high_label.empty()) {
+      const int w = text.measure(q.high_label, L.small_px * 9 / 10).width;
+      text.draw(img, q.high_label, {t.rect.x + t.rect.width - w, label_y}, L.small_px * 9 / 10, kMuted);
+    }
+  }
+}
+
+void draw_trial_answers(cv::Mat& img, const TrialLayout& L, const std::vector<StudyQuestion>& questions,
+                        const TrialScreenState& state, const TextRenderer& text) {
+  const int margin = std::max(6, L.canvas.height / 60);
+  const int scale_focus = state.first_unanswered(questions, QuestionKind::scale);
+  const int yesno_focus = state.first_unanswered(questions, QuestionKind::yesno);
+  for (size_t i = 0; i < questions.size() && state.questions_enabled; ++i)
+    if (static_cast<int>(i) == scale_focus || static_cast<int>(i) == yesno_focus)
+      cv::rectangle(img, L.cells[i], kAccent, 2, cv::LINE_AA);  // where the keys go
+  for (const TrialLayout::Target& t : L.targets) {
+    if (t.question < 0 || state.answers[static_cast<size_t>(t.question)] != t.value) continue;
+    const StudyQuestion& q = questions[static_cast<size_t>(t.question)];
+    if (q.kind == QuestionKind::yesno) {
+      fill_round_rect(img, t.rect, 3, kAccent);
+      draw_centered(img, text, t.value == 1 ? "Yes (Y)" : "No (N)", t.rect, L.small_px,
+                    cv::Scalar(255, 255, 255));
+      continue;
+    }
+    const cv::Point c(t.rect.x + t.rect.width / 2, t.rect.y + t.rect.height / 2);
+    cv::circle(img, c, t.rect.width / 2 + 1, kAccent, cv::FILLED, cv::LINE_AA);
+    draw_centered(img, text, std::to_string(t.value), t.rect, L.small_px, cv::Scalar(255, 255, 255));
+  }
+  const bool ready = state.all_answered();
+  fill_round_rect(img, L.next_button, margin / 2, ready ? kGreen : kDisabled);
+  draw_centered(img, text, ready ? "Next (Enter)" : "Answer every question", L.next_button, L.small_px,
+                cv::Scalar(255, 255, 255));
+}
+
+void draw_trial_panel(cv::Mat& img, const TrialLayout& L, const std::vector<StudyQuestion>& questions,
+                      const TrialScreenState& state, const TextRenderer& text) {
+  draw_trial_static(img, L, questions, state.header, state.questions_enabled, text);
+  draw_trial_answers(img, L, questions, state, text);
+  if (state.confirm_abort) draw_abort_confirmation(img, text);
+}
+
+void draw_video_frame(cv::Mat& canvas, const TrialLayout& L, const cv::Mat& frame) {
+  if (frame.empty()) return;
+  const cv::Rect r = fit_rect(frame.size(), L.video_area);
+  cv::Mat roi = canvas(r);
+  if (frame.size() == r.size())
+    frame.copyTo(roi);
+  else
+    cv::resize(frame, roi, r.size(), 0, 0, cv::INTER_AREA);
+}
+
+std::optional<TrialLayout::Target> hit_test(const TrialLayout& L, const TrialScreenState& state,
+                                            cv::Point p) {
+  if (state.confirm_abort) return std::nullopt;
+  for (const TrialLayout::Target& t : L.targets) {
+    if (!t.rect.contains(p)) continue;
+    if (t.question < 0 && !state.all_answered()) return std::nullopt;
+    if (t.question >= 0 && !state.questions_enabled) return std::nullopt;
+    return t;
+  }
+  return std::nullopt;
+}
+
+void draw_text_screen(cv::Mat& img, const std::string& title, const std::string& body,
+                      const std::string& hint, const TextRenderer& text) {
+  img.setTo(kBackground);
+  const int H = img.rows, W = img.cols;
+  const int title_px = std::max(16, H * 45 / 1000), body_px = std::max(13, H * 28 / 1000);
+  const int width = W * 7 / 10;
+  int y = H / 5;
+  draw_centered(img, text, title, {0, y, W, TextRenderer::line_height(title_px)}, title_px, kInk);
+  y += 2 * TextRenderer::line_height(title_px);
+  for (const std::string& line : text.wrap(body, body_px, width)) {
+    text.draw(img, line, {(W - width) / 2, y}, body_px, kInk);
+    y += TextRenderer::line_height(body_px);
+  }
+  draw_centered(img, text, hint, {0, H - H / 8, W, TextRenderer::line_height(body_px)}, body_px, kAccent);
+}
+
+void draw_abort_confirmation(cv::Mat& img, const TextRenderer& text) {
+  cv::Mat dark;
+  img.convertTo(dark, -1, 0.45, 0);
+  dark.copyTo(img);
+  const int H = img.rows, W = img.cols;
+  const cv::Rect box(W / 4, H / 3, W / 2, H / 3);
+  fill_round_rect(img, box, H / 60, kCell);
+  const int px = std::max(14, H * 32 / 1000);
+  draw_centered(img, text, "Quit the session?",
+                {box.x, box.y + box.height / 6, box.width, TextRenderer::line_height(px)}, px, kInk);
+  const int small = std::max(11, H * 22 / 1000);
+  draw_centered(img, text, "Y = quit (your answers so far are saved)",
+                {box.x, box.y + box.height / 2, box.width, TextRenderer::line_height(small)}, small, kInk);
+  draw_centered(img, text, "any other key = continue",
+                {box.x, box.y + box.height / 2 + TextRenderer::line_height(small), box.width,
+                 TextRenderer::line_height(small)},
+                small, kMuted);
+}
+
+}  // namespace crowdlab::study

@@ -1,0 +1,288 @@
+#include "study_ui/window_presenter.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <deque>
+#include <filesystem>
+#include <opencv2/highgui.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "framework/core/error.hpp"
+#include "study_ui/text_renderer.hpp"
+#include "study_ui/trial_screen.hpp"
+#include "study_ui/video_source.hpp"
+
+namespace crowdlab::study {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr const char* kWindow = "crowdlab study";
+constexpr int kEsc = 27;
+constexpr double kDebounceMs = 300.0;
+
+bool is_enter(int key) {
+  return key == 13 || key == 10 || key == 0xff0d || key == 0xff8d || key == 32;
+}
+
+/// Digit 1..9 from the top row or the keypad, else 0.
+int digit_of(int key) {
+  if (key >= '1' && key <= '9') return key - '0';
+  if (key >= 0xffb1 && key <= 0xffb9) return key - 0xffb0;
+  return 0;
+}
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+const char* screen_name(ScreenKind kind) {
+  switch (kind) {
+    case ScreenKind::instructions:
+      return "instructions";
+    case ScreenKind::consent:
+      return "consent";
+    case ScreenKind::practice_intro:
+      return "practice";
+    case ScreenKind::block_intro:
+      return "block";
+    case ScreenKind::break_screen:
+      return "break";
+    case ScreenKind::finished:
+      return "finished";
+  }
+  return "screen";
+}
+
+}  // namespace
+
+struct WindowPresenter::Impl {
+  WindowOptions options;
+  TextRenderer text;
+  cv::Size canvas_size;
+  std::deque<cv::Point> clicks;
+
+  explicit Impl(const WindowOptions& o) : options(o), text(o.font_path) {}
+
+  static void on_mouse(int event, int x, int y, int, void* self) {
+    if (event == cv::EVENT_LBUTTONDOWN) static_cast<Impl*>(self)->clicks.emplace_back(x, y);
+  }
+  bool window_closed() const {
+    try {
+      return cv::getWindowProperty(kWindow, cv::WND_PROP_VISIBLE) < 1.0;
+    } catch (const cv::Exception&) {
+      return true;
+    }
+  }
+  void snapshot(const cv::Mat& canvas, const std::string& name) const {
+    if (options.snapshot_dir.empty()) return;
+    std::filesystem::create_directories(options.snapshot_dir);
+    cv::imwrite((std::filesystem::path(options.snapshot_dir) / (name + ".png")).string(), canvas);
+  }
+};
+
+WindowPresenter::WindowPresenter(const WindowOptions& options) {
+  const char* display = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((display == nullptr || *display == '\0') && (wayland == nullptr || *wayland == '\0'))
+    throw RuntimeError(
+        "no display (DISPLAY is not set): run on a desktop, under Xvfb, or use --responses/--simulate");
+  impl_ = std::make_unique<Impl>(options);
+  // GUI_NORMAL: no Qt toolbar or status bar (Debian's OpenCV highgui uses the Qt backend), so the
+  // canvas fills the window and mouse coordinates are canvas coordinates.
+  cv::namedWindow(kWindow, cv::WINDOW_NORMAL | cv::WINDOW_KEEPRATIO | cv::WINDOW_GUI_NORMAL);
+  if (options.fullscreen) {
+    cv::setWindowProperty(kWindow, cv::WND_PROP_FULLSCREEN, cv::WINDOW_FULLSCREEN);
+    cv::imshow(kWindow, cv::Mat(480, 640, CV_8UC3, cv::Scalar(236, 233, 230)));
+    for (int i = 0; i < 5; ++i) cv::waitKey(40);  // let the window manager apply full screen
+    const cv::Rect r = cv::getWindowImageRect(kWindow);
+    impl_->canvas_size =
+        (r.width >= 320 && r.height >= 240) ? r.size() : cv::Size(options.width, options.height);
+  } else {
+    impl_->canvas_size = {options.width, options.height};
+    cv::resizeWindow(kWindow, options.width, options.height);
+  }
+  cv::setMouseCallback(kWindow, &Impl::on_mouse, impl_.get());
+  spdlog::info("study window {}x{} ({})", impl_->canvas_size.width, impl_->canvas_size.height,
+               options.fullscreen ? "full screen" : "windowed");
+}
+
+WindowPresenter::~WindowPresenter() {
+  try {
+    cv::destroyWindow(kWindow);
+    cv::waitKey(1);
+  } catch (const cv::Exception&) {
+  }
+}
+
+ScreenInfo WindowPresenter::screen() const {
+  return {impl_->canvas_size.width, impl_->canvas_size.height, "window"};
+}
+
+bool WindowPresenter::show_screen(ScreenKind kind, const std::string& title, const std::string& body) {
+  Impl& m = *impl_;
+  const bool consent = kind == ScreenKind::consent;
+  const std::string hint =
+      consent ? "Press Y if you agree to take part, N if you do not" : "Press any key (or click) to continue";
+  cv::Mat canvas(m.canvas_size, CV_8UC3);
+  draw_text_screen(canvas, title, body, hint, m.text);
+  cv::Mat shown = canvas.clone();
+  cv::imshow(kWindow, shown);
+  m.snapshot(shown, std::string("screen_") + screen_name(kind));
+  const auto t0 = Clock::now();
+  bool confirming = false;
+  m.clicks.clear();
+  while (true) {
+    const int key = cv::waitKeyEx(30);
+    if (m.window_closed()) return false;
+    const bool debounced = ms_since(t0) > kDebounceMs;
+    if (confirming && key != -1) {
+      if (key == 'y' || key == 'Y') return false;
+      confirming = false;
+      cv::imshow(kWindow, canvas);
+      continue;
+    }
+    if (!debounced) {
+      m.clicks.clear();
+      continue;
+    }
+    if (key == kEsc && kind != ScreenKind::finished) {
+      confirming = true;
+      shown = canvas.clone();
+      draw_abort_confirmation(shown, m.text);
+      cv::imshow(kWindow, shown);
+      continue;
+    }
+    if (consent) {
+      if (key == 'y' || key == 'Y') return true;
+      if (key == 'n' || key == 'N') return false;
+      continue;
+    }
+    if (key != -1 || !m.clicks.empty()) return true;
+  }
+}
+
+TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
+  Impl& m = *impl_;
+  const std::vector<StudyQuestion>& qs = *req.questions;
+  const TrialLayout layout = layout_trial_screen(m.canvas_size, qs);
+  VideoSource video(req.video_path, layout.video_area, req.fps, m.options.frame_cache_mb);
+  TrialScreenState state;
+  state.answers.assign(qs.size(), -1);
+  state.questions_enabled = req.loop_video;
+  state.header = (req.trial->practice ? "Practice - trial " : "Trial ") + std::to_string(req.trial->index) +
+                 " of " + std::to_string(req.trial_count);
+  std::vector<Answer> answers(qs.size());
+  const std::string tag = "trial_" + std::to_string(req.trial->index);
+
+  TrialOutcome out;
+  cv::Mat static_panel(m.canvas_size, CV_8UC3), panel(m.canvas_size, CV_8UC3), canvas(m.canvas_size, CV_8UC3);
+  bool static_dirty = true, panel_dirty = true, redraw = true, snap_onset = true, snap_answered = true;
+  const double period_ms = 1000.0 / video.fps();
+  Clock::time_point onset;
+  long shown = -1;
+  bool video_done = false;
+  // The static panel (FreeType text, tens of ms) is drawn before onset, so it costs no frame.
+  draw_trial_static(static_panel, layout, qs, state.header, state.questions_enabled, m.text);
+  static_dirty = false;
+  m.clicks.clear();
+
+  auto answer = [&](int q, int value, double rt_ms) {
+    state.answers[static_cast<size_t>(q)] = value;
+    answers[static_cast<size_t>(q)] = Answer{qs[static_cast<size_t>(q)].id, value, rt_ms, iso8601_utc_now()};
+    panel_dirty = true;
+  };
+
+  while (true) {
+    // 1. Which frame is due (steady clock), counting skipped ones as dropped.
+    if (shown < 0) onset = Clock::now();
+    long due = static_cast<long>(std::floor(ms_since(onset) / period_ms));
+    if (!req.loop_video && due >= video.frame_count()) {
+      due = video.frame_count() - 1;
+      if (!video_done) video_done = true, state.questions_enabled = true, static_dirty = panel_dirty = true;
+    }
+    const cv::Mat* frame = nullptr;
+    if (due != shown) {
+      if (shown >= 0 && due > shown + 1) out.frames_dropped += due - shown - 1;
+      frame = &video.frame(due);
+      shown = due;
+      ++out.frames_shown;
+      redraw = true;
+    }
+    // 2. Compose: the panel only when answers changed, the video every frame.
+    if (static_dirty) {
+      draw_trial_static(static_panel, layout, qs, state.header, state.questions_enabled, m.text);
+      static_dirty = false;
+    }
+    if (panel_dirty) {
+      static_panel.copyTo(panel);
+      draw_trial_answers(panel, layout, qs, state, m.text);
+      panel_dirty = false;
+      redraw = true;
+      frame = &video.frame(shown);
+    }
+    if (redraw) {
+      if (frame != nullptr || state.confirm_abort) {
+        panel.copyTo(canvas);
+        draw_video_frame(canvas, layout, *(frame ? frame : &video.frame(shown)));
+        if (state.confirm_abort) draw_abort_confirmation(canvas, m.text);
+      }
+      cv::imshow(kWindow, canvas);
+      redraw = false;
+      if (snap_onset) m.snapshot(canvas, tag + "_onset"), snap_onset = false;
+      if (snap_answered && state.all_answered() && !state.confirm_abort)
+        m.snapshot(canvas, tag + "_answered"), snap_answered = false;
+    }
+    // 3. Wait for input until the next frame is due.
+    const double next_due_ms = (shown + 1) * period_ms - ms_since(onset);
+    const int wait_ms = video_done ? 20 : std::max(1, static_cast<int>(std::ceil(next_due_ms)));
+    const int key = cv::waitKeyEx(wait_ms);
+    const double now_ms = ms_since(onset);
+    if (m.window_closed()) {
+      spdlog::warn("the study window was closed: session stopped");
+      out.aborted = true;
+      return out;
+    }
+    if (state.confirm_abort) {
+      if (key == 'y' || key == 'Y') {
+        out.aborted = true;
+        return out;
+      }
+      if (key != -1) state.confirm_abort = false, redraw = true, frame = nullptr, panel_dirty = true;
+      m.clicks.clear();
+      continue;
+    }
+    if (key == kEsc) {
+      state.confirm_abort = true;
+      redraw = true;
+      continue;
+    }
+    bool next = false;
+    while (!m.clicks.empty()) {
+      const cv::Point p = m.clicks.front();
+      m.clicks.pop_front();
+      if (auto hit = hit_test(layout, state, p)) {
+        if (hit->question < 0)
+          next = true;
+        else
+          answer(hit->question, hit->value, now_ms);
+      }
+    }
+    if (state.questions_enabled && key != -1) {
+      const int d = digit_of(key);
+      const int q = state.first_unanswered(qs, QuestionKind::scale);
+      if (d > 0 && q >= 0 && d <= qs[static_cast<size_t>(q)].points) answer(q, d, now_ms);
+      const int yn = state.first_unanswered(qs, QuestionKind::yesno);
+      if (yn >= 0 && (key == 'y' || key == 'Y')) answer(yn, 1, now_ms);
+      if (yn >= 0 && (key == 'n' || key == 'N')) answer(yn, 0, now_ms);
+      if (is_enter(key)) next = true;
+    }
+    if (next && state.all_answered()) break;
+  }
+  out.answers = answers;
+  return out;
+}
+
+}  // namespace crowdlab::study

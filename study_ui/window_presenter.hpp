@@ -1,0 +1,58 @@
+#pragma once
+// WindowPresenter: the participant's screen, a native window through OpenCV highgui (GTK backend),
+// full screen by default, text drawn with FreeType (cv::freetype, DejaVu Sans).
+//
+// Trial screen: the video on top, the questions below (statement left, answer scale right), a
+// "Next" button bottom right that is enabled only when every question is answered.
+//   - Answers: mouse click on a scale point or yes/no button; number keys 1-9 (top row or keypad)
+//     answer the first unanswered scale question; y / n answer the yes/no question. A click may
+//     change an answer within the trial (its RT is then the time of the last change); there is no
+//     going back to an earlier trial. Enter or Space (or a click on Next) moves on.
+//   - Esc shows "Quit the session?"; only Y confirms, any other key resumes the trial.
+//   - Video: decoded once into memory (scaled to the video area) when it fits the memory budget,
+//     otherwise streamed with cv::VideoCapture. Frames are scheduled against std::chrono::steady_clock:
+//     frame k is due at onset + k / fps; when the loop falls behind, late frames are skipped so the
+//     clip keeps real time, and every skipped frame is counted as dropped (logged per trial and
+//     summed in the session metadata). In memory the loop wraps from the last frame to frame 0 at
+//     the regular frame period, so a clip rendered to loop shows no seam.
+//   - loop_video = false (seed 001 §3.1.5: questions "after each trial"): the clip plays once, and the
+//     questions are enabled when it ends.
+//   - Response time: from stimulus onset (the first frame handed to the window) to each answer.
+// Text screens (instructions, consent, breaks) wait for a key; consent needs Y (agree) or N (decline);
+// keys pressed within 300 ms of a screen appearing are ignored (no accidental skip by key repeat).
+// snapshot_dir (optional): PNGs of what was drawn (trial onset, all-answered state, text screens),
+// for documentation and for tests; this is the window's own rendered canvas.
+#include <memory>
+#include <string>
+
+#include "study_ui/presenter.hpp"
+
+namespace crowdlab::study {
+
+struct WindowOptions {
+  bool fullscreen = true;
+  int width = 1280;  ///< canvas size when not full screen
+  int height = 720;
+  std::string font_path = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+  std::string snapshot_dir;
+  double frame_cache_mb = 768.0;  ///< memory budget for decoded frames of one clip
+};
+
+class WindowPresenter final : public Presenter {
+ public:
+  /// Opens the window. Throws RuntimeError when there is no display or the font cannot be loaded.
+  explicit WindowPresenter(const WindowOptions& options);
+  ~WindowPresenter() override;
+  WindowPresenter(const WindowPresenter&) = delete;
+  WindowPresenter& operator=(const WindowPresenter&) = delete;
+
+  ScreenInfo screen() const override;
+  bool show_screen(ScreenKind kind, const std::string& title, const std::string& text) override;
+  TrialOutcome run_trial(const TrialRequest& request) override;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace crowdlab::study

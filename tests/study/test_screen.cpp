@@ -1,0 +1,78 @@
+// The window's drawing, layout and video source, headless (no display needed): click targets,
+// the Next rule, and that streamed and in-memory playback give the same frames.
+#include <opencv2/core.hpp>
+
+#include "study_ui/trial_screen.hpp"
+#include "study_ui/video_source.hpp"
+#include "tests/study/study_fixture.hpp"
+
+using namespace crowdlab;
+using namespace crowdlab::study;
+
+TEST_CASE("trial screen layout: targets inside the canvas, disjoint, found by hit_test", "[study]") {
+  ProtocolSpec likert, afc;
+  afc.type = "2afc";
+  for (const auto* p : {&likert, &afc})
+    for (cv::Size size :
+         {cv::Size(1280, 720), cv::Size(1920, 1080), cv::Size(1024, 768), cv::Size(3840, 2160)}) {
+      const auto qs = resolve_questions(*p);
+      const TrialLayout L = layout_trial_screen(size, qs);
+      const cv::Rect canvas({0, 0}, size);
+      CHECK((L.video_area & canvas) == L.video_area);
+      CHECK(L.video_area.height >= size.height / 5);
+      TrialScreenState state;
+      state.answers.assign(qs.size(), -1);
+      for (size_t i = 0; i < L.targets.size(); ++i) {
+        const auto& t = L.targets[i];
+        CHECK((t.rect & canvas) == t.rect);
+        CHECK((t.rect & L.video_area).area() == 0);
+        for (size_t j = i + 1; j < L.targets.size(); ++j) CHECK((t.rect & L.targets[j].rect).area() == 0);
+        const cv::Point centre(t.rect.x + t.rect.width / 2, t.rect.y + t.rect.height / 2);
+        const auto hit = hit_test(L, state, centre);
+        if (t.question < 0) {
+          CHECK_FALSE(hit);  // Next is disabled until every question is answered
+        } else {
+          REQUIRE(hit);
+          CHECK(hit->question == t.question);
+          CHECK(hit->value == t.value);
+          CHECK(qs[static_cast<size_t>(t.question)].valid(t.value));
+        }
+      }
+      for (size_t q = 0; q < qs.size(); ++q) state.answers[q] = qs[q].min_response();
+      CHECK(state.all_answered());
+      const cv::Point next(L.next_button.x + 5, L.next_button.y + 5);
+      REQUIRE(hit_test(L, state, next));
+      CHECK(hit_test(L, state, next)->question == -1);
+      state.questions_enabled = false;
+      const auto& first = L.targets.front();
+      CHECK_FALSE(hit_test(L, state, {first.rect.x + 1, first.rect.y + 1}));
+    }
+}
+
+TEST_CASE("fit_rect keeps the aspect ratio and centres", "[study]") {
+  const cv::Rect r = fit_rect({1920, 1080}, {10, 20, 1000, 300});
+  CHECK(r.height == 300);
+  CHECK(r.width == 533);
+  CHECK(r.x == 10 + (1000 - 533) / 2);
+  CHECK(r.y == 20);
+}
+
+TEST_CASE("video source: streamed frames equal in-memory frames, looping", "[study]") {
+  const auto dir = test::scratch_dir("study-video");
+  const std::string clip = (dir / "clip.mp4").string();
+  test::write_test_clip(clip, 3, 12);
+  VideoSource memory(clip, {0, 0, 320, 180}, 30.0, 512.0);
+  VideoSource stream(clip, {0, 0, 320, 180}, 30.0, 0.0);
+  CHECK(memory.in_memory());
+  CHECK_FALSE(stream.in_memory());
+  CHECK(memory.frame_count() == 12);
+  CHECK(memory.fps() == Approx(30.0));
+  for (long k : {0L, 1L, 2L, 5L, 11L, 12L, 13L, 20L, 25L, 25L, 30L}) {  // includes skips, a repeat and wraps
+    const cv::Mat a = memory.frame(k).clone();
+    const cv::Mat b = stream.frame(k).clone();
+    REQUIRE(a.size() == cv::Size(320, 180));
+    REQUIRE(a.size() == b.size());
+    CHECK(cv::norm(a, b, cv::NORM_INF) == 0.0);
+  }
+  CHECK_THROWS(VideoSource((dir / "missing.mp4").string(), {0, 0, 320, 180}, 30.0, 512.0));
+}
