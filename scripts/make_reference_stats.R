@@ -65,6 +65,20 @@ anova_ref("md_12.1", "id", "rt", c("angle", "noise"))
 grid <- expand.grid(p = c(0.5, 0.9, 0.95, 0.99), nmeans = c(2, 3, 5, 10, 20), df = c(2, 5, 10, 30, 120, Inf))
 grid$q <- mapply(function(p, k, v) qtukey(p, k, v), grid$p, grid$nmeans, grid$df)
 grid$ptukey_of_q <- mapply(function(q, k, v) ptukey(q, k, v), grid$q, grid$nmeans, grid$df)
+# R documents qtukey as "accurate to the 4th decimal place", and its ptukey loses accuracy for small df
+# (for 2 means, P(Q < q) = P(|T_df| < q / sqrt 2) shows it). For df < 10 the grid therefore also gets
+# an independent quantile: the defining double integral evaluated with integrate() and inverted with
+# uniroot() at tight tolerances.
+ptukey_integral <- function(q, k, df) {
+  W <- function(w) k * integrate(function(z) dnorm(z) * pmax(pnorm(z + w) - pnorm(z), 0)^(k - 1),
+                                 -Inf, Inf, rel.tol = 1e-12)$value
+  dens <- function(s) exp(log(2) + (df / 2) * log(df / 2) - lgamma(df / 2) + (df - 1) * log(s) - df * s^2 / 2)
+  integrate(function(s) dens(s) * sapply(q * s, W), 0, Inf, rel.tol = 1e-11)$value
+}
+grid$q_integral <- mapply(function(p, k, v) {
+  if (v >= 10) return(NA)
+  uniroot(function(q) ptukey_integral(q, k, v) - p, c(0.01, 400), tol = 1e-12)$root
+}, grid$p, grid$nmeans, grid$df)
 write_table(grid, "ref_qtukey.csv")
 
 # ---- Kolmogorov-Smirnov ---------------------------------------------------------------------------
