@@ -61,6 +61,31 @@ anova_ref("rm_anova2", "Subject", "Performance", c("Time", "Metric"))
 anova_ref("ez_2x3x2", "id", "DV", c("A", "B", "D"))
 anova_ref("md_12.1", "id", "rt", c("angle", "noise"))
 
+# ---- Post-hoc references (md_12.1, effect angle and angle:noise) --------------------------------
+d <- read.csv(file.path(out, "md_12.1.csv"), colClasses = "character")
+d$rt <- as.numeric(d$rt)
+a <- aov_ez("id", "rt", d, within = c("angle", "noise"), anova_table = list(correction = "none"))
+n <- length(unique(d$id))
+ph <- NULL
+for (eff in c("angle", "angle:noise")) {
+  fs <- strsplit(eff, ":")[[1]]
+  key <- do.call(paste, c(d[fs], sep = ":"))
+  m <- tapply(d$rt, list(d$id, key), mean)            # subjects x effect cells
+  lv <- colnames(m)
+  mse <- a$anova_table[eff, "MSE"]; df2 <- a$anova_table[eff, "den Df"]
+  r <- nrow(d) / n / length(lv)                       # cells averaged per mean
+  pairs <- combn(length(lv), 2)
+  for (j in seq_len(ncol(pairs))) {
+    i1 <- pairs[1, j]; i2 <- pairs[2, j]
+    tt <- t.test(m[, i1], m[, i2], paired = TRUE)
+    q <- abs(mean(m[, i1]) - mean(m[, i2])) / sqrt(mse / (n * r))
+    ph <- rbind(ph, data.frame(effect = eff, level_a = lv[i1], level_b = lv[i2], t = unname(tt$statistic),
+                               p_t = tt$p.value, p_bonferroni = min(1, tt$p.value * ncol(pairs)), q = q,
+                               p_tukey = ptukey(q, length(lv), df2, lower.tail = FALSE)))
+  }
+}
+write_table(ph, "ref_posthoc_md_12.1.csv")
+
 # ---- Studentized range ----------------------------------------------------------------------------
 grid <- expand.grid(p = c(0.5, 0.9, 0.95, 0.99), nmeans = c(2, 3, 5, 10, 20), df = c(2, 5, 10, 30, 120, Inf))
 grid$q <- mapply(function(p, k, v) qtukey(p, k, v), grid$p, grid$nmeans, grid$df)
