@@ -5,7 +5,9 @@ namespace {
 nlohmann::json optional_value(const std::optional<double>& v) {
   return v.has_value() && std::isfinite(*v) ? nlohmann::json(*v) : nlohmann::json(nullptr);
 }
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json finite_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
 }  // namespace
 
 nlohmann::json anova_to_json(const RmAnovaResult& result) {

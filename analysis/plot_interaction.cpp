@@ -15,7 +15,8 @@ void plot_interaction(const InteractionPlot& plot, const std::string& path_stem)
   if (nx == 0 || plot.series.empty()) throw InputError("interaction plot '" + plot.title + "': no data");
   for (const auto& s : plot.series)
     if (s.mean.size() != nx || s.error.size() != nx)
-      throw InputError("interaction plot '" + plot.title + "': series '" + s.label + "' length differs from x levels");
+      throw InputError("interaction plot '" + plot.title + "': series '" + s.label +
+                       "' length differs from x levels");
   double lo = plot.y_min, hi = plot.y_max;
   if (!(hi > lo)) {
     lo = INFINITY;
@@ -44,12 +45,13 @@ void plot_interaction(const InteractionPlot& plot, const std::string& path_stem)
     pls.mtex("t", 1.5, 0.5, 0.5, plot.title.c_str());
     if (!plot.note.empty()) {
       pls.schr(0, 0.8);
-      pls.mtex("b", 4.8, 1.0, 1.0, plot.note.c_str());
+      pls.mtex("t", 0.4, 1.0, 1.0, plot.note.c_str());
       pls.schr(0, 1.1);
     }
     for (size_t k = 0; k < plot.series.size(); ++k) {
       const auto& s = plot.series[k];
-      const double shift = (static_cast<double>(k) - 0.5 * static_cast<double>(plot.series.size() - 1)) * offset_step;
+      const double shift =
+          (static_cast<double>(k) - 0.5 * static_cast<double>(plot.series.size() - 1)) * offset_step;
       std::vector<PLFLT> x(nx), y(nx), ylo(nx), yhi(nx);
       for (size_t i = 0; i < nx; ++i) {
         x[i] = static_cast<double>(i) + shift;
@@ -64,14 +66,6 @@ void plot_interaction(const InteractionPlot& plot, const std::string& path_stem)
       pls.lsty(1);
       pls.erry(static_cast<PLINT>(nx), x.data(), ylo.data(), yhi.data());
       pls.poin(static_cast<PLINT>(nx), x.data(), y.data(), k % 2 ? 5 : 17);
-      // Legend entry, right of the plot.
-      const double ly = hi - (hi - lo) * (0.08 + 0.08 * static_cast<double>(k));
-      const double lx0 = xmax + 0.05 * (xmax - xmin), lx1 = xmax + 0.13 * (xmax - xmin);
-      pls.lsty(1 + static_cast<int>(k % 3));
-      pls.join(lx0, ly, lx1, ly);
-      pls.lsty(1);
-      use_axis_colour(pls);
-      pls.ptex(lx1 + 0.02 * (xmax - xmin), ly, 1, 0, 0, s.label.c_str());
     }
     use_axis_colour(pls);
     pls.width(1.0);
@@ -80,6 +74,21 @@ void plot_interaction(const InteractionPlot& plot, const std::string& path_stem)
       double top = -INFINITY;
       for (const auto& s : plot.series) top = std::max(top, s.mean[i] + s.error[i]);
       pls.ptex(static_cast<double>(i), top + 0.04 * (hi - lo), 1, 0, 0.5, plot.stars[i].c_str());
+    }
+    // Legend in its own viewport right of the plot (PLplot clips drawing to the current viewport).
+    pls.vpor(0.80, 0.99, 0.14, 0.9);
+    pls.wind(0, 1, 0, 1);
+    for (size_t k = 0; k < plot.series.size(); ++k) {
+      const double ly = 0.95 - 0.07 * static_cast<double>(k);
+      use_series_colour(pls, static_cast<int>(k));
+      pls.width(2.0);
+      pls.lsty(1 + static_cast<int>(k % 3));
+      pls.join(0.02, ly, 0.22, ly);
+      pls.lsty(1);
+      PLFLT px = 0.12, py = ly;
+      pls.poin(1, &px, &py, k % 2 ? 5 : 17);
+      use_axis_colour(pls);
+      pls.ptex(0.27, ly, 1, 0, 0, plot.series[k].label.c_str());
     }
   });
 }

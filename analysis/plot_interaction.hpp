@@ -15,13 +15,13 @@ struct InteractionSeries {
 
 struct InteractionPlot {
   std::string title;
-  std::string x_label;               ///< with unit, e.g. "Density (characters/m²)"
-  std::string y_label;               ///< with unit/scale, e.g. "Answer (1-6 Likert)"
+  std::string x_label;  ///< with unit, e.g. "Density (characters/m²)"
+  std::string y_label;  ///< with unit/scale, e.g. "Answer (1-6 Likert)"
   std::vector<std::string> x_levels;
   std::vector<InteractionSeries> series;
-  std::vector<std::string> stars;    ///< per x level ("", "*", "**", "***"), drawn above the points
-  double y_min = 0, y_max = 0;       ///< y_min == y_max: fitted to the data
-  std::string note;                  ///< e.g. "error bars: ±1 SD"
+  std::vector<std::string> stars;  ///< per x level ("", "*", "**", "***"), drawn above the points
+  double y_min = 0, y_max = 0;     ///< y_min == y_max: fitted to the data
+  std::string note;                ///< e.g. "error bars: ±1 SD"
 };
 
 /// Writes <path_stem>.png and <path_stem>.svg. Throws InputError when series lengths differ from x_levels.

@@ -27,7 +27,7 @@ void plot_psychometric(const PsychometricPlot& plot, const std::string& path_ste
     pls.vpor(0.12, 0.78, 0.14, 0.9);
     pls.wind(xmin, xmax, -0.05, 1.08);
     use_axis_colour(pls);
-    pls.box("bcnst", 0, 0, "bcnstv", 0.25, 0);
+    pls.box("bcnst", 0, 0, "bcnstv", 0.2, 0);
     pls.mtex("b", 3.2, 0.5, 0.5, plot.x_label.c_str());
     pls.mtex("l", 4.0, 0.5, 0.5, plot.y_label.c_str());
     pls.mtex("t", 1.5, 0.5, 0.5, plot.title.c_str());
@@ -40,7 +40,8 @@ void plot_psychometric(const PsychometricPlot& plot, const std::string& path_ste
       std::vector<PLFLT> cx(n), cy(n);
       for (int i = 0; i < n; ++i) {
         cx[static_cast<size_t>(i)] = xmin + (xmax - xmin) * i / (n - 1.0);
-        cy[static_cast<size_t>(i)] = 1.0 / (1.0 + std::exp(-(c.intercept + c.slope * cx[static_cast<size_t>(i)])));
+        cy[static_cast<size_t>(i)] =
+            1.0 / (1.0 + std::exp(-(c.intercept + c.slope * cx[static_cast<size_t>(i)])));
       }
       pls.width(2.0);
       pls.lsty(1);
@@ -59,12 +60,19 @@ void plot_psychometric(const PsychometricPlot& plot, const std::string& path_ste
         pls.join(c.threshold50, -0.05, c.threshold50, 0.5);
         pls.lsty(1);
       }
-      const double ly = 1.0 - 0.08 * static_cast<double>(k);
-      const double lx0 = xmax + 0.04 * (xmax - xmin), lx1 = xmax + 0.12 * (xmax - xmin);
+    }
+    // Legend in its own viewport (PLplot clips to the current one).
+    pls.vpor(0.80, 0.99, 0.14, 0.9);
+    pls.wind(0, 1, 0, 1);
+    for (size_t k = 0; k < plot.curves.size(); ++k) {
+      const double ly = 0.95 - 0.07 * static_cast<double>(k);
+      use_series_colour(pls, static_cast<int>(k));
       pls.width(2.0);
-      pls.join(lx0, ly, lx1, ly);
+      pls.join(0.02, ly, 0.22, ly);
+      PLFLT px = 0.12, py = ly;
+      pls.poin(1, &px, &py, k % 2 ? 5 : 17);
       use_axis_colour(pls);
-      pls.ptex(lx1 + 0.02 * (xmax - xmin), ly, 1, 0, 0, c.label.c_str());
+      pls.ptex(0.27, ly, 1, 0, 0, plot.curves[k].label.c_str());
     }
   });
 }

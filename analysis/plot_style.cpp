@@ -10,19 +10,19 @@
 namespace crowdlab::analysis {
 namespace {
 // Okabe & Ito (2008) colour-blind-safe palette.
-constexpr std::array<std::array<int, 3>, kPaletteSize> kPalette = {{{0, 114, 178},
-                                                                   {213, 94, 0},
-                                                                   {0, 158, 115},
-                                                                   {204, 121, 167},
-                                                                   {230, 159, 0},
-                                                                   {86, 180, 233},
-                                                                   {0, 0, 0}}};
+constexpr std::array<std::array<int, 3>, kPaletteSize> kPalette = {
+    {{0, 114, 178}, {213, 94, 0}, {0, 158, 115}, {204, 121, 167}, {230, 159, 0}, {86, 180, 233}, {0, 0, 0}}};
 }  // namespace
 
-void use_series_colour(plstream& pls, int i) { pls.col0(2 + (i % kPaletteSize)); }
-void use_axis_colour(plstream& pls) { pls.col0(1); }
+void use_series_colour(plstream& pls, int i) {
+  pls.col0(2 + (i % kPaletteSize));
+}
+void use_axis_colour(plstream& pls) {
+  pls.col0(1);
+}
 
-void render_figure(const std::string& path_stem, int width, int height, const std::function<void(plstream&)>& draw) {
+void render_figure(const std::string& path_stem, int width, int height,
+                   const std::function<void(plstream&)>& draw) {
   for (const char* device : {"pngcairo", "svgcairo"}) {
     const std::string path = path_stem + (std::string(device) == "pngcairo" ? ".png" : ".svg");
     {
@@ -32,8 +32,9 @@ void render_figure(const std::string& path_stem, int width, int height, const st
       pls.spage(0, 0, width, height, 0, 0);
       pls.scolbg(255, 255, 255);
       pls.scol0(1, 0, 0, 0);
-      for (int i = 0; i < kPaletteSize; ++i) pls.scol0(2 + i, kPalette[static_cast<size_t>(i)][0],
-                                                       kPalette[static_cast<size_t>(i)][1], kPalette[static_cast<size_t>(i)][2]);
+      for (int i = 0; i < kPaletteSize; ++i)
+        pls.scol0(2 + i, kPalette[static_cast<size_t>(i)][0], kPalette[static_cast<size_t>(i)][1],
+                  kPalette[static_cast<size_t>(i)][2]);
       pls.init();
       pls.adv(0);
       draw(pls);

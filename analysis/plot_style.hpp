@@ -13,7 +13,8 @@ constexpr int kPaletteSize = 7;
 
 /// Calls `draw` once per format with a ready stream (page width x height pixels), writing
 /// `<path_stem>.png` and `<path_stem>.svg`. Throws RuntimeError when a device is missing.
-void render_figure(const std::string& path_stem, int width, int height, const std::function<void(plstream&)>& draw);
+void render_figure(const std::string& path_stem, int width, int height,
+                   const std::function<void(plstream&)>& draw);
 
 /// Selects series colour i (wrapping) as the current colour.
 void use_series_colour(plstream& pls, int i);

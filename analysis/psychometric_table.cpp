@@ -1,8 +1,8 @@
 #include "analysis/psychometric_table.hpp"
 
 #include <cmath>
-#include <limits>
 #include <cstdio>
+#include <limits>
 #include <map>
 
 #include "analysis/apa_format.hpp"
@@ -38,10 +38,14 @@ PsychometricAnalysis analyze_psychometric(const CsvTable& table, const Psychomet
     double x = table.number(r, x_col);
     const double y = table.number(r, y_col);
     const SourceLocation where{table.source, table.line_numbers[r], 0, request.response};
-    if (y != 0.0 && y != 1.0) throw InputError(where, "response must be 0 or 1, got '" + table.cell(r, y_col) + "'");
-    if (!std::isfinite(x)) throw InputError(SourceLocation{table.source, table.line_numbers[r], 0, request.x}, "not finite");
+    if (y != 0.0 && y != 1.0)
+      throw InputError(where, "response must be 0 or 1, got '" + table.cell(r, y_col) + "'");
+    if (!std::isfinite(x))
+      throw InputError(SourceLocation{table.source, table.line_numbers[r], 0, request.x}, "not finite");
     if (request.x_transform == "cbrt") {
-      if (x < 0) throw InputError(SourceLocation{table.source, table.line_numbers[r], 0, request.x}, "negative volume");
+      if (x < 0)
+        throw InputError(SourceLocation{table.source, table.line_numbers[r], 0, request.x},
+                         "negative volume");
       x = std::cbrt(x);
     }
     auto [it, inserted] = index.emplace(std::make_pair(subject, by), out.fits.size());
@@ -54,7 +58,8 @@ PsychometricAnalysis analyze_psychometric(const CsvTable& table, const Psychomet
     try {
       row.fit = fit_psychometric(row.x, row.y, request.options);
     } catch (const InputError& e) {
-      throw InputError(table.source + ": subject '" + row.subject + "'" + (row.by.empty() ? "" : ", " + request.by + " '" + row.by + "'") + ": " + e.what());
+      throw InputError(table.source + ": subject '" + row.subject + "'" +
+                       (row.by.empty() ? "" : ", " + request.by + " '" + row.by + "'") + ": " + e.what());
     }
     for (double p : request.probabilities) row.thresholds.push_back(row.fit.threshold(p));
     if (request.bootstrap > 0)
@@ -73,7 +78,8 @@ PsychometricAnalysis analyze_psychometric(const CsvTable& table, const Psychomet
       mean = v.empty() ? std::numeric_limits<double>::quiet_NaN() : mean / static_cast<double>(v.size());
       for (double t : v) ss += (t - mean) * (t - mean);
       g.mean.push_back(mean);
-      g.sd.push_back(v.size() > 1 ? std::sqrt(ss / static_cast<double>(v.size() - 1)) : std::numeric_limits<double>::quiet_NaN());
+      g.sd.push_back(v.size() > 1 ? std::sqrt(ss / static_cast<double>(v.size() - 1))
+                                  : std::numeric_limits<double>::quiet_NaN());
       g.n = v.size();
     }
     out.groups.push_back(g);
@@ -94,14 +100,17 @@ PsychometricAnalysis analyze_psychometric(const CsvTable& table, const Psychomet
       out.threshold_anova = rm_anova(build_within_design(t, "threshold", "subject", {"condition"}));
       out.threshold_anova->effects[0].name = request.by;
     } catch (const InputError&) {
-      out.threshold_anova.reset();  // unbalanced (a subject lacks a condition): no ANOVA, groups still reported
+      out.threshold_anova
+          .reset();  // unbalanced (a subject lacks a condition): no ANOVA, groups still reported
     }
   }
   return out;
 }
 
 namespace {
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json num(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
 }  // namespace
 
 nlohmann::json psychometric_to_json(const PsychometricAnalysis& a) {
@@ -113,16 +122,17 @@ nlohmann::json psychometric_to_json(const PsychometricAnalysis& a) {
       th[probability_key(probs[k])] = num(row.thresholds[k]);
       if (!row.ci.empty()) ci[probability_key(probs[k])] = {num(row.ci[k].lower), num(row.ci[k].upper)};
     }
-    fits.push_back({{"subject", row.subject},
-                    {"by", row.by},
-                    {"intercept", num(row.fit.intercept)},
-                    {"slope", num(row.fit.slope)},
-                    {"thresholds", th},
-                    {"ci", row.ci.empty() ? nlohmann::json(nullptr) : ci},
-                    {"trials", row.x.size()},
-                    {"converged", row.fit.converged},
-                    {"separated", row.fit.separated},
-                    {"warning", row.fit.warning.empty() ? nlohmann::json(nullptr) : nlohmann::json(row.fit.warning)}});
+    fits.push_back(
+        {{"subject", row.subject},
+         {"by", row.by},
+         {"intercept", num(row.fit.intercept)},
+         {"slope", num(row.fit.slope)},
+         {"thresholds", th},
+         {"ci", row.ci.empty() ? nlohmann::json(nullptr) : ci},
+         {"trials", row.x.size()},
+         {"converged", row.fit.converged},
+         {"separated", row.fit.separated},
+         {"warning", row.fit.warning.empty() ? nlohmann::json(nullptr) : nlohmann::json(row.fit.warning)}});
   }
   nlohmann::json groups = nlohmann::json::array();
   for (const auto& g : a.groups) {
@@ -136,8 +146,14 @@ nlohmann::json psychometric_to_json(const PsychometricAnalysis& a) {
   nlohmann::json anova = nullptr;
   if (a.threshold_anova) {
     const auto& e = a.threshold_anova->effects[0];
-    anova = {{"effect", e.name}, {"probability", probs[0]}, {"df1", e.df1}, {"df2", e.df2}, {"F", num(e.f)},
-             {"p", num(e.p)}, {"pes", num(e.pes)}, {"ges", num(e.ges)},
+    anova = {{"effect", e.name},
+             {"probability", probs[0]},
+             {"df1", e.df1},
+             {"df2", e.df2},
+             {"F", num(e.f)},
+             {"p", num(e.p)},
+             {"pes", num(e.pes)},
+             {"ges", num(e.ges)},
              {"gg_eps", e.gg_eps ? nlohmann::json(*e.gg_eps) : nlohmann::json(nullptr)},
              {"p_gg", e.p_gg ? nlohmann::json(*e.p_gg) : nlohmann::json(nullptr)}};
   }
@@ -161,7 +177,8 @@ std::string psychometric_markdown_table(const PsychometricAnalysis& a, const std
     }
     s += "\n";
   }
-  if (a.threshold_anova) s += "\nRM-ANOVA of the thresholds: " + apa_f_sentence(a.threshold_anova->effects[0]) + "\n";
+  if (a.threshold_anova)
+    s += "\nRM-ANOVA of the thresholds: " + apa_f_sentence(a.threshold_anova->effects[0]) + "\n";
   return s;
 }
 

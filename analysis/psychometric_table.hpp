@@ -16,20 +16,20 @@ namespace crowdlab::analysis {
 
 struct PsychometricRequest {
   std::string subject, x, response;
-  std::string by;                      ///< condition column, "" = one condition
-  std::string x_transform = "none";    ///< none | cbrt (cube root, for interpenetration volumes)
+  std::string by;                    ///< condition column, "" = one condition
+  std::string x_transform = "none";  ///< none | cbrt (cube root, for interpenetration volumes)
   std::vector<double> probabilities = {0.5, 0.05};
-  int bootstrap = 0;                   ///< parametric-bootstrap replicates per fit (0 = none)
-  std::uint64_t seed = 1;              ///< bootstrap streams: derive_seed(seed, "<subject>/<by>")
+  int bootstrap = 0;       ///< parametric-bootstrap replicates per fit (0 = none)
+  std::uint64_t seed = 1;  ///< bootstrap streams: derive_seed(seed, "<subject>/<by>")
   PsychometricOptions options;
 };
 
 struct PsychometricRow {
   std::string subject, by;
   PsychometricFit fit;
-  std::vector<double> thresholds;          ///< one per request probability
-  std::vector<ThresholdInterval> ci;       ///< empty without bootstrap
-  std::vector<double> x, y;                ///< the (transformed) trials, for plots
+  std::vector<double> thresholds;     ///< one per request probability
+  std::vector<ThresholdInterval> ci;  ///< empty without bootstrap
+  std::vector<double> x, y;           ///< the (transformed) trials, for plots
 };
 
 struct PsychometricGroup {
@@ -40,8 +40,8 @@ struct PsychometricGroup {
 
 struct PsychometricAnalysis {
   PsychometricRequest request;
-  std::vector<PsychometricRow> fits;      ///< subjects in order of appearance, conditions within
-  std::vector<PsychometricGroup> groups;  ///< conditions in order of appearance
+  std::vector<PsychometricRow> fits;             ///< subjects in order of appearance, conditions within
+  std::vector<PsychometricGroup> groups;         ///< conditions in order of appearance
   std::optional<RmAnovaResult> threshold_anova;  ///< thresholds at probabilities[0] ~ by (>= 2 levels)
 };
 

@@ -35,6 +35,16 @@ std::string safe_name(std::string s) {
   return s;
 }
 
+// Axis labels with units for the factors of the seed papers' specs (seed 000 section 4.4.2: density in
+// characters per m²; seed 001: distance in metres, trigger in percent); other factors are categorical.
+std::string factor_axis_label(const std::string& factor) {
+  if (factor == "density") return "density (characters/m#u2#d)";
+  if (factor == "distance") return "distance (m)";
+  if (factor == "trigger") return "trigger (% of characters)";
+  if (factor == "shoulder") return "shoulder (characters with shoulder motion)";
+  return factor + " (level)";
+}
+
 struct Context {
   ExperimentSpec spec;
   StudyResponses responses;
@@ -71,8 +81,9 @@ CsvTable measure_table(const Context& ctx, const std::vector<std::string>& items
       const auto v = values.find(item);
       if (v == values.end())
         throw InputError(ctx.responses.sources[first_row] + ":" + std::to_string(t.line_numbers[first_row]) +
-                         ": participant '" + t.cell(first_row, p_col) + "', stimulus '" + t.cell(first_row, s_col) +
-                         "': no answer to '" + item + "' (needed by " + name + ")");
+                         ": participant '" + t.cell(first_row, p_col) + "', stimulus '" +
+                         t.cell(first_row, s_col) + "': no answer to '" + item + "' (needed by " + name +
+                         ")");
       sum += v->second;
     }
     std::vector<std::string> row = {t.cell(first_row, p_col)};
@@ -96,20 +107,21 @@ void reliability_section(Context& ctx, const CompositeSpec& comp) {
   }
   const auto rel = pair_reliability(va, vb);
   ctx.md += "Internal reliability of " + comp.items[0] + " and " + comp.items[1] + " (reverse-coded), over " +
-            std::to_string(rel.n) + " trials: r = " + fmt(rel.pearson_r) + ", Cronbach's α = " +
-            fmt(rel.cronbach_alpha) + ".\n\n";
+            std::to_string(rel.n) + " trials: r = " + fmt(rel.pearson_r) +
+            ", Cronbach's α = " + fmt(rel.cronbach_alpha) + ".\n\n";
 }
 
-void interaction_plots(Context& ctx, const WithinDesign& design, const RmAnovaResult& anova, const std::string& name,
-                       const std::string& y_label) {
+void interaction_plots(Context& ctx, const WithinDesign& design, const RmAnovaResult& anova,
+                       const std::string& name, const std::string& y_label) {
   const size_t k = design.factors.size();
   const size_t series_factor = k - 1;
   for (size_t f = 0; f < (k == 1 ? 1 : k - 1); ++f) {
     std::vector<size_t> effect = k == 1 ? std::vector<size_t>{0} : std::vector<size_t>{f, series_factor};
     const Eigen::MatrixXd m = effect_subject_means(design, effect);
     InteractionPlot plot;
-    plot.title = name + (k == 1 ? "" : ": " + design.factors[f].name + " × " + design.factors[series_factor].name);
-    plot.x_label = design.factors[f].name;
+    plot.title =
+        name + (k == 1 ? "" : ": " + design.factors[f].name + " × " + design.factors[series_factor].name);
+    plot.x_label = factor_axis_label(design.factors[f].name);
     plot.y_label = y_label;
     plot.x_levels = design.factors[f].levels;
     plot.note = "mean ± 1 SD over participants";
@@ -126,10 +138,10 @@ void interaction_plots(Context& ctx, const WithinDesign& design, const RmAnovaRe
     }
     if (k > 1)
       for (const auto& se : simple_effects(design, effect, f))
-        plot.stars.push_back(significance_stars(se.effect.p_gg && se.effect.mauchly_p && *se.effect.mauchly_p < 0.05
-                                                    ? *se.effect.p_gg
-                                                    : se.effect.p));
-    const std::string stem = "interaction_" + safe_name(name) + "_" + safe_name(plot.x_label);
+        plot.stars.push_back(significance_stars(
+            se.effect.p_gg && se.effect.mauchly_p && *se.effect.mauchly_p < 0.05 ? *se.effect.p_gg
+                                                                                 : se.effect.p));
+    const std::string stem = "interaction_" + safe_name(name) + "_" + safe_name(design.factors[f].name);
     plot_interaction(plot, (ctx.out / "figures" / stem).string());
     ctx.md += "![" + plot.title + "](figures/" + stem + ".png)\n\n";
   }
@@ -141,7 +153,8 @@ void interaction_plots(Context& ctx, const WithinDesign& design, const RmAnovaRe
 
 void measure_section(Context& ctx, const std::string& name, const std::vector<std::string>& items) {
   ctx.md += "### " + name + "\n\n";
-  if (items.size() > 1) ctx.md += "Composite of " + std::to_string(items.size()) + " items, averaged per trial.\n\n";
+  if (items.size() > 1)
+    ctx.md += "Composite of " + std::to_string(items.size()) + " items, averaged per trial.\n\n";
   const CsvTable t = measure_table(ctx, items, name);
   const auto design = build_within_design(t, "value", "participant", ctx.factors);
   const auto anova = rm_anova(design);
@@ -157,17 +170,19 @@ void measure_section(Context& ctx, const std::string& name, const std::vector<st
   const auto normal = normality_check(residuals);
   std::ofstream qq(ctx.out / "stats" / ("qq_" + safe_name(name) + ".csv"));
   qq << "theoretical,sample\n";
-  for (size_t i = 0; i < normal.sample.size(); ++i) qq << normal.theoretical[i] << "," << normal.sample[i] << "\n";
-  ctx.md += "Normality of residuals: Kolmogorov-Smirnov D = " + fmt(normal.ks.statistic, 3) + ", p = " +
-            apa_p(normal.ks.p) + " (Q-Q data: stats/qq_" + safe_name(name) + ".csv).\n\n";
-  nlohmann::json stats = {{"measure", name}, {"anova", anova_to_json(anova)}, {"posthoc", nlohmann::json::array()}};
+  for (size_t i = 0; i < normal.sample.size(); ++i)
+    qq << normal.theoretical[i] << "," << normal.sample[i] << "\n";
+  ctx.md += "Normality of residuals: Kolmogorov-Smirnov D = " + fmt(normal.ks.statistic, 3) +
+            ", p = " + apa_p(normal.ks.p) + " (Q-Q data: stats/qq_" + safe_name(name) + ".csv).\n\n";
+  nlohmann::json stats = {
+      {"measure", name}, {"anova", anova_to_json(anova)}, {"posthoc", nlohmann::json::array()}};
   for (const auto& e : anova.effects) {
     const double p = (e.mauchly_p && *e.mauchly_p < 0.05) ? *e.p_gg : e.p;
     if (p >= 0.05) continue;
     const auto ph = posthoc(design, e.factors, PosthocMethod::tukey, e.factors.size() > 1);
     stats["posthoc"].push_back(posthoc_to_json(ph));
-    ctx.md += "Post-hoc (Tukey HSD" + std::string(e.factors.size() > 1 ? ", simple comparisons" : "") + ") for " +
-              e.name + ":\n\n";
+    ctx.md += "Post-hoc (Tukey HSD" + std::string(e.factors.size() > 1 ? ", simple comparisons" : "") +
+              ") for " + e.name + ":\n\n";
     if (ph.pairs.size() <= 30)
       ctx.md += posthoc_markdown_table(ph) + "\n";
     else
@@ -186,7 +201,8 @@ bool numeric_factor(const ExperimentSpec& spec, const std::string& name) {
 
 void psychometric_section(Context& ctx, const QuestionSpec& q) {
   std::string x_factor;
-  if (std::find(ctx.factors.begin(), ctx.factors.end(), "distance") != ctx.factors.end()) x_factor = "distance";
+  if (std::find(ctx.factors.begin(), ctx.factors.end(), "distance") != ctx.factors.end())
+    x_factor = "distance";
   for (const auto& f : ctx.factors)
     if (x_factor.empty() && numeric_factor(ctx.spec, f)) x_factor = f;
   ctx.md += "### " + q.id + " (yes/no): psychometric functions\n\n";
@@ -214,17 +230,20 @@ void psychometric_section(Context& ctx, const QuestionSpec& q) {
   req.probabilities = {0.5, 0.05};
   req.bootstrap = 0;
   const auto a = analyze_psychometric(t, req);
-  ctx.md += "Logistic fits of P(yes) against " + x_factor + " per participant and condition (maximum likelihood; " +
-            "Firth's estimate where answers were completely separated).\n\nTable 1: thresholds (mean ± SD over "
-            "participants).\n\n" +
-            psychometric_markdown_table(a, x_factor == "distance" ? "m" : "") + "\n";
+  ctx.md +=
+      "Logistic fits of P(yes) against " + x_factor + " per participant and condition (maximum likelihood; " +
+      "Firth's estimate where answers were completely separated).\n\nTable 1: thresholds (mean ± SD over "
+      "participants).\n\n" +
+      psychometric_markdown_table(a, x_factor == "distance" ? "m" : "") + "\n";
   size_t separated = 0;
   for (const auto& f : a.fits) separated += f.fit.separated;
-  if (separated) ctx.md += std::to_string(separated) + " fit(s) had completely separated answers (Firth estimate).\n\n";
-  std::ofstream(ctx.out / "stats" / ("psychometric_" + safe_name(q.id) + ".json")) << psychometric_to_json(a).dump(2);
+  if (separated)
+    ctx.md += std::to_string(separated) + " fit(s) had completely separated answers (Firth estimate).\n\n";
+  std::ofstream(ctx.out / "stats" / ("psychometric_" + safe_name(q.id) + ".json"))
+      << psychometric_to_json(a).dump(2);
   PsychometricPlot plot;
   plot.title = q.id + ": psychometric functions";
-  plot.x_label = x_factor + (x_factor == "distance" ? " (m)" : "");
+  plot.x_label = factor_axis_label(x_factor);
   plot.y_label = "P(" + q.id + " = yes)";
   for (const auto& g : a.groups) {
     PsychometricCurve c;
@@ -259,12 +278,14 @@ void psychometric_section(Context& ctx, const QuestionSpec& q) {
   }
   const std::string stem = "psychometric_" + safe_name(q.id);
   plot_psychometric(plot, (ctx.out / "figures" / stem).string());
-  ctx.md += "![" + plot.title + "](figures/" + stem + ".png)\n\nPoints: mean proportion over participants (±1 SE); "
+  ctx.md += "![" + plot.title + "](figures/" + stem +
+            ".png)\n\nPoints: mean proportion over participants (±1 SE); "
             "curves: logistic fit to the pooled answers of each condition; dashed: its 50 % point.\n\n";
 }
 }  // namespace
 
-std::string write_study_report(const std::string& study_dir, const std::string& spec_path, const std::string& out_dir) {
+std::string write_study_report(const std::string& study_dir, const std::string& spec_path,
+                               const std::string& out_dir) {
   Context ctx;
   ctx.spec = load_experiment_spec(spec_path);
   ctx.responses = read_study_responses(study_dir, ctx.spec);
@@ -281,17 +302,19 @@ std::string write_study_report(const std::string& study_dir, const std::string& 
   if (ctx.factors.empty()) throw InputError(study_dir + ": no spec factor varies in the responses");
   std::set<std::string> participants;
   for (const auto& row : t.rows) participants.insert(row[t.column("participant")]);
-  ctx.md = "# " + ctx.spec.name + ": study report\n\n" + (ctx.spec.description.empty() ? "" : ctx.spec.description + "\n\n");
+  ctx.md = "# " + ctx.spec.name + ": study report\n\n" +
+           (ctx.spec.description.empty() ? "" : ctx.spec.description + "\n\n");
   ctx.md += "- Spec: `" + spec_path + "` (sha256 " + ctx.spec.source_hash.substr(0, 12) + ")\n";
-  ctx.md += "- Responses: " + std::to_string(ctx.responses.files.size()) + " file(s) in `" + study_dir + "`, " +
-            std::to_string(participants.size()) + " participants, " + std::to_string(t.rows.size()) +
+  ctx.md += "- Responses: " + std::to_string(ctx.responses.files.size()) + " file(s) in `" + study_dir +
+            "`, " + std::to_string(participants.size()) + " participants, " + std::to_string(t.rows.size()) +
             " answers (practice excluded)\n";
   std::string fl;
   for (const auto& f : ctx.factors) fl += (fl.empty() ? "" : ", ") + f;
   ctx.md += "- Within-subject factors: " + fl + "\n";
-  ctx.md += "- Method: repeated-measures ANOVA on per-participant cell means (repetitions averaged); α = .05; "
-            "Mauchly's test, Greenhouse-Geisser correction where sphericity is violated; Tukey HSD post-hocs. "
-            "Results are mean ± SD.\n\n";
+  ctx.md +=
+      "- Method: repeated-measures ANOVA on per-participant cell means (repetitions averaged); α = .05; "
+      "Mauchly's test, Greenhouse-Geisser correction where sphericity is violated; Tukey HSD post-hocs. "
+      "Results are mean ± SD.\n\n";
   std::set<std::string> in_composite;
   ctx.md += "## Rating measures\n\n";
   for (const auto& comp : ctx.spec.protocol.composites) {

@@ -17,6 +17,7 @@
 
 namespace crowdlab::analysis {
 
-std::string write_study_report(const std::string& study_dir, const std::string& spec_path, const std::string& out_dir);
+std::string write_study_report(const std::string& study_dir, const std::string& spec_path,
+                               const std::string& out_dir);
 
 }  // namespace crowdlab::analysis

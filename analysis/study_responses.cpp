@@ -9,7 +9,8 @@ namespace crowdlab::analysis {
 
 double yes_no_value(const CsvTable& table, size_t row, size_t col) {
   std::string v = table.cell(row, col);
-  std::transform(v.begin(), v.end(), v.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(v.begin(), v.end(), v.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (v == "1" || v == "yes" || v == "true" || v == "y") return 1.0;
   if (v == "0" || v == "no" || v == "false" || v == "n") return 0.0;
   throw InputError(SourceLocation{table.source, table.line_numbers[row], 0, table.header[col]},
@@ -21,7 +22,8 @@ StudyResponses read_study_responses(const std::string& study_dir, const Experime
   if (!fs::is_directory(study_dir)) throw InputError(study_dir + ": not a directory");
   StudyResponses out;
   for (const auto& entry : fs::recursive_directory_iterator(study_dir))
-    if (entry.is_regular_file() && entry.path().extension() == ".csv") out.files.push_back(entry.path().string());
+    if (entry.is_regular_file() && entry.path().extension() == ".csv")
+      out.files.push_back(entry.path().string());
   std::sort(out.files.begin(), out.files.end());
   if (out.files.empty()) throw InputError(study_dir + ": no response CSV files found");
   for (const auto& f : spec.factors) out.factors.push_back(f.name);

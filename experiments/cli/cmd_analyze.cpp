@@ -31,10 +31,12 @@ struct DesignArgs {
 };
 
 void add_design_options(CLI::App* cmd, DesignArgs& a) {
-  cmd->add_option("--csv", a.csv, "Tidy CSV: one row per trial (repetitions are averaged per cell)")->required();
+  cmd->add_option("--csv", a.csv, "Tidy CSV: one row per trial (repetitions are averaged per cell)")
+      ->required();
   cmd->add_option("--dv", a.dv, "Dependent-variable column (numeric)")->required();
   cmd->add_option("--subject", a.subject, "Subject (participant) column")->required();
-  cmd->add_option("--within", a.within, "Within-subject factor columns, comma-separated (e.g. A,B,C)")->required();
+  cmd->add_option("--within", a.within, "Within-subject factor columns, comma-separated (e.g. A,B,C)")
+      ->required();
 }
 
 WithinDesign load_design(const DesignArgs& a) {
@@ -44,7 +46,8 @@ WithinDesign load_design(const DesignArgs& a) {
 }
 
 const CommandRegistration kRegistration([](CLI::App& root) {
-  auto* analyze = root.add_subcommand("analyze", "Statistics: RM-ANOVA, post-hoc tests, psychometric fits, reports");
+  auto* analyze =
+      root.add_subcommand("analyze", "Statistics: RM-ANOVA, post-hoc tests, psychometric fits, reports");
   analyze->require_subcommand(1);
 
   // ---- anova ----
@@ -55,22 +58,25 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       "Repeated-measures ANOVA (all within-subject factors) with Mauchly's test, Greenhouse-Geisser and "
       "Huynh-Feldt corrections, partial and generalised eta squared");
   add_design_options(anova, anova_args);
-  anova->add_flag("--json", anova_json,
-                  "Print {\"effects\": [{\"effect\", \"df1\", \"df2\", \"F\", \"p\", \"pes\", \"ges\", \"mauchly_W\", "
-                  "\"mauchly_p\", \"gg_eps\", \"hf_eps\", \"p_gg\", \"p_hf\", ...}]} (null where not applicable)");
+  anova->add_flag(
+      "--json", anova_json,
+      "Print {\"effects\": [{\"effect\", \"df1\", \"df2\", \"F\", \"p\", \"pes\", \"ges\", \"mauchly_W\", "
+      "\"mauchly_p\", \"gg_eps\", \"hf_eps\", \"p_gg\", \"p_hf\", ...}]} (null where not applicable)");
   anova->callback([] {
     const auto result = rm_anova(load_design(anova_args));
     if (anova_json)
       std::cout << anova_to_json(result).dump(2) << "\n";
     else
-      std::cout << "Repeated-measures ANOVA, " << result.subjects << " subjects\n\n" << anova_text_table(result);
+      std::cout << "Repeated-measures ANOVA, " << result.subjects << " subjects\n\n"
+                << anova_text_table(result);
   });
 
   // ---- posthoc ----
   static DesignArgs ph_args;
   static std::string ph_effect, ph_method = "tukey";
   static bool ph_json = false, ph_simple = false;
-  auto* ph = analyze->add_subcommand("posthoc", "Pairwise comparisons for a main effect or an interaction's cells");
+  auto* ph =
+      analyze->add_subcommand("posthoc", "Pairwise comparisons for a main effect or an interaction's cells");
   add_design_options(ph, ph_args);
   ph->add_option("--effect", ph_effect, "Effect: a factor (A) or an interaction (A:B)")->required();
   ph->add_option("--method", ph_method, "tukey (pooled-error Tukey HSD) or bonferroni (paired t-tests)")
@@ -89,8 +95,13 @@ const CommandRegistration kRegistration([](CLI::App& root) {
         nlohmann::json simple = nlohmann::json::array();
         for (size_t at : factors)
           for (const auto& se : simple_effects(design, factors, at))
-            simple.push_back({{"at", se.at}, {"effect", se.effect.name}, {"df1", se.effect.df1},
-                              {"df2", se.effect.df2}, {"F", se.effect.f}, {"p", se.effect.p}, {"pes", se.effect.pes}});
+            simple.push_back({{"at", se.at},
+                              {"effect", se.effect.name},
+                              {"df1", se.effect.df1},
+                              {"df2", se.effect.df2},
+                              {"F", se.effect.f},
+                              {"p", se.effect.p},
+                              {"pes", se.effect.pes}});
         j["simple_effects"] = simple;
       }
       std::cout << j.dump(2) << "\n";
@@ -117,7 +128,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       "(D_crit / V_crit at 0.5, the 5 % point), bootstrap CIs, group table and RM-ANOVA of thresholds");
   psy->add_option("--csv", pr_csv, "Tidy CSV: one row per binary trial")->required();
   psy->add_option("--subject", pr.subject, "Subject column")->required();
-  psy->add_option("--x", pr.x, "Stimulus column (distance in metres, or volume in m^3 with --x-transform cbrt)")
+  psy->add_option("--x", pr.x,
+                  "Stimulus column (distance in metres, or volume in m^3 with --x-transform cbrt)")
       ->required();
   psy->add_option("--response", pr.response, "Binary response column (0/1)")->required();
   psy->add_option("--by", pr.by, "Condition column: one fit per subject and level");
@@ -125,11 +137,13 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   psy->add_option("--bootstrap", pr.bootstrap, "Parametric-bootstrap replicates per fit (0 = none)")
       ->check(CLI::Range(0, 100000));
   psy->add_option("--seed", pr.seed, "Bootstrap seed")->capture_default_str();
-  psy->add_option("--x-transform", pr.x_transform, "none | cbrt (cube root of volume, seed 001 section 4.2.3)")
+  psy->add_option("--x-transform", pr.x_transform,
+                  "none | cbrt (cube root of volume, seed 001 section 4.2.3)")
       ->check(CLI::IsMember({"none", "cbrt"}))
       ->capture_default_str();
-  psy->add_option("--guess", pr.options.guess, "Fixed guess rate (lower asymptote); thresholds are then points of "
-                                               "the underlying logistic (see analysis/psychometric_fit.hpp)");
+  psy->add_option("--guess", pr.options.guess,
+                  "Fixed guess rate (lower asymptote); thresholds are then points of "
+                  "the underlying logistic (see analysis/psychometric_fit.hpp)");
   psy->add_option("--lapse", pr.options.lapse, "Fixed lapse rate (1 - upper asymptote)");
   psy->add_flag("--json", pr_json, "Print {\"fits\": [...], \"groups\": [...], \"anova\": ...}");
   psy->callback([] {
@@ -147,8 +161,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       return;
     }
     for (const auto& row : result.fits) {
-      std::printf("%-10s %-12s intercept %9.4f slope %9.4f", row.subject.c_str(), row.by.c_str(), row.fit.intercept,
-                  row.fit.slope);
+      std::printf("%-10s %-12s intercept %9.4f slope %9.4f", row.subject.c_str(), row.by.c_str(),
+                  row.fit.intercept, row.fit.slope);
       for (size_t k = 0; k < pr.probabilities.size(); ++k)
         std::printf("  x(%s) %.4f", probability_key(pr.probabilities[k]).c_str(), row.thresholds[k]);
       std::printf("%s\n", row.fit.warning.empty() ? "" : ("  WARNING: " + row.fit.warning).c_str());
@@ -160,7 +174,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   static std::string study_dir, spec_path, out_dir;
   auto* report = analyze->add_subcommand(
       "report", "Markdown report with figures from a study's response CSVs (real or simulated)");
-  report->add_option("study_dir", study_dir, "Folder with the study's response CSVs (*.csv, tidy rows)")->required();
+  report->add_option("study_dir", study_dir, "Folder with the study's response CSVs (*.csv, tidy rows)")
+      ->required();
   report->add_option("--spec", spec_path, "The experiment spec (YAML) the study ran")->required();
   report->add_option("--out", out_dir, "Output folder (report.md, figures/)")->required();
   report->callback([] {
