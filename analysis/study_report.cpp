@@ -158,7 +158,18 @@ void measure_section(Context& ctx, const std::string& name, const std::vector<st
   const CsvTable t = measure_table(ctx, items, name);
   const auto design = build_within_design(t, "value", "participant", ctx.factors);
   const auto anova = rm_anova(design);
-  ctx.md += anova_markdown_table(anova) + "\n";
+  ctx.md += "Mean ± SD over participants:";
+  for (size_t f = 0; f < design.factors.size(); ++f) {
+    const Eigen::MatrixXd m = effect_subject_means(design, {f});
+    ctx.md += (f ? ";" : "") + std::string(" ") + design.factors[f].name + " ";
+    for (Eigen::Index l = 0; l < m.cols(); ++l) {
+      const Eigen::VectorXd c = m.col(l);
+      const double sd = std::sqrt((c.array() - c.mean()).square().sum() / (c.size() - 1.0));
+      ctx.md += (l ? ", " : "") + design.factors[f].levels[static_cast<size_t>(l)] + ": " + fmt(c.mean()) +
+                " ± " + fmt(sd);
+    }
+  }
+  ctx.md += ".\n\n" + anova_markdown_table(anova) + "\n";
   for (const auto& e : anova.effects) ctx.md += "- " + e.name + ": " + apa_f_sentence(e) + "\n";
   ctx.md += "\n";
   // Normality of residuals (subject x cell interaction residuals).
