@@ -15,7 +15,7 @@ namespace {
 // R documents qtukey as accurate to the 4th decimal, and its ptukey loses accuracy for df < 10 (for two
 // means, P(Q < q) = P(|T_df| < q/sqrt 2) shows it). There the reference is q_integral: the defining
 // double integral evaluated by R's integrate() and inverted by uniroot() (scripts/make_reference_stats.R).
-void check_grid_rows(double df_wanted) {
+void check_grid_rows(double df_wanted, bool upper_tail) {
   const auto ref = read_csv(analysis_data("ref_qtukey.csv"));
   REQUIRE(ref.rows.size() >= 100);
   const size_t stride = test::kSanitized ? 5 : 1;
@@ -24,8 +24,8 @@ void check_grid_rows(double df_wanted) {
   for (size_t r = 0; r < ref.rows.size(); ++r) {
     const auto& df_text = ref.cell(r, ref.column("df"));
     const double df = df_text == "Inf" ? std::numeric_limits<double>::infinity() : ref_number(ref, r, "df");
-    if (df != df_wanted || (r % stride) != 0) continue;
     const double p = ref_number(ref, r, "p");
+    if (df != df_wanted || (p >= 0.93) != upper_tail || (r % stride) != 0) continue;
     const int k = static_cast<int>(ref_number(ref, r, "nmeans"));
     const bool r_is_accurate = df >= 10;
     const double want = r_is_accurate ? ref_number(ref, r, "q") : ref_number(ref, r, "q_integral");
@@ -42,28 +42,44 @@ void check_grid_rows(double df_wanted) {
     ++checked;
   }
   CHECK(checked > 0);
-  WARN("df=" << df_wanted << ": worst relative qtukey difference " << worst << " over " << checked
-             << " points");
+  WARN("df=" << df_wanted << (upper_tail ? ", p >= .93" : ", p < .93")
+             << ": worst relative qtukey difference " << worst << " over " << checked << " points");
 }
 }  // namespace
 
-TEST_CASE("analysis: qtukey on the R grid, df = 2", "[analysis]") {
-  check_grid_rows(2);
+TEST_CASE("analysis: qtukey on the R grid, df = 2, p < .93", "[analysis]") {
+  check_grid_rows(2, false);
 }
-TEST_CASE("analysis: qtukey on the R grid, df = 5", "[analysis]") {
-  check_grid_rows(5);
+TEST_CASE("analysis: qtukey on the R grid, df = 2, p >= .93", "[analysis]") {
+  check_grid_rows(2, true);
 }
-TEST_CASE("analysis: qtukey matches R's qtukey to 1e-5, df = 10", "[analysis]") {
-  check_grid_rows(10);
+TEST_CASE("analysis: qtukey on the R grid, df = 5, p < .93", "[analysis]") {
+  check_grid_rows(5, false);
 }
-TEST_CASE("analysis: qtukey matches R's qtukey to 1e-5, df = 30", "[analysis]") {
-  check_grid_rows(30);
+TEST_CASE("analysis: qtukey on the R grid, df = 5, p >= .93", "[analysis]") {
+  check_grid_rows(5, true);
 }
-TEST_CASE("analysis: qtukey matches R's qtukey to 1e-5, df = 120", "[analysis]") {
-  check_grid_rows(120);
+TEST_CASE("analysis: qtukey matches R's qtukey to 1e-5, df = 10, p < .93", "[analysis]") {
+  check_grid_rows(10, false);
+}
+TEST_CASE("analysis: qtukey matches R's qtukey to 1e-5, df = 10, p >= .93", "[analysis]") {
+  check_grid_rows(10, true);
+}
+TEST_CASE("analysis: qtukey matches R's qtukey to 1e-5, df = 30, p < .93", "[analysis]") {
+  check_grid_rows(30, false);
+}
+TEST_CASE("analysis: qtukey matches R's qtukey to 1e-5, df = 30, p >= .93", "[analysis]") {
+  check_grid_rows(30, true);
+}
+TEST_CASE("analysis: qtukey matches R's qtukey to 1e-5, df = 120, p < .93", "[analysis]") {
+  check_grid_rows(120, false);
+}
+TEST_CASE("analysis: qtukey matches R's qtukey to 1e-5, df = 120, p >= .93", "[analysis]") {
+  check_grid_rows(120, true);
 }
 TEST_CASE("analysis: qtukey matches R's qtukey to 1e-5, df = Inf", "[analysis]") {
-  check_grid_rows(std::numeric_limits<double>::infinity());
+  check_grid_rows(std::numeric_limits<double>::infinity(), false);
+  check_grid_rows(std::numeric_limits<double>::infinity(), true);
 }
 
 TEST_CASE("analysis: ptukey analytic cases", "[analysis]") {
