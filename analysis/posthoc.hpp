@@ -1,0 +1,64 @@
+#pragma once
+// Pairwise comparisons after a repeated-measures ANOVA, for a main effect or an interaction's cells,
+// and simple effects within interactions.
+//
+// Means: each subject's mean over the cells of the other factors (marginal means), one per level
+// combination of the effect's factors.
+// - Bonferroni: paired t-tests on the subjects' differences (df = n - 1, two-sided), p multiplied by
+//   the number of comparisons in the family and capped at 1 (Maxwell & Delaney 2004, ch. 11-12).
+// - Tukey HSD: the pooled-error version used for within-subject designs by Statistica and textbooks
+//   (Maxwell & Delaney 2004, ch. 12; Howell, Statistical Methods for Psychology, ch. 14): the effect's
+//   error term MS_err and df2 from rm_anova, SE of a mean = sqrt(MS_err / (n r)) with r the number of
+//   cells averaged per mean, q = |difference| / SE, p = 1 - ptukey(q, number of means, df2).
+// Family: all pairs of means, or with simple_only the pairs that differ in exactly one factor (the
+// comparisons within each level of the other factors, "simple" comparisons).
+#include <string>
+#include <vector>
+
+#include "analysis/rm_anova.hpp"
+
+namespace crowdlab::analysis {
+
+enum class PosthocMethod { bonferroni, tukey };
+
+struct PairwiseComparison {
+  std::string level_a, level_b;                   ///< level names joined with ':' in effect-factor order
+  double mean_a = 0, mean_b = 0, difference = 0;  ///< difference = mean_a - mean_b
+  double se = 0, df = 0;
+  double statistic = 0;   ///< t (Bonferroni) or q (Tukey)
+  double p = 0;           ///< unadjusted (Bonferroni), Tukey-adjusted (Tukey)
+  double p_adjusted = 0;  ///< Bonferroni: min(1, p * family size); Tukey: == p
+  bool simple = false;    ///< the two means differ in exactly one factor
+};
+
+struct PosthocResult {
+  std::string effect;
+  PosthocMethod method = PosthocMethod::bonferroni;
+  std::vector<std::string> levels;  ///< the effect's cells, first factor slowest
+  std::vector<double> means;        ///< grand means of those cells
+  std::vector<PairwiseComparison> pairs;
+};
+
+/// `effect` names factors joined with ':' ("A" or "A:B"); throws InputError when a name is unknown.
+std::vector<size_t> parse_effect(const WithinDesign& design, const std::string& effect);
+
+/// subjects x (cells of the effect): each subject's mean over the other factors.
+Eigen::MatrixXd effect_subject_means(const WithinDesign& design, const std::vector<size_t>& effect_factors);
+
+PosthocResult posthoc(const WithinDesign& design, const std::vector<size_t>& effect_factors,
+                      PosthocMethod method, bool simple_only = false);
+
+/// One simple effect: the ANOVA of the effect's other factors at one level of `at_factor`.
+struct SimpleEffect {
+  std::string at;        ///< "B=b1"
+  RmAnovaEffect effect;  ///< the remaining factors' effect within that level
+};
+/// For an interaction, the remaining factors' effect at each level of `at_factor` (one of its factors),
+/// from an RM-ANOVA of the design restricted to that level.
+std::vector<SimpleEffect> simple_effects(const WithinDesign& design,
+                                         const std::vector<size_t>& effect_factors, size_t at_factor);
+
+/// "***" (p < .001), "**" (< .01), "*" (< .05), "" otherwise: the papers' notation.
+std::string significance_stars(double p);
+
+}  // namespace crowdlab::analysis

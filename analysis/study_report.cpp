@@ -1,0 +1,351 @@
+#include "analysis/study_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "analysis/analysis_json.hpp"
+#include "analysis/apa_format.hpp"
+#include "analysis/kolmogorov_smirnov.hpp"
+#include "analysis/plot_interaction.hpp"
+#include "analysis/plot_psychometric.hpp"
+#include "analysis/posthoc.hpp"
+#include "analysis/psychometric_table.hpp"
+#include "analysis/reliability.hpp"
+#include "analysis/study_responses.hpp"
+#include "framework/core/error.hpp"
+#include "framework/spec/load_experiment_spec.hpp"
+
+namespace crowdlab::analysis {
+namespace {
+namespace fs = std::filesystem;
+
+std::string fmt(double v, int decimals = 2) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::string safe_name(std::string s) {
+  for (char& c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+  return s;
+}
+
+// Axis labels with units for the factors of the seed papers' specs (seed 000 section 4.4.2: density in
+// characters per m²; seed 001: distance in metres, trigger in percent); other factors are categorical.
+std::string factor_axis_label(const std::string& factor) {
+  if (factor == "density") return "density (characters/m#u2#d)";
+  if (factor == "distance") return "distance (m)";
+  if (factor == "trigger") return "trigger (% of characters)";
+  if (factor == "shoulder") return "shoulder (characters with shoulder motion)";
+  return factor + " (level)";
+}
+
+struct Context {
+  ExperimentSpec spec;
+  StudyResponses responses;
+  std::vector<std::string> factors;  ///< spec factors with >= 2 levels in the data, spec order
+  fs::path out;
+  std::string md;
+};
+
+// participant, <factors...>, value rows of one measure (a question or a composite).
+CsvTable measure_table(const Context& ctx, const std::vector<std::string>& items, const std::string& name) {
+  const CsvTable& t = ctx.responses.table;
+  const size_t q_col = t.column("question"), v_col = t.column("value"), p_col = t.column("participant"),
+               s_col = t.column("stimulus");
+  std::vector<size_t> f_cols;
+  for (const auto& f : ctx.factors) f_cols.push_back(t.column(f));
+  // (participant, stimulus) -> item values, in order of first appearance.
+  std::map<std::pair<std::string, std::string>, size_t> index;
+  std::vector<std::pair<size_t, std::map<std::string, double>>> trials;
+  for (size_t r = 0; r < t.rows.size(); ++r) {
+    const auto& q = t.cell(r, q_col);
+    if (std::find(items.begin(), items.end(), q) == items.end()) continue;
+    auto [it, inserted] = index.emplace(std::make_pair(t.cell(r, p_col), t.cell(r, s_col)), trials.size());
+    if (inserted) trials.push_back({r, {}});
+    trials[it->second].second[q] = std::stod(t.cell(r, v_col));
+  }
+  CsvTable out;
+  out.source = ctx.responses.files.size() == 1 ? ctx.responses.files[0] : "responses of " + name;
+  out.header = {"participant"};
+  out.header.insert(out.header.end(), ctx.factors.begin(), ctx.factors.end());
+  out.header.push_back("value");
+  for (const auto& [first_row, values] : trials) {
+    double sum = 0;
+    for (const auto& item : items) {
+      const auto v = values.find(item);
+      if (v == values.end())
+        throw InputError(ctx.responses.sources[first_row] + ":" + std::to_string(t.line_numbers[first_row]) +
+                         ": participant '" + t.cell(first_row, p_col) + "', stimulus '" +
+                         t.cell(first_row, s_col) + "': no answer to '" + item + "' (needed by " + name +
+                         ")");
+      sum += v->second;
+    }
+    std::vector<std::string> row = {t.cell(first_row, p_col)};
+    for (size_t c : f_cols) row.push_back(t.cell(first_row, c));
+    row.push_back(csv_number(sum / static_cast<double>(items.size())));
+    out.rows.push_back(row);
+    out.line_numbers.push_back(t.line_numbers[first_row]);
+  }
+  return out;
+}
+
+void reliability_section(Context& ctx, const CompositeSpec& comp) {
+  if (comp.items.size() != 2) return;
+  const CsvTable a = measure_table(ctx, {comp.items[0]}, comp.items[0]);
+  const CsvTable b = measure_table(ctx, {comp.items[1]}, comp.items[1]);
+  if (a.rows.size() != b.rows.size() || a.rows.empty()) return;
+  std::vector<double> va, vb;
+  for (size_t r = 0; r < a.rows.size(); ++r) {
+    va.push_back(std::stod(a.rows[r].back()));
+    vb.push_back(std::stod(b.rows[r].back()));
+  }
+  const auto rel = pair_reliability(va, vb);
+  ctx.md += "Internal reliability of " + comp.items[0] + " and " + comp.items[1] + " (reverse-coded), over " +
+            std::to_string(rel.n) + " trials: r = " + fmt(rel.pearson_r) +
+            ", Cronbach's α = " + fmt(rel.cronbach_alpha) + ".\n\n";
+}
+
+void interaction_plots(Context& ctx, const WithinDesign& design, const RmAnovaResult& anova,
+                       const std::string& name, const std::string& y_label) {
+  const size_t k = design.factors.size();
+  const size_t series_factor = k - 1;
+  for (size_t f = 0; f < (k == 1 ? 1 : k - 1); ++f) {
+    std::vector<size_t> effect = k == 1 ? std::vector<size_t>{0} : std::vector<size_t>{f, series_factor};
+    const Eigen::MatrixXd m = effect_subject_means(design, effect);
+    InteractionPlot plot;
+    plot.title =
+        name + (k == 1 ? "" : ": " + design.factors[f].name + " × " + design.factors[series_factor].name);
+    plot.x_label = factor_axis_label(design.factors[f].name);
+    plot.y_label = y_label;
+    plot.x_levels = design.factors[f].levels;
+    plot.note = "mean ± 1 SD over participants";
+    const size_t ns = k == 1 ? 1 : design.factors[series_factor].levels.size();
+    for (size_t s = 0; s < ns; ++s) {
+      InteractionSeries series;
+      series.label = k == 1 ? name : design.factors[series_factor].levels[s];
+      for (size_t x = 0; x < plot.x_levels.size(); ++x) {
+        const Eigen::VectorXd col = m.col(static_cast<Eigen::Index>(k == 1 ? x : x * ns + s));
+        series.mean.push_back(col.mean());
+        series.error.push_back(std::sqrt((col.array() - col.mean()).square().sum() / (col.size() - 1.0)));
+      }
+      plot.series.push_back(series);
+    }
+    if (k > 1)
+      for (const auto& se : simple_effects(design, effect, f))
+        plot.stars.push_back(significance_stars(
+            se.effect.p_gg && se.effect.mauchly_p && *se.effect.mauchly_p < 0.05 ? *se.effect.p_gg
+                                                                                 : se.effect.p));
+    const std::string stem = "interaction_" + safe_name(name) + "_" + safe_name(design.factors[f].name);
+    plot_interaction(plot, (ctx.out / "figures" / stem).string());
+    ctx.md += "![" + plot.title + "](figures/" + stem + ".png)\n\n";
+  }
+  if (k > 1)
+    ctx.md += "Stars: simple effect of " + design.factors[series_factor].name +
+              " at each x level (* p < .05, ** p < .01, *** p < .001).\n\n";
+  (void)anova;
+}
+
+void measure_section(Context& ctx, const std::string& name, const std::vector<std::string>& items) {
+  ctx.md += "### " + name + "\n\n";
+  if (items.size() > 1)
+    ctx.md += "Composite of " + std::to_string(items.size()) + " items, averaged per trial.\n\n";
+  const CsvTable t = measure_table(ctx, items, name);
+  const auto design = build_within_design(t, "value", "participant", ctx.factors);
+  const auto anova = rm_anova(design);
+  ctx.md += "Mean ± SD over participants:";
+  for (size_t f = 0; f < design.factors.size(); ++f) {
+    const Eigen::MatrixXd m = effect_subject_means(design, {f});
+    ctx.md += (f ? ";" : "") + std::string(" ") + design.factors[f].name + " ";
+    for (Eigen::Index l = 0; l < m.cols(); ++l) {
+      const Eigen::VectorXd c = m.col(l);
+      const double sd = std::sqrt((c.array() - c.mean()).square().sum() / (c.size() - 1.0));
+      ctx.md += (l ? ", " : "") + design.factors[f].levels[static_cast<size_t>(l)] + ": " + fmt(c.mean()) +
+                " ± " + fmt(sd);
+    }
+  }
+  ctx.md += ".\n\n" + anova_markdown_table(anova) + "\n";
+  for (const auto& e : anova.effects) ctx.md += "- " + e.name + ": " + apa_f_sentence(e) + "\n";
+  ctx.md += "\n";
+  // Normality of residuals (subject x cell interaction residuals).
+  const Eigen::MatrixXd& y = design.cell_means;
+  const Eigen::VectorXd rm = y.rowwise().mean(), cm = y.colwise().mean().transpose();
+  std::vector<double> residuals;
+  for (Eigen::Index i = 0; i < y.rows(); ++i)
+    for (Eigen::Index c = 0; c < y.cols(); ++c) residuals.push_back(y(i, c) - rm[i] - cm[c] + y.mean());
+  const auto normal = normality_check(residuals);
+  std::ofstream qq(ctx.out / "stats" / ("qq_" + safe_name(name) + ".csv"));
+  qq << "theoretical,sample\n";
+  for (size_t i = 0; i < normal.sample.size(); ++i)
+    qq << normal.theoretical[i] << "," << normal.sample[i] << "\n";
+  ctx.md += "Normality of residuals: Kolmogorov-Smirnov D = " + fmt(normal.ks.statistic, 3) +
+            ", p = " + apa_p(normal.ks.p) + " (Q-Q data: stats/qq_" + safe_name(name) + ".csv).\n\n";
+  nlohmann::json stats = {
+      {"measure", name}, {"anova", anova_to_json(anova)}, {"posthoc", nlohmann::json::array()}};
+  for (const auto& e : anova.effects) {
+    const double p = (e.mauchly_p && *e.mauchly_p < 0.05) ? *e.p_gg : e.p;
+    if (p >= 0.05) continue;
+    const auto ph = posthoc(design, e.factors, PosthocMethod::tukey, e.factors.size() > 1);
+    stats["posthoc"].push_back(posthoc_to_json(ph));
+    ctx.md += "Post-hoc (Tukey HSD" + std::string(e.factors.size() > 1 ? ", simple comparisons" : "") +
+              ") for " + e.name + ":\n\n";
+    if (ph.pairs.size() <= 30)
+      ctx.md += posthoc_markdown_table(ph) + "\n";
+    else
+      ctx.md += std::to_string(ph.pairs.size()) + " comparisons: see stats/" + safe_name(name) + ".json.\n\n";
+  }
+  std::ofstream(ctx.out / "stats" / (safe_name(name) + ".json")) << stats.dump(2) << "\n";
+  const int points = ctx.spec.protocol.scale_points;
+  interaction_plots(ctx, design, anova, name, "Answer (1-" + std::to_string(points) + " scale)");
+}
+
+bool numeric_factor(const ExperimentSpec& spec, const std::string& name) {
+  const Factor* f = spec.factor(name);
+  if (!f || f->levels.size() < 3) return false;
+  return std::all_of(f->levels.begin(), f->levels.end(), [](const auto& l) { return l.number.has_value(); });
+}
+
+void psychometric_section(Context& ctx, const QuestionSpec& q) {
+  std::string x_factor;
+  if (std::find(ctx.factors.begin(), ctx.factors.end(), "distance") != ctx.factors.end())
+    x_factor = "distance";
+  for (const auto& f : ctx.factors)
+    if (x_factor.empty() && numeric_factor(ctx.spec, f)) x_factor = f;
+  ctx.md += "### " + q.id + " (yes/no): psychometric functions\n\n";
+  if (x_factor.empty()) {
+    ctx.md += "No numeric factor with at least 3 levels: no psychometric fit.\n\n";
+    return;
+  }
+  const CsvTable m = measure_table(ctx, {q.id}, q.id);
+  CsvTable t;
+  t.source = m.source;
+  t.header = {"participant", "x", "response", "condition"};
+  const size_t x_col = m.column(x_factor);
+  for (size_t r = 0; r < m.rows.size(); ++r) {
+    std::string cond;
+    for (const auto& f : ctx.factors)
+      if (f != x_factor) cond += (cond.empty() ? "" : ", ") + f + " " + m.cell(r, m.column(f));
+    t.rows.push_back({m.cell(r, 0), m.cell(r, x_col), m.rows[r].back(), cond.empty() ? "all" : cond});
+    t.line_numbers.push_back(m.line_numbers[r]);
+  }
+  PsychometricRequest req;
+  req.subject = "participant";
+  req.x = "x";
+  req.response = "response";
+  req.by = "condition";
+  req.probabilities = {0.5, 0.05};
+  req.bootstrap = 0;
+  const auto a = analyze_psychometric(t, req);
+  ctx.md +=
+      "Logistic fits of P(yes) against " + x_factor + " per participant and condition (maximum likelihood; " +
+      "Firth's estimate where answers were completely separated).\n\nTable 1: thresholds (mean ± SD over "
+      "participants).\n\n" +
+      psychometric_markdown_table(a, x_factor == "distance" ? "m" : "") + "\n";
+  size_t separated = 0;
+  for (const auto& f : a.fits) separated += f.fit.separated;
+  if (separated)
+    ctx.md += std::to_string(separated) + " fit(s) had completely separated answers (Firth estimate).\n\n";
+  std::ofstream(ctx.out / "stats" / ("psychometric_" + safe_name(q.id) + ".json"))
+      << psychometric_to_json(a).dump(2);
+  PsychometricPlot plot;
+  plot.title = q.id + ": psychometric functions";
+  plot.x_label = factor_axis_label(x_factor);
+  plot.y_label = "P(" + q.id + " = yes)";
+  for (const auto& g : a.groups) {
+    PsychometricCurve c;
+    c.label = g.by;
+    std::map<double, std::vector<double>> props;  // x -> per-participant proportion
+    std::vector<double> px, py;
+    for (const auto& row : a.fits) {
+      if (row.by != g.by) continue;
+      std::map<double, std::pair<double, double>> counts;
+      for (size_t i = 0; i < row.x.size(); ++i) {
+        counts[row.x[i]].first += row.y[i];
+        counts[row.x[i]].second += 1;
+        px.push_back(row.x[i]);
+        py.push_back(row.y[i]);
+      }
+      for (const auto& [x, c2] : counts) props[x].push_back(c2.first / c2.second);
+    }
+    for (const auto& [x, v] : props) {
+      double mean = 0, ss = 0;
+      for (double p : v) mean += p;
+      mean /= static_cast<double>(v.size());
+      for (double p : v) ss += (p - mean) * (p - mean);
+      c.x.push_back(x);
+      c.proportion.push_back(mean);
+      c.se.push_back(v.size() > 1 ? std::sqrt(ss / (v.size() - 1.0) / static_cast<double>(v.size())) : 0.0);
+    }
+    const auto pooled = fit_psychometric(px, py);
+    c.intercept = pooled.intercept;
+    c.slope = pooled.slope;
+    c.threshold50 = pooled.threshold(0.5);
+    plot.curves.push_back(c);
+  }
+  const std::string stem = "psychometric_" + safe_name(q.id);
+  plot_psychometric(plot, (ctx.out / "figures" / stem).string());
+  ctx.md += "![" + plot.title + "](figures/" + stem +
+            ".png)\n\nPoints: mean proportion over participants (±1 SE); "
+            "curves: logistic fit to the pooled answers of each condition; dashed: its 50 % point.\n\n";
+}
+}  // namespace
+
+std::string write_study_report(const std::string& study_dir, const std::string& spec_path,
+                               const std::string& out_dir) {
+  Context ctx;
+  ctx.spec = load_experiment_spec(spec_path);
+  ctx.responses = read_study_responses(study_dir, ctx.spec);
+  ctx.out = out_dir;
+  fs::create_directories(ctx.out / "figures");
+  fs::create_directories(ctx.out / "stats");
+  const CsvTable& t = ctx.responses.table;
+  for (const auto& f : ctx.responses.factors) {
+    std::set<std::string> levels;
+    const size_t c = t.column(f);
+    for (const auto& row : t.rows) levels.insert(row[c]);
+    if (levels.size() >= 2) ctx.factors.push_back(f);
+  }
+  if (ctx.factors.empty()) throw InputError(study_dir + ": no spec factor varies in the responses");
+  std::set<std::string> participants;
+  for (const auto& row : t.rows) participants.insert(row[t.column("participant")]);
+  ctx.md = "# " + ctx.spec.name + ": study report\n\n" +
+           (ctx.spec.description.empty() ? "" : ctx.spec.description + "\n\n");
+  ctx.md += "- Spec: `" + spec_path + "` (sha256 " + ctx.spec.source_hash.substr(0, 12) + ")\n";
+  ctx.md += "- Responses: " + std::to_string(ctx.responses.files.size()) + " file(s) in `" + study_dir +
+            "`, " + std::to_string(participants.size()) + " participants, " + std::to_string(t.rows.size()) +
+            " answers (practice excluded)\n";
+  std::string fl;
+  for (const auto& f : ctx.factors) fl += (fl.empty() ? "" : ", ") + f;
+  ctx.md += "- Within-subject factors: " + fl + "\n";
+  ctx.md +=
+      "- Method: repeated-measures ANOVA on per-participant cell means (repetitions averaged); α = .05; "
+      "Mauchly's test, Greenhouse-Geisser correction where sphericity is violated; Tukey HSD post-hocs. "
+      "Results are mean ± SD.\n\n";
+  std::set<std::string> in_composite;
+  ctx.md += "## Rating measures\n\n";
+  for (const auto& comp : ctx.spec.protocol.composites) {
+    in_composite.insert(comp.items.begin(), comp.items.end());
+    ctx.md += "### " + comp.id + " reliability\n\n";
+    reliability_section(ctx, comp);
+    measure_section(ctx, comp.id, comp.items);
+  }
+  for (const auto& q : ctx.spec.protocol.questions)
+    if (q.kind != "yesno" && !in_composite.count(q.id)) measure_section(ctx, q.id, {q.id});
+  bool any_yesno = false;
+  for (const auto& q : ctx.spec.protocol.questions)
+    if (q.kind == "yesno") {
+      if (!any_yesno) ctx.md += "## Detection measures\n\n";
+      any_yesno = true;
+      psychometric_section(ctx, q);
+    }
+  const fs::path path = ctx.out / "report.md";
+  std::ofstream(path) << ctx.md;
+  return path.string();
+}
+
+}  // namespace crowdlab::analysis

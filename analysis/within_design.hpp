@@ -1,0 +1,38 @@
+#pragma once
+// A balanced within-subject design built from tidy (long) rows: one value per subject per cell, the
+// mean over that cell's repetitions. This is the input of every repeated-measures analysis here.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "framework/core/csv.hpp"
+
+namespace crowdlab::analysis {
+
+struct WithinFactor {
+  std::string name;
+  std::vector<std::string> levels;  ///< in order of first appearance in the input (stable, not sorted)
+};
+
+struct WithinDesign {
+  std::vector<WithinFactor> factors;  ///< in the order the user named them
+  std::vector<std::string> subjects;  ///< in order of first appearance
+  /// subjects x cells. Cells are ordered with the LAST factor varying fastest (row-major over levels).
+  Eigen::MatrixXd cell_means;
+
+  size_t cell_count() const { return static_cast<size_t>(cell_means.cols()); }
+  /// Level index of each factor for cell `cell`.
+  std::vector<size_t> cell_levels(size_t cell) const;
+  /// "A=a1, B=b2" for messages and tables.
+  std::string cell_label(size_t cell) const;
+};
+
+/// Builds the design from a CSV: `dv` numeric, `subject` and every name in `within` are labels.
+/// Repetitions of a cell are averaged (afex::aov_ez's fun_aggregate = mean).
+/// Throws InputError: missing column (names it), a non-numeric or non-finite dv (file:line and column),
+/// a subject lacking a cell (names the subject and the cell), fewer than 2 subjects, or a factor with
+/// fewer than 2 levels.
+WithinDesign build_within_design(const CsvTable& table, const std::string& dv, const std::string& subject,
+                                 const std::vector<std::string>& within);
+
+}  // namespace crowdlab::analysis

@@ -1,0 +1,187 @@
+// `crowdlab analyze anova|posthoc|psychometric|report`: statistics from response CSVs without R.
+// The flags and the --json shapes are a stable interface for scripts (see analysis/analysis_json.hpp
+// and analysis/psychometric_table.hpp).
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "analysis/analysis_json.hpp"
+#include "analysis/apa_format.hpp"
+#include "analysis/posthoc.hpp"
+#include "analysis/psychometric_table.hpp"
+#include "analysis/rm_anova.hpp"
+#include "analysis/study_report.hpp"
+#include "experiments/cli/command_registry.hpp"
+#include "framework/core/error.hpp"
+
+namespace crowdlab::cli {
+namespace {
+using namespace crowdlab::analysis;
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+struct DesignArgs {
+  std::string csv, dv, subject, within;
+};
+
+void add_design_options(CLI::App* cmd, DesignArgs& a) {
+  cmd->add_option("--csv", a.csv, "Tidy CSV: one row per trial (repetitions are averaged per cell)")
+      ->required();
+  cmd->add_option("--dv", a.dv, "Dependent-variable column (numeric)")->required();
+  cmd->add_option("--subject", a.subject, "Subject (participant) column")->required();
+  cmd->add_option("--within", a.within, "Within-subject factor columns, comma-separated (e.g. A,B,C)")
+      ->required();
+}
+
+WithinDesign load_design(const DesignArgs& a) {
+  const auto within = split_list(a.within);
+  if (within.empty()) throw InputError("--within: no factor given");
+  return build_within_design(read_csv(a.csv), a.dv, a.subject, within);
+}
+
+const CommandRegistration kRegistration([](CLI::App& root) {
+  auto* analyze =
+      root.add_subcommand("analyze", "Statistics: RM-ANOVA, post-hoc tests, psychometric fits, reports");
+  analyze->require_subcommand(1);
+
+  // ---- anova ----
+  static DesignArgs anova_args;
+  static bool anova_json = false;
+  auto* anova = analyze->add_subcommand(
+      "anova",
+      "Repeated-measures ANOVA (all within-subject factors) with Mauchly's test, Greenhouse-Geisser and "
+      "Huynh-Feldt corrections, partial and generalised eta squared");
+  add_design_options(anova, anova_args);
+  anova->add_flag(
+      "--json", anova_json,
+      "Print {\"effects\": [{\"effect\", \"df1\", \"df2\", \"F\", \"p\", \"pes\", \"ges\", \"mauchly_W\", "
+      "\"mauchly_p\", \"gg_eps\", \"hf_eps\", \"p_gg\", \"p_hf\", ...}]} (null where not applicable)");
+  anova->callback([] {
+    const auto result = rm_anova(load_design(anova_args));
+    if (anova_json)
+      std::cout << anova_to_json(result).dump(2) << "\n";
+    else
+      std::cout << "Repeated-measures ANOVA, " << result.subjects << " subjects\n\n"
+                << anova_text_table(result);
+  });
+
+  // ---- posthoc ----
+  static DesignArgs ph_args;
+  static std::string ph_effect, ph_method = "tukey";
+  static bool ph_json = false, ph_simple = false;
+  auto* ph =
+      analyze->add_subcommand("posthoc", "Pairwise comparisons for a main effect or an interaction's cells");
+  add_design_options(ph, ph_args);
+  ph->add_option("--effect", ph_effect, "Effect: a factor (A) or an interaction (A:B)")->required();
+  ph->add_option("--method", ph_method, "tukey (pooled-error Tukey HSD) or bonferroni (paired t-tests)")
+      ->check(CLI::IsMember({"tukey", "bonferroni"}))
+      ->capture_default_str();
+  ph->add_flag("--simple", ph_simple, "Only compare cells that differ in one factor (simple comparisons)");
+  ph->add_flag("--json", ph_json, "Print JSON");
+  ph->callback([] {
+    const auto design = load_design(ph_args);
+    const auto factors = parse_effect(design, ph_effect);
+    const auto method = ph_method == "tukey" ? PosthocMethod::tukey : PosthocMethod::bonferroni;
+    const auto result = posthoc(design, factors, method, ph_simple);
+    if (ph_json) {
+      auto j = posthoc_to_json(result);
+      if (factors.size() > 1) {
+        nlohmann::json simple = nlohmann::json::array();
+        for (size_t at : factors)
+          for (const auto& se : simple_effects(design, factors, at))
+            simple.push_back({{"at", se.at},
+                              {"effect", se.effect.name},
+                              {"df1", se.effect.df1},
+                              {"df2", se.effect.df2},
+                              {"F", se.effect.f},
+                              {"p", se.effect.p},
+                              {"pes", se.effect.pes}});
+        j["simple_effects"] = simple;
+      }
+      std::cout << j.dump(2) << "\n";
+      return;
+    }
+    std::cout << "Post-hoc comparisons for " << result.effect << " ("
+              << (method == PosthocMethod::tukey ? "Tukey HSD" : "paired t-tests, Bonferroni") << ")\n\n"
+              << posthoc_markdown_table(result);
+    if (factors.size() > 1) {
+      std::cout << "\nSimple effects:\n";
+      for (size_t at : factors)
+        for (const auto& se : simple_effects(design, factors, at))
+          std::cout << "  " << se.effect.name << " at " << se.at << ": " << apa_f_sentence(se.effect) << "\n";
+    }
+  });
+
+  // ---- psychometric ----
+  static PsychometricRequest pr;
+  static std::string pr_csv, pr_probs = "0.5,0.05";
+  static bool pr_json = false;
+  auto* psy = analyze->add_subcommand(
+      "psychometric",
+      "Logistic psychometric functions per subject (and condition) by maximum likelihood; thresholds "
+      "(D_crit / V_crit at 0.5, the 5 % point), bootstrap CIs, group table and RM-ANOVA of thresholds");
+  psy->add_option("--csv", pr_csv, "Tidy CSV: one row per binary trial")->required();
+  psy->add_option("--subject", pr.subject, "Subject column")->required();
+  psy->add_option("--x", pr.x,
+                  "Stimulus column (distance in metres, or volume in m^3 with --x-transform cbrt)")
+      ->required();
+  psy->add_option("--response", pr.response, "Binary response column (0/1)")->required();
+  psy->add_option("--by", pr.by, "Condition column: one fit per subject and level");
+  psy->add_option("--p", pr_probs, "Threshold probabilities, comma-separated")->capture_default_str();
+  psy->add_option("--bootstrap", pr.bootstrap, "Parametric-bootstrap replicates per fit (0 = none)")
+      ->check(CLI::Range(0, 100000));
+  psy->add_option("--seed", pr.seed, "Bootstrap seed")->capture_default_str();
+  psy->add_option("--x-transform", pr.x_transform,
+                  "none | cbrt (cube root of volume, seed 001 section 4.2.3)")
+      ->check(CLI::IsMember({"none", "cbrt"}))
+      ->capture_default_str();
+  psy->add_option("--guess", pr.options.guess,
+                  "Fixed guess rate (lower asymptote); thresholds are then points of "
+                  "the underlying logistic (see analysis/psychometric_fit.hpp)");
+  psy->add_option("--lapse", pr.options.lapse, "Fixed lapse rate (1 - upper asymptote)");
+  psy->add_flag("--json", pr_json, "Print {\"fits\": [...], \"groups\": [...], \"anova\": ...}");
+  psy->callback([] {
+    pr.probabilities.clear();
+    for (const auto& s : split_list(pr_probs)) {
+      try {
+        pr.probabilities.push_back(std::stod(s));
+      } catch (const std::exception&) {
+        throw InputError("--p: not a number: '" + s + "'");
+      }
+    }
+    const auto result = analyze_psychometric(read_csv(pr_csv), pr);
+    if (pr_json) {
+      std::cout << psychometric_to_json(result).dump(2) << "\n";
+      return;
+    }
+    for (const auto& row : result.fits) {
+      std::printf("%-10s %-12s intercept %9.4f slope %9.4f", row.subject.c_str(), row.by.c_str(),
+                  row.fit.intercept, row.fit.slope);
+      for (size_t k = 0; k < pr.probabilities.size(); ++k)
+        std::printf("  x(%s) %.4f", probability_key(pr.probabilities[k]).c_str(), row.thresholds[k]);
+      std::printf("%s\n", row.fit.warning.empty() ? "" : ("  WARNING: " + row.fit.warning).c_str());
+    }
+    std::cout << "\n" << psychometric_markdown_table(result, "");
+  });
+
+  // ---- report ----
+  static std::string study_dir, spec_path, out_dir;
+  auto* report = analyze->add_subcommand(
+      "report", "Markdown report with figures from a study's response CSVs (real or simulated)");
+  report->add_option("study_dir", study_dir, "Folder with the study's response CSVs (*.csv, tidy rows)")
+      ->required();
+  report->add_option("--spec", spec_path, "The experiment spec (YAML) the study ran")->required();
+  report->add_option("--out", out_dir, "Output folder (report.md, figures/)")->required();
+  report->callback([] {
+    const auto path = write_study_report(study_dir, spec_path, out_dir);
+    std::cout << "wrote " << path << "\n";
+  });
+});
+}  // namespace
+}  // namespace crowdlab::cli

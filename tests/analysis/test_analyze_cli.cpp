@@ -1,0 +1,202 @@
+// `crowdlab analyze ...` end to end: JSON shapes, errors for bad CSVs, and the study report.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "framework/core/seed.hpp"
+#include "tests/analysis/reference_table.hpp"
+#include "tests/support/run_cli.hpp"
+
+using namespace crowdlab;
+using crowdlab::test::analysis_data;
+using crowdlab::test::run_cli;
+
+TEST_CASE("analysis: analyze anova --json has the documented shape and values", "[analysis][cli]") {
+  const auto r = run_cli({"analyze", "anova", "--csv", analysis_data("md_12.1.csv"), "--dv", "rt",
+                          "--subject", "id", "--within", "angle,noise", "--json"});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j["effects"].size() == 3);
+  CHECK(j["effects"][0]["effect"] == "angle");
+  CHECK(j["effects"][1]["effect"] == "noise");
+  CHECK(j["effects"][2]["effect"] == "angle:noise");
+  for (const char* key : {"effect", "df1", "df2", "F", "p", "pes", "ges", "mauchly_W", "mauchly_p", "gg_eps",
+                          "hf_eps", "p_gg", "p_hf"})
+    for (const auto& e : j["effects"]) CHECK(e.contains(key));
+  CHECK(j["effects"][1]["mauchly_W"].is_null());  // df1 = 1
+  CHECK(j["effects"][1]["gg_eps"].is_null());
+  CHECK(j["effects"][0]["F"].get<double>() == Approx(40.719101123595493).epsilon(1e-9));
+  CHECK(j["effects"][0]["hf_eps"].get<double>() == Approx(1.2175636033006814).epsilon(1e-9));  // raw, > 1
+  // Names follow --within order.
+  const auto swapped = run_cli({"analyze", "anova", "--csv", analysis_data("md_12.1.csv"), "--dv", "rt",
+                                "--subject", "id", "--within", "noise,angle", "--json"});
+  REQUIRE(swapped.exit_code == 0);
+  CHECK(nlohmann::json::parse(swapped.out)["effects"][2]["effect"] == "noise:angle");
+  // The text table is APA-flavoured.
+  const auto text = run_cli({"analyze", "anova", "--csv", analysis_data("md_12.1.csv"), "--dv", "rt",
+                             "--subject", "id", "--within", "angle,noise"});
+  REQUIRE(text.exit_code == 0);
+  CHECK(text.out.find("F(2, 18) = 40.72, p < .001") != std::string::npos);
+}
+
+TEST_CASE("analysis: analyze posthoc and psychometric --json", "[analysis][cli]") {
+  const auto ph =
+      run_cli({"analyze", "posthoc", "--csv", analysis_data("md_12.1.csv"), "--dv", "rt", "--subject", "id",
+               "--within", "angle,noise", "--effect", "angle:noise", "--method", "bonferroni", "--json"});
+  INFO(ph.err);
+  REQUIRE(ph.exit_code == 0);
+  const auto j = nlohmann::json::parse(ph.out);
+  CHECK(j["method"] == "bonferroni");
+  CHECK(j["comparisons"].size() == 15);
+  CHECK(j["simple_effects"].size() == 5);  // angle at 2 noise levels + noise at 3 angles
+  const auto psy = run_cli({"analyze", "psychometric", "--csv", analysis_data("psychometric_trials.csv"),
+                            "--subject", "participant", "--x", "distance", "--response", "collision", "--by",
+                            "shoulder", "--p", "0.5,0.05", "--bootstrap", "20", "--json"});
+  INFO(psy.err);
+  REQUIRE(psy.exit_code == 0);
+  const auto p = nlohmann::json::parse(psy.out);
+  REQUIRE(p["fits"].size() == 18);
+  for (const char* key : {"subject", "by", "intercept", "slope", "thresholds", "converged", "warning"})
+    CHECK(p["fits"][0].contains(key));
+  CHECK(p["fits"][0]["thresholds"].contains("0.5"));
+  CHECK(p["fits"][0]["thresholds"].contains("0.05"));
+  REQUIRE(p["groups"].size() == 3);
+  CHECK(p["groups"][0]["mean"].contains("0.5"));
+  CHECK(p["groups"][0]["sd"].contains("0.05"));
+  CHECK(p["anova"]["df1"] == 2);
+}
+
+TEST_CASE("analysis: bad CSVs give exit code 2 and name the row and column", "[analysis][cli]") {
+  const auto dir = test::scratch_dir("analyze_bad_csv");
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream((dir / name).string()) << text;
+    return (dir / name).string();
+  };
+  const std::string header = "subj,A,y\n";
+  const auto missing_col =
+      run_cli({"analyze", "anova", "--csv", write("a.csv", header + "1,a,1\n1,b,2\n2,a,3\n2,b,1\n"), "--dv",
+               "score", "--subject", "subj", "--within", "A"});
+  CHECK(missing_col.exit_code == 2);
+  CHECK(missing_col.err.find("score") != std::string::npos);
+  const auto non_numeric =
+      run_cli({"analyze", "anova", "--csv", write("b.csv", header + "1,a,1\n1,b,x2\n2,a,3\n2,b,1\n"), "--dv",
+               "y", "--subject", "subj", "--within", "A"});
+  CHECK(non_numeric.exit_code == 2);
+  CHECK(non_numeric.err.find("b.csv:3") != std::string::npos);
+  CHECK(non_numeric.err.find("'y'") != std::string::npos);
+  const auto unbalanced =
+      run_cli({"analyze", "anova", "--csv", write("c.csv", header + "1,a,1\n1,b,2\n2,a,3\n3,b,1\n3,a,2\n"),
+               "--dv", "y", "--subject", "subj", "--within", "A"});
+  CHECK(unbalanced.exit_code == 2);
+  CHECK(unbalanced.err.find("subject '2'") != std::string::npos);
+  CHECK(unbalanced.err.find("A=b") != std::string::npos);
+  const auto bad_response =
+      run_cli({"analyze", "psychometric", "--csv", write("d.csv", "s,x,r\n1,0.2,1\n1,0.3,2\n"), "--subject",
+               "s", "--x", "x", "--response", "r"});
+  CHECK(bad_response.exit_code == 2);
+  CHECK(bad_response.err.find("d.csv:3") != std::string::npos);
+}
+
+namespace {
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p.string());
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Simulated sessions: tidy response rows as study sessions write them.
+void simulate_likert_study(const std::filesystem::path& dir) {
+  std::ofstream out((dir / "responses.csv").string());
+  out << "participant,block,trial,stimulus_id,density,viewpoint,method,question,response,reversed,rt_ms,"
+         "practice\n";
+  Rng rng(derive_seed(11, "likert-study"));
+  for (int p = 1; p <= 10; ++p) {
+    int trial = 0;
+    const double bias = standard_normal(rng) * 0.4;
+    for (const char* density : {"3.33", "6.66"})
+      for (const char* viewpoint : {"V1", "V3"})
+        for (const char* method : {"baseline", "ours"}) {
+          ++trial;
+          const std::string stim =
+              std::string("density-") + density + "_viewpoint-" + viewpoint + "_method-" + method;
+          const double effect =
+              (std::string(method) == "ours" ? 1.2 : 0.0) - (std::string(density) == "6.66" ? 0.5 : 0);
+          for (int q = 1; q <= 6; ++q) {
+            const bool reverse = q % 2 == 0;
+            double v = std::round(3.2 + effect + bias + 0.7 * standard_normal(rng));
+            v = std::clamp(v, 1.0, 6.0);
+            const double response = reverse ? 7 - v : v;
+            out << p << ",1," << trial << "," << stim << "," << density << "," << viewpoint << "," << method
+                << ",Q" << q << "," << response << "," << (reverse ? 7 - response : response) << ",1500,0\n";
+          }
+        }
+    out << p << ",0,0,practice_x,3.33,V1,baseline,Q1,9,9,100,1\n";  // practice: ignored (even out of range)
+  }
+}
+
+void simulate_pairs_study(const std::filesystem::path& dir) {
+  std::ofstream out((dir / "session_all.csv").string());
+  out << "participant,block,trial,stimulus_id,shoulder,distance,viewpoint,question,response,reversed,rt_ms,"
+         "practice\n";
+  Rng rng(derive_seed(12, "pairs-study"));
+  for (int p = 1; p <= 6; ++p) {
+    int trial = 0;
+    for (int shoulder = 0; shoulder < 3; ++shoulder)
+      for (int di = 0; di <= 10; ++di)
+        for (int rep = 1; rep <= 3; ++rep) {
+          ++trial;
+          char dist[16];
+          std::snprintf(dist, sizeof dist, "%.2f", 0.2 + 0.05 * di);
+          const double thr = 0.35 + 0.05 * shoulder + 0.02 * standard_normal(rng);
+          const double pc = 1.0 / (1.0 + std::exp(25.0 * (std::stod(dist) - thr)));
+          const bool yes = uniform01(rng) < pc;
+          const std::string stim =
+              "shoulder-" + std::to_string(shoulder) + "_distance-" + dist + "_rep-" + std::to_string(rep);
+          out << p << ",1," << trial << "," << stim << "," << shoulder << "," << dist << ",pair,collision,"
+              << (yes ? "yes" : "no") << "," << (yes ? "yes" : "no") << ",900,0\n";
+          const int nat =
+              std::clamp(static_cast<int>(std::lround(4 + shoulder * 0.5 + standard_normal(rng))), 1, 7);
+          out << p << ",1," << trial << "," << stim << "," << shoulder << "," << dist << ",pair,naturalness,"
+              << nat << "," << nat << ",1200,0\n";
+        }
+  }
+}
+}  // namespace
+
+TEST_CASE("analysis: analyze report writes a Markdown report with figures", "[analysis][cli]") {
+  const auto base = test::scratch_dir("analyze_report");
+  std::filesystem::create_directories(base / "likert");
+  simulate_likert_study(base / "likert");
+  const auto r = run_cli({"analyze", "report", (base / "likert").string(), "--spec",
+                          (test::source_dir() / "experiments" / "demo.yaml").string(), "--out",
+                          (base / "out1").string()});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::string md = slurp(base / "out1" / "report.md");
+  for (const char* needle :
+       {"### Q_CR", "### Q_CA", "### Q_OR", "Cronbach", "| method |", "density:viewpoint:method",
+        "Kolmogorov-Smirnov", "Tukey", "figures/interaction_Q_CR_density.png"})
+    CHECK(md.find(needle) != std::string::npos);
+  for (const char* fig :
+       {"interaction_Q_CR_density.png", "interaction_Q_CR_density.svg", "interaction_Q_OR_viewpoint.png"})
+    CHECK(std::filesystem::file_size(base / "out1" / "figures" / fig) > 1000);
+
+  std::filesystem::create_directories(base / "pairs");
+  simulate_pairs_study(base / "pairs");
+  const auto r2 = run_cli({"analyze", "report", (base / "pairs").string(), "--spec",
+                           (test::source_dir() / "experiments" / "hoyet2016_pairs.yaml").string(), "--out",
+                           (base / "out2").string()});
+  INFO(r2.err);
+  REQUIRE(r2.exit_code == 0);
+  const std::string md2 = slurp(base / "out2" / "report.md");
+  CHECK(md2.find("psychometric functions") != std::string::npos);
+  CHECK(md2.find("Table 1") != std::string::npos);
+  CHECK(md2.find("RM-ANOVA of the thresholds") != std::string::npos);
+  CHECK(std::filesystem::file_size(base / "out2" / "figures" / "psychometric_collision.png") > 1000);
+  CHECK(md2.find("### naturalness") != std::string::npos);
+}
