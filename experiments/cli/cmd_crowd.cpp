@@ -14,6 +14,7 @@
 
 #include "experiments/cli/command_registry.hpp"
 #include "framework/core/csv.hpp"
+#include "framework/core/trajectories.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/crowd/collision_table.hpp"
@@ -38,19 +39,6 @@ void write_file(const std::filesystem::path& path, const std::string& text) {
   out << text;
   out.flush();
   if (!out) throw RuntimeError("cannot write " + path.string());
-}
-
-/// One row per character per frame: character,frame,time_s,x,z,heading_rad (issue 2's CSV export).
-std::string trajectories_csv(const CrowdTrajectories& t) {
-  std::string s = csv_line({"character", "frame", "time_s", "x", "z", "heading_rad", "group", "radius_m"});
-  for (std::size_t i = 0; i < t.agents.size(); ++i) {
-    const AgentTrajectory& a = t.agents[i];
-    for (std::size_t f = 0; f < a.position_m.size(); ++f)
-      s += csv_line({std::to_string(i), std::to_string(f), csv_number(static_cast<double>(f) / t.fps),
-                     csv_number(a.position_m[f].x()), csv_number(a.position_m[f].y()),
-                     csv_number(a.heading_rad[f]), std::to_string(a.group), csv_number(a.radius_m)});
-  }
-  return s;
 }
 
 const Condition& find_condition(const std::vector<Condition>& conditions, const std::string& id) {

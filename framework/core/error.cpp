@@ -3,16 +3,18 @@
 namespace crowdlab {
 
 std::string SourceLocation::prefix() const {
+  // Built with append() rather than operator+ chains: GCC 12 at -O3 reports false array-bounds /
+  // stringop-overflow warnings for the latter (GCC bugs 105329, 105651).
   std::string out;
   if (!file.empty()) {
-    out += file;
+    out.append(file);
     if (line > 0) {
-      out += ":" + std::to_string(line);
-      if (column > 0) out += ":" + std::to_string(column);
+      out.append(":").append(std::to_string(line));
+      if (column > 0) out.append(":").append(std::to_string(column));
     }
-    out += ": ";
+    out.append(": ");
   }
-  if (!key.empty()) out += key + ": ";
+  if (!key.empty()) out.append(key).append(": ");
   return out;
 }
 

@@ -22,6 +22,10 @@ struct CrowdTrajectories {
   int frame_count() const { return agents.empty() ? 0 : static_cast<int>(agents.front().position_m.size()); }
 };
 
+/// CSV text, one row per agent per frame:
+///   character,frame,time_s,x,z,heading_rad,group,radius_m   (metres, seconds, radians)
+std::string trajectories_csv(const CrowdTrajectories& trajectories);
+
 /// Velocity of agent `a` at frame f by central differences (one-sided at the ends), metres/second.
 Vec2 trajectory_velocity(const CrowdTrajectories& t, size_t agent, size_t frame);
 

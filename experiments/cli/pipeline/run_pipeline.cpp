@@ -1,0 +1,337 @@
+#include "experiments/cli/pipeline/run_pipeline.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+
+#include "experiments/cli/pipeline/provenance.hpp"
+#include "framework/animation/animate_crowd.hpp"
+#include "framework/core/trajectories.hpp"
+#include "framework/core/error.hpp"
+#include "framework/core/progress.hpp"
+#include "framework/core/seed.hpp"
+#include "framework/core/sha256.hpp"
+#include "framework/core/stimulus_manifest.hpp"
+#include "framework/correction/correct_crowd.hpp"
+#include "framework/crowd/generate_scenario.hpp"
+#include "framework/io/read_crowd_glb.hpp"
+#include "framework/io/write_crowd_glb.hpp"
+#include "framework/metrics/measure_crowd.hpp"
+#include "framework/spec/load_experiment_spec.hpp"
+#include "stimuli/render_clip.hpp"
+
+namespace crowdlab::cli {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+/// Factors that change how a crowd is shown, not the crowd itself.
+bool is_presentation_factor(const std::string& name) { return name == "viewpoint" || name == "method"; }
+
+json level_json(const Condition& c) {
+  json j = json::object();
+  for (const auto& [name, level] : c.levels) j[name] = level.text;
+  j["rep"] = c.repetition;
+  return j;
+}
+
+/// The work shared by every condition with one crowd key, computed lazily and kept in memory while
+/// the group's conditions run.
+struct CrowdGroup {
+  std::string key;
+  fs::path dir;
+  Condition crowd_condition;  ///< the first condition of the group, with the crowd seed
+  std::string crowd_hash, baseline_hash, ours_hash;
+  std::optional<ScenarioResult> scenario;
+  std::optional<CrowdAnimation> baseline, ours;
+  std::map<std::string, json> metrics;  ///< method -> metrics json
+};
+
+class Runner {
+ public:
+  Runner(const ExperimentSpec& spec, const RunOptions& options) : spec_(spec), opt_(options) {
+    context_.spec_hash = spec.source_hash;
+    context_.seed = spec.seed;
+  }
+
+  RunSummary run() {
+    std::vector<Condition> conditions = enumerate_practice_conditions(spec_);
+    for (Condition& c : enumerate_conditions(spec_)) conditions.push_back(std::move(c));
+    std::vector<Condition> selected;
+    for (size_t i = 0; i < conditions.size(); ++i)
+      if (opt_.shard.contains(i) && (opt_.only.empty() || conditions[i].id == opt_.only)) selected.push_back(conditions[i]);
+    if (!opt_.only.empty() && selected.empty())
+      throw InputError(SourceLocation{"", 0, 0, "--condition"}, "no condition with id '" + opt_.only + "'");
+    fs::create_directories(opt_.out_dir / "crowds");
+    fs::create_directories(opt_.out_dir / "conditions");
+    copy_spec();
+
+    // Group by crowd key, keeping first-appearance order so output order is stable.
+    std::vector<std::string> order;
+    std::map<std::string, std::vector<const Condition*>> groups;
+    for (const Condition& c : selected) {
+      const std::string key = crowd_key(c);
+      if (!groups.count(key)) order.push_back(key);
+      groups[key].push_back(&c);
+    }
+    StimulusManifest manifest;
+    for (const Factor& f : spec_.factors) manifest.factor_names.push_back(f.name);
+    Progress progress("run " + spec_.name, selected.size());
+    for (const std::string& key : order) {
+      CrowdGroup group = make_group(key, *groups[key].front());
+      for (const Condition* c : groups[key]) {
+        manifest.entries.push_back(run_condition(group, *c));
+        progress.advance();
+      }
+    }
+    progress.finish();
+    summary_.conditions = static_cast<int>(selected.size());
+    summary_.manifest = opt_.out_dir / (opt_.shard.count > 1 ? "manifest.shard-" + std::to_string(opt_.shard.index) +
+                                                                   "-of-" + std::to_string(opt_.shard.count) + ".csv"
+                                                             : std::string("manifest.csv"));
+    write_manifest(manifest, summary_.manifest.string());
+    return summary_;
+  }
+
+ private:
+  void copy_spec() {
+    const fs::path dst = opt_.out_dir / "spec.yaml";
+    if (spec_.source_path.empty() || !fs::exists(spec_.source_path)) return;
+    std::ifstream in(spec_.source_path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    write_file_atomic(dst, ss.str());
+  }
+
+  CrowdGroup make_group(const std::string& key, const Condition& first) {
+    CrowdGroup g;
+    g.key = key;
+    g.dir = opt_.out_dir / "crowds" / key;
+    fs::create_directories(g.dir);
+    g.crowd_condition = first;
+    g.crowd_condition.seed = derive_seed(spec_.seed, "crowd/" + key);
+    // Stage input hashes: each stage's own parameters plus its upstream hash.
+    json crowd_params;
+    crowd_params["levels"] = level_json(g.crowd_condition);
+    crowd_params["scenario"] = spec_.scenario.type;
+    crowd_params["seed"] = g.crowd_condition.seed;
+    crowd_params["spec"] = spec_.source_hash;  // scenario/crowd sections live in the spec text
+    g.crowd_hash = stage_input_hash("crowd", crowd_params, {});
+    g.baseline_hash = stage_input_hash("animation", json{{"spec", spec_.source_hash}}, {g.crowd_hash});
+    g.ours_hash = stage_input_hash("correction",
+                                   json{{"damping", spec_.correction.damping}, {"stiffness", spec_.correction.stiffness},
+                                        {"contact_stiffness", spec_.correction.collision_stiffness}},
+                                   {g.baseline_hash});
+    return g;
+  }
+
+  bool up_to_date(const fs::path& out, const std::string& hash) {
+    const bool ok = !opt_.force && output_up_to_date(out, hash);
+    (ok ? summary_.stages_skipped : summary_.stages_run)++;
+    return ok;
+  }
+
+  const ScenarioResult& scenario(CrowdGroup& g) {
+    if (!g.scenario) g.scenario = generate_scenario(spec_, g.crowd_condition);
+    return *g.scenario;
+  }
+
+  void write_trajectories(CrowdGroup& g) {
+    const fs::path out = g.dir / "trajectories.csv";
+    if (up_to_date(out, g.crowd_hash)) return;
+    const std::string text = trajectories_csv(scenario(g).trajectories);
+    write_file_atomic(out, text);
+    record_provenance(out, "crowd", g.crowd_hash, context_);
+  }
+
+  AnimationContext animation_context(const CrowdGroup& g) const {
+    AnimationContext ctx;
+    ctx.scenario_type = scenario_type_;
+    ctx.seed = g.crowd_condition.seed;
+    ctx.condition_id = g.key;
+    const Condition& c = g.crowd_condition;
+    if (c.level("shoulder")) ctx.shoulder_count = static_cast<int>(c.number("shoulder", 0));
+    ctx.trigger_probability = c.number("trigger", 0.0) / 100.0;
+    return ctx;
+  }
+
+  const CrowdAnimation& baseline(CrowdGroup& g) {
+    const fs::path out = g.dir / "baseline.glb";
+    if (g.baseline) return *g.baseline;
+    write_trajectories(g);
+    if (up_to_date(out, g.baseline_hash)) {
+      g.baseline = read_crowd_glb(out.string());
+      return *g.baseline;
+    }
+    scenario_type_ = resolve_scenario_type(spec_, g.crowd_condition);
+    const ScenarioResult& s = scenario(g);
+    CrowdAnimation crowd = animate_crowd(s.trajectories, s.environment, spec_.animation, animation_context(g));
+    crowd.meta.seed = g.crowd_condition.seed;
+    crowd.meta.condition_id = g.key;
+    crowd.meta.scenario = s.scenario;
+    write_crowd_glb(crowd, out.string());
+    record_provenance(out, "animation", g.baseline_hash, context_);
+    g.baseline = std::move(crowd);
+    return *g.baseline;
+  }
+
+  const CrowdAnimation& corrected(CrowdGroup& g) {
+    const fs::path out = g.dir / "ours.glb";
+    if (g.ours) return *g.ours;
+    const CrowdAnimation& input = baseline(g);
+    if (up_to_date(out, g.ours_hash)) {
+      g.ours = read_crowd_glb(out.string());
+      return *g.ours;
+    }
+    CorrectorParams params;
+    if (spec_.correction.stiffness > 0) params.stiffness = spec_.correction.stiffness;
+    params.damping = spec_.correction.damping;
+    if (spec_.correction.collision_stiffness > 0) params.contact_stiffness = spec_.correction.collision_stiffness;
+    Progress progress("correct " + g.key, static_cast<size_t>(input.frame_count()));
+    CorrectionReport report;
+    CrowdAnimation out_crowd = correct_crowd(input, params, &progress, &report);
+    if (report.rejected_steps > 0)
+      spdlog::warn("{}: the corrector rejected {} of {} steps and kept the last stable state", g.key,
+                   report.rejected_steps, report.frames);
+    write_crowd_glb(out_crowd, out.string());
+    record_provenance(out, "correction", g.ours_hash, context_);
+    g.ours = std::move(out_crowd);
+    return *g.ours;
+  }
+
+  static std::string method_of(const Condition& c) { return c.text("method", "baseline"); }
+
+  const json& metrics(CrowdGroup& g, const std::string& method) {
+    auto it = g.metrics.find(method);
+    if (it != g.metrics.end()) return it->second;
+    const fs::path out = g.dir / (method + ".metrics.json");
+    const std::string hash = stage_input_hash("metrics", json::object(), {method == "ours" ? g.ours_hash : g.baseline_hash});
+    json j;
+    if (up_to_date(out, hash)) {
+      std::ifstream in(out);
+      j = json::parse(in);
+    } else {
+      const CrowdAnimation& crowd = method == "ours" ? corrected(g) : baseline(g);
+      const CrowdMetrics m = measure_crowd(crowd);
+      j = {{"characters", m.characters},
+           {"frames", m.frames},
+           {"fps", m.fps},
+           {"mean_character_overlap_l", m.mean_character_overlap_l},
+           {"volume_index_m", m.volume_index_m},
+           {"max_penetration_depth_m", m.max_penetration_depth_m},
+           {"collision_count", m.collision_count},
+           {"colliding_frames", m.colliding_frames}};
+      write_file_atomic(out, j.dump(2) + "\n");
+      record_provenance(out, "metrics", hash, context_);
+    }
+    return g.metrics[method] = j;
+  }
+
+  static void link_or_copy(const fs::path& from, const fs::path& to) {
+    std::error_code ec;
+    fs::remove(to, ec);
+    fs::create_hard_link(from, to, ec);
+    if (ec) fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+  }
+
+  Renderer& renderer() {
+    if (!renderer_) renderer_ = std::make_unique<Renderer>();
+    return *renderer_;
+  }
+
+  RenderOptions render_options() const {
+    RenderOptions r;
+    r.width = spec_.render.width;
+    r.height = spec_.render.height;
+    r.crf = spec_.render.crf;
+    r.scene.overlap = spec_.render.overlap;
+    r.scene.background = parse_hex_colour(spec_.render.background, "render.background");
+    r.scene.fog_density = spec_.render.fog ? 0.02 : 0.0;
+    r.viewpoint_overrides = spec_.render.viewpoint_overrides;
+    return r;
+  }
+
+  StimulusEntry run_condition(CrowdGroup& g, const Condition& c) {
+    const std::string method = method_of(c);
+    const fs::path dir = opt_.out_dir / "conditions" / c.id;
+    fs::create_directories(dir);
+    const std::string anim_hash = method == "ours" ? g.ours_hash : g.baseline_hash;
+    const fs::path glb_src = g.dir / (method == "ours" ? "ours.glb" : "baseline.glb");
+    const CrowdAnimation& crowd = method == "ours" ? corrected(g) : baseline(g);
+    link_or_copy(glb_src, dir / "crowd.glb");
+    const json& m = spec_.outputs.metrics ? metrics(g, method) : json::object();
+    if (spec_.outputs.metrics) link_or_copy(g.dir / (method + ".metrics.json"), dir / "metrics.json");
+
+    StimulusEntry e;
+    e.id = c.id;
+    for (const auto& [name, level] : c.levels) e.factors[name] = level.text;
+    e.practice = c.practice;
+    e.mean_overlap_l = m.value("mean_character_overlap_l", -1.0);
+    e.v_i_m = m.value("volume_index_m", -1.0);
+    e.collisions = m.value("collision_count", -1);
+    e.frames = crowd.frame_count();
+    e.duration_s = crowd.duration_s();
+    if (!spec_.outputs.video) return e;
+
+    const std::string viewpoint = c.text("viewpoint", default_viewpoint());
+    const RenderOptions ro = render_options();
+    const fs::path clip = dir / "clip.mp4";
+    const std::string render_hash = stage_input_hash(
+        "render", json{{"viewpoint", viewpoint}, {"width", ro.width}, {"height", ro.height}, {"crf", ro.crf},
+                       {"overlap", ro.scene.overlap}, {"spec", spec_.source_hash}},
+        {anim_hash});
+    if (!up_to_date(clip, render_hash)) {
+      render_clip(renderer(), crowd, ro, viewpoint, clip.string());
+      record_provenance(clip, "render", render_hash, context_);
+    }
+    if (spec_.outputs.contact_sheet) {
+      const fs::path sheet = g.dir / (method + ".contact_sheet.png");
+      const std::string sheet_hash = stage_input_hash("contact_sheet", json{{"w", ro.width}, {"h", ro.height}}, {anim_hash});
+      if (!up_to_date(sheet, sheet_hash)) {
+        write_contact_sheet(renderer(), crowd, ro, crowd.frame_count() / 2, sheet.string());
+        record_provenance(sheet, "contact_sheet", sheet_hash, context_);
+      }
+    }
+    e.file = fs::relative(clip, opt_.out_dir).string();
+    e.width = ro.width;
+    e.height = ro.height;
+    e.sha256 = sha256_file_hex(clip.string());
+    return e;
+  }
+
+  std::string default_viewpoint() const {
+    const std::string type = spec_.scenario.type;
+    if (type == "pair_crossing") return "pair";
+    if (type == "flow_a") return "tracking";
+    return "V1";
+  }
+
+  const ExperimentSpec& spec_;
+  RunOptions opt_;
+  ProvenanceContext context_;
+  RunSummary summary_;
+  std::string scenario_type_ = "stationary";
+  std::unique_ptr<Renderer> renderer_;
+};
+
+}  // namespace
+
+std::string crowd_key(const Condition& condition) {
+  std::string key;
+  for (const auto& [name, level] : condition.levels) {
+    if (is_presentation_factor(name)) continue;
+    key += name + "-" + level.text + "_";
+  }
+  key += "rep-" + std::to_string(condition.repetition);
+  return condition.practice ? "practice_" + key : key;
+}
+
+RunSummary run_experiment(const ExperimentSpec& spec, const RunOptions& options) { return Runner(spec, options).run(); }
+
+}  // namespace crowdlab::cli
