@@ -62,8 +62,8 @@ void CrowdSimulation::set_preferred_velocity_jitter(double mps, std::uint64_t se
   jitter_seed_ = seed;
 }
 
-void CrowdSimulation::update_preferred_velocities(double h) {
-  for (std::size_t i = 0; i < px_.size(); ++i) {
+void CrowdSimulation::update_preferred_velocities(double h, std::size_t begin, std::size_t end) {
+  for (std::size_t i = begin; i < end; ++i) {
     const double dx = gx_[i] - px_[i], dy = gy_[i] - py_[i];
     const double dist = std::sqrt(dx * dx + dy * dy);
     const double speed = std::min(pref_speed_[i], dist / h);
@@ -85,7 +85,10 @@ void CrowdSimulation::update_preferred_velocities(double h) {
 
 void CrowdSimulation::substep(double h) {
   const std::size_t n = px_.size();
-  update_preferred_velocities(h);
+  // Preferred velocities (one slot per agent, in parallel).
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, n, kGrain),
+      [&](const tbb::blocked_range<std::size_t>& r) { update_preferred_velocities(h, r.begin(), r.end()); });
   CrowdWorld world;
   world.count = n;
   world.px = px_.data(), world.py = py_.data(), world.vx = vx_.data(), world.vy = vy_.data();
@@ -99,13 +102,16 @@ void CrowdSimulation::substep(double h) {
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       model_->compute_velocities(world, r.begin(), r.end(), new_vx_.data(), new_vy_.data());
                     });
-  // Phase 2: commit.
-  for (std::size_t i = 0; i < n; ++i) {
-    vx_[i] = new_vx_[i];
-    vy_[i] = new_vy_[i];
-    px_[i] += h * vx_[i];
-    py_[i] += h * vy_[i];
-  }
+  // Phase 2: commit (each agent its own slot).
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                        vx_[i] = new_vx_[i];
+                        vy_[i] = new_vy_[i];
+                        px_[i] += h * vx_[i];
+                        py_[i] += h * vy_[i];
+                      }
+                    });
   grid_.rebuild(px_.data(), py_.data(), n);
   ++substep_count_;
 }

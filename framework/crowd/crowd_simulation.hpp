@@ -52,7 +52,7 @@ class CrowdSimulation {
 
  private:
   void substep(double h);
-  void update_preferred_velocities(double h);
+  void update_preferred_velocities(double h, std::size_t begin, std::size_t end);
 
   std::shared_ptr<const NavigationModel> model_;
   std::vector<ObstacleSegment> obstacles_;

@@ -59,7 +59,8 @@ Line agent_line(const CrowdWorld& w, std::size_t i, std::uint32_t j, double inv_
     if (dot1 < 0.0 && dot1 * dot1 > r2 * w2) {
       // Closest boundary point is on the cut-off circle.
       const double wl = std::sqrt(w2);
-      const double nx = wx / wl, ny = wy / wl;
+      const double inv_wl = 1.0 / wl;
+      const double nx = wx * inv_wl, ny = wy * inv_wl;
       line.dx = ny, line.dy = -nx;
       ux = (r * inv_tau - wl) * nx, uy = (r * inv_tau - wl) * ny;
     } else {
@@ -82,7 +83,10 @@ Line agent_line(const CrowdWorld& w, std::size_t i, std::uint32_t j, double inv_
     const double wx = rel_vx - inv_dt * rel_px, wy = rel_vy - inv_dt * rel_py;
     const double wl = std::sqrt(wx * wx + wy * wy);
     double nx = 1.0, ny = 0.0;
-    if (wl > 1e-12) nx = wx / wl, ny = wy / wl;
+    if (wl > 1e-12) {
+      const double inv_wl = 1.0 / wl;
+      nx = wx * inv_wl, ny = wy * inv_wl;
+    }
     line.dx = ny, line.dy = -nx;
     ux = (r * inv_dt - wl) * nx, uy = (r * inv_dt - wl) * ny;
   }
