@@ -7,6 +7,7 @@
 #include "framework/core/seed.hpp"
 #include "framework/core/sha256.hpp"
 #include "framework/spec/did_you_mean.hpp"
+#include "framework/spec/effective_scenario_type.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 #include "tests/support/test_paths.hpp"
 
@@ -386,4 +387,16 @@ TEST_CASE("edit distance and suggestions") {
   CHECK(closest_match("viewpont", {"viewpoint", "method"}) == "viewpoint");
   CHECK(closest_match("zzzzzz", {"viewpoint", "method"}).empty());
   CHECK(suggestion_suffix("zzz", {"a", "b"}) == " (expected one of: a, b)");
+}
+
+TEST_CASE("the effective scenario follows the scenario factor, with A/B as flows") {
+  const ExperimentSpec s =
+      load_text(kHeader + "scenario: {type: corridor}\nfactors: {scenario: [A, B, stationary]}\n");
+  const auto conds = enumerate_conditions(s);
+  REQUIRE(conds.size() == 3);
+  CHECK(effective_scenario_type(s, conds[0]) == "flow_a");
+  CHECK(effective_scenario_type(s, conds[1]) == "flow_b");
+  CHECK(effective_scenario_type(s, conds[2]) == "stationary");
+  const ExperimentSpec plain = load_text(kHeader + "scenario: {type: corridor}\n");
+  CHECK(effective_scenario_type(plain, enumerate_conditions(plain).at(0)) == "corridor");
 }

@@ -1,7 +1,9 @@
 // `crowdlab validate` on the shipped specs and on broken ones, through the real binary.
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <map>
 #include <regex>
+#include <sstream>
 
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
@@ -143,4 +145,42 @@ TEST_CASE("validate --help describes the command") {
   CHECK(r.exit_code == 0);
   CHECK_THAT(r.out, Catch::Contains("condition table"));
   CHECK_THAT(r.out, Catch::Contains("--no-table"));
+}
+
+namespace {
+// id -> seed from the condition table that `crowdlab validate` prints.
+std::map<std::string, std::string> table_seeds(const std::string& out) {
+  std::map<std::string, std::string> seeds;
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("density-", 0) != 0) continue;
+    std::istringstream cells(line);
+    std::vector<std::string> words;
+    for (std::string w; cells >> w;) words.push_back(w);
+    seeds[words.front()] = words.back();
+  }
+  return seeds;
+}
+}  // namespace
+
+TEST_CASE("validate: adding a level keeps every other id and seed, and output is deterministic") {
+  std::string text = kValidSpec;
+  const std::string before_path = write_spec("validate-before", text);
+  text.replace(text.find("[2.22, 4.44]"), 12, "[2.22, 3.33, 4.44]");
+  const std::string after_path = write_spec("validate-after", text);
+  const auto before = run_cli({"validate", before_path});
+  const auto again = run_cli({"validate", before_path});
+  const auto after = run_cli({"validate", after_path});
+  REQUIRE(before.exit_code == 0);
+  REQUIRE(after.exit_code == 0);
+  CHECK(before.out == again.out);
+  const auto a = table_seeds(before.out);
+  const auto b = table_seeds(after.out);
+  CHECK(a.size() == 8);
+  CHECK(b.size() == 12);
+  for (const auto& [id, seed] : a) {
+    INFO(id);
+    REQUIRE(b.count(id) == 1);
+    CHECK(b.at(id) == seed);
+  }
 }
