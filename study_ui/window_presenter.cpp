@@ -96,10 +96,21 @@ WindowPresenter::WindowPresenter(const WindowOptions& options) {
   if (options.fullscreen) {
     cv::setWindowProperty(kWindow, cv::WND_PROP_FULLSCREEN, cv::WINDOW_FULLSCREEN);
     cv::imshow(kWindow, cv::Mat(480, 640, CV_8UC3, cv::Scalar(236, 233, 230)));
-    for (int i = 0; i < 5; ++i) cv::waitKey(40);  // let the window manager apply full screen
-    const cv::Rect r = cv::getWindowImageRect(kWindow);
-    impl_->canvas_size =
-        (r.width >= 320 && r.height >= 240) ? r.size() : cv::Size(options.width, options.height);
+    // The window system applies full screen asynchronously: poll the window size for up to 3 s.
+    cv::Rect r;
+    for (int i = 0; i < 60; ++i) {
+      cv::waitKey(50);
+      r = cv::getWindowImageRect(kWindow);
+      if (r.width >= 800 && r.height >= 600 && i >= 4) break;
+    }
+    if (r.width >= 800 && r.height >= 600) {
+      impl_->canvas_size = r.size();
+    } else {  // e.g. a bare X server with no window manager
+      spdlog::warn("full screen was not applied by the window system (window {}x{}); using {}x{}", r.width,
+                   r.height, options.width, options.height);
+      impl_->canvas_size = {options.width, options.height};
+      cv::resizeWindow(kWindow, options.width, options.height);
+    }
   } else {
     impl_->canvas_size = {options.width, options.height};
     cv::resizeWindow(kWindow, options.width, options.height);

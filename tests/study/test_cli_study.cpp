@@ -232,13 +232,12 @@ TEST_CASE("participant test: the real window under Xvfb, driven by xdotool, kill
                std::to_string(t.rect.y + t.rect.height / 2) + "\n";
   write_text(dir / "targets.txt", targets);
   // Both sessions write to one output folder; each spec has its own stimuli.
-  const std::string display = std::to_string(90 + getpid() % 9);
   const std::string cmd =
       test::shell_quote((test::source_dir() / "tests/study/drive_window_session.sh").string()) + " " +
       test::shell_quote(test::crowdlab_exe().string()) + " " + likert.string() + " " +
       (dir / "stimuli").string() + " " + afc.string() + " " + (dir / "afc").string() + " " +
       (dir / "out").string() + " " + (dir / "snap").string() + " " + (dir / "targets.txt").string() + " " +
-      display + " > " + (dir / "drive.log").string() + " 2>&1";
+      " > " + (dir / "drive.log").string() + " 2>&1";
   const int rc = std::system(cmd.c_str());
   INFO(slurp(dir / "drive.log"));
   REQUIRE(rc == 0);

@@ -105,7 +105,9 @@ TEST_CASE("scripted Likert session writes one fsync'd tidy row per answer", "[st
   CHECK(read_csv(r.csv_path).rows.size() == 36);
 }
 
-TEST_CASE("a torn write (mid-row, at and around row ends) is repaired on resume: no duplicate, no missing row", "[study]") {
+TEST_CASE(
+    "a torn write (mid-row, at and around row ends) is repaired on resume: no duplicate, no missing row",
+    "[study]") {
   const auto dir = test::scratch_dir("study-torn");
   const auto m =
       test::make_stimuli(dir / "stimuli", {{"shoulder", {"0", "1", "2"}}, {"distance", {"0.2", "0.5"}}}, 1);
@@ -248,4 +250,57 @@ TEST_CASE("simulated study: same format as real sessions, reproducible, merged f
     CHECK(t.cell(r, t.column("response")) == t2.cell(r, t2.column("response")));
   opt.out_dir = (dir / "a").string();
   CHECK_THROWS_AS(simulate_study(spec, m, ObserverModel{}, opt), InputError);  // never overwrite
+}
+
+namespace {
+/// Records the screens shown and answers every question with its lowest value.
+class RecordingPresenter final : public Presenter {
+ public:
+  std::vector<ScreenKind> screens;
+  std::vector<int> trial_indices;
+  bool accept_consent = true;
+  ScreenInfo screen() const override { return {800, 600, "recording"}; }
+  bool show_screen(ScreenKind kind, const std::string&, const std::string&) override {
+    screens.push_back(kind);
+    return kind != ScreenKind::consent || accept_consent;
+  }
+  TrialOutcome run_trial(const TrialRequest& r) override {
+    trial_indices.push_back(r.trial->index);
+    TrialOutcome out;
+    for (const auto& q : *r.questions)
+      out.answers.push_back({q.id, q.min_response(), 100.0, iso8601_utc_now()});
+    return out;
+  }
+};
+}  // namespace
+
+TEST_CASE("screens: instructions, consent, practice and block intros, a break every N test trials",
+          "[study]") {
+  const auto dir = test::scratch_dir("study-screens");
+  auto m =
+      test::make_stimuli(dir / "stimuli", {{"method", {"baseline", "ours"}}, {"viewpoint", {"V1", "V3"}}}, 1);
+  m.entries.back().factors["method"] = "";  // a practice trial of no block: shown before all blocks
+  ExperimentSpec spec = test::likert_spec();
+  spec.protocol.instructions = "Watch and answer.";
+  spec.protocol.consent = "Do you agree?";
+  spec.protocol.break_every = 2;
+  spec.protocol.block_by = "method";
+  RecordingPresenter declines;
+  declines.accept_consent = false;
+  SessionOptions opt{"P05", (dir / "stimuli").string(), (dir / "out").string(), false, "recording", true};
+  const SessionResult refused = run_session(spec, m, opt, declines);
+  CHECK(refused.aborted);
+  CHECK(declines.trial_indices.empty());
+  CHECK(read_csv(refused.csv_path).rows.empty());
+
+  RecordingPresenter p;
+  opt.participant = "P06";
+  const SessionResult r = run_session(spec, m, opt, p);
+  CHECK(r.complete);
+  using K = ScreenKind;
+  // practice (1 global trial), block 1 (2 trials), break after 2 test trials, block 2 (2 trials), end.
+  const std::vector<K> expected = {K::instructions, K::consent,     K::practice_intro, K::block_intro,
+                                   K::break_screen, K::block_intro, K::finished};
+  CHECK(p.screens == expected);
+  CHECK(p.trial_indices == std::vector<int>{1, 2, 3, 4, 5});
 }
