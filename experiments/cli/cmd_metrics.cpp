@@ -72,7 +72,10 @@ void print_text(const CrowdMetrics& m, const std::string& path, bool per_frame) 
   std::printf("  max penetration depth: %.4f m\n", m.max_penetration_depth_m);
   std::printf("  collision events: %d (frames with a collision: %d)\n", m.collision_count,
               m.colliding_frames);
-  std::printf("  largest rigorous error bound of one volume: %.4f L\n", 1000.0 * m.max_error_bound_m3);
+  std::printf(
+      "  largest rigorous error bound of one volume: %.4f L (a guaranteed bracket, far wider than the\n"
+      "    actual error: see framework/metrics/overlap_volume.hpp)\n",
+      1000.0 * m.max_error_bound_m3);
   if (!m.pairs.empty()) {
     std::printf("  colliding pairs (a b: frames events V_m max_volume_L max_depth_m):\n");
     for (const PairMetrics& p : m.pairs)

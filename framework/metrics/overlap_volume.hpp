@@ -30,8 +30,12 @@
 // (and the cluster box) shrunk by h, and at most the one with both grown by h. Summing area * chord over the
 // cells gives lower_m3 <= v <= upper_m3, hence |volume_m3 - v| <= error_bound_m3() = max(upper - estimate,
 // estimate - lower). This bound is first order in the cell size (it charges every surface crossing
-// with a full h), so it is 10-50x wider than the actual error, which tests/metrics measure against
-// analytic volumes (< 1 % at the defaults; see `crowdlab bench overlap` for cost).
+// with a full h), so it is far wider than the actual error (at the defaults it is of the order of
+// the volume itself for body pairs); the actual error is what tests/metrics measure against analytic
+// volumes. Measured at the defaults (12 x 2^1): 200 random sphere-lens, parallel and coaxial capsule
+// cases max 0.76 % error; colliding procedural-body pairs (`crowdlab bench overlap --reference`)
+// mean 0.3 %, max ~3 % against a 16x finer grid, ~0.25 ms median per pair on this 2-core machine.
+// depth = 2 brings the body-pair mean to 0.1 % at ~3x the cost.
 #include <span>
 
 #include "framework/core/capsule.hpp"
