@@ -1,5 +1,6 @@
 // `crowdlab validate SPEC.yaml`: checks a spec and prints its design (summary + condition table).
 // Invalid specs print every problem as "file:line:column: key.path: message" and exit with code 2.
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -27,14 +28,18 @@ void print_summary(const ExperimentSpec& spec) {
   if (!spec.description.empty()) std::printf("description: %s\n", spec.description.c_str());
   std::printf("sha256:      %s\n", spec.source_hash.c_str());
   std::printf("seed:        %llu\n", static_cast<unsigned long long>(spec.seed));
-  std::printf("scenario:    %s (%.6g m x %.6g m)\n", spec.scenario.type.c_str(), spec.scenario.width_m,
-              spec.scenario.depth_m);
+  if (spec.scenario.type == "pair_crossing" || spec.scenario.type == "manifold")
+    std::printf("scenario:    %s\n", spec.scenario.type.c_str());
+  else
+    std::printf("scenario:    %s (%.6g m x %.6g m)\n", spec.scenario.type.c_str(), spec.scenario.width_m,
+                spec.scenario.depth_m);
   std::printf("crowd model: %s, agent radius %.6g m\n", spec.crowd.model.c_str(), spec.crowd.agent_radius_m);
   std::printf("clips:       %.6g s at %.6g fps, %dx%d\n", spec.duration_s, spec.fps, spec.render.width,
               spec.render.height);
   std::printf("factors:\n");
   for (const Factor& f : spec.factors)
-    std::printf("  %-11s %zu levels: %s\n", f.name.c_str(), f.levels.size(), levels_text(f).c_str());
+    std::printf("  %-11s %zu level%s: %s\n", f.name.c_str(), f.levels.size(), f.levels.size() == 1 ? "" : "s",
+                levels_text(f).c_str());
   std::printf("repetitions: %d\n", spec.repetitions);
   const ProtocolSpec& p = spec.protocol;
   std::printf("protocol:    %s, %zu question(s), %d-point scale", p.type.c_str(), p.questions.size(),
@@ -42,13 +47,16 @@ void print_summary(const ExperimentSpec& spec) {
   if (!p.block_by.empty())
     std::printf(", blocks by %s (%s order)", p.block_by.c_str(), p.block_order.c_str());
   std::printf("\n");
+  int w = 0;
+  for (const QuestionSpec& q : p.questions) w = std::max(w, static_cast<int>(q.id.size()));
+  for (const CompositeSpec& c : p.composites) w = std::max(w, static_cast<int>(c.id.size()));
   for (const QuestionSpec& q : p.questions)
-    std::printf("  %-6s %s%s%s\n", q.id.c_str(), q.kind == "yesno" ? "[yes/no] " : "", q.text.c_str(),
+    std::printf("  %-*s %s%s%s\n", w, q.id.c_str(), q.kind == "yesno" ? "[yes/no] " : "", q.text.c_str(),
                 q.reverse ? "  (reverse-keyed)" : "");
   for (const CompositeSpec& c : p.composites) {
     std::string items;
     for (const std::string& i : c.items) items += (items.empty() ? "" : " + ") + i;
-    std::printf("  %-6s = mean(%s)\n", c.id.c_str(), items.c_str());
+    std::printf("  %-*s = mean(%s)\n", w, c.id.c_str(), items.c_str());
   }
 }
 
