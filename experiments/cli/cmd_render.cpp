@@ -23,7 +23,7 @@ struct RenderArgs {
   std::vector<std::string> overrides;
   int width = 1920, height = 1080, crf = 18, synthetic = 0, max_frames = -1;
   double fog = 0.0;
-  bool overlap = false;
+  bool overlap = false, synthetic_corridor = false;
 };
 
 /// "NAME=px,py,pz,tx,ty,tz,fov" -> overrides[NAME].
@@ -54,6 +54,12 @@ void run(const RenderArgs& a) {
     stimuli::SyntheticCrowdOptions co;
     co.characters = a.synthetic;
     co.frames = 90;
+    if (a.synthetic_corridor) {
+      co.columns = 3;
+      co.walk_speed_mps = 1.2;
+      co.corridor_walls = true;
+      co.stage = false;
+    }
     crowd = stimuli::make_synthetic_crowd(co);
   } else {
     crowd = read_crowd_glb(a.crowd_path);
@@ -109,6 +115,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("crowd", a->crowd_path, "Crowd file (.glb) written by crowdlab");
   cmd->add_option("--synthetic", a->synthetic,
                   "Render a procedural test crowd of N characters instead of a file");
+  cmd->add_flag("--corridor", a->synthetic_corridor,
+                "With --synthetic: a walking crowd between corridor walls");
   cmd->add_option("--viewpoint", a->viewpoint,
                   "V1|V2|V3|V4|pair|tracking, or a name given by --viewpoint-override")
       ->capture_default_str();
