@@ -174,6 +174,27 @@ GLuint make_noise_texture() {
   return tex;
 }
 
+/// True when the segment [p, q] passes through the oriented box (slab test in the box frame).
+bool segment_hits_box(const Vec3& p, const Vec3& q, const Box& box) {
+  const Quat r = box.rotation.normalized();
+  const Vec3 a = r.conjugate() * (p - box.center_m), b = r.conjugate() * (q - box.center_m);
+  const Vec3 d = b - a;
+  double t0 = 0.0, t1 = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    const double h = box.half_extents_m[k];
+    if (std::abs(d[k]) < 1e-12) {
+      if (std::abs(a[k]) > h) return false;
+      continue;
+    }
+    double ta = (-h - a[k]) / d[k], tb = (h - a[k]) / d[k];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
 Mat4 ortho(double half, double near_m, double far_m) {
   Mat4 m = Mat4::Identity();
   m(0, 0) = 1.0 / half;
@@ -226,6 +247,8 @@ struct Renderer::Gl {
   GpuMesh ground;
   std::vector<GpuMesh> environment_meshes;
   std::vector<Mat4> box_models;
+  std::vector<Box> boxes;
+  std::vector<char> box_hidden;
   std::vector<std::uint64_t> character_mesh, character_shadow_mesh;
   GLuint noise_tex = 0;
   std::vector<std::array<Mat4, kJointCount>> inverse_rest;
@@ -393,6 +416,7 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   for (const TriangleMesh& m : crowd.environment.meshes)
     if (!m.triangles.empty()) g.environment_meshes.push_back(make_environment_mesh(m));
   g.box_models.clear();
+  g.boxes = crowd.environment.boxes;
   Vec3 lo = Vec3::Constant(1e30), hi = Vec3::Constant(-1e30);
   for (const Box& b : crowd.environment.boxes) {
     Mat4 model = Mat4::Identity();
@@ -495,6 +519,14 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   light_cam.target = centre;
   const Mat4 light_vp = ortho(radius, 0.5, 2.0 * radius + 2.0) * light_cam.view();
   const Mat4 view_proj = camera.projection() * camera.view();
+  // Architectural cutaway: a box that hides the crowd from the camera (the near wall of a corridor
+  // seen from the side) is left out, tested on the segments from the eye to every character's chest.
+  g.box_hidden.assign(g.boxes.size(), 0);
+  for (size_t b = 0; b < g.boxes.size(); ++b)
+    for (size_t i = 0; i < n && !g.box_hidden[b]; ++i) {
+      const Vec3 chest = chars[i].frames[static_cast<size_t>(frame)].root_position_m + Vec3(0, 0.35, 0);
+      if (segment_hits_box(camera.eye, chest, g.boxes[b])) g.box_hidden[b] = 1;
+    }
 
   // 2. Shadow pass.
   glEnable(GL_DEPTH_TEST);
@@ -520,7 +552,9 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   glUseProgram(p);
   set_mat4(p, g.static_depth.uniform("u_view_proj"), light_vp);
   glDisable(GL_CULL_FACE);
-  for (const Mat4& model : g.box_models) {
+  for (size_t b = 0; b < g.box_models.size(); ++b) {
+    if (g.box_hidden[b]) continue;
+    const Mat4& model = g.box_models[b];
     set_mat4(p, g.static_depth.uniform("u_model"), model);
     glBindVertexArray(g.cube.vao);
     glDrawElements(GL_TRIANGLES, g.cube.count, GL_UNSIGNED_INT, nullptr);
@@ -600,7 +634,9 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   glUseProgram(p);
   glProgramUniform1i(p, g.static_lit.uniform("u_material"), 2);
   set_rgb(p, g.static_lit.uniform("u_base_color"), options.environment);
-  for (const Mat4& model : g.box_models) {
+  for (size_t b = 0; b < g.box_models.size(); ++b) {
+    if (g.box_hidden[b]) continue;
+    const Mat4& model = g.box_models[b];
     set_mat4(p, g.static_lit.uniform("u_model"), model);
     glBindVertexArray(g.cube.vao);
     glDrawElements(GL_TRIANGLES, g.cube.count, GL_UNSIGNED_INT, nullptr);

@@ -338,3 +338,51 @@ TEST_CASE("background colour parsing", "[stimuli]") {
   CHECK_THROWS_AS(parse_hex_colour("#ff80", "render.background"), InputError);
   CHECK_THROWS_AS(parse_hex_colour("#gg8000", "render.background"), InputError);
 }
+
+TEST_CASE("a wall between the camera and the crowd is cut away; walls elsewhere are drawn", "[stimuli]") {
+  CrowdAnimation crowd = small_crowd(1, 1.0, 2);
+  crowd.environment.ground_plane = false;
+  const Vec3 root = crowd.characters[0].frames[0].root_position_m;
+  Box near_wall;  // between the camera (in front, +Z) and the character
+  near_wall.center_m = Vec3(root.x(), 1.0, root.z() + 1.0);
+  near_wall.half_extents_m = Vec3(3.0, 1.0, 0.05);
+  Box side_wall;  // beside the character, not in the line of sight
+  side_wall.center_m = Vec3(root.x() + 1.5, 0.5, root.z());
+  side_wall.half_extents_m = Vec3(0.05, 0.5, 1.0);
+  crowd.environment.boxes = {near_wall, side_wall};
+  RenderOptions options = small_options();
+  Camera cam;
+  cam.eye = Vec3(root.x(), 1.4, root.z() + 4.0);
+  cam.target = Vec3(root.x() + 0.5, 1.0, root.z());
+  cam.width = options.width;
+  cam.height = options.height;
+  const BgrImage img = render_frame(shared_renderer(), crowd, options, cam, 0);
+  auto colour_at = [&](const Vec3& world) {
+    const auto px = cam.project(world);
+    REQUIRE(px);
+    const size_t at =
+        3 * (static_cast<size_t>(px->y()) * static_cast<size_t>(img.width) + static_cast<size_t>(px->x()));
+    return std::array<int, 3>{img.bgr[at + 2], img.bgr[at + 1], img.bgr[at]};
+  };
+  const Rgb env = options.scene.environment;
+  auto is_environment = [&](const std::array<int, 3>& c) {
+    // Lit environment colour: a scaled copy of the base colour (equal channel ratios, not background).
+    return non_background_pixels(BgrImage{1,
+                                          1,
+                                          {static_cast<std::uint8_t>(c[2]), static_cast<std::uint8_t>(c[1]),
+                                           static_cast<std::uint8_t>(c[0])}},
+                                 options.scene.background) == 1 &&
+           std::abs(static_cast<double>(c[0] * env[2] - c[2] * env[0])) < 0.08 * 255;
+  };
+  // The character's chest is visible through the cut-away near wall ...
+  const std::array<int, 3> chest = colour_at(root + Vec3(0, 0.35, 0));
+  CHECK_FALSE(is_environment(chest));
+  CHECK(non_background_pixels(
+            BgrImage{1,
+                     1,
+                     {static_cast<std::uint8_t>(chest[2]), static_cast<std::uint8_t>(chest[1]),
+                      static_cast<std::uint8_t>(chest[0])}},
+            options.scene.background) == 1);
+  // ... and the side wall is drawn.
+  CHECK(is_environment(colour_at(side_wall.center_m + Vec3(-0.05, 0.2, 0.5))));
+}
