@@ -13,9 +13,11 @@ extern "C" {
 
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/sha256.hpp"
 #include "stimuli/mannequin_mesh.hpp"
 #include "stimuli/palette.hpp"
 #include "stimuli/render_clip.hpp"
+#include "stimuli/stimulus_entry.hpp"
 #include "stimuli/synthetic_crowd.hpp"
 #include "stimuli/video_encoder.hpp"
 #include "tests/support/test_paths.hpp"
@@ -311,6 +313,13 @@ TEST_CASE("render_clip writes a decodable H.264 MP4 with the right frame count, 
   buffer << in.rdbuf();
   const std::string bytes = buffer.str();
   CHECK(bytes.find("moov") < bytes.find("mdat"));
+  // Its manifest row.
+  const StimulusEntry entry = make_stimulus_entry("c1_V1", {{"viewpoint", "V1"}}, path, "clip.mp4", r);
+  CHECK(entry.frames == 12);
+  CHECK(entry.width == 320);
+  CHECK(entry.height == 180);
+  CHECK(entry.duration_s == Approx(0.4));
+  CHECK(entry.sha256 == sha256_hex(bytes));
 }
 
 TEST_CASE("odd or invalid video sizes are rejected with a clear error", "[stimuli]") {
