@@ -23,11 +23,11 @@ namespace {
 // Grid spacing of the coarse mannequin meshes drawn into the shadow map: shadows are soft-edged and
 // seen from afar, so a 4.5 cm mesh casts the same shadow at a fraction of the vertex work.
 constexpr double kShadowVoxelM = 0.045;
-// Level of detail: a character whose 3.5 cm voxel spans at most kLodPixels pixels on screen is drawn
+// Level of detail: a character whose 3.5 cm voxel spans at most kLodPixels (2.5) pixels on screen is drawn
 // with the 3.5 cm mesh (about 4k instead of 12k triangles); the eye cannot tell the meshes apart there,
 // and vertex work dominates a CPU rasteriser's frame at low resolutions.
 constexpr double kCoarseVoxelM = 0.035;
-constexpr double kLodPixels = 2.0;
+constexpr double kLodPixels = 2.5;
 
 using Mat4f = Eigen::Matrix4f;
 
