@@ -11,8 +11,10 @@
 
 using namespace crowdlab;
 
-TEST_CASE("crowdlab render: glb -> mp4 with the overlap CSV; odd sizes and unknown viewpoints exit 2",
-          "[stimuli][cli]") {
+TEST_CASE(
+    "crowdlab render: glb -> mp4 with the overlap CSV, and exit 2 for odd sizes, unknown viewpoints, missing "
+    "files",
+    "[stimuli][cli]") {
   const auto dir = test::scratch_dir("render_cli");
   stimuli::SyntheticCrowdOptions co;
   co.characters = 3;

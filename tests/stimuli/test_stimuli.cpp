@@ -28,8 +28,15 @@ using namespace crowdlab::stimuli;
 namespace {
 
 /// One renderer (EGL context + mesh cache) for the whole test binary.
+/// Test meshes use a 3.5 cm grid: 3x faster to build, and plenty at 320 x 180.
+MannequinOptions test_mesh_options() {
+  MannequinOptions o;
+  o.voxel_m = 0.035;
+  return o;
+}
+
 Renderer& shared_renderer() {
-  static Renderer renderer;
+  static Renderer renderer(test_mesh_options());
   return renderer;
 }
 
@@ -244,7 +251,7 @@ TEST_CASE("re-rendering gives bit-identical frames, with 1 or many TBB threads a
   const BgrImage again = render_frame(shared_renderer(), crowd, options, cam, 2);
   CHECK(first.bgr == again.bgr);
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
-  Renderer fresh;
+  Renderer fresh(test_mesh_options());
   const BgrImage other = render_frame(fresh, crowd, options, cam, 2);
   size_t differing = 0;
   for (size_t i = 0; i < first.bgr.size(); ++i) differing += first.bgr[i] != other.bgr[i];
@@ -348,7 +355,7 @@ TEST_CASE("background colour parsing", "[stimuli]") {
   CHECK_THROWS_AS(parse_hex_colour("#gg8000", "render.background"), InputError);
 }
 
-TEST_CASE("a wall between the camera and the crowd is cut away; walls elsewhere are drawn", "[stimuli]") {
+TEST_CASE("a wall between the camera and the crowd is cut away, walls elsewhere are drawn", "[stimuli]") {
   CrowdAnimation crowd = small_crowd(1, 1.0, 2);
   crowd.environment.ground_plane = false;
   const Vec3 root = crowd.characters[0].frames[0].root_position_m;
