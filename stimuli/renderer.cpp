@@ -15,6 +15,7 @@
 #include "framework/core/seed.hpp"
 #include "stimuli/egl_context.hpp"
 #include "stimuli/gl_program.hpp"
+#include "stimuli/gpu_geometry.hpp"
 #include "stimuli/shaders.hpp"
 
 namespace crowdlab::stimuli {
@@ -23,6 +24,11 @@ namespace {
 // Grid spacing of the coarse mannequin meshes drawn into the shadow map: shadows are soft-edged and
 // seen from afar, so a 4.5 cm mesh casts the same shadow at a fraction of the vertex work.
 constexpr double kShadowVoxelM = 0.045;
+// Level of detail: a character whose 3.5 cm voxel spans at most kLodPixels (2.5) pixels on screen is drawn
+// with the 3.5 cm mesh (about 4k instead of 12k triangles); the eye cannot tell the meshes apart there,
+// and vertex work dominates a CPU rasteriser's frame at low resolutions.
+constexpr double kCoarseVoxelM = 0.035;
+constexpr double kLodPixels = 2.5;
 
 using Mat4f = Eigen::Matrix4f;
 
@@ -33,145 +39,25 @@ Mat4 to_matrix(const RigidTransform& t) {
   return m;
 }
 
-struct GpuMesh {
-  GLuint vao = 0, vbo = 0, ibo = 0;
-  GLsizei count = 0;
-};
-
-struct StaticVertex {
-  float position[3];
-  float normal[3];
-};
-
-GpuMesh upload_static(const std::vector<StaticVertex>& vertices, const std::vector<std::uint32_t>& indices) {
-  GpuMesh m;
-  glCreateVertexArrays(1, &m.vao);
-  glCreateBuffers(1, &m.vbo);
-  glCreateBuffers(1, &m.ibo);
-  glNamedBufferStorage(m.vbo, static_cast<GLsizeiptr>(vertices.size() * sizeof(StaticVertex)),
-                       vertices.data(), 0);
-  glNamedBufferStorage(m.ibo, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(),
-                       0);
-  glVertexArrayVertexBuffer(m.vao, 0, m.vbo, 0, sizeof(StaticVertex));
-  glVertexArrayElementBuffer(m.vao, m.ibo);
-  glEnableVertexArrayAttrib(m.vao, 0);
-  glEnableVertexArrayAttrib(m.vao, 1);
-  glVertexArrayAttribFormat(m.vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(StaticVertex, position));
-  glVertexArrayAttribFormat(m.vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(StaticVertex, normal));
-  glVertexArrayAttribBinding(m.vao, 0, 0);
-  glVertexArrayAttribBinding(m.vao, 1, 0);
-  m.count = static_cast<GLsizei>(indices.size());
-  return m;
-}
-
-GpuMesh upload_mannequin(const MannequinMesh& mesh) {
-  GpuMesh m;
-  glCreateVertexArrays(1, &m.vao);
-  glCreateBuffers(1, &m.vbo);
-  glCreateBuffers(1, &m.ibo);
-  glNamedBufferStorage(m.vbo, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(MannequinVertex)),
-                       mesh.vertices.data(), 0);
-  glNamedBufferStorage(m.ibo, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
-                       mesh.indices.data(), 0);
-  glVertexArrayVertexBuffer(m.vao, 0, m.vbo, 0, sizeof(MannequinVertex));
-  glVertexArrayElementBuffer(m.vao, m.ibo);
-  for (GLuint a = 0; a < 5; ++a) {
-    glEnableVertexArrayAttrib(m.vao, a);
-    glVertexArrayAttribBinding(m.vao, a, 0);
+/// True when the segment [p, q] passes through the oriented box (slab test in the box frame).
+bool segment_hits_box(const Vec3& p, const Vec3& q, const Box& box) {
+  const Quat r = box.rotation.normalized();
+  const Vec3 a = r.conjugate() * (p - box.center_m), b = r.conjugate() * (q - box.center_m);
+  const Vec3 d = b - a;
+  double t0 = 0.0, t1 = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    const double h = box.half_extents_m[k];
+    if (std::abs(d[k]) < 1e-12) {
+      if (std::abs(a[k]) > h) return false;
+      continue;
+    }
+    double ta = (-h - a[k]) / d[k], tb = (h - a[k]) / d[k];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
   }
-  glVertexArrayAttribFormat(m.vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(MannequinVertex, position));
-  glVertexArrayAttribFormat(m.vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(MannequinVertex, normal));
-  glVertexArrayAttribIFormat(m.vao, 2, 4, GL_UNSIGNED_BYTE, offsetof(MannequinVertex, bones));
-  glVertexArrayAttribFormat(m.vao, 3, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(MannequinVertex, weights));
-  glVertexArrayAttribIFormat(m.vao, 4, 1, GL_UNSIGNED_BYTE, offsetof(MannequinVertex, region));
-  m.count = static_cast<GLsizei>(mesh.indices.size());
-  return m;
-}
-
-void destroy(GpuMesh& m) {
-  glDeleteVertexArrays(1, &m.vao);
-  glDeleteBuffers(1, &m.vbo);
-  glDeleteBuffers(1, &m.ibo);
-  m = {};
-}
-
-/// The unit cube [-1, 1]^3 with per-face normals, counter-clockwise outside.
-GpuMesh make_unit_cube() {
-  std::vector<StaticVertex> v;
-  std::vector<std::uint32_t> idx;
-  for (int axis = 0; axis < 3; ++axis)
-    for (int sign : {-1, 1}) {
-      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-      const auto base = static_cast<std::uint32_t>(v.size());
-      const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-      for (const auto& c : corners) {
-        StaticVertex sv{};
-        sv.position[axis] = static_cast<float>(sign);
-        sv.position[u] = c[0] * static_cast<float>(sign);
-        sv.position[w] = c[1];
-        sv.normal[axis] = static_cast<float>(sign);
-        v.push_back(sv);
-      }
-      idx.insert(idx.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-    }
-  return upload_static(v, idx);
-}
-
-GpuMesh make_environment_mesh(const TriangleMesh& mesh) {
-  std::vector<StaticVertex> v;
-  std::vector<std::uint32_t> idx;
-  for (const Eigen::Vector3i& t : mesh.triangles) {
-    const Vec3 a = mesh.vertices_m.at(static_cast<size_t>(t.x())),
-               b = mesh.vertices_m.at(static_cast<size_t>(t.y())),
-               c = mesh.vertices_m.at(static_cast<size_t>(t.z()));
-    Vec3 n = (b - a).cross(c - a);
-    n = n.norm() > 0 ? Vec3(n.normalized()) : Vec3::UnitY();
-    for (const Vec3* p : {&a, &b, &c}) {
-      StaticVertex sv{};
-      for (int k = 0; k < 3; ++k) {
-        sv.position[k] = static_cast<float>((*p)[k]);
-        sv.normal[k] = static_cast<float>(n[k]);
-      }
-      idx.push_back(static_cast<std::uint32_t>(v.size()));
-      v.push_back(sv);
-    }
-  }
-  return upload_static(v, idx);
-}
-
-/// A 256 x 256 tiling value-noise texture (bilinear upsampling of 32 x 32 random lattice values),
-/// mip-mapped; generated from a fixed seed so every run draws the same ground.
-GLuint make_noise_texture() {
-  constexpr int kLattice = 32, kSize = 256;
-  Rng rng(derive_seed(0x6772'6f75'6e64ULL, "ground-noise"));
-  std::vector<double> lattice(kLattice * kLattice);
-  for (double& v : lattice) v = uniform01(rng);
-  std::vector<std::uint8_t> texels(kSize * kSize);
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x) {
-      const double fx = x * kLattice / static_cast<double>(kSize),
-                   fy = y * kLattice / static_cast<double>(kSize);
-      const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
-      double u = fx - x0, w = fy - y0;
-      u = u * u * (3 - 2 * u);
-      w = w * w * (3 - 2 * w);
-      auto at = [&](int i, int j) {
-        return lattice[static_cast<size_t>((j % kLattice) * kLattice + (i % kLattice))];
-      };
-      const double v = (1 - w) * ((1 - u) * at(x0, y0) + u * at(x0 + 1, y0)) +
-                       w * ((1 - u) * at(x0, y0 + 1) + u * at(x0 + 1, y0 + 1));
-      texels[static_cast<size_t>(y * kSize + x)] = static_cast<std::uint8_t>(std::lround(255.0 * v));
-    }
-  GLuint tex = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-  glTextureStorage2D(tex, 9, GL_R8, kSize, kSize);
-  glTextureSubImage2D(tex, 0, 0, 0, kSize, kSize, GL_RED, GL_UNSIGNED_BYTE, texels.data());
-  glGenerateTextureMipmap(tex);
-  glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
-  return tex;
+  return true;
 }
 
 Mat4 ortho(double half, double near_m, double far_m) {
@@ -226,7 +112,9 @@ struct Renderer::Gl {
   GpuMesh ground;
   std::vector<GpuMesh> environment_meshes;
   std::vector<Mat4> box_models;
-  std::vector<std::uint64_t> character_mesh, character_shadow_mesh;
+  std::vector<Box> boxes;
+  std::vector<char> box_hidden;
+  std::vector<std::uint64_t> character_mesh, character_coarse_mesh, character_shadow_mesh;
   GLuint noise_tex = 0;
   std::vector<std::array<Mat4, kJointCount>> inverse_rest;
   Vec3 bounds_lo = Vec3::Zero(), bounds_hi = Vec3::Zero();
@@ -358,7 +246,10 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   shadow_options.voxel_m = std::max(mesh_options_.voxel_m, kShadowVoxelM);
   shadow_options.inset_m =
       0.4 * shadow_options.voxel_m;  // keep the coarse caster inside the visible skin (no acne bands)
+  MannequinOptions coarse_options = mesh_options_;
+  coarse_options.voxel_m = std::max(mesh_options_.voxel_m, kCoarseVoxelM);
   g.character_mesh.resize(n);
+  g.character_coarse_mesh.resize(n);
   g.character_shadow_mesh.resize(n);
   struct Job {
     size_t character;
@@ -370,8 +261,10 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   for (size_t i = 0; i < n; ++i) {
     const BodyShape& shape = crowd.characters[i].shape;
     g.character_mesh[i] = mannequin_cache_key(shape, mesh_options_);
+    g.character_coarse_mesh[i] = mannequin_cache_key(shape, coarse_options);
     g.character_shadow_mesh[i] = mannequin_cache_key(shape, shadow_options);
     for (const auto& [key, opts] : {std::pair{g.character_mesh[i], mesh_options_},
+                                    std::pair{g.character_coarse_mesh[i], coarse_options},
                                     std::pair{g.character_shadow_mesh[i], shadow_options}})
       if (!g.mesh_cache.count(key) && queued.emplace(key, true).second) jobs.push_back({i, key, opts});
   }
@@ -393,6 +286,7 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   for (const TriangleMesh& m : crowd.environment.meshes)
     if (!m.triangles.empty()) g.environment_meshes.push_back(make_environment_mesh(m));
   g.box_models.clear();
+  g.boxes = crowd.environment.boxes;
   Vec3 lo = Vec3::Constant(1e30), hi = Vec3::Constant(-1e30);
   for (const Box& b : crowd.environment.boxes) {
     Mat4 model = Mat4::Identity();
@@ -495,6 +389,14 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   light_cam.target = centre;
   const Mat4 light_vp = ortho(radius, 0.5, 2.0 * radius + 2.0) * light_cam.view();
   const Mat4 view_proj = camera.projection() * camera.view();
+  // Architectural cutaway: a box that hides the crowd from the camera (the near wall of a corridor
+  // seen from the side) is left out, tested on the segments from the eye to every character's chest.
+  g.box_hidden.assign(g.boxes.size(), 0);
+  for (size_t b = 0; b < g.boxes.size(); ++b)
+    for (size_t i = 0; i < n && !g.box_hidden[b]; ++i) {
+      const Vec3 chest = chars[i].frames[static_cast<size_t>(frame)].root_position_m + Vec3(0, 0.35, 0);
+      if (segment_hits_box(camera.eye, chest, g.boxes[b])) g.box_hidden[b] = 1;
+    }
 
   // 2. Shadow pass.
   glEnable(GL_DEPTH_TEST);
@@ -520,7 +422,9 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   glUseProgram(p);
   set_mat4(p, g.static_depth.uniform("u_view_proj"), light_vp);
   glDisable(GL_CULL_FACE);
-  for (const Mat4& model : g.box_models) {
+  for (size_t b = 0; b < g.box_models.size(); ++b) {
+    if (g.box_hidden[b]) continue;
+    const Mat4& model = g.box_models[b];
     set_mat4(p, g.static_depth.uniform("u_model"), model);
     glBindVertexArray(g.cube.vao);
     glDrawElements(GL_TRIANGLES, g.cube.count, GL_UNSIGNED_INT, nullptr);
@@ -576,8 +480,12 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
     return (chars[a].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).squaredNorm() <
            (chars[b].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).squaredNorm();
   });
+  const double pixel_angle =
+      2.0 * std::tan(0.5 * camera.fov_y_deg * std::numbers::pi / 180.0) / height_;  // m per px per m
   for (const size_t i : order) {
-    const GpuMesh& m = g.mesh_cache.at(g.character_mesh[i]);
+    const double distance = (chars[i].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).norm();
+    const bool coarse = kCoarseVoxelM <= kLodPixels * distance * pixel_angle;
+    const GpuMesh& m = g.mesh_cache.at(coarse ? g.character_coarse_mesh[i] : g.character_mesh[i]);
     const Palette& pal = palette(chars[i].palette);
     float colours[8 * 3];
     for (int r = 0; r < 8; ++r) {
@@ -600,7 +508,9 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   glUseProgram(p);
   glProgramUniform1i(p, g.static_lit.uniform("u_material"), 2);
   set_rgb(p, g.static_lit.uniform("u_base_color"), options.environment);
-  for (const Mat4& model : g.box_models) {
+  for (size_t b = 0; b < g.box_models.size(); ++b) {
+    if (g.box_hidden[b]) continue;
+    const Mat4& model = g.box_models[b];
     set_mat4(p, g.static_lit.uniform("u_model"), model);
     glBindVertexArray(g.cube.vao);
     glDrawElements(GL_TRIANGLES, g.cube.count, GL_UNSIGNED_INT, nullptr);

@@ -9,8 +9,10 @@
 //      OTHER characters (those whose bounding boxes meet its own), so each fragment tests only a few.
 //   2. Shadow pass: characters and environment into a depth map from the key light (orthographic,
 //      fitted to the crowd's clip-wide bounds).
-//   3. Colour pass into a 4x multisampled FBO (colour + overlap mask + depth): ground, environment,
-//      characters (back faces culled; the mannequin surface is closed).
+//   3. Colour pass into a 4x multisampled FBO (colour + overlap mask + depth): characters (near to far,
+//      back faces culled; the mannequin surface is closed), environment, ground. Environment boxes
+//      that stand between the camera and any character's chest are cut away (not drawn, no shadow),
+//      so corridor walls do not hide the crowd from side and tracking views.
 //   4. Resolve (blit) to single-sample buffers; pixels are then read back, optionally through a pair
 //      of pixel-buffer objects so that the read of frame f overlaps the rendering of frame f + 1 on GPUs.
 #include <cstdint>

@@ -113,7 +113,8 @@ bool ray_hits_overlap(vec3 p) {
   vec3 dir = normalize(p - u_eye);
   for (int k = 0; k < kSteps; ++k) {
     vec3 q = p + dir * (kOverlapDepth * float(k) / float(kSteps - 1));
-    if (inside_capsules(q, u_cap_offset, u_cap_count) && (k == 0 || inside_capsules(q, u_own_offset, 24))) return true;
+    if (k > 0 && !inside_capsules(q, u_own_offset, 24)) return false;  // the ray has left this body
+    if (inside_capsules(q, u_cap_offset, u_cap_count)) return true;
   }
   return false;
 }

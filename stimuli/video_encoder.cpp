@@ -67,6 +67,8 @@ struct VideoEncoder::Impl {
 VideoEncoder::VideoEncoder(const std::string& path, const VideoSettings& s)
     : impl_(std::make_unique<Impl>()) {
   validate_video_settings(s);
+  if (av_log_get_level() > AV_LOG_WARNING)
+    av_log_set_level(AV_LOG_WARNING);  // x264 banners are noise in logs
   Impl& m = *impl_;
   if (avformat_alloc_output_context2(&m.format, nullptr, "mp4", path.c_str()) < 0 || !m.format)
     throw RuntimeError("cannot create an MP4 container for " + path);
