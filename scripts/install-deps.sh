@@ -42,11 +42,12 @@ else
 fi
 
 # The Khronos glTF-Validator (npm package gltf-validator), used only by the tests, kept in .tools/.
+# Pinned: every 2.x release is a pre-release (2.0.0-dev.*), which a plain "@2" range never matches.
 if [[ ${1:-} == --test ]] && [[ ! -f .tools/node_modules/gltf-validator/package.json ]]; then
   if command -v npm >/dev/null; then
     echo "crowdlab: installing gltf-validator into .tools/ for the glTF tests"
     mkdir -p .tools
-    npm install --silent --no-audit --no-fund --prefix .tools gltf-validator@2 >/dev/null 2>&1 \
+    npm install --silent --no-audit --no-fund --prefix .tools gltf-validator@2.0.0-dev.3.10 >/dev/null 2>&1 \
       || echo "crowdlab: warning: npm could not install gltf-validator; the validator test will skip"
   fi
 fi

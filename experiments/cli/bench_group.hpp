@@ -1,6 +1,5 @@
 #pragma once
-// The `crowdlab bench` subcommand group, shared by every benchmark command (cmd_bench_*.cpp):
-// returns the existing group or creates it, so registration order does not matter.
+// The `crowdlab bench` subcommand group, shared by every benchmark: get it, or create it once.
 #include <CLI/CLI.hpp>
 
 namespace crowdlab::cli {

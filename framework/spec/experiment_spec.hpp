@@ -26,27 +26,27 @@ struct Factor {
 
 /// scenario.* : where characters are and how they move (2D). Fields apply per `type`.
 struct ScenarioSpec {
-  std::string type = "stationary";  ///< stationary | corridor | pair_crossing | flow_a | flow_b | manifold
-  double width_m = 3.0;             ///< area / corridor width (x extent), metres
-  double depth_m = 3.0;             ///< area depth / corridor length (z extent), metres
-  double stage_direction_deg = 0.0; ///< stationary: direction the crowd faces (0 = +Z)
-  double walk_speed_mps = 1.3;      ///< preferred walking speed, metres/second
-  double initial_spacing_m = 1.0;   ///< flow_a/flow_b: initial distance between agents
+  std::string type = "stationary";   ///< stationary | corridor | pair_crossing | flow_a | flow_b | manifold
+  double width_m = 3.0;              ///< area / corridor width (x extent), metres
+  double depth_m = 3.0;              ///< area depth / corridor length (z extent), metres
+  double stage_direction_deg = 0.0;  ///< stationary: direction the crowd faces (0 = +Z)
+  double walk_speed_mps = 1.3;       ///< preferred walking speed, metres/second
+  double initial_spacing_m = 1.0;    ///< flow_a/flow_b: initial distance between agents
   std::string passing_side = "alternate";  ///< pair_crossing: left | right | alternate (by repetition)
-  std::string mesh;                 ///< manifold: scene name or mesh file path
-  int agents = 0;                   ///< manifold/flows: agent count when not set by a factor (0 = derive)
+  std::string mesh;  ///< manifold: scene name, or mesh file path resolved against the spec folder
+  int agents = 0;    ///< manifold/flows: agent count when not set by a factor (0 = derive)
 };
 
 /// crowd.* : the 2D navigation model.
 struct CrowdSpec {
-  std::string model = "orca";      ///< orca | social | cost | none
-  double agent_radius_m = 0.25;    ///< disc radius, metres, (0, 1]
+  std::string model = "orca";    ///< orca | social | cost | none
+  double agent_radius_m = 0.25;  ///< disc radius, metres, (0, 1]
   double neighbor_distance_m = 2.0;
   int max_neighbors = 10;
   double time_horizon_s = 2.0;
   double obstacle_time_horizon_s = 2.0;
   double max_speed_mps = 1.5;
-  double dt_s = 0.1;               ///< simulation step (trajectories are resampled to fps)
+  double dt_s = 0.1;                           ///< simulation step (trajectories are resampled to fps)
   std::map<std::string, double> cost_weights;  ///< cost model: goal, separation, smoothness...
 };
 
@@ -55,18 +55,18 @@ struct AnimationSpec {
   std::string body_model = "procedural";  ///< procedural | mpfb2
   std::string body_model_path;            ///< mpfb2 asset folder (or env CROWDLAB_MPFB2)
   double female_fraction = 0.5;
-  std::string motion = "procedural";      ///< procedural | clips
-  std::vector<std::string> walk_clips;    ///< BVH/glTF files (relative to the spec file)
-  std::vector<double> walk_clip_speeds_mps;
-  std::vector<std::string> dance_clips;
-  double ttca_threshold_s = 0.7;          ///< shoulder reaction trigger (seed 001 §4.1)
+  std::string motion = "procedural";         ///< procedural | clips
+  std::vector<std::string> walk_clips;       ///< BVH/glTF files, resolved against the spec folder
+  std::vector<double> walk_clip_speeds_mps;  ///< one per walk clip, metres/second
+  std::vector<std::string> dance_clips;      ///< resolved against the spec folder
+  double ttca_threshold_s = 0.7;             ///< shoulder reaction trigger (seed 001 §4.1)
   double dtca_threshold_m = 0.6;
 };
 
 /// correction.* : the collision corrector (seed 000 §3).
 struct CorrectionSpec {
-  double stiffness = 0.0;   ///< PD spring k; 0 = solver default
-  double damping = 0.006;   ///< PD damping d (seed 000 Eq. 4)
+  double stiffness = 0.0;            ///< PD spring k; 0 = solver default
+  double damping = 0.006;            ///< PD damping d (seed 000 Eq. 4)
   double collision_stiffness = 0.0;  ///< k_delta; 0 = solver default
 };
 
@@ -75,9 +75,9 @@ struct RenderSpec {
   int width = 1920;
   int height = 1080;
   int crf = 18;
-  bool overlap = false;        ///< paint overlapping volume red (seed 000 Fig. 5)
+  bool overlap = false;  ///< paint overlapping volume red (seed 000 Fig. 5)
   bool frames_png = false;
-  bool contact_sheet = true;
+  bool contact_sheet = true;  ///< copied from outputs.contact_sheet
   std::string background = "#d8dde3";
   bool fog = false;
   std::map<std::string, std::vector<double>> viewpoint_overrides;  ///< name -> [px,py,pz, tx,ty,tz, fov_deg]
@@ -86,9 +86,9 @@ struct RenderSpec {
 struct QuestionSpec {
   std::string id;
   std::string text;
-  bool reverse = false;        ///< reverse-keyed item: analysed as (k+1) - answer
-  std::string kind = "scale";  ///< scale | yesno
-  int points = 0;              ///< 0 = protocol scale
+  bool reverse = false;             ///< reverse-keyed item: analysed as (k+1) - answer
+  std::string kind = "scale";       ///< scale | yesno
+  int points = 0;                   ///< 0 = protocol scale
   std::vector<std::string> labels;  ///< anchor labels (first, last) or one per point
 };
 
@@ -99,19 +99,22 @@ struct CompositeSpec {
 
 /// protocol.* : the study a participant runs.
 struct ProtocolSpec {
-  std::string type = "likert";     ///< likert | 2afc | rating
+  std::string type = "likert";  ///< likert | 2afc | rating
   int scale_points = 6;
   std::vector<std::string> scale_labels;
   std::vector<QuestionSpec> questions;
   std::vector<CompositeSpec> composites;
-  std::vector<Factor> practice_factors;  ///< practice trials: crossing of these levels
-  std::string block_by;                  ///< factor whose levels form blocks ("" = one block)
-  std::string block_order = "random";    ///< random | fixed | latin_square
-  int break_every = 0;                   ///< a break screen every N trials (0 = none)
+  /// Practice trials (protocol.practice): the crossing of these levels. Factors not named here take
+  /// their first level; when block_by is set and not named here, the practice set is repeated for
+  /// every block level (seed 001 §4.2.2: practice "at the beginning of each block").
+  std::vector<Factor> practice_factors;
+  std::string block_by;                ///< factor whose levels form blocks ("" = one block)
+  std::string block_order = "random";  ///< random | fixed | latin_square
+  int break_every = 0;                 ///< a break screen every N trials (0 = none)
   std::string instructions;
   std::string consent;
   std::string break_text = "Take a short break. Press any key to continue.";
-  bool loop_video = true;                ///< loop until answered (Likert)
+  bool loop_video = true;  ///< loop until answered (Likert)
 };
 
 struct OutputSpec {
@@ -122,8 +125,9 @@ struct OutputSpec {
 };
 
 struct ExperimentSpec {
-  std::string source_path;     ///< the YAML file it came from ("<embedded demo>" for the demo)
-  std::string source_hash;     ///< sha256 hex of the YAML text (provenance)
+  std::string source_path;  ///< the YAML file it came from ("<embedded demo>" for the demo)
+  std::string source_hash;  ///< sha256 hex of the YAML text (provenance)
+  std::string base_dir;     ///< folder of the spec file; relative paths in the spec resolve against it
   int format_version = 1;
   std::string name;
   std::string description;
@@ -133,27 +137,27 @@ struct ExperimentSpec {
   AnimationSpec animation;
   CorrectionSpec correction;
   RenderSpec render;
-  std::vector<Factor> factors; ///< in spec order
+  std::vector<Factor> factors;  ///< in spec order
   int repetitions = 1;
   double duration_s = 10.0;
   double fps = 30.0;
   ProtocolSpec protocol;
   OutputSpec outputs;
 
-  const Factor* factor(const std::string& name) const {
+  const Factor* factor(const std::string& factor_name) const {
     for (const Factor& f : factors)
-      if (f.name == name) return &f;
+      if (f.name == factor_name) return &f;
     return nullptr;
   }
 };
 
 /// One cell of the design: a level for every factor, plus the repetition index (1-based).
 struct Condition {
-  std::string id;                              ///< stable, e.g. "density-2.22_viewpoint-V1_method-ours_rep-1"
-  std::map<std::string, FactorLevel> levels;   ///< factor name -> level
+  std::string id;                             ///< stable, e.g. "density-2.22_viewpoint-V1_method-ours_rep-1"
+  std::map<std::string, FactorLevel> levels;  ///< factor name -> level
   int repetition = 1;
   bool practice = false;
-  std::uint64_t seed = 0;                      ///< derive_seed(spec.seed, id)
+  std::uint64_t seed = 0;  ///< derive_seed(spec.seed, id)
 
   const FactorLevel* level(const std::string& factor) const {
     auto it = levels.find(factor);

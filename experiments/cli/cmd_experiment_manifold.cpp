@@ -1,0 +1,101 @@
+// `crowdlab experiment manifold-compare`: seed 002's comparison of Relevant functions (visibility-aware
+// vs Euclidean vs surface distance) on the floor-ceiling slab (Fig. 5), the two-storey building and
+// the floor-wall corner, reporting collision percentages and false positives/negatives.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/experiment_group.hpp"
+#include "experiments/cli/timing.hpp"
+#include "framework/core/csv.hpp"
+#include "framework/core/error.hpp"
+#include "framework/core/progress.hpp"
+#include "framework/core/seed.hpp"
+#include "framework/surface/surface_measures.hpp"
+#include "framework/surface/surface_scenes.hpp"
+
+namespace crowdlab::cli {
+namespace {
+
+struct Options {
+  std::string out = "manifold-compare";
+  int agents = 200;
+  int steps = 300;
+  int runs = 3;
+  std::uint64_t seed = 2024;
+};
+
+const char* mode_name(RelevantMode m) {
+  return m == RelevantMode::kVisibility  ? "visibility"
+         : m == RelevantMode::kEuclidean ? "euclidean"
+                                         : "surface";
+}
+
+void run(const Options& o) {
+  namespace fs = std::filesystem;
+  fs::create_directories(o.out);
+  const std::vector<std::string> scenes = {"floor_ceiling", "building", "floor_wall"};
+  const std::vector<RelevantMode> modes = {RelevantMode::kVisibility, RelevantMode::kEuclidean,
+                                           RelevantMode::kSurface};
+  std::ofstream csv(fs::path(o.out) / "manifold_compare.csv");
+  csv << csv_line({"scene", "relevant", "run", "agents", "steps", "collision_percent",
+                   "false_positives_per_agent_step", "false_negatives_per_agent_step"});
+  Progress progress("manifold-compare", scenes.size() * modes.size() * static_cast<size_t>(o.runs));
+  std::printf("%-14s %-11s %14s %12s %12s\n", "scene", "relevant", "collisions %", "FP/agent-step",
+              "FN/agent-step");
+  for (const auto& scene : scenes) {
+    auto mesh = std::make_shared<const SurfaceMesh>(make_surface_scene(scene));
+    const TriangleBvh bvh(*mesh);
+    for (RelevantMode mode : modes) {
+      std::vector<double> coll, fp, fn;
+      for (int r = 0; r < o.runs; ++r) {
+        SurfaceCrowdParams p;
+        p.relevant = mode;
+        const std::uint64_t seed = derive_seed(o.seed, scene + "/" + std::to_string(r));
+        const SurfaceCrowdModel model = make_surface_crowd_model(mesh, p, 6, seed);
+        SurfaceCrowdState state = spawn_surface_agents(model, o.agents, seed);
+        SurfaceCrowdMeasures m;
+        for (int k = 0; k < o.steps; ++k) {
+          step_surface_crowd(model, state);
+          accumulate_surface_measures(model, state, bvh, m);
+        }
+        const double per = 1.0 / static_cast<double>(m.agent_frames);
+        coll.push_back(m.collision_percent());
+        fp.push_back(static_cast<double>(m.false_positives) * per);
+        fn.push_back(static_cast<double>(m.false_negatives) * per);
+        csv << csv_line({scene, mode_name(mode), std::to_string(r), std::to_string(o.agents),
+                         std::to_string(o.steps), csv_number(coll.back()), csv_number(fp.back()),
+                         csv_number(fn.back())});
+        progress.advance();
+      }
+      std::printf("%-14s %-11s %14.4f %12.4f %12.4f   (medians of %d runs)\n", scene.c_str(), mode_name(mode),
+                  median_of(coll), median_of(fp), median_of(fn), o.runs);
+    }
+  }
+  std::printf("seed 002 reports median collision rates of 0.05 %% (social forces) and 0.009 %% (RVO).\n");
+  std::printf("wrote %s\n", (fs::path(o.out) / "manifold_compare.csv").string().c_str());
+}
+
+const CommandRegistration kRegistration([](CLI::App& root) {
+  auto opts = std::make_shared<Options>();
+  auto* cmd = experiment_group(root)->add_subcommand(
+      "manifold-compare",
+      "Seed 002: Relevant functions compared on floor-ceiling, building and floor-wall scenes");
+  cmd->add_option("--out", opts->out, "Output folder")->capture_default_str();
+  cmd->add_option("--agents", opts->agents, "Agents per run")
+      ->check(CLI::Range(2, 100000))
+      ->capture_default_str();
+  cmd->add_option("--steps", opts->steps, "Steps per run")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  cmd->add_option("--runs", opts->runs, "Runs (seeds) per scene and mode")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--seed", opts->seed, "Seed")->capture_default_str();
+  cmd->callback([opts] { run(*opts); });
+});
+
+}  // namespace
+}  // namespace crowdlab::cli

@@ -1,0 +1,334 @@
+// The YAML -> ExperimentSpec boundary. Every key is checked (unknown keys get a did-you-mean), every
+// type and range, and every referenced file; all problems are collected and thrown together as one
+// SpecError. The key reference, with defaults, ranges and units, is docs/spec-reference.md.
+#include "framework/spec/load_experiment_spec.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "framework/core/sha256.hpp"
+#include "framework/spec/parse_factor.hpp"
+#include "framework/spec/parse_protocol.hpp"
+#include "framework/spec/yaml_section.hpp"
+
+namespace crowdlab {
+namespace {
+
+constexpr int kFormatVersion = 1;
+
+std::string join_lines(const std::vector<std::string>& lines) {
+  std::string out;
+  for (const std::string& l : lines) out += (out.empty() ? "" : "\n") + l;
+  return out;
+}
+
+// Read-only child lookup (a non-const operator[] would insert the key).
+YAML::Node child(const YAML::Node& map, const std::string& key) {
+  if (!map.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
+  return map[key];
+}
+
+bool has_file_extension(const std::string& s) {
+  return s.find('/') != std::string::npos || std::filesystem::path(s).has_extension();
+}
+
+void parse_scenario(YamlSection s, ExperimentSpec& spec) {
+  ScenarioSpec& sc = spec.scenario;
+  s.allow_keys({"type", "area", "stage_direction_deg", "walk_speed_mps", "initial_spacing_m", "passing_side",
+                "mesh", "agents"});
+  s.choice("type", sc.type, {"stationary", "corridor", "pair_crossing", "flow_a", "flow_b", "manifold"});
+  YamlSection area = s.section("area");
+  area.allow_keys({"width_m", "depth_m"});
+  area.number("width_m", sc.width_m, Range::positive(1000.0));
+  area.number("depth_m", sc.depth_m, Range::positive(1000.0));
+  s.number("stage_direction_deg", sc.stage_direction_deg, Range{-360.0, 360.0});
+  // 3 m/s is a fast run; human preferred walking speed is ~1.3 m/s (Bohannon 1997).
+  s.number("walk_speed_mps", sc.walk_speed_mps, Range::positive(3.0));
+  s.number("initial_spacing_m", sc.initial_spacing_m, Range::positive(10.0));
+  s.choice("passing_side", sc.passing_side, {"left", "right", "alternate"});
+  s.integer("agents", sc.agents, 0, 100000);
+  if (s.has("mesh")) {
+    std::string mesh;
+    s.string("mesh", mesh);
+    if (has_file_extension(mesh)) {
+      if (auto p = resolve_existing_path(s.diagnostics(), s.get("mesh"), s.child_path("mesh"), mesh, false))
+        sc.mesh = *p;
+    } else {
+      sc.mesh = mesh;
+    }
+  }
+  if (sc.type == "manifold" && sc.mesh.empty() && !s.has("mesh"))
+    s.diagnostics().error(s.node(), s.child_path("mesh"),
+                          "a manifold scenario needs a mesh (scene name or file)");
+}
+
+void parse_crowd(YamlSection s, ExperimentSpec& spec) {
+  CrowdSpec& c = spec.crowd;
+  s.allow_keys({"model", "agent_radius_m", "neighbor_distance_m", "max_neighbors", "time_horizon_s",
+                "obstacle_time_horizon_s", "max_speed_mps", "dt_s", "cost_weights"});
+  s.choice("model", c.model, {"orca", "social", "cost", "none"});
+  s.number("agent_radius_m", c.agent_radius_m, Range::positive(1.0));
+  s.number("neighbor_distance_m", c.neighbor_distance_m, Range::positive(100.0));
+  s.integer("max_neighbors", c.max_neighbors, 1, 1000);
+  s.number("time_horizon_s", c.time_horizon_s, Range::positive(60.0));
+  s.number("obstacle_time_horizon_s", c.obstacle_time_horizon_s, Range::positive(60.0));
+  s.number("max_speed_mps", c.max_speed_mps, Range::positive(10.0));
+  s.number("dt_s", c.dt_s, Range::positive(1.0));
+  YamlSection w = s.section("cost_weights");
+  if (w.present()) {
+    for (auto it = w.node().begin(); it != w.node().end(); ++it) {
+      const std::string name = it->first.Scalar();
+      if (auto v = parse_number(s.diagnostics(), it->second, w.child_path(name), Range::non_negative()))
+        c.cost_weights[name] = *v;
+    }
+  }
+}
+
+void parse_walk_clips(YamlSection& s, AnimationSpec& a) {
+  if (!s.has("walk_clips")) return;
+  SpecDiagnostics& diag = s.diagnostics();
+  const YAML::Node list = s.get("walk_clips");
+  const std::string path = s.child_path("walk_clips");
+  if (!list.IsSequence()) {
+    diag.error(list, path, "expected a list of {file, speed_mps}, got " + describe_node(list));
+    return;
+  }
+  for (size_t i = 0; i < list.size(); ++i) {
+    YamlSection clip(diag, list[i], path + "[" + std::to_string(i) + "]");
+    if (!clip.present()) continue;
+    clip.allow_keys({"file", "speed_mps"});
+    std::string file;
+    double speed = 0.0;
+    if (clip.require("file")) clip.existing_path("file", file, false);
+    if (clip.require("speed_mps")) clip.number("speed_mps", speed, Range::positive(10.0));
+    if (!file.empty() && speed > 0.0) {
+      a.walk_clips.push_back(file);
+      a.walk_clip_speeds_mps.push_back(speed);
+    }
+  }
+}
+
+void parse_animation(YamlSection s, ExperimentSpec& spec) {
+  AnimationSpec& a = spec.animation;
+  SpecDiagnostics& diag = s.diagnostics();
+  s.allow_keys({"body_model", "female_fraction", "motion", "walk_clips", "dance_clips", "ttca_threshold_s",
+                "dtca_threshold_m"});
+  const std::vector<std::string> models = {"procedural", "mpfb2"};
+  if (s.has("body_model") && s.get("body_model").IsMap()) {
+    YamlSection bm = s.section("body_model");
+    bm.allow_keys({"type", "path"});
+    bm.choice("type", a.body_model, models);
+    bm.existing_path("path", a.body_model_path, true);
+  } else {
+    s.choice("body_model", a.body_model, models);
+  }
+  if (a.body_model == "mpfb2" && a.body_model_path.empty() && !s.section("body_model").has("path")) {
+    const char* env = std::getenv("CROWDLAB_MPFB2");
+    if (!env || !std::filesystem::is_directory(env))
+      diag.error(
+          s.get("body_model"), s.child_path("body_model"),
+          "mpfb2 needs body_model.path or the CROWDLAB_MPFB2 environment variable naming the asset folder");
+    else
+      a.body_model_path = env;
+  }
+  s.number("female_fraction", a.female_fraction, Range{0.0, 1.0});
+  s.choice("motion", a.motion, {"procedural", "clips"});
+  parse_walk_clips(s, a);
+  if (s.has("dance_clips")) {
+    const YAML::Node list = s.get("dance_clips");
+    if (!list.IsSequence()) {
+      diag.error(list, s.child_path("dance_clips"), "expected a list of files, got " + describe_node(list));
+    } else {
+      for (size_t i = 0; i < list.size(); ++i) {
+        const std::string path = s.child_path("dance_clips") + "[" + std::to_string(i) + "]";
+        if (auto f = parse_string(diag, list[i], path))
+          if (auto p = resolve_existing_path(diag, list[i], path, *f, false)) a.dance_clips.push_back(*p);
+      }
+    }
+  }
+  if (a.motion == "clips" && !s.has("walk_clips") && !s.has("dance_clips"))
+    diag.error(s.get("motion"), s.child_path("motion"), "motion: clips needs walk_clips or dance_clips");
+  // seed 001 §4.1: ttca_th = 0.7 s, dtca_th = 0.6 m.
+  s.number("ttca_threshold_s", a.ttca_threshold_s, Range::positive(10.0));
+  s.number("dtca_threshold_m", a.dtca_threshold_m, Range::positive(10.0));
+}
+
+void parse_correction(YamlSection s, ExperimentSpec& spec) {
+  s.allow_keys({"stiffness", "damping", "collision_stiffness"});
+  s.number("stiffness", spec.correction.stiffness, Range::non_negative());
+  s.number("damping", spec.correction.damping, Range::non_negative());
+  s.number("collision_stiffness", spec.correction.collision_stiffness, Range::non_negative());
+}
+
+void parse_render(YamlSection s, ExperimentSpec& spec) {
+  RenderSpec& r = spec.render;
+  SpecDiagnostics& diag = s.diagnostics();
+  s.allow_keys({"crf", "overlap", "frames_png", "background", "fog", "viewpoints"});
+  s.integer("crf", r.crf, 0, 51);  // the H.264 constant-rate-factor range
+  s.boolean("overlap", r.overlap);
+  s.boolean("frames_png", r.frames_png);
+  s.boolean("fog", r.fog);
+  if (s.has("background")) {
+    std::string bg;
+    s.string("background", bg);
+    bool ok = bg.size() == 7 && bg[0] == '#';
+    for (size_t i = 1; ok && i < bg.size(); ++i) ok = std::isxdigit(static_cast<unsigned char>(bg[i])) != 0;
+    if (ok)
+      r.background = bg;
+    else
+      diag.error(s.get("background"), s.child_path("background"),
+                 "expected a colour '#rrggbb', got '" + bg + "'");
+  }
+  YamlSection vps = s.section("viewpoints");
+  if (vps.present()) {
+    vps.allow_keys({"V1", "V2", "V3", "V4", "pair", "tracking"});
+    for (auto it = vps.node().begin(); it != vps.node().end(); ++it) {
+      const std::string name = it->first.Scalar();
+      std::vector<double> v;
+      vps.number_list(name, v, Range{-1e4, 1e4});
+      if (v.empty()) continue;
+      if (v.size() != 7)
+        diag.error(it->second, vps.child_path(name),
+                   "expected 7 numbers [px, py, pz, tx, ty, tz, fov_deg], got " + std::to_string(v.size()));
+      else if (!(v[6] > 0.0 && v[6] < 180.0))
+        diag.error(it->second, vps.child_path(name),
+                   "fov_deg must be in (0, 180), got " + format_number(v[6]));
+      else
+        r.viewpoint_overrides[name] = v;
+    }
+  }
+}
+
+void parse_outputs(YamlSection s, ExperimentSpec& spec) {
+  s.allow_keys({"video", "contact_sheet", "metrics", "report"});
+  s.boolean("video", spec.outputs.video);
+  s.boolean("contact_sheet", spec.outputs.contact_sheet);
+  s.boolean("metrics", spec.outputs.metrics);
+  s.boolean("report", spec.outputs.report);
+  spec.render.contact_sheet = spec.outputs.contact_sheet;
+}
+
+void parse_resolution(YamlSection& top, ExperimentSpec& spec) {
+  if (!top.has("resolution")) return;
+  SpecDiagnostics& diag = top.diagnostics();
+  const YAML::Node n = top.get("resolution");
+  if (!n.IsSequence() || n.size() != 2) {
+    diag.error(n, "resolution", "expected [width, height] in pixels, got " + describe_node(n));
+    return;
+  }
+  // Even sizes: H.264 with 4:2:0 chroma needs them; 7680 is 8K UHD.
+  auto w = parse_integer(diag, n[0], "resolution[0]", 16, 7680);
+  auto h = parse_integer(diag, n[1], "resolution[1]", 16, 4320);
+  if (w && *w % 2)
+    diag.error(n[0], "resolution[0]", "width must be even (H.264 4:2:0), got " + std::to_string(*w));
+  if (h && *h % 2)
+    diag.error(n[1], "resolution[1]", "height must be even (H.264 4:2:0), got " + std::to_string(*h));
+  if (w && h && *w % 2 == 0 && *h % 2 == 0) {
+    spec.render.width = *w;
+    spec.render.height = *h;
+  }
+}
+
+void parse_factors(YamlSection& top, ExperimentSpec& spec) {
+  YamlSection f = top.section("factors");
+  if (!f.present()) return;
+  f.allow_keys(known_factor_names());
+  for (auto it = f.node().begin(); it != f.node().end(); ++it) {
+    const std::string name = it->first.Scalar();
+    bool known = false;
+    for (const std::string& k : known_factor_names()) known = known || k == name;
+    if (!known || spec.factor(name)) continue;  // reported by allow_keys
+    if (auto factor = parse_factor(top.diagnostics(), name, it->second, f.child_path(name)))
+      spec.factors.push_back(*factor);
+  }
+}
+
+// Checks that need several sections at once.
+void check_consistency(YamlSection& top, ExperimentSpec& spec) {
+  SpecDiagnostics& diag = top.diagnostics();
+  const Factor* density = spec.factor("density");
+  const bool area_scenario = spec.scenario.type == "stationary" || spec.scenario.type == "corridor";
+  if (density && area_scenario && !spec.factor("characters")) {
+    const double area = spec.scenario.width_m * spec.scenario.depth_m;
+    for (const FactorLevel& l : density->levels)
+      if (l.number && std::lround(*l.number * area) < 1)
+        diag.error(child(child(top.node(), "factors"), "density"), "factors.density",
+                   "density " + l.text + " on a " + format_number(area) + " m^2 area gives no character");
+  }
+  for (const auto& [name, v] : spec.render.viewpoint_overrides) {
+    (void)v;
+    const Factor* vp = spec.factor("viewpoint");
+    bool used = false;
+    if (vp)
+      for (const FactorLevel& l : vp->levels) used = used || l.text == name;
+    if (!used)
+      diag.error(child(child(child(top.node(), "render"), "viewpoints"), name), "render.viewpoints." + name,
+                 "no condition uses viewpoint '" + name + "' (add it to factors.viewpoint)");
+  }
+}
+
+}  // namespace
+
+SpecError::SpecError(std::vector<std::string> messages)
+    : InputError(join_lines(messages)), messages_(std::move(messages)) {}
+
+ExperimentSpec load_experiment_spec_text(const std::string& yaml_text, const std::string& source_name,
+                                         const std::string& base_dir) {
+  SpecDiagnostics diag{source_name, base_dir, {}, {}};
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    diag.error(e.mark, "", "YAML syntax error: " + e.msg);
+    throw SpecError(diag.sorted_messages());
+  }
+  ExperimentSpec spec;
+  spec.source_path = source_name;
+  spec.source_hash = sha256_hex(yaml_text);
+  spec.base_dir = base_dir;
+  if (!root.IsMap()) {
+    diag.error(root, "",
+               "a spec is a map of keys (crowdlab, name, factors, ...), got " + describe_node(root));
+    throw SpecError(diag.sorted_messages());
+  }
+  YamlSection top(diag, root, "");
+  top.allow_keys({"crowdlab", "name", "description", "seed", "scenario", "crowd", "animation", "correction",
+                  "render", "factors", "repetitions", "duration_s", "fps", "resolution", "protocol",
+                  "outputs"});
+  top.integer("crowdlab", spec.format_version, kFormatVersion, kFormatVersion);
+  if (top.require("name")) top.string("name", spec.name);
+  if (top.has("name") && spec.name.empty()) diag.error(top.get("name"), "name", "must not be empty");
+  top.string("description", spec.description);
+  top.seed("seed", spec.seed);
+  parse_scenario(top.section("scenario"), spec);
+  parse_crowd(top.section("crowd"), spec);
+  parse_animation(top.section("animation"), spec);
+  parse_correction(top.section("correction"), spec);
+  parse_render(top.section("render"), spec);
+  parse_factors(top, spec);
+  top.integer("repetitions", spec.repetitions, 1, 1000);
+  top.number("duration_s", spec.duration_s, Range::positive(3600.0));
+  top.number("fps", spec.fps, Range::positive(240.0));
+  parse_resolution(top, spec);
+  parse_protocol(top.section("protocol"), spec);
+  parse_outputs(top.section("outputs"), spec);
+  check_consistency(top, spec);
+  if (!diag.messages.empty()) throw SpecError(diag.sorted_messages());
+  return spec;
+}
+
+ExperimentSpec load_experiment_spec(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(SourceLocation{path, 0, 0, ""}, "cannot open the spec file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string base = std::filesystem::path(path).parent_path().string();
+  return load_experiment_spec_text(ss.str(), path, base.empty() ? "." : base);
+}
+
+}  // namespace crowdlab

@@ -1,0 +1,59 @@
+#include "framework/surface/relevance.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace crowdlab {
+
+bool segment_pierces_disk(const Vec3& p, const Vec3& q, const Vec3& centre, const Vec3& normal,
+                          double radius) {
+  const double dp = normal.dot(p - centre), dq = normal.dot(q - centre);
+  if ((dp > 0) == (dq > 0) || dp == dq) return false;  // both on one side: no crossing of the plane
+  const double t = dp / (dp - dq);
+  if (t <= 0.0 || t > 1.0) return false;
+  const Vec3 hit = p + t * (q - p);
+  return (hit - centre).squaredNorm() <= radius * radius;
+}
+
+bool mutually_visible(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_b, const Vec3& up_b,
+                      const StackedBody& body) {
+  const Vec3 from = feet_a + up_a * kEyeLift;
+  const Vec3 head_b = feet_b + up_b * body.height_m;
+  return !segment_pierces_disk(from, head_b, feet_b, up_b, kFeetDiskRadius) &&
+         !segment_pierces_disk(from, head_b, feet_a, up_a, kFeetDiskRadius);
+}
+
+std::array<OffsetTuple, 3> offset_three_spheres(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_o,
+                                                const Vec3& up_o, const StackedBody& body) {
+  std::array<OffsetTuple, 3> out;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 c_o = body.sphere_center(feet_o, up_o, i);
+    // a's nearest sphere to this obstacle sphere.
+    double best = std::numeric_limits<double>::infinity();
+    Vec3 best_vec = Vec3::Zero();
+    for (int j = 0; j < 3; ++j) {
+      const Vec3 v = c_o - body.sphere_center(feet_a, up_a, j);
+      if (v.squaredNorm() < best) {
+        best = v.squaredNorm();
+        best_vec = v;
+      }
+    }
+    const Vec3 tangent = best_vec - up_a * up_a.dot(best_vec);
+    const double tl = tangent.norm();
+    out[static_cast<size_t>(i)].direction = tl > 1e-9 ? Vec3(tangent / tl) : Vec3::Zero();
+    out[static_cast<size_t>(i)].clearance_m = std::sqrt(best) - 2 * body.sphere_radius_m;
+  }
+  return out;
+}
+
+double stacked_clearance(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_b, const Vec3& up_b,
+                         const StackedBody& body) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      best = std::min(
+          best, (body.sphere_center(feet_a, up_a, i) - body.sphere_center(feet_b, up_b, j)).squaredNorm());
+  return std::sqrt(best) - 2 * body.sphere_radius_m;
+}
+
+}  // namespace crowdlab

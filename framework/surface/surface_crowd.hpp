@@ -1,0 +1,78 @@
+#pragma once
+// A crowd walking on a SurfaceMesh (seed 002). Immutable model (mesh, parameters, goal distance
+// fields) + mutable state (agents, scratch). One step, in named stages:
+//   1. bin      agents into a 3D hash grid of body centres (cell = neighbour distance)
+//   2. relevant per agent, candidates from the 27 surrounding cells filtered by RelevantMode, nearest
+//               max_neighbors kept (relevance.hpp)
+//   3. steer    preferred velocity down the goal's geodesic field + avoidance in the tangent plane from
+//               the Offset tuples (three stacked spheres) of each relevant neighbour
+//   4. move     every agent along the surface (surface_walk.hpp), all from the old state (two-phase)
+// Stages 2-3 run in parallel over agents and write per-agent slots only, so results do not depend on
+// the thread count.
+//
+// Avoidance (social forces, Helbing & Molnar 1995 with the constants of Helbing, Farkas & Vicsek 2000,
+// Nature 407:487: A = 2000 N, B = 0.08 m, k = 1.2e5 kg/s^2, tau = 0.5 s, m = 80 kg):
+//   acc = (v_pref - v) / tau + sum_neighbours [A exp(-c/B) + k max(0, -c)] (-u) / m
+// where (u, c) is the neighbour's Offset tuple with the smallest clearance c (the union of the three
+// sphere tuples acts through its most threatening member, so coplanar agents feel exactly the classic
+// force and agents on perpendicular walls feel their heads' proximity).
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "framework/surface/relevance.hpp"
+#include "framework/surface/surface_walk.hpp"
+
+namespace crowdlab {
+
+struct SurfaceCrowdParams {
+  StackedBody body;                  ///< height and sphere radius (metres)
+  double neighbor_distance_m = 3.0;  ///< candidate radius between body centres; (0, 10]
+  int max_neighbors = 10;            ///< [1, 32]
+  double preferred_speed_mps = 1.3;  ///< (0, 3]
+  double max_speed_mps = 1.8;        ///< >= preferred speed
+  double dt_s = 1.0 / 30.0;          ///< (0, 0.2]
+  RelevantMode relevant = RelevantMode::kVisibility;
+  double sf_a_n = 2000.0, sf_b_m = 0.08, sf_k = 1.2e5, sf_tau_s = 0.5, sf_mass_kg = 80.0;
+  double goal_reached_m = 0.75;  ///< a new goal is chosen within this geodesic distance
+};
+
+struct SurfaceCrowdModel {
+  std::shared_ptr<const SurfaceMesh> mesh;
+  SurfaceCrowdParams params;
+  std::vector<int> goal_vertices;                ///< (G)
+  std::vector<std::vector<double>> goal_fields;  ///< (G x V) geodesic distance to each goal, metres
+};
+
+/// Validates params (InputError naming the parameter) and computes `goal_count` goal fields at vertices
+/// drawn from `seed` (area-uniform).
+SurfaceCrowdModel make_surface_crowd_model(std::shared_ptr<const SurfaceMesh> mesh,
+                                           const SurfaceCrowdParams& params, int goal_count,
+                                           std::uint64_t seed);
+
+struct SurfaceCrowdState {
+  std::vector<SurfacePoint> points;  ///< (N) where each agent stands
+  std::vector<Vec3> velocity_mps;    ///< (N) tangent velocity, world frame
+  std::vector<int> goal;             ///< (N) index into model.goal_fields
+  std::vector<int> neighbors;        ///< (N x max_neighbors) relevant neighbours of the last step
+  std::vector<int> neighbor_count;   ///< (N)
+  long step_index = 0;
+  // Scratch, sized once (no allocation per step after the first).
+  std::vector<std::uint32_t> cell_slot, slot_start, slot_agents;
+  std::vector<Vec3> center_m, up;  ///< (N) body centres and up vectors of the old state
+  std::vector<Vec3> next_velocity;
+  std::vector<int> next_goal;
+  std::vector<std::vector<int>> face_agents;  ///< kSurface mode only
+};
+
+/// Places n agents on random faces (area-weighted), at least two sphere radii apart (same side), each
+/// with a goal. Throws InputError when n < 1 or they do not fit after many attempts.
+SurfaceCrowdState spawn_surface_agents(const SurfaceCrowdModel& model, int n, std::uint64_t seed);
+
+/// One simulation step (see header). Deterministic for any TBB thread count.
+void step_surface_crowd(const SurfaceCrowdModel& model, SurfaceCrowdState& state);
+
+/// Body centre (feet + up * height / 2), world frame.
+Vec3 body_center(const SurfaceCrowdModel& model, const SurfacePoint& p);
+
+}  // namespace crowdlab
