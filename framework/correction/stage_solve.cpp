@@ -21,26 +21,64 @@
 namespace crowdlab {
 namespace {
 
-using Llt6 = Eigen::LLT<Mat6>;
-
 /// Tree elimination from the leaves (j = 23) to the root: after it, precond[g] holds the inverse of
 /// bone g's eliminated block S_g and elim[g] = S_g^-1 B_g (B_g = coupling[g]), so applying the
 /// preconditioner costs three 6 x 6 matrix-vector products per bone. Returns false if a block is not
 /// positive definite (cannot happen for valid parameters: every block contains M / h^2 > 0).
+/// Inverse of a symmetric positive definite 6 x 6 matrix by Cholesky (fixed-size loops; Eigen's
+/// generic triangular solves are several times slower at this size). False if not SPD.
+bool spd_inverse6(const Mat6& a, Mat6& inverse) {
+  double l[6][6] = {};
+  for (int j = 0; j < 6; ++j) {
+    double d = a(j, j);
+    for (int k = 0; k < j; ++k) d -= l[j][k] * l[j][k];
+    if (!(d > 0.0)) return false;
+    l[j][j] = std::sqrt(d);
+    for (int i = j + 1; i < 6; ++i) {
+      double v = a(i, j);
+      for (int k = 0; k < j; ++k) v -= l[i][k] * l[j][k];
+      l[i][j] = v / l[j][j];
+    }
+  }
+  // W = L^-1 (lower triangular), then A^-1 = W^T W.
+  double w[6][6] = {};
+  for (int i = 0; i < 6; ++i) {
+    w[i][i] = 1.0 / l[i][i];
+    for (int j = 0; j < i; ++j) {
+      double v = 0.0;
+      for (int k = j; k < i; ++k) v -= l[i][k] * w[k][j];
+      w[i][j] = v / l[i][i];
+    }
+  }
+  for (int i = 0; i < 6; ++i)
+    for (int j = i; j < 6; ++j) {
+      double v = 0.0;
+      for (int k = j; k < 6; ++k) v += w[k][i] * w[k][j];
+      inverse(i, j) = v;
+      inverse(j, i) = v;
+    }
+  return true;
+}
+
 bool factor_character(CorrectorState& s, int c) {
   const size_t base = static_cast<size_t>(c) * kJointCount;
   bool ok = true;
+  Mat6 inverse;
   for (size_t j = kJointCount - 1; j >= 1; --j) {
     const size_t g = base + j, gp = base + static_cast<size_t>(kJointParent[j]);
-    const Llt6 llt(s.precond[g]);
-    if (llt.info() != Eigen::Success) ok = false;
-    s.elim[g] = llt.solve(s.coupling[g]);
-    s.precond[gp] -= s.coupling[g].transpose() * s.elim[g];
-    s.precond[g] = llt.solve(Mat6::Identity());
+    if (!spd_inverse6(s.precond[g], inverse)) {
+      ok = false;
+      inverse.setZero();
+    }
+    s.elim[g].noalias() = inverse.lazyProduct(s.coupling[g]);
+    s.precond[gp].noalias() -= s.coupling[g].transpose().lazyProduct(s.elim[g]);
+    s.precond[g] = inverse;
   }
-  const Llt6 root(s.precond[base]);
-  if (root.info() != Eigen::Success) ok = false;
-  s.precond[base] = root.solve(Mat6::Identity());
+  if (!spd_inverse6(s.precond[base], inverse)) {
+    ok = false;
+    inverse.setZero();
+  }
+  s.precond[base] = inverse;
   return ok;
 }
 
