@@ -4,6 +4,7 @@
 // come from the broad phase; intra-body pairs skip those touching in T-pose; every capsule end sphere
 // is tested against the ground y = 0; capsules are tested against the environment's sample points.
 #include <algorithm>
+#include <cmath>
 
 #include <tbb/parallel_for.h>
 
@@ -13,9 +14,11 @@ namespace crowdlab {
 namespace {
 
 bool spheres_overlap(const Capsule& a, const Capsule& b, double offset) {
+  // Bounding spheres: centre at the axis midpoint, radius half-length + capsule radius.
   const Vec3 ca = 0.5 * (a.a + a.b), cb = 0.5 * (b.a + b.b);
-  const double ra = 0.5 * (a.b - a.a).norm() + a.radius_m, rb = 0.5 * (b.b - b.a).norm() + b.radius_m;
-  return (ca - cb).squaredNorm() < (ra + rb + offset) * (ra + rb + offset);
+  const double reach = 0.5 * std::sqrt((a.b - a.a).squaredNorm()) + a.radius_m +
+                       0.5 * std::sqrt((b.b - b.a).squaredNorm()) + b.radius_m + offset;
+  return (ca - cb).squaredNorm() < reach * reach;
 }
 
 Aabb capsule_box(const Capsule& c, double offset = 0.0) {
