@@ -20,8 +20,10 @@ void validate_corrector_params(const CorrectorParams& p) {
   check(p.damping, "damping", 0.0);
   check(p.stiff_joint_gain, "stiff_joint_gain", 0.0);
   check(p.root_translation_stiffness, "root_translation_stiffness", 0.0);
+  check(p.foot_anchor_stiffness, "foot_anchor_stiffness", 0.0);
   check(p.joint_stiffness, "joint_stiffness", 0.0);
   check(p.contact_stiffness, "contact_stiffness", 0.0);
+  check(p.contact_offset_m, "contact_offset_m", 0.0);
   check(p.ground_stiffness, "ground_stiffness", 0.0);
   check(p.environment_stiffness, "environment_stiffness", 0.0);
   check(p.environment_sample_spacing_m, "environment_sample_spacing_m", 1e-4);
@@ -47,6 +49,50 @@ void capsule_mass_properties(const Capsule& capsule, double density, double& mas
 
 namespace {
 
+/// Number of joints between bones i and j along the tree (1 = parent/child, 2 = e.g. spine3/shoulder).
+int tree_distance(int i, int j) {
+  int di = 0;
+  for (int a = i; a >= 0; a = kJointParent[static_cast<size_t>(a)], ++di) {
+    int dj = 0;
+    for (int b = j; b >= 0; b = kJointParent[static_cast<size_t>(b)], ++dj)
+      if (a == b) return di + dj;
+  }
+  return 1000;
+}
+
+/// Fraction of the summed capsule volume that the capsule union occupies (overlaps counted once),
+/// by sampling a 2.5 cm grid over the body in its rest pose (cell volume error averages out over the
+/// ~5000 cells of an adult body; only capsules whose box holds the cell centre are tested).
+double union_fraction(const BodyShape& shape) {
+  const WorldCapsules caps = world_capsules(shape, Pose::rest(shape));
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (const Capsule& c : caps) {
+    lo = lo.cwiseMin(c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m));
+    hi = hi.cwiseMax(c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m));
+  }
+  constexpr double kStep = 0.025;
+  std::array<Vec3, kJointCount> box_lo, box_hi;
+  for (size_t i = 0; i < kJointCount; ++i) {
+    box_lo[i] = caps[i].a.cwiseMin(caps[i].b) - Vec3::Constant(caps[i].radius_m);
+    box_hi[i] = caps[i].a.cwiseMax(caps[i].b) + Vec3::Constant(caps[i].radius_m);
+  }
+  long inside_any = 0, inside_sum = 0;
+  for (double x = lo.x() + kStep / 2; x < hi.x(); x += kStep)
+    for (double y = lo.y() + kStep / 2; y < hi.y(); y += kStep)
+      for (double z = lo.z() + kStep / 2; z < hi.z(); z += kStep) {
+        const Vec3 p(x, y, z);
+        int count = 0;
+        for (size_t i = 0; i < kJointCount; ++i) {
+          if ((p.array() < box_lo[i].array()).any() || (p.array() > box_hi[i].array()).any()) continue;
+          const Capsule& c = caps[i];
+          if (segment_closest_points(c.a, c.b, p, p).distance_m < c.radius_m) ++count;
+        }
+        inside_any += count > 0 ? 1 : 0;
+        inside_sum += count;
+      }
+  return inside_sum > 0 ? static_cast<double>(inside_any) / static_cast<double>(inside_sum) : 1.0;
+}
+
 bool is_ancestor_or_self(int ancestor, int bone) {
   for (int b = bone; b >= 0; b = kJointParent[static_cast<size_t>(b)])
     if (b == ancestor) return true;
@@ -58,9 +104,12 @@ CorrectorBody make_body(BodyShape shape, const CorrectorParams& p) {
   const BoneTransforms rest = forward_kinematics(shape, Pose::rest(shape));
   std::array<Vec3, kJointCount> com_world{};
   std::array<Mat3, kJointCount> inertia_world{};
+  // Capsules overlap at the joints; scaling the density by the union fraction makes the total mass
+  // density x union volume, so overlapping regions are not counted twice.
+  const double density = p.body_density_kg_m3 * union_fraction(shape);
   for (size_t j = 0; j < kJointCount; ++j) {
     const Capsule& cap = shape.capsules[j];
-    capsule_mass_properties(cap, p.body_density_kg_m3, body.mass_kg[j], body.inertia_local[j]);
+    capsule_mass_properties(cap, density, body.mass_kg[j], body.inertia_local[j]);
     body.com_local_m[j] = 0.5 * (cap.a + cap.b);
     body.total_mass_kg += body.mass_kg[j];
     com_world[j] = rest[j].apply(body.com_local_m[j]);
@@ -88,10 +137,13 @@ CorrectorBody make_body(BodyShape shape, const CorrectorParams& p) {
   const double root_gain = p.stiff_joint_gain;
   body.root_translation_stiffness = root_gain * p.root_translation_stiffness * body.total_mass_kg;
   body.root_translation_damping = root_gain * p.damping * body.total_mass_kg;
+  body.foot_anchor_stiffness = root_gain * p.foot_anchor_stiffness * body.total_mass_kg;
+  body.foot_anchor_damping = root_gain * p.damping * body.total_mass_kg;
   for (int i = 0; i < kJointCount; ++i)
     for (int j = i + 1; j < kJointCount; ++j) {
       const bool excluded = std::find(shape.rest_contact_pairs.begin(), shape.rest_contact_pairs.end(),
-                                      std::pair<int, int>(i, j)) != shape.rest_contact_pairs.end();
+                                      std::pair<int, int>(i, j)) != shape.rest_contact_pairs.end() ||
+                            tree_distance(i, j) <= 2;
       if (!excluded) body.self_pairs.emplace_back(static_cast<std::uint8_t>(i), static_cast<std::uint8_t>(j));
     }
   body.shape = std::move(shape);

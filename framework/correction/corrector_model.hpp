@@ -23,7 +23,7 @@ using Mat6 = Eigen::Matrix<double, 6, 6>;
 /// Per-bone constants of one character, arrays of 24 indexed by bone (= joint) index.
 struct CorrectorBody {
   BodyShape shape;
-  std::array<double, kJointCount> mass_kg{};          ///< capsule volume x density (kg)
+  std::array<double, kJointCount> mass_kg{};          ///< capsule volume x density x union fraction (kg)
   std::array<Mat3, kJointCount> inertia_local{};      ///< inertia about the COM, bone frame (kg m^2)
   std::array<Vec3, kJointCount> com_local_m{};        ///< COM in bone frame (m) = capsule midpoint
   std::array<double, kJointCount> rot_stiffness{};    ///< k of Eq. 4 for joint j (J), scaled per header
@@ -31,8 +31,13 @@ struct CorrectorBody {
   std::array<double, kJointCount> joint_stiffness{};  ///< soft joint spring child j <-> parent (N/m)
   double root_translation_stiffness = 0.0;            ///< N/m
   double root_translation_damping = 0.0;              ///< kg (d of Eq. 4 applied to the root position)
+  double foot_anchor_stiffness = 0.0;                 ///< N/m, ankle and foot joints to their targets
+  double foot_anchor_damping = 0.0;                   ///< kg
   double total_mass_kg = 0.0;
-  /// Capsule pairs tested for self-collision: all i < j not in shape.rest_contact_pairs.
+  /// Capsule pairs tested for self-collision: all i < j not in shape.rest_contact_pairs (seed 000
+  /// §3.4) and more than two joints apart along the tree. The second rule is ours: around the shoulder
+  /// and hip girdles, capsules two joints apart (spine3/upper arm, pelvis/thigh...) overlap in ordinary
+  /// poses such as hanging arms, where the real body is continuous, not self-colliding.
   std::vector<std::pair<std::uint8_t, std::uint8_t>> self_pairs;
 };
 

@@ -60,6 +60,13 @@ struct CorrectorState {
   // ---- targets (per character / per bone)
   std::vector<Pose> target, target_old;  ///< this step's and the previous step's input poses
   std::vector<Pose> output;              ///< the projected poses returned by the step
+  /// Target motion per bone (world frame), for the inertial feed-forward (see stage_assemble):
+  std::vector<Vec3> target_com_m;         ///< COM of the target pose's bone (m)
+  std::vector<Quat> target_rotation;      ///< bone -> world rotation of the target pose
+  std::vector<Vec3> target_velocity_mps;  ///< target COM velocity over the last step (m/s)
+  std::vector<Vec3> target_omega_radps;   ///< target angular velocity over the last step (rad/s)
+  std::vector<Vec3> target_accel_mps2;    ///< target COM acceleration this step (m/s^2)
+  std::vector<Vec3> target_alpha_radps2;  ///< target angular acceleration this step (rad/s^2)
 
   // ---- broad/narrow phase scratch
   std::vector<Capsule> world_capsule;                   ///< per bone, world frame
@@ -77,7 +84,8 @@ struct CorrectorState {
   // ---- linear system H dq = b (per bone blocks); tree part + contact rank-1 terms
   std::vector<Mat6> diag;      ///< H[b,b] without contact terms
   std::vector<Mat6> coupling;  ///< H[b, parent(b)] (child rows, parent columns); unused for roots
-  std::vector<Mat6> precond;   ///< per bone: Cholesky factor of the tree-eliminated block
+  std::vector<Mat6> precond;   ///< per bone: inverse of the tree-eliminated block S after factorising
+  std::vector<Mat6> elim;      ///< per bone: S^-1 coupling (back-substitution operator) after factorising
   std::vector<Vec6> rhs;       ///< b = -gradient
   std::vector<Vec6> cg_x, cg_r, cg_z, cg_p, cg_q, cg_y;  ///< CG vectors
   std::vector<double> contact_scalar;                    ///< per contact: k w . x during a matvec

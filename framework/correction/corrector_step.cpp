@@ -2,10 +2,21 @@
 
 #include <string>
 
+#include <tbb/parallel_for.h>
+
+#include <numbers>
+
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
 
 namespace crowdlab {
+
+Vec3 rotation_vector(const Quat& q) {
+  const Eigen::AngleAxisd aa(q.normalized());
+  double angle = aa.angle();
+  if (angle > std::numbers::pi) angle -= 2.0 * std::numbers::pi;
+  return angle * aa.axis();
+}
 
 CorrectorState make_corrector_state(const CorrectorModel& model) {
   CorrectorState s;
@@ -18,6 +29,11 @@ CorrectorState make_corrector_state(const CorrectorModel& model) {
   s.target.assign(n, Pose{});
   s.target_old.assign(n, Pose{});
   s.output.assign(n, Pose{});
+  s.target_com_m.assign(bones, Vec3::Zero());
+  s.target_rotation.assign(bones, Quat::Identity());
+  for (auto* v :
+       {&s.target_velocity_mps, &s.target_omega_radps, &s.target_accel_mps2, &s.target_alpha_radps2})
+    v->assign(bones, Vec3::Zero());
   s.world_capsule.assign(bones, Capsule{});
   s.body_box.assign(n, Aabb{});
   s.sweep_order.assign(n, 0);
@@ -30,6 +46,7 @@ CorrectorState make_corrector_state(const CorrectorModel& model) {
   s.diag.assign(bones, Mat6::Zero());
   s.coupling.assign(bones, Mat6::Zero());
   s.precond.assign(bones, Mat6::Zero());
+  s.elim.assign(bones, Mat6::Zero());
   for (auto* v : {&s.rhs, &s.cg_x, &s.cg_r, &s.cg_z, &s.cg_p, &s.cg_q, &s.cg_y})
     v->assign(bones, Vec6::Zero());
   s.partial.assign(n, 0.0);
@@ -80,22 +97,48 @@ void stage_targets(const CorrectorModel& model, CorrectorState& state, const std
       state.target_old[static_cast<size_t>(c)] = p;
       state.target[static_cast<size_t>(c)] = p;
     }
-    std::fill(state.velocity_mps.begin(), state.velocity_mps.end(), Vec3::Zero());
-    std::fill(state.omega_radps.begin(), state.omega_radps.end(), Vec3::Zero());
+    state.target_com_m = state.com_m;
+    state.target_rotation = state.rotation;
+    for (auto* v : {&state.velocity_mps, &state.omega_radps, &state.target_velocity_mps,
+                    &state.target_omega_radps, &state.target_accel_mps2, &state.target_alpha_radps2})
+      std::fill(v->begin(), v->end(), Vec3::Zero());
     state.initialized = true;
     return;
   }
-  for (size_t c = 0; c < targets.size(); ++c) {
-    state.target_old[c] = state.target[c];
-    state.target[c] = targets[c];
-    for (Quat& q : state.target[c].local_rotations) q.normalize();
-  }
+  const double h = model.h;
+  tbb::parallel_for(0, model.characters(), [&](int c) {
+    const size_t cc = static_cast<size_t>(c);
+    state.target_old[cc] = state.target[cc];
+    state.target[cc] = targets[cc];
+    for (Quat& q : state.target[cc].local_rotations) q.normalize();
+    // Target bone motion: displacement over this step, acceleration relative to the last step.
+    const CorrectorBody& body = model.bodies[cc];
+    const BoneTransforms bones = forward_kinematics(body.shape, state.target[cc]);
+    for (size_t j = 0; j < kJointCount; ++j) {
+      const size_t g = cc * kJointCount + j;
+      const Vec3 com = bones[j].apply(body.com_local_m[j]);
+      const Vec3 dx = com - state.target_com_m[g];
+      const Vec3 dtheta = rotation_vector(bones[j].rotation * state.target_rotation[g].conjugate());
+      state.target_accel_mps2[g] = (dx - h * state.target_velocity_mps[g]) / (h * h);
+      state.target_alpha_radps2[g] = (dtheta - h * state.target_omega_radps[g]) / (h * h);
+      state.target_velocity_mps[g] = dx / h;
+      state.target_omega_radps[g] = dtheta / h;
+      state.target_com_m[g] = com;
+      state.target_rotation[g] = bones[j].rotation;
+    }
+  });
 }
 
 const std::vector<Pose>& corrector_step(const CorrectorModel& model, CorrectorState& state,
                                         const std::vector<Pose>& targets) {
+  const bool first = !state.initialized;
   stage_targets(model, state, targets);
   state.stats = StepStats{};
+  if (first) {  // the state starts at rest on the first targets, which are returned unchanged
+    for (size_t c = 0; c < targets.size(); ++c) state.output[c] = state.target[c];
+    ++state.step_index;
+    return state.output;
+  }
   stage_broad_phase(model, state);
   stage_narrow_phase(model, state);
   stage_assemble(model, state);

@@ -34,6 +34,9 @@ void stage_assemble(const CorrectorModel& model, CorrectorState& state);
 void stage_solve(const CorrectorModel& model, CorrectorState& state);
 void stage_integrate(const CorrectorModel& model, CorrectorState& state);
 
+/// The rotation vector (axis * angle, angle in [-pi, pi]) of a unit quaternion.
+Vec3 rotation_vector(const Quat& q);
+
 /// World position of bone g's frame origin (its joint), from the COM state.
 inline Vec3 bone_origin(const CorrectorModel& model, const CorrectorState& state, int g) {
   const auto& body = model.bodies[static_cast<size_t>(g / kJointCount)];

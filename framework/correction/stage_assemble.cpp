@@ -1,8 +1,12 @@
 // Assemble the Newton system of seed 000 Eq. 3 at the start-of-step state q_old (one Newton
 // iteration; increments dq = (dx, dtheta) per bone, world frame):
 //
-//   E_inertia   = 1/(2h^2) (dq - h v_old)^T M (dq - h v_old), M = diag(m I3, I_world)   (Gast et al. 2015)
-//                 (the gyroscopic term is dropped, as is usual for one linearised step)
+//   E_inertia   = 1/(2h^2) (dq - h v_old - h^2 a_hat)^T M (dq - h v_old - h^2 a_hat),
+//                 M = diag(m I3, I_world) (Gast et al. 2015). a_hat is the acceleration of the target
+//                 bone (from the last three target frames): an inertial feed-forward, as in
+//                 computed-torque control (Khatib 1987), ours; without it a PD-tracked body lags its
+//                 input by ~(omega_input / omega_n)^2 even with no contact. The gyroscopic term is
+//                 dropped, as is usual for one linearised step.
 //   E_gravity   = m g y_com   (cancelled by the controller's feed-forward if gravity_compensation)
 //   E_joints    = 1/2 k_J |o_child - (o_parent + R_parent offset)|^2   (soft ball joint)
 //   E_control   = Eq. 4 on relative rotations R = R_parent^T R_child (absolute for the root),
@@ -14,6 +18,7 @@
 // Gram matrix is exactly 2 I3, so the GN Hessian of Eq. 4 is 2 (k + d/h^2) I3 on w.
 #include <tbb/parallel_for.h>
 
+#include "framework/core/forward_kinematics.hpp"
 #include "framework/correction/corrector_step.hpp"
 
 namespace crowdlab {
@@ -67,8 +72,10 @@ void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
     d.topLeftCorner<3, 3>() = (m * inv_h2) * Mat3::Identity();
     d.bottomRightCorner<3, 3>() = inv_h2 * inertia;
     Vec6& b = s.rhs[g];
-    b.head<3>() = (m / h) * s.velocity_mps[g];
-    b.tail<3>() = (inertia * s.omega_radps[g]) / h;
+    // Inertial feed-forward: the predicted motion includes the target's own acceleration, so with no
+    // contact the deviation from the input stays zero (computed-torque feed-forward; see header).
+    b.head<3>() = m * (s.velocity_mps[g] / h + s.target_accel_mps2[g]);
+    b.tail<3>() = inertia * (s.omega_radps[g] / h + s.target_alpha_radps2[g]);
     if (!p.gravity_compensation) b[1] -= m * p.gravity_mps2;  // -dE_gravity/dy
     s.coupling[g].setZero();
   }
@@ -119,6 +126,21 @@ void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
     const auto a = point_jacobian(origin[0] - s.com_m[g]);
     s.diag[g] += (kt + dt) * a.transpose() * a;
     s.rhs[g] -= a.transpose() * resid_t;
+  }
+
+  // Feet: world position of the ankle and foot joints held on the target's (seed 000 §3.3, see params).
+  if (body.foot_anchor_stiffness > 0.0 || body.foot_anchor_damping > 0.0) {
+    const BoneTransforms goal = forward_kinematics(body.shape, target);
+    const BoneTransforms goal_old = forward_kinematics(body.shape, target_old);
+    const double kt = body.foot_anchor_stiffness, dt = body.foot_anchor_damping * inv_h2;
+    for (size_t j : {size_t{kLeftAnkle}, size_t{kRightAnkle}, size_t{kLeftFoot}, size_t{kRightFoot}}) {
+      const size_t g = static_cast<size_t>(base) + j;
+      const Vec3 resid =
+          kt * (origin[j] - goal[j].translation) - dt * (goal[j].translation - goal_old[j].translation);
+      const auto a = point_jacobian(origin[j] - s.com_m[g]);
+      s.diag[g] += (kt + dt) * a.transpose() * a;
+      s.rhs[g] -= a.transpose() * resid;
+    }
   }
 
   // Preconditioner blocks start from the tree part; add each incident contact's diagonal blocks.

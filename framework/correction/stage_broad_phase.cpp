@@ -27,6 +27,9 @@ void stage_broad_phase(const CorrectorModel& model, CorrectorState& state) {
       box.extend(w.a.cwiseMin(w.b) - rad);
       box.extend(w.a.cwiseMax(w.b) + rad);
     }
+    // Half the contact offset on each side, so bodies closer than the offset are paired.
+    box.lo -= Vec3::Constant(0.5 * model.params.contact_offset_m);
+    box.hi += Vec3::Constant(0.5 * model.params.contact_offset_m);
     state.body_box[static_cast<size_t>(c)] = box;
   });
 

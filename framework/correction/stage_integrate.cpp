@@ -28,14 +28,6 @@ Quat rotation_from_vector(const Vec3& v) {
   return Quat(Eigen::AngleAxisd(angle, v / angle));
 }
 
-Vec3 rotation_vector(const Quat& q) {
-  const Eigen::AngleAxisd aa(q.normalized());
-  double angle = aa.angle();
-  Vec3 axis = aa.axis();
-  if (angle > std::numbers::pi) angle -= 2.0 * std::numbers::pi;
-  return angle * axis;
-}
-
 }  // namespace
 
 void stage_integrate(const CorrectorModel& model, CorrectorState& s) {

@@ -4,6 +4,7 @@
 // come from the broad phase; intra-body pairs skip those touching in T-pose; every capsule end sphere
 // is tested against the ground y = 0; capsules are tested against the environment's sample points.
 #include <algorithm>
+#include <cmath>
 
 #include <tbb/parallel_for.h>
 
@@ -12,27 +13,31 @@
 namespace crowdlab {
 namespace {
 
-bool spheres_overlap(const Capsule& a, const Capsule& b) {
+bool spheres_overlap(const Capsule& a, const Capsule& b, double offset) {
+  // Bounding spheres: centre at the axis midpoint, radius half-length + capsule radius.
   const Vec3 ca = 0.5 * (a.a + a.b), cb = 0.5 * (b.a + b.b);
-  const double ra = 0.5 * (a.b - a.a).norm() + a.radius_m, rb = 0.5 * (b.b - b.a).norm() + b.radius_m;
-  return (ca - cb).squaredNorm() < (ra + rb) * (ra + rb);
+  const double reach = 0.5 * std::sqrt((a.b - a.a).squaredNorm()) + a.radius_m +
+                       0.5 * std::sqrt((b.b - b.a).squaredNorm()) + b.radius_m + offset;
+  return (ca - cb).squaredNorm() < reach * reach;
 }
 
-Aabb capsule_box(const Capsule& c) {
+Aabb capsule_box(const Capsule& c, double offset = 0.0) {
   Aabb box;
-  box.lo = c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m);
-  box.hi = c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m);
+  box.lo = c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m + offset);
+  box.hi = c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m + offset);
   return box;
 }
 
-bool make_capsule_contact(const Capsule& ca, const Capsule& cb, int ga, int gb, double k, Contact& out) {
-  if (!spheres_overlap(ca, cb)) return false;
+/// offset: contact offset (m) added to the depth (inter-body contacts only; see CorrectorParams).
+bool make_capsule_contact(const Capsule& ca, const Capsule& cb, int ga, int gb, double k, double offset,
+                          Contact& out) {
+  if (!spheres_overlap(ca, cb, offset)) return false;
   const CapsuleContact cc = capsule_contact(ca, cb);
-  if (!(cc.depth_m > 0.0)) return false;
+  if (!(cc.depth_m + offset > 0.0)) return false;
   out = Contact{};
   out.bone_a = ga;
   out.bone_b = gb;
-  out.depth_m = cc.depth_m;
+  out.depth_m = cc.depth_m + offset;
   out.stiffness = k;
   out.normal = cc.normal;
   out.point_a = cc.point_a;
@@ -47,10 +52,11 @@ void body_pair_contacts(const CorrectorModel& model, const CorrectorState& state
   const Aabb& box_j = state.body_box[static_cast<size_t>(cj)];
   int list_i[kJointCount], list_j[kJointCount];
   int ni = 0, nj = 0;
+  const double offset = model.params.contact_offset_m;
   for (int b = 0; b < kJointCount; ++b) {
-    if (capsule_box(state.world_capsule[static_cast<size_t>(ci * kJointCount + b)]).overlaps(box_j))
+    if (capsule_box(state.world_capsule[static_cast<size_t>(ci * kJointCount + b)], offset).overlaps(box_j))
       list_i[ni++] = b;
-    if (capsule_box(state.world_capsule[static_cast<size_t>(cj * kJointCount + b)]).overlaps(box_i))
+    if (capsule_box(state.world_capsule[static_cast<size_t>(cj * kJointCount + b)], offset).overlaps(box_i))
       list_j[nj++] = b;
   }
   const double k = model.params.contact_stiffness;
@@ -59,7 +65,7 @@ void body_pair_contacts(const CorrectorModel& model, const CorrectorState& state
     for (int y = 0; y < nj; ++y) {
       const int ga = ci * kJointCount + list_i[x], gb = cj * kJointCount + list_j[y];
       if (make_capsule_contact(state.world_capsule[static_cast<size_t>(ga)],
-                               state.world_capsule[static_cast<size_t>(gb)], ga, gb, k, c))
+                               state.world_capsule[static_cast<size_t>(gb)], ga, gb, k, offset, c))
         out.push_back(c);
     }
 }
@@ -75,7 +81,7 @@ void single_body_contacts(const CorrectorModel& model, const CorrectorState& sta
     const int ga = base + i, gb = base + j;
     if (make_capsule_contact(state.world_capsule[static_cast<size_t>(ga)],
                              state.world_capsule[static_cast<size_t>(gb)], ga, gb,
-                             model.params.contact_stiffness, c))
+                             model.params.contact_stiffness, 0.0, c))
       out.push_back(c);
   }
   counts[0] = static_cast<int>(out.size());

@@ -21,44 +21,81 @@
 namespace crowdlab {
 namespace {
 
-using Llt6 = Eigen::LLT<Mat6>;
+/// Tree elimination from the leaves (j = 23) to the root: after it, precond[g] holds the inverse of
+/// bone g's eliminated block S_g and elim[g] = S_g^-1 B_g (B_g = coupling[g]), so applying the
+/// preconditioner costs three 6 x 6 matrix-vector products per bone. Returns false if a block is not
+/// positive definite (cannot happen for valid parameters: every block contains M / h^2 > 0).
+/// Inverse of a symmetric positive definite 6 x 6 matrix by Cholesky (fixed-size loops; Eigen's
+/// generic triangular solves are several times slower at this size). False if not SPD.
+bool spd_inverse6(const Mat6& a, Mat6& inverse) {
+  double l[6][6] = {};
+  for (int j = 0; j < 6; ++j) {
+    double d = a(j, j);
+    for (int k = 0; k < j; ++k) d -= l[j][k] * l[j][k];
+    if (!(d > 0.0)) return false;
+    l[j][j] = std::sqrt(d);
+    for (int i = j + 1; i < 6; ++i) {
+      double v = a(i, j);
+      for (int k = 0; k < j; ++k) v -= l[i][k] * l[j][k];
+      l[i][j] = v / l[j][j];
+    }
+  }
+  // W = L^-1 (lower triangular), then A^-1 = W^T W.
+  double w[6][6] = {};
+  for (int i = 0; i < 6; ++i) {
+    w[i][i] = 1.0 / l[i][i];
+    for (int j = 0; j < i; ++j) {
+      double v = 0.0;
+      for (int k = j; k < i; ++k) v -= l[i][k] * w[k][j];
+      w[i][j] = v / l[i][i];
+    }
+  }
+  for (int i = 0; i < 6; ++i)
+    for (int j = i; j < 6; ++j) {
+      double v = 0.0;
+      for (int k = j; k < 6; ++k) v += w[k][i] * w[k][j];
+      inverse(i, j) = v;
+      inverse(j, i) = v;
+    }
+  return true;
+}
 
-/// In place: precond[g] <- Cholesky-ready eliminated block; returns false if a block is not SPD.
 bool factor_character(CorrectorState& s, int c) {
   const size_t base = static_cast<size_t>(c) * kJointCount;
   bool ok = true;
+  Mat6 inverse;
   for (size_t j = kJointCount - 1; j >= 1; --j) {
     const size_t g = base + j, gp = base + static_cast<size_t>(kJointParent[j]);
-    const Llt6 llt(s.precond[g]);
-    if (llt.info() != Eigen::Success) ok = false;
-    const Mat6 x = llt.solve(s.coupling[g]);
-    s.precond[gp] -= s.coupling[g].transpose() * x;
-    s.precond[g] = llt.matrixLLT();
+    if (!spd_inverse6(s.precond[g], inverse)) {
+      ok = false;
+      inverse.setZero();
+    }
+    s.elim[g].noalias() = inverse.lazyProduct(s.coupling[g]);
+    s.precond[gp].noalias() -= s.coupling[g].transpose().lazyProduct(s.elim[g]);
+    s.precond[g] = inverse;
   }
-  const Llt6 root(s.precond[base]);
-  if (root.info() != Eigen::Success) ok = false;
-  s.precond[base] = root.matrixLLT();
+  if (!spd_inverse6(s.precond[base], inverse)) {
+    ok = false;
+    inverse.setZero();
+  }
+  s.precond[base] = inverse;
   return ok;
 }
 
-Vec6 llt_solve(const Mat6& factor, const Vec6& b) {
-  Vec6 y = factor.triangularView<Eigen::Lower>().solve(b);
-  return factor.triangularView<Eigen::Lower>().transpose().solve(y);
-}
-
-/// z = P^-1 r for character c (tree elimination order as in factor_character).
+/// z = P^-1 r for character c (block forward elimination, root solve, back substitution).
 void apply_preconditioner(CorrectorState& s, int c, const std::vector<Vec6>& r, std::vector<Vec6>& z) {
   const size_t base = static_cast<size_t>(c) * kJointCount;
   for (size_t j = 0; j < kJointCount; ++j) z[base + j] = r[base + j];
   for (size_t j = kJointCount - 1; j >= 1; --j) {
     const size_t g = base + j, gp = base + static_cast<size_t>(kJointParent[j]);
-    s.cg_y[g] = llt_solve(s.precond[g], z[g]);
-    z[gp] -= s.coupling[g].transpose() * s.cg_y[g];
+    s.cg_y[g].noalias() = s.precond[g] * z[g];
+    z[gp].noalias() -= s.coupling[g].transpose() * s.cg_y[g];
   }
-  z[base] = llt_solve(s.precond[base], z[base]);
+  z[base] = s.precond[base] * z[base];
   for (size_t j = 1; j < kJointCount; ++j) {
     const size_t g = base + j, gp = base + static_cast<size_t>(kJointParent[j]);
-    z[g] = s.cg_y[g] - llt_solve(s.precond[g], s.coupling[g] * z[gp]);
+    z[g] = s.cg_y[g];
+    z[g].noalias() -= s.elim[g] * z[gp];
   }
 }
 
@@ -116,17 +153,26 @@ void stage_solve(const CorrectorModel& model, CorrectorState& s) {
   std::vector<char>& ok = s.factor_ok;
   tbb::parallel_for(0, n, [&](int c) { ok[static_cast<size_t>(c)] = factor_character(s, c) ? 1 : 0; });
 
-  // x = 0, r = b, z = P^-1 r, p = z.
+  // Warm start from the previous velocities (x0 = h v_old: the motion is smooth from step to step),
+  // r = b - H x0, z = P^-1 r, p = z.
+  tbb::parallel_for(0, n, [&](int c) {
+    for (size_t j = static_cast<size_t>(c) * kJointCount; j < static_cast<size_t>(c + 1) * kJointCount; ++j) {
+      s.cg_x[j].head<3>() = model.h * s.velocity_mps[j];
+      s.cg_x[j].tail<3>() = model.h * s.omega_radps[j];
+    }
+  });
+  multiply(model, s, s.cg_x, s.cg_q);
   tbb::parallel_for(0, n, [&](int c) {
     const size_t base = static_cast<size_t>(c) * kJointCount;
     double bb = 0.0, rz = 0.0;
-    apply_preconditioner(s, c, s.rhs, s.cg_z);
     for (size_t j = base; j < base + kJointCount; ++j) {
-      s.cg_x[j].setZero();
-      s.cg_r[j] = s.rhs[j];
-      s.cg_p[j] = s.cg_z[j];
+      s.cg_r[j] = s.rhs[j] - s.cg_q[j];
       bb += s.rhs[j].squaredNorm();
-      rz += s.rhs[j].dot(s.cg_z[j]);
+    }
+    apply_preconditioner(s, c, s.cg_r, s.cg_z);
+    for (size_t j = base; j < base + kJointCount; ++j) {
+      s.cg_p[j] = s.cg_z[j];
+      rz += s.cg_r[j].dot(s.cg_z[j]);
     }
     s.partial[static_cast<size_t>(c)] = bb;
     s.partial2[static_cast<size_t>(c)] = rz;
@@ -134,7 +180,13 @@ void stage_solve(const CorrectorModel& model, CorrectorState& s) {
   const double b_norm2 = reduce(s.partial);
   double rz = reduce(s.partial2);
   const double tol2 = p.cg_tolerance * p.cg_tolerance * b_norm2;
-  double r_norm2 = b_norm2;
+  tbb::parallel_for(0, n, [&](int c) {
+    double rr = 0.0;
+    for (size_t j = static_cast<size_t>(c) * kJointCount; j < static_cast<size_t>(c + 1) * kJointCount; ++j)
+      rr += s.cg_r[j].squaredNorm();
+    s.partial[static_cast<size_t>(c)] = rr;
+  });
+  double r_norm2 = reduce(s.partial);
   int it = 0;
   bool finite = std::isfinite(b_norm2) && std::isfinite(rz);
   while (finite && r_norm2 > tol2 && it < p.cg_max_iterations) {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "framework/core/error.hpp"
+#include "framework/core/forward_kinematics.hpp"
 #include "framework/core/seed.hpp"
 
 namespace crowdlab {
@@ -23,7 +24,11 @@ Pose swaying_pose(const BodyShape& shape, const Vec3& floor_position_m, double h
   const double w = 2.0 * std::numbers::pi * frequency_hz * t_s + phase_rad;
   const double a = amplitude;
   Pose p = Pose::rest(shape);
-  p.root_position_m = floor_position_m + Vec3(0, shape.pelvis_height_m(), 0);
+  // Stand exactly on the floor: the lowest capsule point of the rest pose at y = 0.
+  double lowest = 0.0;
+  for (const Capsule& c : world_capsules(shape, p))
+    lowest = std::min(lowest, std::min(c.a.y(), c.b.y()) - c.radius_m);
+  p.root_position_m = floor_position_m + Vec3(0, shape.pelvis_height_m() - lowest, 0);
   p.local_rotations[kPelvis] = axis_angle(Vec3::UnitY(), heading_rad);
   p.local_rotations[kSpine1] = axis_angle(Vec3::UnitZ(), a * 3 * kDeg * std::sin(w));
   p.local_rotations[kSpine2] = axis_angle(Vec3::UnitX(), a * 3 * kDeg * std::sin(w + 1.0));
@@ -34,7 +39,7 @@ Pose swaying_pose(const BodyShape& shape, const Vec3& floor_position_m, double h
     const int shoulder = side > 0 ? kLeftShoulder : kRightShoulder;
     const int elbow = side > 0 ? kLeftElbow : kRightElbow;
     // Left arm points +X in rest: -55 deg about Z lowers it (mirrored for the right arm).
-    const double lower = -side * (55 + a * 10 * std::sin(w + side)) * kDeg;
+    const double lower = -side * (35 + a * 6 * std::sin(w + side)) * kDeg;
     const double swing = a * 12 * kDeg * std::sin(w + 0.5 * side);
     p.local_rotations[static_cast<size_t>(shoulder)] =
         axis_angle(Vec3::UnitY(), -side * swing) * axis_angle(Vec3::UnitZ(), lower);
@@ -68,8 +73,8 @@ CrowdAnimation make_swaying_crowd_fixture(const SwayingCrowdOptions& o) {
     ch.name = "c" + std::to_string(1000 + c).substr(1);
     ch.shape = make_procedural_body(bp);
     ch.palette = c % 12;
-    const double x = ((c % side) + 0.5 + 0.4 * (uniform01(rng) - 0.5)) * spacing;
-    const double z = ((c / side) + 0.5 + 0.4 * (uniform01(rng) - 0.5)) * spacing;
+    const double x = ((c % side) + 0.5 + 0.2 * (uniform01(rng) - 0.5)) * spacing;
+    const double z = ((c / side) + 0.5 + 0.2 * (uniform01(rng) - 0.5)) * spacing;
     const double heading = 0.8 * (uniform01(rng) - 0.5);
     const double phase = 2.0 * std::numbers::pi * uniform01(rng);
     const double freq = 0.3 + 0.3 * uniform01(rng);

@@ -4,13 +4,13 @@
 // exercised without the crowd and animation stages.
 //
 // Placement: a jittered square grid at the requested density D (characters per m^2): spacing 1/sqrt(D),
-// each position jittered by up to +-20 % of the spacing, headings toward +Z +- 0.4 rad.
-// Bodies: core make_procedural_body, alternately female/male, heights drawn from normal distributions
-// with the world adult means of NCD-RisC 2016 (eLife 5:e13410: women 1.59 m, men 1.71 m; SD 0.065 / 0.07
-// m, clamped to [1.45, 1.95] m), girth uniform in [0.9, 1.1].
-// Motion: the pelvis and legs stand still (feet planted), arms hang at ~55 deg below horizontal; the
-// spine, neck, shoulders and elbows follow slow sinusoids (0.3-0.6 Hz, per-character phase), a few
-// degrees to ~15 degrees in amplitude. Target poses are free of self-collision by construction.
+// each position jittered by up to +-10 % of the spacing (minimum spacing ~0.8 of the grid spacing, close to a
+// Poisson-disk sample at the same density), headings toward +Z +- 0.4 rad. Bodies: core make_procedural_body,
+// alternately female/male, heights drawn from normal distributions with the world adult means of NCD-RisC
+// 2016 (eLife 5:e13410: women 1.59 m, men 1.71 m; SD 0.065 / 0.07 m, clamped to [1.45, 1.95] m), girth
+// uniform in [0.9, 1.1]. Motion: the pelvis and legs stand still (feet planted), arms hang at ~55 deg below
+// horizontal; the spine, neck, shoulders and elbows follow slow sinusoids (0.3-0.6 Hz, per-character phase),
+// a few degrees to ~15 degrees in amplitude. Target poses are free of self-collision by construction.
 #include <cstdint>
 
 #include "framework/core/crowd_animation.hpp"

@@ -1,0 +1,65 @@
+// The correction commands as a user runs them: crowdlab correct, bench correct, experiment damping.
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "framework/correction/swaying_crowd_fixture.hpp"
+#include "framework/io/read_crowd_glb.hpp"
+#include "framework/io/write_crowd_glb.hpp"
+#include "tests/correction/correction_measures.hpp"
+#include "tests/support/run_cli.hpp"
+
+using namespace crowdlab;
+
+TEST_CASE("correction cli: crowdlab correct IN.glb --out OUT.glb removes the overlap", "[correction][cli]") {
+  const auto dir = test::scratch_dir("correction_cli");
+  SwayingCrowdOptions o;
+  o.characters = 6;
+  o.density_per_m2 = 6.66;
+  o.frames = 20;
+  const CrowdAnimation in = make_swaying_crowd_fixture(o);
+  write_crowd_glb(in, (dir / "in.glb").string());
+  const auto r = test::run_cli({"correct", (dir / "in.glb").string(), "--out", (dir / "out.glb").string()});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const CrowdAnimation out = read_crowd_glb((dir / "out.glb").string());
+  REQUIRE(out.characters.size() == in.characters.size());
+  REQUIRE(out.frame_count() == in.frame_count());
+  const double before = test::overlap_volume(test::frame_capsules(in, 19));
+  const double after = test::overlap_volume(test::frame_capsules(out, 19));
+  INFO("overlap " << before << " -> " << after);
+  CHECK(before > 0.0);
+  CHECK(after < 0.2 * before);
+}
+
+TEST_CASE("correction cli: bad input files and options exit with code 2", "[correction][cli]") {
+  const auto dir = test::scratch_dir("correction_cli_bad");
+  CHECK(test::run_cli({"correct", (dir / "missing.glb").string(), "--out", (dir / "o.glb").string()})
+            .exit_code == 2);
+  CHECK(test::run_cli({"bench", "correct", "--characters", "0"}).exit_code == 2);
+}
+
+TEST_CASE("correction cli: bench correct --json prints the documented fields", "[correction][cli]") {
+  const auto r =
+      test::run_cli({"bench", "correct", "--characters", "4", "--steps", "3", "--warmup", "1", "--json"});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key :
+       {"ms_per_step_median", "characters", "contacts_mean", "cg_iterations_mean", "peak_rss_mb", "threads"})
+    CHECK(j.contains(key));
+  CHECK(j["characters"] == 4);
+}
+
+TEST_CASE("correction cli: experiment damping writes the Fig. 4 series", "[correction][cli]") {
+  const auto dir = test::scratch_dir("correction_damping");
+  const auto r = test::run_cli({"experiment", "damping", "--out", dir.string(), "--duration", "4"});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  std::ifstream in(dir / "damping.csv");
+  std::string header;
+  std::getline(in, header);
+  CHECK(header == "damping,time_s,position_m,target_m");
+  int rows = 0;
+  for (std::string line; std::getline(in, line);) ++rows;
+  CHECK(rows == 4 * 120);
+}

@@ -1,0 +1,194 @@
+// The solver's building blocks and contracts: mass properties, the exact tree preconditioner,
+// determinism across thread counts, first-step behaviour, bad input, environment and ground.
+#include <tbb/global_control.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "framework/core/error.hpp"
+#include "framework/core/sha256.hpp"
+#include "framework/correction/correct_crowd.hpp"
+#include "framework/correction/corrector.hpp"
+#include "framework/correction/swaying_crowd_fixture.hpp"
+#include "tests/correction/correction_measures.hpp"
+#include "tests/support/test_paths.hpp"
+
+using namespace crowdlab;
+
+TEST_CASE("correction: capsule mass properties match analytic solids", "[correction]") {
+  double m = 0;
+  Mat3 inertia;
+  // A sphere (zero-length capsule): m = rho 4/3 pi r^3, I = 2/5 m r^2.
+  capsule_mass_properties({Vec3::Zero(), Vec3::Zero(), 0.1}, 1000.0, m, inertia);
+  CHECK(m == Approx(1000.0 * 4.0 / 3.0 * std::numbers::pi * 1e-3));
+  CHECK((inertia - 0.4 * m * 0.01 * Mat3::Identity()).norm() < 1e-12);
+  // A long thin capsule tends to a rod: I_perp -> m L^2 / 12 (within the cap correction).
+  capsule_mass_properties({Vec3(0, 0, 0), Vec3(1, 0, 0), 0.001}, 1000.0, m, inertia);
+  CHECK(inertia(1, 1) == Approx(m / 12.0).epsilon(0.01));
+  CHECK(inertia(0, 0) < 1e-4 * inertia(1, 1));
+  // A whole procedural adult weighs what an adult weighs.
+  const CorrectorModel model =
+      make_corrector_model({make_procedural_body({Sex::kMale, 1.75, 1.0})}, {}, {}, 30);
+  INFO("total mass " << model.bodies[0].total_mass_kg << " kg");
+  CHECK(model.bodies[0].total_mass_kg > 60.0);
+  CHECK(model.bodies[0].total_mass_kg < 90.0);
+}
+
+TEST_CASE("correction: without contacts the tree preconditioner is exact (CG converges in one iteration)",
+          "[correction]") {
+  SwayingCrowdOptions o;
+  o.characters = 3;
+  o.density_per_m2 = 0.2;
+  o.frames = 10;
+  const CrowdAnimation crowd = make_swaying_crowd_fixture(o);
+  std::vector<BodyShape> shapes;
+  for (const auto& ch : crowd.characters) shapes.push_back(ch.shape);
+  CorrectorParams params;
+  params.cg_tolerance = 1e-10;
+  Corrector corrector(shapes, params, {}, 30);
+  for (int f = 0; f < o.frames; ++f) {
+    std::vector<Pose> targets;
+    for (const auto& ch : crowd.characters) targets.push_back(ch.frames[static_cast<size_t>(f)]);
+    corrector.step(targets);
+    if (f == 0) continue;
+    INFO("frame " << f);
+    CHECK(corrector.last_stats().inter_body_contacts == 0);
+    CHECK(corrector.last_stats().intra_body_contacts == 0);
+    CHECK(corrector.last_stats().cg_iterations <= 1);
+    CHECK(corrector.last_stats().converged);
+  }
+}
+
+TEST_CASE("correction: the first step returns its targets", "[correction]") {
+  SwayingCrowdOptions o;
+  o.characters = 4;
+  o.density_per_m2 = 6.66;
+  o.frames = 1;
+  const CrowdAnimation crowd = make_swaying_crowd_fixture(o);
+  std::vector<BodyShape> shapes;
+  std::vector<Pose> targets;
+  for (const auto& ch : crowd.characters) {
+    shapes.push_back(ch.shape);
+    targets.push_back(ch.frames[0]);
+  }
+  Corrector corrector(shapes);
+  const auto out = corrector.step(targets);
+  for (size_t c = 0; c < out.size(); ++c) {
+    CHECK((out[c].root_position_m - targets[c].root_position_m).norm() < 1e-9);
+    for (int j = 0; j < kJointCount; ++j)
+      CHECK(test::rotation_angle_deg(out[c].local_rotations[static_cast<size_t>(j)],
+                                     targets[c].local_rotations[static_cast<size_t>(j)]) < 1e-5);
+  }
+}
+
+namespace {
+std::string hash_of(const CrowdAnimation& crowd) {
+  std::string bytes;
+  for (const auto& ch : crowd.characters)
+    for (const Pose& p : ch.frames) {
+      bytes.append(reinterpret_cast<const char*>(p.root_position_m.data()), sizeof(double) * 3);
+      for (const Quat& q : p.local_rotations)
+        bytes.append(reinterpret_cast<const char*>(q.coeffs().data()), sizeof(double) * 4);
+    }
+  return sha256_hex(bytes);
+}
+}  // namespace
+
+TEST_CASE("correction: 1 and 2 threads give bit-identical results", "[correction]") {
+  SwayingCrowdOptions o;
+  o.characters = test::kSanitized ? 6 : 16;
+  o.density_per_m2 = 6.66;
+  o.frames = test::kSanitized ? 10 : 30;
+  const CrowdAnimation in = make_swaying_crowd_fixture(o);
+  std::string h1, h2;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    h1 = hash_of(correct_crowd(in, {}));
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    h2 = hash_of(correct_crowd(in, {}));
+  }
+  CHECK(h1 == h2);
+  CHECK(h1 != hash_of(in));  // and the correction did change something
+}
+
+TEST_CASE("correction: bad input is rejected with InputError", "[correction]") {
+  const BodyShape body = make_procedural_body({});
+  SECTION("empty crowd") {
+    CHECK_THROWS_AS(Corrector(std::vector<BodyShape>{}), InputError);
+    CrowdAnimation empty;
+    CHECK_THROWS_AS(correct_crowd(empty, {}), InputError);
+  }
+  SECTION("NaN and Inf poses") {
+    Corrector corrector({body});
+    Pose p = Pose::rest(body);
+    p.local_rotations[kLeftElbow].w() = std::numeric_limits<double>::quiet_NaN();
+    CHECK_THROWS_AS(corrector.step({p}), InputError);
+    Pose q = Pose::rest(body);
+    q.root_position_m.x() = std::numeric_limits<double>::infinity();
+    CHECK_THROWS_AS(corrector.step({q}), InputError);
+    CHECK_NOTHROW(corrector.step({Pose::rest(body)}));  // and the corrector still works after
+  }
+  SECTION("missing character pose") {
+    Corrector corrector({body, body});
+    CHECK_THROWS_AS(corrector.step({Pose::rest(body)}), InputError);
+  }
+  SECTION("zero-length bone") {
+    BodyShape bad = body;
+    bad.joint_offsets_m[kLeftElbow] = Vec3::Zero();
+    CHECK_THROWS_AS(Corrector({bad}), InputError);
+  }
+  SECTION("bad parameters") {
+    CorrectorParams p;
+    p.damping = -1;
+    CHECK_THROWS_AS(Corrector({body}, p), InputError);
+    CHECK_THROWS_AS(Corrector({body}, {}, {}, 0.0), InputError);
+  }
+}
+
+TEST_CASE("correction: environment boxes push capsules out", "[correction]") {
+  const BodyShape body = make_procedural_body({});
+  Environment env;
+  Box wall;
+  // A wall whose inner face cuts 6 cm into the character's left arm (arm along +X in T-pose).
+  const double arm_tip_x = world_capsules(body, Pose::rest(body))[kLeftHand].b.x();
+  wall.center_m = Vec3(arm_tip_x - 0.06 + 0.5, 1.3, 0);
+  wall.half_extents_m = Vec3(0.5, 1.0, 1.0);
+  env.boxes.push_back(wall);
+  Corrector corrector({body}, {}, env, 30);
+  const EnvironmentPointTree points(env, 0.03);
+  auto deepest = [&](const Pose& pose) {
+    const auto caps = world_capsules(body, pose);
+    double d = 0.0;
+    for (const Vec3& q : points.points())
+      for (const Capsule& c : caps)
+        d = std::max(d, c.radius_m - segment_closest_points(c.a, c.b, q, q).distance_m);
+    return d;
+  };
+  Pose out;
+  for (int f = 0; f < 45; ++f) out = corrector.step({Pose::rest(body)})[0];
+  INFO("deepest sample point: input " << deepest(Pose::rest(body)) << " m, corrected " << deepest(out)
+                                      << " m");
+  CHECK(deepest(Pose::rest(body)) > 0.01);
+  CHECK(deepest(out) < 0.005);
+  CHECK(corrector.last_stats().environment_contacts > 0);
+}
+
+TEST_CASE("correction: the ground pushes a sunken body up", "[correction]") {
+  const BodyShape body = make_procedural_body({});
+  Pose sunk = Pose::rest(body);
+  // Arms down so that only the feet meet the floor, and the whole body 3 cm below it.
+  sunk.local_rotations[kLeftShoulder] = Quat(Eigen::AngleAxisd(-1.2, Vec3::UnitZ()));
+  sunk.local_rotations[kRightShoulder] = Quat(Eigen::AngleAxisd(1.2, Vec3::UnitZ()));
+  sunk.root_position_m.y() -= 0.03;
+  CorrectorParams params;
+  params.foot_anchor_stiffness = 0.0;  // let the ground, not the anchors, decide the feet height
+  Corrector corrector({body}, params, {}, 30);
+  Pose out;
+  for (int f = 0; f < 30; ++f) out = corrector.step({sunk})[0];
+  CHECK(out.root_position_m.y() > sunk.root_position_m.y() + 0.015);
+  CHECK(corrector.last_stats().ground_contacts > 0);
+}
