@@ -1,4 +1,5 @@
 #include "framework/crowd/generate_scenario.hpp"
+#include "framework/spec/effective_scenario_type.hpp"
 
 #include <cmath>
 
@@ -15,12 +16,9 @@ void require_positive(double v, const std::string& key) {
 }  // namespace
 
 std::string resolve_scenario_type(const ExperimentSpec& spec, const Condition& condition) {
-  std::string type = spec.scenario.type;
-  if (const FactorLevel* l = condition.level("scenario")) {
-    type = l->text;
-    if (type == "A" || type == "a") type = "flow_a";
-    if (type == "B" || type == "b") type = "flow_b";
-  }
+  // The mapping (scenario factor, A/B -> flows) is the spec layer's; this stage only checks that it
+  // can generate the result.
+  const std::string type = effective_scenario_type(spec, condition);
   if (type == "stationary" || type == "corridor" || type == "pair_crossing" || type == "flow_a" ||
       type == "flow_b")
     return type;
