@@ -14,7 +14,7 @@
 namespace crowdlab {
 
 namespace {
-constexpr double kHoldS = 0.2, kBlendOutS = 0.5, kMinRiseS = 0.25, kMaxRiseS = 0.7;
+constexpr double kHoldS = 0.1, kBlendOutS = 0.4, kMinRiseS = 0.25, kMaxRiseS = 0.7;
 
 struct Reaction {
   double start_s, peak_s, target, w_start;

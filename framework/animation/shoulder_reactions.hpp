@@ -15,9 +15,10 @@
 // Side: the partner's position relative to the agent at the time of closest approach, in the agent's
 // heading frame: on the left (+X) -> weight > 0 (torso presented to the left, reaction_pose.hpp).
 // Envelope: rises from the current weight to +-1 over ttca (clamped to [0.25, 0.7] s, so the peak
-// falls at the closest approach), holds 0.2 s and returns to 0 over 0.5 s: about 1.0-1.4 s in all,
-// the length of one gait cycle at 1.1-1.3 m/s (stride frequency 0.9 Hz), i.e. one shoulder turn per
-// passing as in the paper's mocap clips. Raised-cosine blends keep the weight C1-continuous.
+// falls at the closest approach), holds 0.1 s and returns to 0 over 0.4 s: 1.2 s in all for a
+// trigger at ttca = 0.7 s (0.75 s at the shortest), about one gait cycle at 1.3 m/s (110 steps/min
+// = 1.09 s per cycle), i.e. one shoulder turn per passing, as in the paper's mocap clips where the
+// reaction fits within the interaction. Raised-cosine blends keep the weight C1-continuous.
 // Forced mode (pair experiment, seed 001 §3: "shoulder" factor 0/1/2): exactly `forced_count` agents
 // (a seeded choice, preferring agents that meet any risk) react to every risk, the others never do; because
 // that experiment's passing distances go up to 0.70 m, the dtca threshold is raised to max(dtca_threshold,
