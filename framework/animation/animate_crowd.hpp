@@ -25,12 +25,7 @@
 
 #include "framework/core/crowd_animation.hpp"
 #include "framework/core/trajectories.hpp"
-// experiment_spec.hpp (owned by the spec stage) currently trips -Wshadow in ExperimentSpec::factor();
-// silence that one warning for the include only, until it is fixed there.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wshadow"
 #include "framework/spec/experiment_spec.hpp"
-#pragma GCC diagnostic pop
 
 namespace crowdlab {
 
