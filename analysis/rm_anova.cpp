@@ -113,8 +113,11 @@ RmAnovaResult rm_anova(const WithinDesign& design) {
         if (det > 0) {
           const double log_w = std::log(det) - d * std::log(sigma.trace() / d);
           const double rho = 1.0 - (2.0 * d * d + d + 2.0) / (6.0 * d * (n - 1.0));
+          // R's mauchly.test.SSD (used by car/afex) writes "3 * p" with p the number of cells, not d;
+          // kept for agreement (the term is O(1/n^2)).
+          const double cells = static_cast<double>(y.cols());
           const double w2 = (d + 2.0) * (d - 1.0) * (d - 2.0) *
-                            (2.0 * d * d * d + 6.0 * d * d + 3.0 * d + 2.0) /
+                            (2.0 * d * d * d + 6.0 * d * d + 3.0 * cells + 2.0) /
                             (288.0 * std::pow((n - 1.0) * d * rho, 2.0));
           const double zstat = -(n - 1.0) * rho * log_w;
           const double f = d * (d + 1.0) / 2.0 - 1.0;

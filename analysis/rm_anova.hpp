@@ -13,7 +13,8 @@
 // Sphericity (d > 1): Sigma = S/(n-1); Mauchly's W = det(Sigma) / (tr(Sigma)/d)^d with the chi-square
 // approximation and its second-order term (Anderson 1958, as R's mauchly.test):
 //   rho = 1 - (2d^2+d+2)/(6d(n-1)), f = d(d+1)/2 - 1, z = -(n-1) rho log W,
-//   w2 = (d+2)(d-1)(d-2)(2d^3+6d^2+3d+2) / (288 ((n-1) d rho)^2),
+//   w2 = (d+2)(d-1)(d-2)(2d^3+6d^2+3c+2) / (288 ((n-1) d rho)^2), c = number of cells (R's
+//   mauchly.test.SSD uses the SSD's full dimension there, where Anderson has d; car and afex inherit it),
 //   p = Q(z; f) + w2 (Q(z; f+4) - Q(z; f)),  Q the chi-square upper tail.
 // GG epsilon = tr(S)^2 / (d tr(S^2)) (Greenhouse & Geisser 1959). HF epsilon with Lecoutre's (1991)
 // correction as car: ((n-1+1) d eps_GG - 2) / (d (n-1 - d eps_GG)); reported raw (may exceed 1) and

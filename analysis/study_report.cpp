@@ -111,8 +111,8 @@ void reliability_section(Context& ctx, const CompositeSpec& comp) {
             ", Cronbach's α = " + fmt(rel.cronbach_alpha) + ".\n\n";
 }
 
-void interaction_plots(Context& ctx, const WithinDesign& design, const RmAnovaResult& anova,
-                       const std::string& name, const std::string& y_label) {
+void interaction_plots(Context& ctx, const WithinDesign& design, const std::string& name,
+                       const std::string& y_label) {
   const size_t k = design.factors.size();
   const size_t series_factor = k - 1;
   for (size_t f = 0; f < (k == 1 ? 1 : k - 1); ++f) {
@@ -148,7 +148,6 @@ void interaction_plots(Context& ctx, const WithinDesign& design, const RmAnovaRe
   if (k > 1)
     ctx.md += "Stars: simple effect of " + design.factors[series_factor].name +
               " at each x level (* p < .05, ** p < .01, *** p < .001).\n\n";
-  (void)anova;
 }
 
 void measure_section(Context& ctx, const std::string& name, const std::vector<std::string>& items) {
@@ -201,7 +200,7 @@ void measure_section(Context& ctx, const std::string& name, const std::vector<st
   }
   std::ofstream(ctx.out / "stats" / (safe_name(name) + ".json")) << stats.dump(2) << "\n";
   const int points = ctx.spec.protocol.scale_points;
-  interaction_plots(ctx, design, anova, name, "Answer (1-" + std::to_string(points) + " scale)");
+  interaction_plots(ctx, design, name, "Answer (1-" + std::to_string(points) + " scale)");
 }
 
 bool numeric_factor(const ExperimentSpec& spec, const std::string& name) {

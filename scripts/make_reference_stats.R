@@ -28,6 +28,18 @@ data(md_12.1, package = "afex")
 write.csv(md_12.1[, c("id", "angle", "noise", "rt")], file.path(out, "md_12.1.csv"), row.names = FALSE,
           quote = FALSE)
 
+# ---- A simulated 5 x 4 x 2 design (16 subjects, 2 repetitions per cell): effects with df1 up to 12,
+# so Mauchly's second-order term and the epsilons are exercised beyond df1 = 2 ----------------------
+set.seed(20000)
+sim <- expand.grid(rep = 1:2, method = c("baseline", "ours"), viewpoint = c("V1", "V2", "V3", "V4"),
+                   density = c("2.22", "3.33", "4.44", "5.55", "6.66"), participant = 1:16)
+bias <- rnorm(16, 0, 0.5)
+dens_i <- as.integer(factor(sim$density)) - 1
+sim$score <- round(3.3 + bias[sim$participant] - 0.3 * dens_i + ifelse(sim$method == "ours", 1 + 0.25 * dens_i, 0) +
+                   rnorm(nrow(sim), 0, 0.8 + 0.1 * dens_i), 2)
+write.csv(sim[, c("participant", "density", "viewpoint", "method", "rep", "score")], file.path(out, "sim_5x4x2.csv"),
+          row.names = FALSE, quote = FALSE)
+
 # ---- RM-ANOVA references --------------------------------------------------------------------------
 anova_ref <- function(name, id, dv, within) {
   d <- read.csv(file.path(out, paste0(name, ".csv")), colClasses = "character")
@@ -60,6 +72,7 @@ anova_ref <- function(name, id, dv, within) {
 anova_ref("rm_anova2", "Subject", "Performance", c("Time", "Metric"))
 anova_ref("ez_2x3x2", "id", "DV", c("A", "B", "D"))
 anova_ref("md_12.1", "id", "rt", c("angle", "noise"))
+anova_ref("sim_5x4x2", "participant", "score", c("density", "viewpoint", "method"))
 
 # ---- Post-hoc references (md_12.1, effect angle and angle:noise) --------------------------------
 d <- read.csv(file.path(out, "md_12.1.csv"), colClasses = "character")

@@ -163,8 +163,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     for (const auto& row : result.fits) {
       std::printf("%-10s %-12s intercept %9.4f slope %9.4f", row.subject.c_str(), row.by.c_str(),
                   row.fit.intercept, row.fit.slope);
-      for (size_t k = 0; k < pr.probabilities.size(); ++k)
+      for (size_t k = 0; k < pr.probabilities.size(); ++k) {
         std::printf("  x(%s) %.4f", probability_key(pr.probabilities[k]).c_str(), row.thresholds[k]);
+        if (!row.ci.empty()) std::printf(" [%.4f, %.4f]", row.ci[k].lower, row.ci[k].upper);
+      }
       std::printf("%s\n", row.fit.warning.empty() ? "" : ("  WARNING: " + row.fit.warning).c_str());
     }
     std::cout << "\n" << psychometric_markdown_table(result, "");

@@ -199,4 +199,24 @@ TEST_CASE("analysis: analyze report writes a Markdown report with figures", "[an
   CHECK(md2.find("RM-ANOVA of the thresholds") != std::string::npos);
   CHECK(std::filesystem::file_size(base / "out2" / "figures" / "psychometric_collision.png") > 1000);
   CHECK(md2.find("### naturalness") != std::string::npos);
+
+  // A response file without a factor column, or with an unknown question, is rejected with its name.
+  std::filesystem::create_directories(base / "bad");
+  std::ofstream((base / "bad" / "r.csv").string())
+      << "participant,block,trial,stimulus_id,density,viewpoint,question,response,reversed,rt_ms,practice\n"
+      << "1,1,1,s1,3.33,V1,Q1,3,3,100,0\n";
+  const auto bad =
+      run_cli({"analyze", "report", (base / "bad").string(), "--spec",
+               (test::source_dir() / "experiments" / "demo.yaml").string(), "--out", (base / "o3").string()});
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.err.find("method") != std::string::npos);
+  std::ofstream((base / "bad" / "r.csv").string()) << "participant,block,trial,stimulus_id,density,viewpoint,"
+                                                      "method,question,response,reversed,rt_ms,practice\n"
+                                                   << "1,1,1,s1,3.33,V1,ours,Q9,3,3,100,0\n";
+  const auto unknown =
+      run_cli({"analyze", "report", (base / "bad").string(), "--spec",
+               (test::source_dir() / "experiments" / "demo.yaml").string(), "--out", (base / "o3").string()});
+  CHECK(unknown.exit_code == 2);
+  CHECK(unknown.err.find("r.csv:2") != std::string::npos);
+  CHECK(unknown.err.find("Q9") != std::string::npos);
 }

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "analysis/psychometric_fit.hpp"
+#include "analysis/psychometric_table.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/seed.hpp"
 #include "tests/analysis/reference_table.hpp"
@@ -108,4 +109,49 @@ TEST_CASE("analysis: guess and lapse rates and parametric bootstrap", "[analysis
   const auto again = bootstrap_thresholds(x, fit, {0.5, 0.05}, reps, 7, opt);
   CHECK(again[0].lower == ci[0].lower);
   CHECK(again[1].upper == ci[1].upper);
+}
+
+TEST_CASE("analysis: psychometric table with cube-root volumes, groups and bad rows", "[analysis]") {
+  // Volumes v = x^3 with P(collision) rising in x: fitting with the cbrt transform equals fitting x.
+  std::string text = "p,volume,yes,cond\n";
+  std::vector<double> xs, ys;
+  Rng rng(derive_seed(5, "volumes"));
+  for (int s = 1; s <= 4; ++s)
+    for (const char* cond : {"A", "B"})
+      for (int level = 0; level < 9; ++level)
+        for (int t = 0; t < 6; ++t) {
+          const double x = 0.05 + 0.03 * level;
+          const double y = uniform01(rng) < 1.0 / (1.0 + std::exp(-40.0 * (x - 0.17))) ? 1.0 : 0.0;
+          text +=
+              std::to_string(s) + "," + csv_number(x * x * x) + "," + (y > 0 ? "1" : "0") + "," + cond + "\n";
+          if (s == 1 && std::string(cond) == "A") {
+            xs.push_back(x);
+            ys.push_back(y);
+          }
+        }
+  PsychometricRequest req;
+  req.subject = "p";
+  req.x = "volume";
+  req.response = "yes";
+  req.by = "cond";
+  req.x_transform = "cbrt";
+  const auto a = analyze_psychometric(parse_csv(text, "v.csv"), req);
+  REQUIRE(a.fits.size() == 8);
+  REQUIRE(a.groups.size() == 2);
+  CHECK(a.groups[0].n == 4);
+  const auto direct = fit_psychometric(xs, ys);
+  CHECK(a.fits[0].fit.slope > 0);
+  CHECK(a.fits[0].thresholds[0] == Approx(direct.threshold(0.5)).epsilon(1e-9));
+  REQUIRE(a.threshold_anova.has_value());
+  CHECK(a.threshold_anova->effects[0].name == "cond");
+  CHECK(a.threshold_anova->effects[0].df1 == 1);
+  const auto json = psychometric_to_json(a);
+  CHECK(json["fits"][0]["thresholds"].contains("0.5"));
+  CHECK(json["groups"][1]["by"] == "B");
+  try {
+    analyze_psychometric(parse_csv("p,volume,yes,cond\n1,-0.5,1,A\n", "neg.csv"), req);
+    FAIL("expected InputError");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("neg.csv:2") != std::string::npos);
+  }
 }

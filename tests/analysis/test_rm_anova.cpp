@@ -23,6 +23,8 @@ const std::vector<Case> kCases = {
     {"rm_anova2", "Subject", "Performance", {"Time", "Metric"}},
     {"ez_2x3x2", "id", "DV", {"A", "B", "D"}},
     {"md_12.1", "id", "rt", {"angle", "noise"}},
+    // Simulated in scripts/make_reference_stats.R: df1 up to 12 (Mauchly's second-order term, epsilons).
+    {"sim_5x4x2", "participant", "score", {"density", "viewpoint", "method"}},
 };
 
 void check_optional(const std::optional<double>& got, double want, const std::string& what) {
@@ -62,7 +64,8 @@ void check_against_reference(const RmAnovaResult& res, const Case& c) {
 }
 }  // namespace
 
-TEST_CASE("analysis: rm_anova agrees with afex/car on three published data sets", "[analysis]") {
+TEST_CASE("analysis: rm_anova agrees with afex/car on three published data sets and a 5x4x2 design",
+          "[analysis]") {
   for (const auto& c : kCases) {
     const auto table = read_csv(analysis_data(c.name + ".csv"));
     check_against_reference(rm_anova(build_within_design(table, c.dv, c.subject, c.within)), c);
