@@ -36,7 +36,10 @@ StudyResponses read_study_responses(const std::string& study_dir, const Experime
     const size_t stimulus = t.has_column("stimulus_id") ? t.column("stimulus_id") : t.column("stimulus");
     const size_t question = t.column("question");
     const size_t response = t.column("response");
-    const size_t reversed = t.has_column("reversed") ? t.column("reversed") : response;
+    // The session logger writes the reverse-coded value in `reverse_coded`. Files without it (e.g.
+    // exported from other tools) are reverse-coded here from the spec's question flags, never read raw.
+    const bool has_reverse_coded = t.has_column("reverse_coded");
+    const size_t reverse_coded = has_reverse_coded ? t.column("reverse_coded") : response;
     const bool has_practice = t.has_column("practice");
     const size_t practice = has_practice ? t.column("practice") : 0;
     std::vector<size_t> factor_cols;
@@ -52,7 +55,14 @@ StudyResponses read_study_responses(const std::string& study_dir, const Experime
       if (q == spec.protocol.questions.end())
         throw InputError(SourceLocation{file, t.line_numbers[r], 0, "question"},
                          "question '" + qid + "' is not in the spec's protocol.questions");
-      const double value = q->kind == "yesno" ? yes_no_value(t, r, response) : t.number(r, reversed);
+      const int points = q->points > 0 ? q->points : spec.protocol.scale_points;
+      double value = 0.0;
+      if (q->kind == "yesno")
+        value = yes_no_value(t, r, response);
+      else if (has_reverse_coded)
+        value = t.number(r, reverse_coded);
+      else
+        value = q->reverse ? points + 1 - t.number(r, response) : t.number(r, response);
       std::vector<std::string> row = {t.cell(r, participant), t.cell(r, stimulus), qid, csv_number(value)};
       for (size_t c : factor_cols) row.push_back(t.cell(r, c));
       out.table.rows.push_back(std::move(row));

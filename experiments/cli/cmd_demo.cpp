@@ -4,11 +4,11 @@
 #include <filesystem>
 #include <memory>
 
+#include "analysis/study_report.hpp"
 #include "crowdlab_embedded_demo.hpp"
 #include "experiments/cli/command_registry.hpp"
 #include "experiments/cli/pipeline/provenance.hpp"
 #include "experiments/cli/pipeline/run_pipeline.hpp"
-#include "analysis/study_report.hpp"
 #include "framework/core/stimulus_manifest.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 #include "study_ui/simulate_study.hpp"
@@ -47,7 +47,8 @@ void run_demo(const Options& o) {
   const std::string responses =
       study::simulate_study(spec, read_manifest(run.manifest.string()), study::ObserverModel{}, so);
 
-  const std::string report = analysis::write_study_report(study_dir.string(), spec_path.string(), (dir / "report").string());
+  const std::string report =
+      analysis::write_study_report(study_dir.string(), spec_path.string(), (dir / "report").string());
 
   std::printf("\ncrowdlab demo finished (%d conditions; %d stage outputs made, %d reused)\n", run.conditions,
               run.stages_run, run.stages_skipped);
@@ -60,9 +61,12 @@ void run_demo(const Options& o) {
 
 const CommandRegistration kRegistration([](CLI::App& root) {
   auto o = std::make_shared<Options>();
-  auto* cmd = root.add_subcommand("demo", "Run the embedded demo experiment end to end (stimuli, simulated study, report)");
+  auto* cmd = root.add_subcommand(
+      "demo", "Run the embedded demo experiment end to end (stimuli, simulated study, report)");
   cmd->add_option("--out", o->out, "Output folder")->capture_default_str();
-  cmd->add_option("--observers", o->observers, "Simulated observers")->check(CLI::Range(2, 1000))->capture_default_str();
+  cmd->add_option("--observers", o->observers, "Simulated observers")
+      ->check(CLI::Range(2, 1000))
+      ->capture_default_str();
   cmd->add_flag("--force", o->force, "Re-run every stage even when up to date");
   cmd->callback([o] { run_demo(*o); });
 });

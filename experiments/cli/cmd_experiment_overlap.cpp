@@ -63,14 +63,18 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ro
     const CrowdAnimation baseline = animate_crowd(s.trajectories, s.environment, spec.animation, ctx);
     CorrectorParams params;
     params.damping = spec.correction.damping;
-    Progress progress(s.scenario + " density " + density + ": correcting", static_cast<size_t>(baseline.frame_count()));
+    Progress progress(s.scenario + " density " + density + ": correcting",
+                      static_cast<size_t>(baseline.frame_count()));
     const CrowdAnimation ours = correct_crowd(baseline, params, &progress);
     progress.finish();
     const int n = static_cast<int>(baseline.characters.size());
-    rows.push_back({s.scenario, n, c.number("density", 0), "baseline", measure_crowd(baseline).mean_character_overlap_l});
-    rows.push_back({s.scenario, n, c.number("density", 0), "ours", measure_crowd(ours).mean_character_overlap_l});
-    std::printf("%-10s %3d characters (%.2f/m2): baseline %.3f L, ours %.3f L per character\n", s.scenario.c_str(), n,
-                c.number("density", 0), rows[rows.size() - 2].mean_overlap_l, rows.back().mean_overlap_l);
+    rows.push_back({s.scenario, n, c.number("density", 0), "baseline",
+                    measure_crowd(baseline).mean_character_overlap_l});
+    rows.push_back(
+        {s.scenario, n, c.number("density", 0), "ours", measure_crowd(ours).mean_character_overlap_l});
+    std::printf("%-10s %3d characters (%.2f/m2): baseline %.3f L, ours %.3f L per character\n",
+                s.scenario.c_str(), n, c.number("density", 0), rows[rows.size() - 2].mean_overlap_l,
+                rows.back().mean_overlap_l);
   }
 }
 
@@ -81,7 +85,8 @@ void run(const Options& o) {
   run_scenario(o.corridor, o, rows);
   std::string csv = csv_line({"scenario", "characters", "density", "method", "mean_overlap_l"});
   for (const Row& r : rows)
-    csv += csv_line({r.scenario, std::to_string(r.characters), csv_number(r.density), r.method, csv_number(r.mean_overlap_l)});
+    csv += csv_line({r.scenario, std::to_string(r.characters), csv_number(r.density), r.method,
+                     csv_number(r.mean_overlap_l)});
   write_file_atomic(fs::path(o.out) / "overlap_vs_density.csv", csv);
 
   for (const std::string scenario : {"stationary", "corridor"}) {
@@ -107,17 +112,25 @@ void run(const Options& o) {
     plot.stars.assign(plot.x_levels.size(), "");
     analysis::plot_interaction(plot, (fs::path(o.out) / ("overlap_vs_density_" + scenario)).string());
   }
-  std::printf("wrote %s/overlap_vs_density.csv and overlap_vs_density_{stationary,corridor}.png|svg\n", o.out.c_str());
+  std::printf("wrote %s/overlap_vs_density.csv and overlap_vs_density_{stationary,corridor}.png|svg\n",
+              o.out.c_str());
 }
 
 const CommandRegistration kRegistration([](CLI::App& root) {
   auto o = std::make_shared<Options>();
   auto* cmd = experiment_group(root)->add_subcommand(
-      "overlap-vs-density", "Seed 000 Figure 3: per-character overlap volume vs density, baseline and corrected");
+      "overlap-vs-density",
+      "Seed 000 Figure 3: per-character overlap volume vs density, baseline and corrected");
   cmd->add_option("--out", o->out, "Output folder")->capture_default_str();
-  cmd->add_option("--stationary", o->stationary, "Stationary (concert) spec")->check(CLI::ExistingFile)->capture_default_str();
-  cmd->add_option("--corridor", o->corridor, "Corridor (non-stationary) spec")->check(CLI::ExistingFile)->capture_default_str();
-  cmd->add_option("--duration", o->duration_s, "Seconds of animation per density")->check(CLI::Range(0.2, 60.0))->capture_default_str();
+  cmd->add_option("--stationary", o->stationary, "Stationary (concert) spec")
+      ->check(CLI::ExistingFile)
+      ->capture_default_str();
+  cmd->add_option("--corridor", o->corridor, "Corridor (non-stationary) spec")
+      ->check(CLI::ExistingFile)
+      ->capture_default_str();
+  cmd->add_option("--duration", o->duration_s, "Seconds of animation per density")
+      ->check(CLI::Range(0.2, 60.0))
+      ->capture_default_str();
   cmd->add_option("--fps", o->fps, "Frames per second")->check(CLI::Range(5.0, 120.0))->capture_default_str();
   cmd->callback([o] { run(*o); });
 });

@@ -39,47 +39,54 @@ void emit(const Options& o) {
   const size_t conditions = enumerate_conditions(spec).size() + enumerate_practice_conditions(spec).size();
   const int n = o.shards > 0 ? o.shards : static_cast<int>(std::min<size_t>(conditions, 64));
   const double frames_per_condition = spec.duration_s * spec.fps;
-  const double per_shard_s =
-      2.0 * std::ceil(static_cast<double>(conditions) / n) * frames_per_condition * (kCorrectSecondsPerFrame + kRenderSecondsPerFrame);
+  const double per_shard_s = 2.0 * std::ceil(static_cast<double>(conditions) / n) * frames_per_condition *
+                             (kCorrectSecondsPerFrame + kRenderSecondsPerFrame);
   const int minutes = std::max(10, static_cast<int>(std::ceil(per_shard_s / 60.0)) + 5);
   fs::create_directories(o.out);
   const std::string spec_abs = fs::absolute(o.spec).string();
-  const std::string run = shell_quote(o.exe) + " run " + shell_quote(spec_abs) + " --out " + shell_quote(o.results);
+  const std::string run =
+      shell_quote(o.exe) + " run " + shell_quote(spec_abs) + " --out " + shell_quote(o.results);
   const std::string collect = run + " --collect";
   fs::path file;
   std::string text;
   if (o.emit == "slurm") {
     file = fs::path(o.out) / "crowdlab.sbatch";
-    text = "#!/bin/bash\n# crowdlab: " + std::to_string(conditions) + " conditions of '" + spec.name + "' in " +
-           std::to_string(n) + " array tasks. Submit with: sbatch " + file.filename().string() +
-           "\n# then, after all tasks: sbatch --dependency=afterok:<jobid> --wrap " + shell_quote(collect) + "\n" +
-           "#SBATCH --job-name=crowdlab-" + spec.name + "\n#SBATCH --array=1-" + std::to_string(n) +
-           "\n#SBATCH --cpus-per-task=" + std::to_string(o.cpus) + "\n#SBATCH --mem=4G\n#SBATCH --time=" +
-           std::to_string(minutes) + "\n#SBATCH --output=crowdlab-%A_%a.log\nset -euo pipefail\n" + run +
+    text = "#!/bin/bash\n# crowdlab: " + std::to_string(conditions) + " conditions of '" + spec.name +
+           "' in " + std::to_string(n) + " array tasks. Submit with: sbatch " + file.filename().string() +
+           "\n# then, after all tasks: sbatch --dependency=afterok:<jobid> --wrap " + shell_quote(collect) +
+           "\n" + "#SBATCH --job-name=crowdlab-" + spec.name + "\n#SBATCH --array=1-" + std::to_string(n) +
+           "\n#SBATCH --cpus-per-task=" + std::to_string(o.cpus) +
+           "\n#SBATCH --mem=4G\n#SBATCH --time=" + std::to_string(minutes) +
+           "\n#SBATCH --output=crowdlab-%A_%a.log\nset -euo pipefail\n" + run +
            " --shard \"${SLURM_ARRAY_TASK_ID}/" + std::to_string(n) + "\"\n";
   } else if (o.emit == "parallel") {
     file = fs::path(o.out) / "crowdlab.parallel";
     text = "";
-    for (int k = 1; k <= n; ++k) text += run + " --shard " + std::to_string(k) + "/" + std::to_string(n) + "\n";
+    for (int k = 1; k <= n; ++k)
+      text += run + " --shard " + std::to_string(k) + "/" + std::to_string(n) + "\n";
   } else if (o.emit == "make") {
     file = fs::path(o.out) / "Makefile";
     text = "# crowdlab: run with make -j<jobs> -f " + file.string() + "\nSHARDS :=";
     for (int k = 1; k <= n; ++k) text += " shard-" + std::to_string(k);
     text += "\n.PHONY: all $(SHARDS)\nall: $(SHARDS)\n\t" + collect + "\n";
     for (int k = 1; k <= n; ++k)
-      text += "shard-" + std::to_string(k) + ":\n\t" + run + " --shard " + std::to_string(k) + "/" + std::to_string(n) + "\n";
+      text += "shard-" + std::to_string(k) + ":\n\t" + run + " --shard " + std::to_string(k) + "/" +
+              std::to_string(n) + "\n";
   } else {
-    throw InputError(SourceLocation{"", 0, 0, "--emit"}, "expected slurm, parallel or make, got '" + o.emit + "'");
+    throw InputError(SourceLocation{"", 0, 0, "--emit"},
+                     "expected slurm, parallel or make, got '" + o.emit + "'");
   }
   write_file_atomic(file, text);
-  std::printf("%zu conditions in %d shards (about %d min each): %s\n", conditions, n, minutes, file.string().c_str());
+  std::printf("%zu conditions in %d shards (about %d min each): %s\n", conditions, n, minutes,
+              file.string().c_str());
   if (o.emit == "parallel")
     std::printf("run: parallel -j %d < %s && %s\n", std::max(1, n), file.string().c_str(), collect.c_str());
 }
 
 const CommandRegistration kRegistration([](CLI::App& root) {
   auto o = std::make_shared<Options>();
-  auto* cmd = root.add_subcommand("plan", "Write job scripts (Slurm array, GNU parallel, make) that run a spec in shards");
+  auto* cmd = root.add_subcommand(
+      "plan", "Write job scripts (Slurm array, GNU parallel, make) that run a spec in shards");
   cmd->add_option("spec", o->spec, "Experiment spec (YAML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--emit", o->emit, "slurm | parallel | make")->required();
   cmd->add_option("--out", o->out, "Folder for the generated script")->required();

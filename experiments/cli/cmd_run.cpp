@@ -29,18 +29,21 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       "Resumable: outputs whose inputs did not change are kept (see DIR/**/*.prov.json).");
   cmd->add_option("spec", o->spec, "Experiment spec (YAML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out, "Output folder")->required();
-  cmd->add_option("--shard", o->shard, "Run only slice K of N (K/N): condition i belongs to shard (i mod N) + 1")
+  cmd->add_option("--shard", o->shard,
+                  "Run only slice K of N (K/N): condition i belongs to shard (i mod N) + 1")
       ->capture_default_str();
   cmd->add_option("--condition", o->condition, "Run only the condition with this id");
   cmd->add_flag("--force", o->force, "Re-run every stage even when its outputs are up to date");
-  cmd->add_flag("--collect", o->collect,
-                "Merge the shard manifests and provenance records of DIR, verifying every condition is present once");
+  cmd->add_flag(
+      "--collect", o->collect,
+      "Merge the shard manifests and provenance records of DIR, verifying every condition is present once");
   cmd->callback([o] {
     const ExperimentSpec spec = load_experiment_spec(o->spec);
     if (o->collect) {
       const CollectSummary c = collect_shards(spec, o->out);
-      std::printf("collected %d shard manifest(s): %d stimuli, %d provenance records\nmanifest: %s/manifest.csv\n",
-                  c.shards, c.entries, c.provenance_records, o->out.c_str());
+      std::printf(
+          "collected %d shard manifest(s): %d stimuli, %d provenance records\nmanifest: %s/manifest.csv\n",
+          c.shards, c.entries, c.provenance_records, o->out.c_str());
       return;
     }
     RunOptions ro;
@@ -49,8 +52,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     ro.shard = parse_shard(o->shard);
     ro.only = o->condition;
     const RunSummary s = run_experiment(spec, ro);
-    std::printf("%d conditions: %d stage outputs made, %d up to date\nmanifest: %s\n", s.conditions, s.stages_run,
-                s.stages_skipped, s.manifest.string().c_str());
+    std::printf("%d conditions: %d stage outputs made, %d up to date\nmanifest: %s\n", s.conditions,
+                s.stages_run, s.stages_skipped, s.manifest.string().c_str());
   });
 });
 

@@ -7,7 +7,9 @@
 
 namespace crowdlab {
 
-std::string_view to_string(Sex sex) { return sex == Sex::kFemale ? "female" : "male"; }
+std::string_view to_string(Sex sex) {
+  return sex == Sex::kFemale ? "female" : "male";
+}
 
 double BodyShape::capsule_volume_sum_m3() const {
   double v = 0.0;

@@ -14,7 +14,8 @@ double Capsule::volume_m3() const {
 Vec3 any_perpendicular(const Vec3& v) {
   // Cross with the world axis least aligned with v, which keeps the result well conditioned.
   const Vec3 n = v.normalized();
-  const Vec3 axis = std::abs(n.x()) < 0.57 ? Vec3::UnitX() : (std::abs(n.y()) < 0.57 ? Vec3::UnitY() : Vec3::UnitZ());
+  const Vec3 axis =
+      std::abs(n.x()) < 0.57 ? Vec3::UnitX() : (std::abs(n.y()) < 0.57 ? Vec3::UnitY() : Vec3::UnitZ());
   return n.cross(axis).normalized();
 }
 

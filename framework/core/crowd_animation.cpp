@@ -18,7 +18,8 @@ void validate_crowd(const CrowdAnimation& crowd, const std::string& context) {
       throw InputError(who + " has " + std::to_string(ch.frames.size()) + " frames, expected " +
                        std::to_string(frames));
     validate_body_shape(ch.shape, who);
-    for (size_t f = 0; f < ch.frames.size(); ++f) validate_pose(ch.frames[f], who + " frame " + std::to_string(f));
+    for (size_t f = 0; f < ch.frames.size(); ++f)
+      validate_pose(ch.frames[f], who + " frame " + std::to_string(f));
   }
 }
 

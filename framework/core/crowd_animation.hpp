@@ -14,10 +14,10 @@
 namespace crowdlab {
 
 struct CharacterAnimation {
-  std::string name;              ///< unique within a crowd, e.g. "c007"
+  std::string name;  ///< unique within a crowd, e.g. "c007"
   BodyShape shape;
-  std::vector<Pose> frames;      ///< frame f is at time f / fps seconds
-  int palette = 0;               ///< appearance index for rendering (clothing/skin palette)
+  std::vector<Pose> frames;  ///< frame f is at time f / fps seconds
+  int palette = 0;           ///< appearance index for rendering (clothing/skin palette)
 };
 
 /// A static oriented box (e.g. a corridor wall or a stage).
@@ -53,7 +53,9 @@ struct CrowdAnimation {
   CrowdMetadata meta;
 
   /// Number of frames (the same for every character; see validate_crowd()).
-  int frame_count() const { return characters.empty() ? 0 : static_cast<int>(characters.front().frames.size()); }
+  int frame_count() const {
+    return characters.empty() ? 0 : static_cast<int>(characters.front().frames.size());
+  }
   double duration_s() const { return meta.fps > 0 ? frame_count() / meta.fps : 0.0; }
 };
 

@@ -29,8 +29,9 @@ double CsvTable::number(size_t row, size_t col) const {
   while (begin < end && *begin == ' ') ++begin;
   auto [ptr, ec] = std::from_chars(begin, end, v);
   if (ec != std::errc() || ptr != end || !std::isfinite(v))
-    throw InputError(SourceLocation{source, line_numbers[row], static_cast<int>(col) + 1, "column '" + header[col] + "'"},
-                     "not a finite number: '" + s + "'");
+    throw InputError(
+        SourceLocation{source, line_numbers[row], static_cast<int>(col) + 1, "column '" + header[col] + "'"},
+        "not a finite number: '" + s + "'");
   return v;
 }
 

@@ -8,10 +8,10 @@
 namespace crowdlab {
 
 struct CsvTable {
-  std::string source;                         ///< file path (for error messages)
+  std::string source;  ///< file path (for error messages)
   std::vector<std::string> header;
-  std::vector<std::vector<std::string>> rows; ///< every row has header.size() cells
-  std::vector<int> line_numbers;              ///< 1-based file line of each row
+  std::vector<std::vector<std::string>> rows;  ///< every row has header.size() cells
+  std::vector<int> line_numbers;               ///< 1-based file line of each row
 
   /// Column index by name; throws InputError "<file>: missing column '<name>'" when absent.
   size_t column(const std::string& name) const;

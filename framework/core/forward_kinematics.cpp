@@ -36,7 +36,8 @@ Pose pose_from_bone_transforms(const BoneTransforms& bones) {
   p.local_rotations[0] = bones[0].rotation.normalized();
   for (int j = 1; j < kJointCount; ++j) {
     const Quat& parent = bones[static_cast<size_t>(kJointParent[static_cast<size_t>(j)])].rotation;
-    p.local_rotations[static_cast<size_t>(j)] = (parent.conjugate() * bones[static_cast<size_t>(j)].rotation).normalized();
+    p.local_rotations[static_cast<size_t>(j)] =
+        (parent.conjugate() * bones[static_cast<size_t>(j)].rotation).normalized();
   }
   return p;
 }

@@ -11,7 +11,7 @@
 namespace crowdlab {
 
 using BoneTransforms = std::array<RigidTransform, kJointCount>;  ///< bone frame -> world, (24)
-using WorldCapsules = std::array<Capsule, kJointCount>;           ///< capsules in world frame, (24)
+using WorldCapsules = std::array<Capsule, kJointCount>;          ///< capsules in world frame, (24)
 
 /// World transform of every bone frame.
 BoneTransforms forward_kinematics(const BodyShape& shape, const Pose& pose);

@@ -10,15 +10,20 @@ namespace {
 std::atomic<bool> g_enabled{true};
 }
 
-void Progress::set_enabled(bool enabled) { g_enabled = enabled; }
+void Progress::set_enabled(bool enabled) {
+  g_enabled = enabled;
+}
 
 Progress::Progress(std::string label, std::size_t total)
     : label_(std::move(label)), total_(total == 0 ? 1 : total), tty_(isatty(STDERR_FILENO) != 0) {
   start_ = last_draw_ = std::chrono::steady_clock::now();
-  if (g_enabled && !tty_) std::fprintf(stderr, "[crowdlab] %s: started (%zu steps)\n", label_.c_str(), total_);
+  if (g_enabled && !tty_)
+    std::fprintf(stderr, "[crowdlab] %s: started (%zu steps)\n", label_.c_str(), total_);
 }
 
-Progress::~Progress() { finish(); }
+Progress::~Progress() {
+  finish();
+}
 
 void Progress::advance(std::size_t units) {
   std::lock_guard lock(mutex_);

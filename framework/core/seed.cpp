@@ -21,9 +21,13 @@ std::uint64_t mix64(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
-std::uint64_t derive_seed(std::uint64_t parent, std::string_view key) { return mix64(parent ^ stable_hash(key)); }
+std::uint64_t derive_seed(std::uint64_t parent, std::string_view key) {
+  return mix64(parent ^ stable_hash(key));
+}
 
-double uniform01(Rng& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+double uniform01(Rng& rng) {
+  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
 
 double standard_normal(Rng& rng) {
   double u1 = uniform01(rng);

@@ -5,10 +5,10 @@
 namespace crowdlab {
 namespace {
 constexpr std::array<std::string_view, kJointCount> kNames = {
-    "pelvis",         "left_hip",      "right_hip",   "spine1",      "left_knee",  "right_knee",
-    "spine2",         "left_ankle",    "right_ankle", "spine3",      "left_foot",  "right_foot",
-    "neck",           "left_collar",   "right_collar", "head",       "left_shoulder", "right_shoulder",
-    "left_elbow",     "right_elbow",   "left_wrist",  "right_wrist", "left_hand",  "right_hand"};
+    "pelvis",     "left_hip",    "right_hip",    "spine1",      "left_knee",     "right_knee",
+    "spine2",     "left_ankle",  "right_ankle",  "spine3",      "left_foot",     "right_foot",
+    "neck",       "left_collar", "right_collar", "head",        "left_shoulder", "right_shoulder",
+    "left_elbow", "right_elbow", "left_wrist",   "right_wrist", "left_hand",     "right_hand"};
 }  // namespace
 
 std::string_view joint_name(int joint) {

@@ -43,8 +43,8 @@ enum Joint : int {
 };
 
 /// Parent of each joint; -1 for the root (pelvis). parent[j] < j for every non-root joint.
-inline constexpr std::array<int, kJointCount> kJointParent = {-1, 0, 0, 0, 1, 2, 3, 4, 5, 6, 7, 8,
-                                                              9, 9, 9, 12, 13, 14, 16, 17, 18, 19, 20, 21};
+inline constexpr std::array<int, kJointCount> kJointParent = {-1, 0, 0, 0,  1,  2,  3,  4,  5,  6,  7,  8,
+                                                              9,  9, 9, 12, 13, 14, 16, 17, 18, 19, 20, 21};
 
 /// SMPL joint names, snake_case ("pelvis", "left_hip", ..., "right_hand").
 std::string_view joint_name(int joint);

@@ -7,8 +7,8 @@
 
 namespace crowdlab {
 namespace {
-const std::vector<std::string> kTrailing = {"file", "duration_s", "frames", "width", "height", "sha256",
-                                            "overlap_l", "v_i_m", "collisions", "practice"};
+const std::vector<std::string> kTrailing = {"file",   "duration_s", "frames", "width",      "height",
+                                            "sha256", "overlap_l",  "v_i_m",  "collisions", "practice"};
 }
 
 void write_manifest(const StimulusManifest& m, const std::string& csv_path) {

@@ -18,9 +18,9 @@ struct StimulusEntry {
   int width = 0;
   int height = 0;
   std::string sha256;
-  double mean_overlap_l = -1.0;   ///< per-character mean overlap volume, litres (-1 = unknown)
-  double v_i_m = -1.0;            ///< seed 001 Eq. 1, metres (-1 = unknown)
-  int collisions = -1;            ///< colliding character pairs over the clip (-1 = unknown)
+  double mean_overlap_l = -1.0;  ///< per-character mean overlap volume, litres (-1 = unknown)
+  double v_i_m = -1.0;           ///< seed 001 Eq. 1, metres (-1 = unknown)
+  int collisions = -1;           ///< colliding character pairs over the clip (-1 = unknown)
   bool practice = false;
 };
 

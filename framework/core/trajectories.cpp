@@ -20,8 +20,8 @@ std::string trajectories_csv(const CrowdTrajectories& t) {
     const AgentTrajectory& a = t.agents[i];
     for (std::size_t f = 0; f < a.position_m.size(); ++f)
       s += csv_line({std::to_string(i), std::to_string(f), csv_number(static_cast<double>(f) / t.fps),
-                     csv_number(a.position_m[f].x()), csv_number(a.position_m[f].y()), csv_number(a.heading_rad[f]),
-                     std::to_string(a.group), csv_number(a.radius_m)});
+                     csv_number(a.position_m[f].x()), csv_number(a.position_m[f].y()),
+                     csv_number(a.heading_rad[f]), std::to_string(a.group), csv_number(a.radius_m)});
   }
   return s;
 }

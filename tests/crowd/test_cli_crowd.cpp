@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "framework/core/csv.hpp"
+#include "framework/spec/load_experiment_spec.hpp"
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
 
@@ -24,7 +25,8 @@ TEST_CASE("cli: crowd writes one condition's trajectories and measures", "[crowd
   const int n = summary["characters"].get<int>();
   const int frames = summary["frames"].get<int>();
   CHECK(n == 21);  // 3.33 per m^2 on 2.5 m x 2.5 m
-  CHECK(frames == 90);
+  const ExperimentSpec demo = load_experiment_spec(spec);
+  CHECK(frames == static_cast<int>(std::lround(demo.duration_s * demo.fps)));
   const CsvTable t = read_csv((dir / "t.csv").string());
   CHECK(t.rows.size() == static_cast<std::size_t>(n * frames));
   CHECK(t.header.at(3) == "x");

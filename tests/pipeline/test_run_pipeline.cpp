@@ -12,7 +12,9 @@ using namespace crowdlab::test;
 namespace fs = std::filesystem;
 
 namespace {
-std::string tiny_spec() { return (source_dir() / "tests/data/pipeline/tiny.yaml").string(); }
+std::string tiny_spec() {
+  return (source_dir() / "tests/data/pipeline/tiny.yaml").string();
+}
 
 std::map<std::string, std::string> hashes(const fs::path& manifest) {
   std::map<std::string, std::string> out;
@@ -79,24 +81,28 @@ TEST_CASE("plan writes Slurm, GNU parallel and make job files") {
                          "--crowdlab", crowdlab_exe().string(), "--results", (dir / "res").string()});
   REQUIRE(r.exit_code == 0);
   const std::string sbatch = slurp(dir / "crowdlab.sbatch");
-  CHECK_THAT(sbatch, Catch::Contains("#SBATCH --array=1-2") && Catch::Contains("--shard \"${SLURM_ARRAY_TASK_ID}/2\""));
+  CHECK_THAT(sbatch, Catch::Contains("#SBATCH --array=1-2") &&
+                         Catch::Contains("--shard \"${SLURM_ARRAY_TASK_ID}/2\""));
   CHECK(std::system(("bash -n " + shell_quote((dir / "crowdlab.sbatch").string())).c_str()) == 0);
 
-  REQUIRE(run_cli({"plan", tiny_spec(), "--emit", "parallel", "--out", dir.string(), "--shards", "2", "--crowdlab",
-                   crowdlab_exe().string(), "--results", (dir / "res").string()})
+  REQUIRE(run_cli({"plan", tiny_spec(), "--emit", "parallel", "--out", dir.string(), "--shards", "2",
+                   "--crowdlab", crowdlab_exe().string(), "--results", (dir / "res").string()})
               .exit_code == 0);
   const std::string jobs = slurp(dir / "crowdlab.parallel");
   CHECK(std::count(jobs.begin(), jobs.end(), '\n') == 2);
   if (std::system("command -v parallel >/dev/null 2>&1") == 0) {
     // Run the shards as separate local processes through GNU parallel, then collect.
-    const std::string cmd = "parallel --will-cite -j 2 < " + shell_quote((dir / "crowdlab.parallel").string()) + " >/dev/null 2>&1";
+    const std::string cmd = "parallel --will-cite -j 2 < " +
+                            shell_quote((dir / "crowdlab.parallel").string()) + " >/dev/null 2>&1";
     REQUIRE(std::system(cmd.c_str()) == 0);
     REQUIRE(run_cli({"-q", "run", tiny_spec(), "--out", (dir / "res").string(), "--collect"}).exit_code == 0);
     CHECK(read_manifest((dir / "res" / "manifest.csv").string()).entries.size() == 4);
   } else {
     WARN("skipping the GNU parallel run: `parallel` is not installed");
   }
-  REQUIRE(run_cli({"plan", tiny_spec(), "--emit", "make", "--out", dir.string(), "--shards", "2"}).exit_code == 0);
+  REQUIRE(
+      run_cli({"plan", tiny_spec(), "--emit", "make", "--out", dir.string(), "--shards", "2"}).exit_code ==
+      0);
   CHECK_THAT(slurp(dir / "Makefile"), Catch::Contains("shard-2:"));
   CHECK(run_cli({"plan", tiny_spec(), "--emit", "cron", "--out", dir.string()}).exit_code == 2);
 }

@@ -48,7 +48,8 @@ CollectSummary collect_shards(const ExperimentSpec& spec, const fs::path& dir) {
     if (!known) duplicated += " " + id + "(unknown)";
   }
   if (!missing.empty() || !duplicated.empty())
-    throw RuntimeError("collect " + dir.string() + ": " + (missing.empty() ? "" : "missing conditions:" + missing + "; ") +
+    throw RuntimeError("collect " + dir.string() + ": " +
+                       (missing.empty() ? "" : "missing conditions:" + missing + "; ") +
                        (duplicated.empty() ? "" : "duplicated or unknown:" + duplicated));
   // Enumeration order, whatever the shard order was.
   std::map<std::string, size_t> rank;
@@ -68,7 +69,8 @@ CollectSummary collect_shards(const ExperimentSpec& spec, const fs::path& dir) {
     if (!name.ends_with(".prov.json")) continue;
     std::ifstream in(entry.path());
     try {
-      prov["outputs"][fs::relative(name.substr(0, name.size() - 10), dir).string()] = nlohmann::json::parse(in);
+      prov["outputs"][fs::relative(name.substr(0, name.size() - 10), dir).string()] =
+          nlohmann::json::parse(in);
       ++s.provenance_records;
     } catch (const nlohmann::json::exception&) {
       throw RuntimeError(name + ": corrupt provenance record (re-run that shard)");

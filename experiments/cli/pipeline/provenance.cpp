@@ -33,7 +33,9 @@ std::string stage_input_hash(const std::string& stage, const nlohmann::json& par
   return sha256_hex(j.dump());
 }
 
-static fs::path sidecar(const fs::path& output) { return fs::path(output.string() + ".prov.json"); }
+static fs::path sidecar(const fs::path& output) {
+  return fs::path(output.string() + ".prov.json");
+}
 
 std::string recorded_hash(const fs::path& output) {
   std::ifstream in(sidecar(output));

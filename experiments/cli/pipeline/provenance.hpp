@@ -27,8 +27,8 @@ std::string stage_input_hash(const std::string& stage, const nlohmann::json& par
 bool output_up_to_date(const std::filesystem::path& output, const std::string& input_hash);
 
 /// Writes `output`.prov.json after `output` has been written completely.
-void record_provenance(const std::filesystem::path& output, const std::string& stage, const std::string& input_hash,
-                       const ProvenanceContext& context);
+void record_provenance(const std::filesystem::path& output, const std::string& stage,
+                       const std::string& input_hash, const ProvenanceContext& context);
 
 /// The recorded input hash of an output ("" when it has no sidecar).
 std::string recorded_hash(const std::filesystem::path& output);

@@ -11,12 +11,12 @@
 
 #include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/animation/animate_crowd.hpp"
-#include "framework/core/trajectories.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/core/seed.hpp"
 #include "framework/core/sha256.hpp"
 #include "framework/core/stimulus_manifest.hpp"
+#include "framework/core/trajectories.hpp"
 #include "framework/correction/correct_crowd.hpp"
 #include "framework/crowd/generate_scenario.hpp"
 #include "framework/io/read_crowd_glb.hpp"
@@ -24,15 +24,23 @@
 #include "framework/metrics/measure_crowd.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 #include "stimuli/render_clip.hpp"
+#include "stimuli/renderer.hpp"
 
 namespace crowdlab::cli {
 namespace fs = std::filesystem;
 using nlohmann::json;
+using stimuli::parse_hex_colour;
+using stimuli::render_clip;
+using stimuli::Renderer;
+using stimuli::RenderOptions;
+using stimuli::write_contact_sheet;
 
 namespace {
 
 /// Factors that change how a crowd is shown, not the crowd itself.
-bool is_presentation_factor(const std::string& name) { return name == "viewpoint" || name == "method"; }
+bool is_presentation_factor(const std::string& name) {
+  return name == "viewpoint" || name == "method";
+}
 
 json level_json(const Condition& c) {
   json j = json::object();
@@ -65,7 +73,8 @@ class Runner {
     for (Condition& c : enumerate_conditions(spec_)) conditions.push_back(std::move(c));
     std::vector<Condition> selected;
     for (size_t i = 0; i < conditions.size(); ++i)
-      if (opt_.shard.contains(i) && (opt_.only.empty() || conditions[i].id == opt_.only)) selected.push_back(conditions[i]);
+      if (opt_.shard.contains(i) && (opt_.only.empty() || conditions[i].id == opt_.only))
+        selected.push_back(conditions[i]);
     if (!opt_.only.empty() && selected.empty())
       throw InputError(SourceLocation{"", 0, 0, "--condition"}, "no condition with id '" + opt_.only + "'");
     fs::create_directories(opt_.out_dir / "crowds");
@@ -92,9 +101,10 @@ class Runner {
     }
     progress.finish();
     summary_.conditions = static_cast<int>(selected.size());
-    summary_.manifest = opt_.out_dir / (opt_.shard.count > 1 ? "manifest.shard-" + std::to_string(opt_.shard.index) +
-                                                                   "-of-" + std::to_string(opt_.shard.count) + ".csv"
-                                                             : std::string("manifest.csv"));
+    summary_.manifest =
+        opt_.out_dir / (opt_.shard.count > 1 ? "manifest.shard-" + std::to_string(opt_.shard.index) + "-of-" +
+                                                   std::to_string(opt_.shard.count) + ".csv"
+                                             : std::string("manifest.csv"));
     write_manifest(manifest, summary_.manifest.string());
     return summary_;
   }
@@ -125,7 +135,8 @@ class Runner {
     g.crowd_hash = stage_input_hash("crowd", crowd_params, {});
     g.baseline_hash = stage_input_hash("animation", json{{"spec", spec_.source_hash}}, {g.crowd_hash});
     g.ours_hash = stage_input_hash("correction",
-                                   json{{"damping", spec_.correction.damping}, {"stiffness", spec_.correction.stiffness},
+                                   json{{"damping", spec_.correction.damping},
+                                        {"stiffness", spec_.correction.stiffness},
                                         {"contact_stiffness", spec_.correction.collision_stiffness}},
                                    {g.baseline_hash});
     return g;
@@ -171,7 +182,8 @@ class Runner {
     }
     scenario_type_ = resolve_scenario_type(spec_, g.crowd_condition);
     const ScenarioResult& s = scenario(g);
-    CrowdAnimation crowd = animate_crowd(s.trajectories, s.environment, spec_.animation, animation_context(g));
+    CrowdAnimation crowd =
+        animate_crowd(s.trajectories, s.environment, spec_.animation, animation_context(g));
     crowd.meta.seed = g.crowd_condition.seed;
     crowd.meta.condition_id = g.key;
     crowd.meta.scenario = s.scenario;
@@ -192,7 +204,8 @@ class Runner {
     CorrectorParams params;
     if (spec_.correction.stiffness > 0) params.stiffness = spec_.correction.stiffness;
     params.damping = spec_.correction.damping;
-    if (spec_.correction.collision_stiffness > 0) params.contact_stiffness = spec_.correction.collision_stiffness;
+    if (spec_.correction.collision_stiffness > 0)
+      params.contact_stiffness = spec_.correction.collision_stiffness;
     Progress progress("correct " + g.key, static_cast<size_t>(input.frame_count()));
     CorrectionReport report;
     CrowdAnimation out_crowd = correct_crowd(input, params, &progress, &report);
@@ -211,7 +224,8 @@ class Runner {
     auto it = g.metrics.find(method);
     if (it != g.metrics.end()) return it->second;
     const fs::path out = g.dir / (method + ".metrics.json");
-    const std::string hash = stage_input_hash("metrics", json::object(), {method == "ours" ? g.ours_hash : g.baseline_hash});
+    const std::string hash =
+        stage_input_hash("metrics", json::object(), {method == "ours" ? g.ours_hash : g.baseline_hash});
     json j;
     if (up_to_date(out, hash)) {
       std::ifstream in(out);
@@ -282,17 +296,22 @@ class Runner {
     const std::string viewpoint = c.text("viewpoint", default_viewpoint());
     const RenderOptions ro = render_options();
     const fs::path clip = dir / "clip.mp4";
-    const std::string render_hash = stage_input_hash(
-        "render", json{{"viewpoint", viewpoint}, {"width", ro.width}, {"height", ro.height}, {"crf", ro.crf},
-                       {"overlap", ro.scene.overlap}, {"spec", spec_.source_hash}},
-        {anim_hash});
+    const std::string render_hash = stage_input_hash("render",
+                                                     json{{"viewpoint", viewpoint},
+                                                          {"width", ro.width},
+                                                          {"height", ro.height},
+                                                          {"crf", ro.crf},
+                                                          {"overlap", ro.scene.overlap},
+                                                          {"spec", spec_.source_hash}},
+                                                     {anim_hash});
     if (!up_to_date(clip, render_hash)) {
       render_clip(renderer(), crowd, ro, viewpoint, clip.string());
       record_provenance(clip, "render", render_hash, context_);
     }
     if (spec_.outputs.contact_sheet) {
       const fs::path sheet = g.dir / (method + ".contact_sheet.png");
-      const std::string sheet_hash = stage_input_hash("contact_sheet", json{{"w", ro.width}, {"h", ro.height}}, {anim_hash});
+      const std::string sheet_hash =
+          stage_input_hash("contact_sheet", json{{"w", ro.width}, {"h", ro.height}}, {anim_hash});
       if (!up_to_date(sheet, sheet_hash)) {
         write_contact_sheet(renderer(), crowd, ro, crowd.frame_count() / 2, sheet.string());
         record_provenance(sheet, "contact_sheet", sheet_hash, context_);
@@ -332,6 +351,8 @@ std::string crowd_key(const Condition& condition) {
   return condition.practice ? "practice_" + key : key;
 }
 
-RunSummary run_experiment(const ExperimentSpec& spec, const RunOptions& options) { return Runner(spec, options).run(); }
+RunSummary run_experiment(const ExperimentSpec& spec, const RunOptions& options) {
+  return Runner(spec, options).run();
+}
 
 }  // namespace crowdlab::cli

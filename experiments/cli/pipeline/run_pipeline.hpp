@@ -29,13 +29,13 @@ namespace crowdlab::cli {
 
 struct RunOptions {
   std::filesystem::path out_dir;
-  bool force = false;   ///< re-run every stage even when up to date
-  Shard shard;          ///< the slice of conditions to run
-  std::string only;     ///< run just this condition id ("" = all)
+  bool force = false;  ///< re-run every stage even when up to date
+  Shard shard;         ///< the slice of conditions to run
+  std::string only;    ///< run just this condition id ("" = all)
 };
 
 struct RunSummary {
-  int conditions = 0;      ///< conditions in this run (after sharding/filtering)
+  int conditions = 0;  ///< conditions in this run (after sharding/filtering)
   int stages_run = 0;
   int stages_skipped = 0;  ///< up to date
   std::filesystem::path manifest;

@@ -14,8 +14,10 @@ Shard parse_shard(const std::string& text) {
     return ec == std::errc() && p == v.data() + v.size();
   };
   if (slash == std::string::npos || !parse(std::string_view(text).substr(0, slash), s.index) ||
-      !parse(std::string_view(text).substr(slash + 1), s.count) || s.count < 1 || s.index < 1 || s.index > s.count)
-    throw InputError(SourceLocation{"", 0, 0, "--shard"}, "expected K/N with 1 <= K <= N, got '" + text + "'");
+      !parse(std::string_view(text).substr(slash + 1), s.count) || s.count < 1 || s.index < 1 ||
+      s.index > s.count)
+    throw InputError(SourceLocation{"", 0, 0, "--shard"},
+                     "expected K/N with 1 <= K <= N, got '" + text + "'");
   return s;
 }
 
