@@ -3,7 +3,6 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <regex>
 
 #include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/core/error.hpp"
@@ -13,15 +12,21 @@
 namespace crowdlab::cli {
 namespace fs = std::filesystem;
 
+namespace {
+/// "manifest.shard-K-of-N.csv", as run_pipeline names a shard's manifest.
+bool is_shard_manifest(const std::string& name) {
+  return name.starts_with("manifest.shard-") && name.ends_with(".csv") && name.find("-of-") != std::string::npos;
+}
+}  // namespace
+
 CollectSummary collect_shards(const ExperimentSpec& spec, const fs::path& dir) {
   if (!fs::is_directory(dir)) throw InputError(dir.string() + ": no such output folder");
   CollectSummary s;
   StimulusManifest merged;
   std::map<std::string, int> seen;
-  const std::regex shard_name(R"(manifest\.shard-(\d+)-of-(\d+)\.csv)");
   std::vector<fs::path> shard_files;
   for (const auto& entry : fs::directory_iterator(dir))
-    if (std::regex_match(entry.path().filename().string(), shard_name)) shard_files.push_back(entry.path());
+    if (is_shard_manifest(entry.path().filename().string())) shard_files.push_back(entry.path());
   std::sort(shard_files.begin(), shard_files.end());
   if (shard_files.empty() && fs::exists(dir / "manifest.csv")) shard_files.push_back(dir / "manifest.csv");
   if (shard_files.empty()) throw RuntimeError(dir.string() + ": no manifest or shard manifests to collect");

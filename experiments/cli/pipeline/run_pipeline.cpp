@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 
+#include "experiments/cli/metrics_json.hpp"
 #include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/animation/animate_crowd.hpp"
 #include "framework/core/error.hpp"
@@ -233,14 +234,7 @@ class Runner {
     } else {
       const CrowdAnimation& crowd = method == "ours" ? corrected(g) : baseline(g);
       const CrowdMetrics m = measure_crowd(crowd);
-      j = {{"characters", m.characters},
-           {"frames", m.frames},
-           {"fps", m.fps},
-           {"mean_character_overlap_l", m.mean_character_overlap_l},
-           {"volume_index_m", m.volume_index_m},
-           {"max_penetration_depth_m", m.max_penetration_depth_m},
-           {"collision_count", m.collision_count},
-           {"colliding_frames", m.colliding_frames}};
+      j = crowd_metrics_json(m, false);
       write_file_atomic(out, j.dump(2) + "\n");
       record_provenance(out, "metrics", hash, context_);
     }

@@ -1,0 +1,45 @@
+#include "experiments/cli/metrics_json.hpp"
+
+namespace crowdlab::cli {
+
+nlohmann::json crowd_metrics_json(const CrowdMetrics& m, bool per_frame) {
+  nlohmann::json j = {{"characters", m.characters},
+                      {"frames", m.frames},
+                      {"fps", m.fps},
+                      {"mean_character_overlap_l", m.mean_character_overlap_l},
+                      {"volume_index_m", m.volume_index_m},
+                      {"max_penetration_depth_m", m.max_penetration_depth_m},
+                      {"collision_count", m.collision_count},
+                      {"colliding_frames", m.colliding_frames},
+                      {"max_error_bound_l", 1000.0 * m.max_error_bound_m3}};
+  nlohmann::json chars = nlohmann::json::array();
+  for (double v : m.character_mean_overlap_m3) chars.push_back(1000.0 * v);
+  j["character_mean_overlap_l"] = chars;
+  nlohmann::json pairs = nlohmann::json::array();
+  for (const PairMetrics& p : m.pairs)
+    pairs.push_back({{"a", p.a},
+                     {"b", p.b},
+                     {"colliding_frames", p.colliding_frames},
+                     {"collision_events", p.collision_events},
+                     {"volume_index_m", p.volume_index_m},
+                     {"max_volume_l", 1000.0 * p.max_volume_m3},
+                     {"max_penetration_depth_m", p.max_penetration_depth_m}});
+  j["pairs"] = pairs;
+  if (per_frame) {
+    nlohmann::json mean = nlohmann::json::array(), total = nlohmann::json::array(),
+                   depth = nlohmann::json::array(), count = nlohmann::json::array();
+    for (const FrameMetrics& f : m.per_frame) {
+      mean.push_back(1000.0 * f.mean_character_overlap_m3);
+      total.push_back(1000.0 * f.total_pair_overlap_m3);
+      depth.push_back(f.max_penetration_depth_m);
+      count.push_back(f.colliding_pairs);
+    }
+    j["per_frame"] = {{"mean_character_overlap_l", mean},
+                      {"total_pair_overlap_l", total},
+                      {"max_penetration_depth_m", depth},
+                      {"colliding_pairs", count}};
+  }
+  return j;
+}
+
+}  // namespace crowdlab::cli
