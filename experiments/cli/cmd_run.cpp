@@ -30,7 +30,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("spec", o->spec, "Experiment spec (YAML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out, "Output folder")->required();
   cmd->add_option("--shard", o->shard,
-                  "Run only slice K of N (K/N): condition i belongs to shard (i mod N) + 1")
+                  "Run only slice K of N (K/N): crowd group i (all conditions showing one crowd) belongs to "
+                  "shard (i mod N) + 1")
       ->capture_default_str();
   cmd->add_option("--condition", o->condition, "Run only the condition with this id");
   cmd->add_flag("--force", o->force, "Re-run every stage even when its outputs are up to date");

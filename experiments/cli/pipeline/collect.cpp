@@ -15,7 +15,8 @@ namespace fs = std::filesystem;
 namespace {
 /// "manifest.shard-K-of-N.csv", as run_pipeline names a shard's manifest.
 bool is_shard_manifest(const std::string& name) {
-  return name.starts_with("manifest.shard-") && name.ends_with(".csv") && name.find("-of-") != std::string::npos;
+  return name.starts_with("manifest.shard-") && name.ends_with(".csv") &&
+         name.find("-of-") != std::string::npos;
 }
 }  // namespace
 

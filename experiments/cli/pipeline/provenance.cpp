@@ -64,7 +64,8 @@ nlohmann::json library_versions() {
 }
 
 void write_file_atomic(const fs::path& path, const std::string& contents) {
-  const fs::path tmp = path.string() + ".tmp";
+  // Per-process temporary name: shards running at once may write the same file (e.g. spec.yaml).
+  const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
   {
     const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd < 0) throw RuntimeError(tmp.string() + ": cannot write");

@@ -72,36 +72,42 @@ class Runner {
   RunSummary run() {
     std::vector<Condition> conditions = enumerate_practice_conditions(spec_);
     for (Condition& c : enumerate_conditions(spec_)) conditions.push_back(std::move(c));
-    std::vector<Condition> selected;
-    for (size_t i = 0; i < conditions.size(); ++i)
-      if (opt_.shard.contains(i) && (opt_.only.empty() || conditions[i].id == opt_.only))
-        selected.push_back(conditions[i]);
-    if (!opt_.only.empty() && selected.empty())
+    // Shards own whole crowd groups (all conditions that show one crowd), never parts of one, so no
+    // two shards ever compute or write the same crowd files. Group g (in first-appearance order of the
+    // enumeration) belongs to shard (g mod N) + 1: disjoint, deterministic and balanced to one group.
+    std::vector<std::string> order;
+    std::map<std::string, std::vector<Condition>> groups;
+    for (const Condition& c : conditions) {
+      if (!opt_.only.empty() && c.id != opt_.only) continue;
+      const std::string key = crowd_key(c);
+      if (!groups.count(key)) order.push_back(key);
+      groups[key].push_back(c);
+    }
+    if (!opt_.only.empty() && order.empty())
       throw InputError(SourceLocation{"", 0, 0, "--condition"}, "no condition with id '" + opt_.only + "'");
+    std::vector<std::string> mine;
+    size_t selected = 0;
+    for (size_t g = 0; g < order.size(); ++g)
+      if (opt_.shard.contains(g)) {
+        mine.push_back(order[g]);
+        selected += groups[order[g]].size();
+      }
     fs::create_directories(opt_.out_dir / "crowds");
     fs::create_directories(opt_.out_dir / "conditions");
     copy_spec();
 
-    // Group by crowd key, keeping first-appearance order so output order is stable.
-    std::vector<std::string> order;
-    std::map<std::string, std::vector<const Condition*>> groups;
-    for (const Condition& c : selected) {
-      const std::string key = crowd_key(c);
-      if (!groups.count(key)) order.push_back(key);
-      groups[key].push_back(&c);
-    }
     StimulusManifest manifest;
     for (const Factor& f : spec_.factors) manifest.factor_names.push_back(f.name);
-    Progress progress("run " + spec_.name, selected.size());
-    for (const std::string& key : order) {
-      CrowdGroup group = make_group(key, *groups[key].front());
-      for (const Condition* c : groups[key]) {
-        manifest.entries.push_back(run_condition(group, *c));
+    Progress progress("run " + spec_.name, selected);
+    for (const std::string& key : mine) {
+      CrowdGroup group = make_group(key, groups[key].front());
+      for (const Condition& c : groups[key]) {
+        manifest.entries.push_back(run_condition(group, c));
         progress.advance();
       }
     }
     progress.finish();
-    summary_.conditions = static_cast<int>(selected.size());
+    summary_.conditions = static_cast<int>(selected);
     summary_.manifest =
         opt_.out_dir / (opt_.shard.count > 1 ? "manifest.shard-" + std::to_string(opt_.shard.index) + "-of-" +
                                                    std::to_string(opt_.shard.count) + ".csv"

@@ -1,7 +1,7 @@
 #pragma once
-// `--shard K/N`: a disjoint, deterministic slice of the conditions. Condition i (in enumeration order)
-// belongs to shard (i mod N) + 1, so every condition is in exactly one shard and shards are balanced
-// to within one condition.
+// `--shard K/N`: a disjoint, deterministic slice of the work. `crowdlab run` numbers its crowd groups
+// (the conditions that show one crowd) in enumeration order; group i belongs to shard (i mod N) + 1, so
+// every condition is in exactly one shard and no two shards write the same files.
 #include <string>
 
 namespace crowdlab::cli {
@@ -9,8 +9,8 @@ namespace crowdlab::cli {
 struct Shard {
   int index = 1;  ///< K, 1-based
   int count = 1;  ///< N
-  bool contains(std::size_t condition_index) const {
-    return static_cast<int>(condition_index % static_cast<std::size_t>(count)) + 1 == index;
+  bool contains(std::size_t item_index) const {
+    return static_cast<int>(item_index % static_cast<std::size_t>(count)) + 1 == index;
   }
 };
 
