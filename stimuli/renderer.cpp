@@ -323,6 +323,21 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
     throw InputError("frame " + std::to_string(frame) + " out of range [0, " +
                      std::to_string(crowd_->frame_count()) + ")");
   Gl& g = *gl_;
+  // The static environment (visible boxes, then meshes in world coordinates), drawn the same way by
+  // the shadow pass and the colour pass; only the program and its model-matrix uniform differ.
+  const auto draw_environment = [&g](GLuint program, int model_location) {
+    for (size_t b = 0; b < g.box_models.size(); ++b) {
+      if (g.box_hidden[b]) continue;
+      set_mat4(program, model_location, g.box_models[b]);
+      glBindVertexArray(g.cube.vao);
+      glDrawElements(GL_TRIANGLES, g.cube.count, GL_UNSIGNED_INT, nullptr);
+    }
+    set_mat4(program, model_location, Mat4::Identity());
+    for (const GpuMesh& m : g.environment_meshes) {
+      glBindVertexArray(m.vao);
+      glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
+    }
+  };
   const auto& chars = crowd_->characters;
   const size_t n = chars.size();
 
@@ -422,18 +437,7 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   glUseProgram(p);
   set_mat4(p, g.static_depth.uniform("u_view_proj"), light_vp);
   glDisable(GL_CULL_FACE);
-  for (size_t b = 0; b < g.box_models.size(); ++b) {
-    if (g.box_hidden[b]) continue;
-    const Mat4& model = g.box_models[b];
-    set_mat4(p, g.static_depth.uniform("u_model"), model);
-    glBindVertexArray(g.cube.vao);
-    glDrawElements(GL_TRIANGLES, g.cube.count, GL_UNSIGNED_INT, nullptr);
-  }
-  set_mat4(p, g.static_depth.uniform("u_model"), Mat4::Identity());
-  for (const GpuMesh& m : g.environment_meshes) {
-    glBindVertexArray(m.vao);
-    glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
-  }
+  draw_environment(p, g.static_depth.uniform("u_model"));
   glDisable(GL_POLYGON_OFFSET_FILL);
 
   // 3. Colour pass.
@@ -508,18 +512,7 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   glUseProgram(p);
   glProgramUniform1i(p, g.static_lit.uniform("u_material"), 2);
   set_rgb(p, g.static_lit.uniform("u_base_color"), options.environment);
-  for (size_t b = 0; b < g.box_models.size(); ++b) {
-    if (g.box_hidden[b]) continue;
-    const Mat4& model = g.box_models[b];
-    set_mat4(p, g.static_lit.uniform("u_model"), model);
-    glBindVertexArray(g.cube.vao);
-    glDrawElements(GL_TRIANGLES, g.cube.count, GL_UNSIGNED_INT, nullptr);
-  }
-  set_mat4(p, g.static_lit.uniform("u_model"), Mat4::Identity());
-  for (const GpuMesh& m : g.environment_meshes) {
-    glBindVertexArray(m.vao);
-    glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
-  }
+  draw_environment(p, g.static_lit.uniform("u_model"));
   if (crowd_->environment.ground_plane) {
     glProgramUniform1i(p, g.static_lit.uniform("u_material"), 1);
     set_rgb(p, g.static_lit.uniform("u_base_color"), options.ground);

@@ -13,10 +13,11 @@
 #include <tuple>
 
 #include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/core/csv.hpp"
-#include "framework/core/trajectories.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
+#include "framework/core/trajectories.hpp"
 #include "framework/crowd/collision_table.hpp"
 #include "framework/crowd/disc_collision_events.hpp"
 #include "framework/crowd/generate_scenario.hpp"
@@ -33,12 +34,10 @@ struct Args {
   bool list = false;
 };
 
+/// Creates the parent folder, then writes atomically with the CLI's one file writer.
 void write_file(const std::filesystem::path& path, const std::string& text) {
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.flush();
-  if (!out) throw RuntimeError("cannot write " + path.string());
+  write_file_atomic(path, text);
 }
 
 const Condition& find_condition(const std::vector<Condition>& conditions, const std::string& id) {
