@@ -19,6 +19,7 @@ namespace {
 struct Options {
   int agents = 1000;
   std::string mesh = "blobby";
+  std::string model = "social";
   int steps = 200;
   int threads = 1;
   bool json = false;
@@ -31,7 +32,9 @@ void run(const Options& o) {
   auto mesh = std::make_shared<const SurfaceMesh>(
       o.mesh == "blobby" ? make_blobby_surface(100000, std::max(8.0, std::sqrt(o.agents / M_PI)))
                          : make_surface_scene(o.mesh));
-  const SurfaceCrowdModel model = make_surface_crowd_model(mesh, {}, 8, 1);
+  SurfaceCrowdParams params;
+  params.avoidance = parse_surface_avoidance(o.model, "--model");
+  const SurfaceCrowdModel model = make_surface_crowd_model(mesh, params, 8, 1);
   SurfaceCrowdState state = spawn_surface_agents(model, o.agents, 1);
   for (int k = 0; k < 10; ++k) step_surface_crowd(model, state);  // warm-up: caches, first allocation
   std::vector<double> ms;
@@ -50,12 +53,13 @@ void run(const Options& o) {
                      {"agents", o.agents},
                      {"triangles", mesh->face_count()},
                      {"mesh", o.mesh},
+                     {"model", o.model},
                      {"threads", o.threads},
                      {"steps", o.steps}};
     std::printf("%s\n", j.dump().c_str());
   } else {
-    std::printf("manifold crowd: %d agents on '%s' (%d triangles), %d thread(s)\n", o.agents, o.mesh.c_str(),
-                mesh->face_count(), o.threads);
+    std::printf("manifold crowd (%s): %d agents on '%s' (%d triangles), %d thread(s)\n", o.model.c_str(),
+                o.agents, o.mesh.c_str(), mesh->face_count(), o.threads);
     std::printf("  median %.3f ms/step (%.0f steps/s), mean %.3f ms over %d steps\n", med, 1000.0 / med,
                 mean_of(ms), o.steps);
   }
@@ -67,8 +71,12 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--agents", opts->agents, "Number of agents")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
-  cmd->add_option("--mesh", opts->mesh,
-                  "Scene name (building, floor_ceiling, floor_wall, mobius, torus, tree, blobby) or .obj")
+  cmd->add_option(
+         "--mesh", opts->mesh,
+         "Scene name (building, floor_ceiling, floor_wall, mobius, torus, tree, blobby) or .obj/.gltf/.glb")
+      ->capture_default_str();
+  cmd->add_option("--model", opts->model, "Obstacle avoidance in the tangent plane")
+      ->check(CLI::IsMember({"social", "orca"}))
       ->capture_default_str();
   cmd->add_option("--steps", opts->steps, "Timed steps")
       ->check(CLI::Range(1, 1000000))

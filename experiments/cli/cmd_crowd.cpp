@@ -1,5 +1,6 @@
 // `crowdlab crowd SPEC.yaml --condition ID --csv out.csv`: one condition's 2D crowd trajectories
-// (framework/crowd/generate_scenario.hpp), plus optional measures, and `--collision-table` for the
+// (framework/crowd/generate_scenario.hpp; a manifold scenario writes its 3D surface trajectories,
+// framework/core/surface_trajectories.hpp), plus optional measures, and `--collision-table` for the
 // seed 001 Table 2 style collision counts over a spec's scenario x density x repetition cells.
 #include <spdlog/spdlog.h>
 
@@ -23,7 +24,9 @@
 #include "framework/crowd/generate_scenario.hpp"
 #include "framework/crowd/interpersonal_distance_histogram.hpp"
 #include "framework/crowd/pair_closest_approaches.hpp"
+#include "framework/spec/effective_scenario_type.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
+#include "framework/surface/generate_manifold_scenario.hpp"
 
 namespace crowdlab::cli {
 namespace {
@@ -89,6 +92,16 @@ void run(const Args& a) {
   if (a.csv.empty() && a.measures_dir.empty())
     throw InputError("crowd: give --csv FILE and/or --measures DIR");
   const Condition& condition = find_condition(conditions, a.condition);
+  if (effective_scenario_type(spec, condition) == "manifold") {
+    // Surface crowds (seed 002): the 3D trajectories; the 2D disc measures do not apply to them.
+    if (!a.measures_dir.empty())
+      throw InputError(
+          "crowd: --measures is for 2D scenarios; for surface crowds use `crowdlab experiment "
+          "manifold-compare`");
+    const ManifoldScenario m = generate_manifold_scenario(spec, condition);
+    write_file(a.csv, surface_trajectories_csv(m.surface, spec.fps));
+    return;
+  }
   const ScenarioResult r = generate_scenario(spec, condition);
   if (!a.csv.empty()) write_file(a.csv, trajectories_csv(r.trajectories));
   nlohmann::json summary = {{"condition", condition.id},

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <queue>
 #include <unordered_map>
@@ -10,6 +11,7 @@
 #include "framework/core/error.hpp"
 #include "framework/core/seed.hpp"
 #include "framework/surface/geodesic_distance.hpp"
+#include "framework/surface/tangent_orca.hpp"
 
 namespace crowdlab {
 namespace {
@@ -49,13 +51,78 @@ std::uint32_t cell_hash(const Eigen::Vector3i& c) {
          static_cast<std::uint32_t>(c.z() * 83492791);
 }
 
+/// Three Offset tuples per neighbour at most (seed 002's OffsetImproved), for the largest max_neighbors.
+constexpr size_t kMaxOrcaLines = 3 * 32;
+
 Eigen::Vector3i cell_of(const Vec3& p, double cell) {
   return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell)),
                          static_cast<int>(std::floor(p.y() / cell)),
                          static_cast<int>(std::floor(p.z() / cell)));
 }
 
+/// Social forces (see header): velocity after one explicit step of the force model.
+Vec3 social_force_velocity(const SurfaceCrowdModel& model, const SurfaceCrowdState& s, size_t i, size_t keep,
+                           const Vec3& v_pref) {
+  const SurfaceCrowdParams& p = model.params;
+  const size_t K = static_cast<size_t>(p.max_neighbors);
+  const Vec3& feet_a = s.points[i].position_m;
+  Vec3 acc = (v_pref - s.velocity_mps[i]) / p.sf_tau_s;
+  for (size_t k = 0; k < keep; ++k) {
+    const size_t j = static_cast<size_t>(s.neighbors[i * K + k]);
+    const auto tuples = offset_three_spheres(feet_a, s.up[i], s.points[j].position_m, s.up[j], p.body);
+    const OffsetTuple* worst = &tuples[0];
+    for (const auto& t : tuples)
+      if (t.clearance_m < worst->clearance_m) worst = &t;
+    const double magnitude =
+        p.sf_a_n * std::exp(-worst->clearance_m / p.sf_b_m) + p.sf_k * std::max(0.0, -worst->clearance_m);
+    acc -= worst->direction * (magnitude / p.sf_mass_kg);
+  }
+  return s.velocity_mps[i] + acc * p.dt_s;
+}
+
+/// ORCA in a's tangent plane over the union of the Offset tuples (see header).
+Vec3 orca_velocity(const SurfaceCrowdModel& model, const SurfaceCrowdState& s, size_t i, size_t keep,
+                   const Vec3& v_pref, orca::Line* lines, orca::Line* scratch) {
+  const SurfaceCrowdParams& p = model.params;
+  const size_t K = static_cast<size_t>(p.max_neighbors);
+  const Vec3& up = s.up[i];
+  Vec3 e1, e2;
+  tangent_basis(up, e1, e2);
+  const auto in_plane = [&](const Vec3& x) { return Vec2(e1.dot(x), e2.dot(x)); };
+  const Vec2 velocity = in_plane(s.velocity_mps[i]);
+  const double diameter = 2 * p.body.sphere_radius_m;
+  size_t n = 0;
+  for (size_t k = 0; k < keep; ++k) {
+    const size_t j = static_cast<size_t>(s.neighbors[i * K + k]);
+    const auto tuples =
+        offset_three_spheres(s.points[i].position_m, up, s.points[j].position_m, s.up[j], p.body);
+    const Vec2 rel_vel = velocity - in_plane(s.velocity_mps[j]);
+    Vec2 previous = Vec2::Zero();
+    bool have_previous = false;
+    for (const OffsetTuple& t : tuples) {
+      if (t.direction.squaredNorm() == 0.0) continue;  // straight above/below: no tangent direction
+      const Vec2 rel_pos = in_plane(t.direction) * (t.clearance_m + diameter);
+      if (have_previous && (rel_pos - previous).squaredNorm() < 1e-12) continue;  // same disc again
+      previous = rel_pos;
+      have_previous = true;
+      lines[n++] = orca_half_plane(rel_pos, rel_vel, velocity, diameter, p.orca_time_horizon_s, p.dt_s);
+    }
+  }
+  const Vec2 v = solve_orca(lines, n, in_plane(v_pref), p.max_speed_mps, scratch);
+  return e1 * v.x() + e2 * v.y();
+}
+
 }  // namespace
+
+SurfaceAvoidance parse_surface_avoidance(const std::string& text, const std::string& key) {
+  if (text == "social") return SurfaceAvoidance::kSocialForces;
+  if (text == "orca") return SurfaceAvoidance::kOrca;
+  throw InputError(SourceLocation{"", 0, 0, key}, "must be 'social' or 'orca', not '" + text + "'");
+}
+
+const char* surface_avoidance_name(SurfaceAvoidance a) {
+  return a == SurfaceAvoidance::kOrca ? "orca" : "social";
+}
 
 Vec3 body_center(const SurfaceCrowdModel& model, const SurfacePoint& p) {
   return p.position_m + p.up(*model.mesh) * (model.params.body.height_m / 2);
@@ -70,6 +137,7 @@ SurfaceCrowdModel make_surface_crowd_model(std::shared_ptr<const SurfaceMesh> me
   check(p.dt_s > 0 && p.dt_s <= 0.2, "dt_s", "in (0, 0.2] s");
   check(p.body.sphere_radius_m > 0 && 2 * p.body.sphere_radius_m <= p.body.height_m, "sphere_radius_m",
         "positive and at most half the agent height");
+  check(p.orca_time_horizon_s > 0 && p.orca_time_horizon_s <= 10, "orca_time_horizon_s", "in (0, 10] s");
   check(goal_count >= 1, "goal_count", ">= 1");
   SurfaceCrowdModel m;
   m.mesh = std::move(mesh);
@@ -167,6 +235,7 @@ void step_surface_crowd(const SurfaceCrowdModel& model, SurfaceCrowdState& s) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, N, 64), [&](const tbb::blocked_range<size_t>& range) {
     std::vector<std::pair<double, int>> candidates;
     std::vector<int> reached_faces;
+    std::array<orca::Line, kMaxOrcaLines> lines, scratch;
     for (size_t i = range.begin(); i != range.end(); ++i) {
       const SurfacePoint& a = s.points[i];
       const Vec3 up_a = s.up[i], center_a = s.center_m[i];
@@ -232,18 +301,10 @@ void step_surface_crowd(const SurfaceCrowdModel& model, SurfaceCrowdState& s) {
       }
       Vec3 dir = descent_direction(mesh, model.goal_fields[static_cast<size_t>(goal)], a.face);
       const Vec3 v_pref = dir * p.preferred_speed_mps;
-      Vec3 acc = (v_pref - s.velocity_mps[i]) / p.sf_tau_s;
-      for (size_t k = 0; k < keep; ++k) {
-        const size_t j = static_cast<size_t>(s.neighbors[i * K + k]);
-        const auto tuples = offset_three_spheres(a.position_m, up_a, s.points[j].position_m, s.up[j], p.body);
-        const OffsetTuple* worst = &tuples[0];
-        for (const auto& t : tuples)
-          if (t.clearance_m < worst->clearance_m) worst = &t;
-        const double magnitude =
-            p.sf_a_n * std::exp(-worst->clearance_m / p.sf_b_m) + p.sf_k * std::max(0.0, -worst->clearance_m);
-        acc -= worst->direction * (magnitude / p.sf_mass_kg);
-      }
-      Vec3 v = to_tangent(mesh, a.face, s.velocity_mps[i] + acc * p.dt_s);
+      Vec3 v = p.avoidance == SurfaceAvoidance::kOrca
+                   ? orca_velocity(model, s, i, keep, v_pref, lines.data(), scratch.data())
+                   : social_force_velocity(model, s, i, keep, v_pref);
+      v = to_tangent(mesh, a.face, v);
       const double speed = v.norm();
       if (speed > p.max_speed_mps) v *= p.max_speed_mps / speed;
       s.next_velocity[i] = v;

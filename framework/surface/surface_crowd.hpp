@@ -16,8 +16,15 @@
 // where (u, c) is the neighbour's Offset tuple with the smallest clearance c (the union of the three
 // sphere tuples acts through its most threatening member, so coplanar agents feel exactly the classic
 // force and agents on perpendicular walls feel their heads' proximity).
+//
+// Avoidance (ORCA / RVO, van den Berg et al. 2011; tangent_orca.hpp): every Offset tuple of every
+// relevant neighbour (the union of seed 002's OffsetImproved) becomes one reciprocal half-plane in a's
+// tangent plane (disc of combined radius 2 * sphere radius at the tuple's angle and 3D distance);
+// near-duplicate tuples (coplanar agents give three equal ones) are merged. The new velocity is the
+// one closest to v_pref within max_speed satisfying them (lp2, lp3 when infeasible).
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "framework/surface/relevance.hpp"
@@ -25,7 +32,11 @@
 
 namespace crowdlab {
 
+/// The ObstacleAvoidance function fed by Relevant/Offset (seed 002 §1 evaluates both).
+enum class SurfaceAvoidance { kSocialForces, kOrca };
+
 struct SurfaceCrowdParams {
+  SurfaceAvoidance avoidance = SurfaceAvoidance::kSocialForces;
   StackedBody body;                  ///< height and sphere radius (metres)
   double neighbor_distance_m = 3.0;  ///< candidate radius between body centres; (0, 10]
   int max_neighbors = 10;            ///< [1, 32]
@@ -34,7 +45,8 @@ struct SurfaceCrowdParams {
   double dt_s = 1.0 / 30.0;          ///< (0, 0.2]
   RelevantMode relevant = RelevantMode::kVisibility;
   double sf_a_n = 2000.0, sf_b_m = 0.08, sf_k = 1.2e5, sf_tau_s = 0.5, sf_mass_kg = 80.0;
-  double goal_reached_m = 0.75;  ///< a new goal is chosen within this geodesic distance
+  double orca_time_horizon_s = 2.0;  ///< ORCA tau (s), as the 2D crowd model's default; (0, 10]
+  double goal_reached_m = 0.75;      ///< a new goal is chosen within this geodesic distance
 };
 
 struct SurfaceCrowdModel {
@@ -68,6 +80,10 @@ struct SurfaceCrowdState {
 /// Places n agents on random faces (area-weighted), at least two sphere radii apart (same side), each
 /// with a goal. Throws InputError when n < 1 or they do not fit after many attempts.
 SurfaceCrowdState spawn_surface_agents(const SurfaceCrowdModel& model, int n, std::uint64_t seed);
+
+/// "social" | "orca" -> SurfaceAvoidance; InputError naming `key` otherwise.
+SurfaceAvoidance parse_surface_avoidance(const std::string& text, const std::string& key);
+const char* surface_avoidance_name(SurfaceAvoidance a);
 
 /// One simulation step (see header). Deterministic for any TBB thread count.
 void step_surface_crowd(const SurfaceCrowdModel& model, SurfaceCrowdState& state);

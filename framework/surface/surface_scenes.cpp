@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "framework/core/error.hpp"
+#include "framework/surface/load_gltf_surface.hpp"
 
 namespace crowdlab {
 namespace {
@@ -243,10 +244,11 @@ SurfaceMesh make_surface_scene(const std::string& name) {
   if (name == "torus") return make_torus();
   if (name == "tree") return make_tree();
   if (name == "blobby") return make_blobby_surface();
-  if (std::filesystem::exists(name) && name.ends_with(".obj")) return load_obj_surface(name);
+  if (name.ends_with(".obj")) return load_obj_surface(name);
+  if (name.ends_with(".gltf") || name.ends_with(".glb")) return load_gltf_surface(name);
   throw InputError("unknown surface scene '" + name +
                    "' (expected one of building, floor_ceiling, floor_wall, "
-                   "mobius, torus, tree, blobby, or an .obj file)");
+                   "mobius, torus, tree, blobby, or an .obj, .gltf or .glb file)");
 }
 
 }  // namespace crowdlab

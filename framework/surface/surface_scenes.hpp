@@ -39,7 +39,8 @@ SurfaceMesh make_tree(double trunk_radius_m = 0.3, double branch_radius_m = 0.08
 SurfaceMesh make_blobby_surface(int min_triangles = 100000, double radius_m = 8.0);
 
 /// A scene by name: building, floor_ceiling, floor_wall, mobius, torus, tree, blobby;
-/// anything else is treated as an OBJ path. Throws InputError for an unknown name/missing file.
+/// a path ending in .obj, .gltf or .glb is loaded (load_obj_surface / load_gltf_surface).
+/// Throws InputError for an unknown name or a missing/bad file.
 SurfaceMesh make_surface_scene(const std::string& name_or_path);
 
 /// The names make_surface_scene accepts.

@@ -26,9 +26,10 @@ struct Duel {
   SurfaceCrowdState state;
 };
 Duel duel(std::shared_ptr<const SurfaceMesh> mesh, const Vec3& a, const Vec3& b, const Vec3& goal_a,
-          const Vec3& goal_b, RelevantMode mode) {
+          const Vec3& goal_b, RelevantMode mode, SurfaceAvoidance avoidance) {
   SurfaceCrowdParams p;
   p.relevant = mode;
+  p.avoidance = avoidance;
   Duel d{make_surface_crowd_model(mesh, p, 1, 1), {}};
   d.model.goal_vertices = {nearest_vertex(*mesh, goal_a), nearest_vertex(*mesh, goal_b)};
   d.model.goal_fields = {geodesic_distance_field(*mesh, {d.model.goal_vertices[0]}),
@@ -72,13 +73,15 @@ TEST_CASE("walking into a wall continues up the wall") {
 }
 
 TEST_CASE("agents on opposite sides of a floor never avoid each other (visibility Relevant)") {
+  const SurfaceAvoidance avoidance = GENERATE(SurfaceAvoidance::kSocialForces, SurfaceAvoidance::kOrca);
+  INFO("model " << surface_avoidance_name(avoidance));
   auto mesh = std::make_shared<const SurfaceMesh>(make_floor_ceiling_slab(10, 0.2, 0.25));
   // Top surface y = 2.7 (normal up), bottom y = 2.5 (normal down): walking the same line in opposite
   // directions. Starts and goals on grid vertices; b walks 0.25 m to the side so a repulsion would push a
   // sideways.
   const Vec3 a(-3, 2.7, 0), b(3, 2.5, 0.25), goal_a(4, 2.7, 0), goal_b(-4, 2.5, 0.25);
-  Duel d = duel(mesh, a, b, goal_a, goal_b, RelevantMode::kVisibility);
-  Duel e = duel(mesh, a, b, goal_a, goal_b, RelevantMode::kEuclidean);
+  Duel d = duel(mesh, a, b, goal_a, goal_b, RelevantMode::kVisibility, avoidance);
+  Duel e = duel(mesh, a, b, goal_a, goal_b, RelevantMode::kEuclidean, avoidance);
   double max_lateral_ours = 0, max_lateral_euclid = 0;
   int euclid_neighbours_seen = 0;
   for (int k = 0; k < 150; ++k) {
@@ -97,12 +100,13 @@ TEST_CASE("agents on opposite sides of a floor never avoid each other (visibilit
 }
 
 TEST_CASE("agents on perpendicular surfaces avoid each other through the stacked spheres") {
+  const SurfaceAvoidance avoidance = GENERATE(SurfaceAvoidance::kSocialForces, SurfaceAvoidance::kOrca);
   auto mesh = std::make_shared<const SurfaceMesh>(make_floor_and_wall(8, 0.25));
   // One on the floor walking along the foot of the wall, one on the wall walking along its base the other
   // way: their feet are 1 m apart but their heads would meet.
   const Vec3 a(0.9, 0, 1.0), b(0, 0.9, 7.0);
   for (RelevantMode mode : {RelevantMode::kVisibility, RelevantMode::kSurface}) {
-    Duel d = duel(mesh, a, b, Vec3(0.9, 0, 7.5), Vec3(0, 0.9, 0.5), mode);
+    Duel d = duel(mesh, a, b, Vec3(0.9, 0, 7.5), Vec3(0, 0.9, 0.5), mode, avoidance);
     double min_clearance = 1e9;
     for (int k = 0; k < 200; ++k) {
       step_surface_crowd(d.model, d.state);
@@ -111,16 +115,21 @@ TEST_CASE("agents on perpendicular surfaces avoid each other through the stacked
           std::min(min_clearance, stacked_clearance(p[0].position_m, p[0].up(*mesh), p[1].position_m,
                                                     p[1].up(*mesh), d.model.params.body));
     }
-    INFO("mode " << static_cast<int>(mode) << " min clearance " << min_clearance);
+    INFO("model " << surface_avoidance_name(avoidance) << " relevant " << static_cast<int>(mode)
+                  << " min clearance " << min_clearance);
     if (mode == RelevantMode::kVisibility) CHECK(min_clearance > -0.02);
   }
 }
 
 TEST_CASE("a crowd on the blob stays on the surface and is deterministic across thread counts") {
+  const SurfaceAvoidance avoidance = GENERATE(SurfaceAvoidance::kSocialForces, SurfaceAvoidance::kOrca);
+  INFO("model " << surface_avoidance_name(avoidance));
   auto mesh = std::make_shared<const SurfaceMesh>(make_blobby_surface(test::kSanitized ? 3000 : 20000, 6));
   auto run = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
-    SurfaceCrowdModel model = make_surface_crowd_model(mesh, {}, 4, 99);
+    SurfaceCrowdParams params;
+    params.avoidance = avoidance;
+    SurfaceCrowdModel model = make_surface_crowd_model(mesh, params, 4, 99);
     SurfaceCrowdState s = spawn_surface_agents(model, 150, 99);
     TriangleBvh bvh(*mesh);
     SurfaceCrowdMeasures m;
@@ -135,7 +144,9 @@ TEST_CASE("a crowd on the blob stays on the surface and is deterministic across 
   };
   const auto [h1, m1] = run(1);
   const auto [h2, m2] = run(2);
+  const auto [h3, m3] = run(1);
   CHECK(h1 == h2);
+  CHECK(h1 == h3);  // same seed, same result
   CHECK(m1.max_distance_to_surface_m < 1e-5);
   INFO("collision % " << m1.collision_percent());
   CHECK(m1.collision_percent() < 5.0);

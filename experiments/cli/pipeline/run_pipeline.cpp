@@ -12,6 +12,7 @@
 #include "experiments/cli/metrics_json.hpp"
 #include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/animation/animate_crowd.hpp"
+#include "framework/animation/orient_to_surface.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/core/seed.hpp"
@@ -23,7 +24,9 @@
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/io/write_crowd_glb.hpp"
 #include "framework/metrics/measure_crowd.hpp"
+#include "framework/spec/effective_scenario_type.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
+#include "framework/surface/generate_manifold_scenario.hpp"
 #include "stimuli/render_clip.hpp"
 #include "stimuli/renderer.hpp"
 
@@ -58,6 +61,7 @@ struct CrowdGroup {
   Condition crowd_condition;  ///< the first condition of the group, with the crowd seed
   std::string crowd_hash, baseline_hash, ours_hash;
   std::optional<ScenarioResult> scenario;
+  SurfaceTrajectories surface;  ///< manifold scenarios only: the 3D frames of the trajectories
   std::optional<CrowdAnimation> baseline, ours;
   std::map<std::string, json> metrics;  ///< method -> metrics json
 };
@@ -155,17 +159,35 @@ class Runner {
     return ok;
   }
 
+  bool is_manifold(const CrowdGroup& g) const {
+    return effective_scenario_type(spec_, g.crowd_condition) == "manifold";
+  }
+
   const ScenarioResult& scenario(CrowdGroup& g) {
-    if (!g.scenario) g.scenario = generate_scenario(spec_, g.crowd_condition);
+    if (g.scenario) return *g.scenario;
+    if (is_manifold(g)) {
+      // Crowds on surfaces come from the surface stage (seed 002), with their 3D frames.
+      ManifoldScenario m = generate_manifold_scenario(spec_, g.crowd_condition);
+      g.surface = std::move(m.surface);
+      g.scenario = std::move(m.result);
+    } else {
+      g.scenario = generate_scenario(spec_, g.crowd_condition);
+    }
     return *g.scenario;
   }
 
   void write_trajectories(CrowdGroup& g) {
     const fs::path out = g.dir / "trajectories.csv";
-    if (up_to_date(out, g.crowd_hash)) return;
+    const fs::path surface_out = g.dir / "surface_trajectories.csv";
+    const bool manifold = is_manifold(g);
+    if (up_to_date(out, g.crowd_hash) && (!manifold || output_up_to_date(surface_out, g.crowd_hash))) return;
     const std::string text = trajectories_csv(scenario(g).trajectories);
     write_file_atomic(out, text);
     record_provenance(out, "crowd", g.crowd_hash, context_);
+    if (manifold) {
+      write_file_atomic(surface_out, surface_trajectories_csv(g.surface, spec_.fps));
+      record_provenance(surface_out, "crowd", g.crowd_hash, context_);
+    }
   }
 
   AnimationContext animation_context(const CrowdGroup& g) const {
@@ -187,10 +209,12 @@ class Runner {
       g.baseline = read_crowd_glb(out.string());
       return *g.baseline;
     }
-    scenario_type_ = resolve_scenario_type(spec_, g.crowd_condition);
+    scenario_type_ = is_manifold(g) ? "manifold" : resolve_scenario_type(spec_, g.crowd_condition);
     const ScenarioResult& s = scenario(g);
     CrowdAnimation crowd =
         animate_crowd(s.trajectories, s.environment, spec_.animation, animation_context(g));
+    // Surface crowds walk on the developed plane; stand each frame on the surface.
+    if (!g.surface.empty()) orient_to_surface(crowd, s.trajectories, g.surface);
     crowd.meta.seed = g.crowd_condition.seed;
     crowd.meta.condition_id = g.key;
     crowd.meta.scenario = s.scenario;

@@ -1,0 +1,112 @@
+#include "framework/surface/generate_manifold_scenario.hpp"
+
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "framework/core/error.hpp"
+#include "framework/core/seed.hpp"
+#include "framework/surface/develop_surface_trajectories.hpp"
+#include "framework/surface/smooth_surface_up.hpp"
+#include "framework/surface/surface_crowd.hpp"
+#include "framework/surface/surface_scenes.hpp"
+
+namespace crowdlab {
+namespace {
+
+constexpr double kAgentHeightM = 1.8;
+constexpr int kGoalCount = 8;
+constexpr double kWarmUpS = 1.0;
+constexpr double kFacingSpeedMps = 0.1;
+
+SurfaceCrowdParams params_from_spec(const ExperimentSpec& spec) {
+  SurfaceCrowdParams p;
+  const std::string& model = spec.crowd.model;
+  if (model != "orca" && model != "social")
+    throw InputError(SourceLocation{spec.source_path, 0, 0, "crowd.model"},
+                     "a manifold scenario needs 'orca' or 'social', not '" + model + "'");
+  p.avoidance = parse_surface_avoidance(model, "crowd.model");
+  p.body.height_m = kAgentHeightM;
+  p.body.sphere_radius_m = spec.crowd.agent_radius_m;
+  p.neighbor_distance_m = spec.crowd.neighbor_distance_m;
+  p.max_neighbors = spec.crowd.max_neighbors;
+  p.orca_time_horizon_s = spec.crowd.time_horizon_s;
+  p.preferred_speed_mps = spec.scenario.walk_speed_mps;
+  p.max_speed_mps = std::max(spec.crowd.max_speed_mps, spec.scenario.walk_speed_mps);
+  const double frame_s = 1.0 / spec.fps;
+  const int substeps = std::max(1, static_cast<int>(std::ceil(frame_s / spec.crowd.dt_s - 1e-9)));
+  p.dt_s = frame_s / substeps;
+  p.relevant = RelevantMode::kVisibility;
+  return p;
+}
+
+TriangleMesh environment_mesh(const SurfaceMesh& m) {
+  TriangleMesh t;
+  t.name = m.name;
+  t.vertices_m = m.vertices_m;
+  t.triangles = m.triangles;
+  return t;
+}
+
+}  // namespace
+
+ManifoldScenario generate_manifold_scenario(const ExperimentSpec& spec, const Condition& condition) {
+  if (!(spec.fps > 0) || !(spec.duration_s > 0))
+    throw InputError("fps and duration_s must be positive for a manifold scenario");
+  if (spec.scenario.mesh.empty())
+    throw InputError(SourceLocation{spec.source_path, 0, 0, "scenario.mesh"},
+                     "a manifold scenario needs a mesh (scene name or file)");
+  const SurfaceCrowdParams params = params_from_spec(spec);
+  auto mesh = std::make_shared<const SurfaceMesh>(make_surface_scene(spec.scenario.mesh));
+  const int n = scenario_character_count(spec, condition, mesh->total_area_m2);
+  const std::uint64_t seed = derive_seed(condition.seed, "manifold");
+  const SurfaceCrowdModel model = make_surface_crowd_model(mesh, params, kGoalCount, seed);
+  SurfaceCrowdState state = spawn_surface_agents(model, n, seed);
+
+  const int substeps = static_cast<int>(std::lround(1.0 / (spec.fps * params.dt_s)));
+  for (long k = 0, warm = std::lround(kWarmUpS / params.dt_s); k < warm; ++k)
+    step_surface_crowd(model, state);
+  const int frames = std::max(1, static_cast<int>(std::lround(spec.duration_s * spec.fps)));
+
+  ManifoldScenario out;
+  out.triangles = mesh->face_count();
+  out.surface.agents.resize(static_cast<size_t>(n));
+  std::vector<Vec3> facing(static_cast<size_t>(n), Vec3::Zero());
+  for (int f = 0; f < frames; ++f) {
+    if (f > 0)
+      for (int k = 0; k < substeps; ++k) step_surface_crowd(model, state);
+    for (size_t i = 0; i < static_cast<size_t>(n); ++i) {
+      const SurfacePoint& p = state.points[i];
+      const Vec3 up = smooth_surface_up(*mesh, p);
+      Vec3 fwd = state.velocity_mps[i];
+      if (fwd.norm() < kFacingSpeedMps) fwd = facing[i];
+      fwd -= up * up.dot(fwd);
+      if (fwd.norm() < 1e-9) {  // never moved yet: any tangent direction
+        const Vec3 ref = std::abs(up.z()) < 0.9 ? Vec3::UnitZ() : Vec3::UnitX();
+        fwd = ref - up * up.dot(ref);
+      }
+      fwd.normalize();
+      facing[i] = fwd;
+      SurfaceAgentTrajectory& a = out.surface.agents[i];
+      a.feet_m.push_back(p.position_m);
+      a.up.push_back(up);
+      a.forward.push_back(fwd);
+    }
+  }
+
+  ScenarioResult& r = out.result;
+  r.trajectories = develop_surface_trajectories(out.surface, spec.fps, params.body.sphere_radius_m);
+  r.environment.ground_plane = false;
+  r.environment.meshes.push_back(environment_mesh(*mesh));
+  r.area_m2 = mesh->total_area_m2;
+  r.achieved_density_per_m2 = n / mesh->total_area_m2;
+  double min_gap = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < static_cast<size_t>(n); ++i)
+    for (size_t j = i + 1; j < static_cast<size_t>(n); ++j)
+      min_gap = std::min(min_gap, (out.surface.agents[i].feet_m[0] - out.surface.agents[j].feet_m[0]).norm());
+  r.min_spacing_m = std::isfinite(min_gap) ? min_gap : 0.0;
+  r.scenario = "manifold";
+  return out;
+}
+
+}  // namespace crowdlab

@@ -1,0 +1,203 @@
+#include "framework/surface/load_gltf_surface.hpp"
+
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+
+#include "framework/core/error.hpp"
+
+namespace crowdlab {
+namespace {
+
+struct Reader {
+  const tinygltf::Model& model;
+  std::string path;
+
+  [[noreturn]] void fail(const std::string& where, const std::string& msg) const {
+    throw InputError(SourceLocation{path, 0, 0, where}, msg);
+  }
+
+  /// The bytes an accessor reads: data pointer, element stride, element count, with bounds checked.
+  const unsigned char* view(int accessor, size_t element_size, size_t& stride, size_t& count,
+                            const std::string& where) const {
+    if (accessor < 0 || accessor >= static_cast<int>(model.accessors.size()))
+      fail(where, "accessor index out of range");
+    const tinygltf::Accessor& a = model.accessors[static_cast<size_t>(accessor)];
+    if (a.sparse.isSparse) fail(where, "sparse accessors are not supported");
+    if (a.bufferView < 0 || a.bufferView >= static_cast<int>(model.bufferViews.size()))
+      fail(where, "accessor has no buffer view");
+    const tinygltf::BufferView& v = model.bufferViews[static_cast<size_t>(a.bufferView)];
+    if (v.buffer < 0 || v.buffer >= static_cast<int>(model.buffers.size()))
+      fail(where, "buffer view has no buffer");
+    const auto& data = model.buffers[static_cast<size_t>(v.buffer)].data;
+    stride = v.byteStride ? v.byteStride : element_size;
+    count = a.count;
+    const size_t begin = v.byteOffset + a.byteOffset;
+    if (count > 0 && (begin + stride * (count - 1) + element_size > data.size() ||
+                      begin + stride * (count - 1) + element_size > v.byteOffset + v.byteLength))
+      fail(where, "accessor reads past the end of its buffer");
+    return data.data() + begin;
+  }
+
+  std::vector<Vec3> positions(int accessor, const std::string& where) const {
+    const tinygltf::Accessor& a = model.accessors.at(static_cast<size_t>(accessor));
+    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.type != TINYGLTF_TYPE_VEC3)
+      fail(where, "POSITION must be a float VEC3 accessor");
+    size_t stride = 0, count = 0;
+    const unsigned char* p = view(accessor, 3 * sizeof(float), stride, count, where);
+    std::vector<Vec3> out(count);
+    for (size_t i = 0; i < count; ++i) {
+      float xyz[3];
+      std::memcpy(xyz, p + i * stride, sizeof xyz);
+      out[i] = Vec3(xyz[0], xyz[1], xyz[2]);
+      if (!out[i].allFinite()) fail(where, "vertex " + std::to_string(i) + " is not finite");
+    }
+    return out;
+  }
+
+  std::vector<int> indices(int accessor, size_t vertex_count, const std::string& where) const {
+    std::vector<int> out;
+    if (accessor < 0) {  // non-indexed: consecutive vertices
+      for (size_t i = 0; i < vertex_count; ++i) out.push_back(static_cast<int>(i));
+      return out;
+    }
+    if (accessor >= static_cast<int>(model.accessors.size())) fail(where, "indices accessor out of range");
+    const tinygltf::Accessor& a = model.accessors[static_cast<size_t>(accessor)];
+    if (a.type != TINYGLTF_TYPE_SCALAR) fail(where, "indices must be SCALAR");
+    size_t size = 0;
+    switch (a.componentType) {
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        size = 1;
+        break;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        size = 2;
+        break;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        size = 4;
+        break;
+      default:
+        fail(where, "indices must be unsigned byte, short or int");
+    }
+    size_t stride = 0, count = 0;
+    const unsigned char* p = view(accessor, size, stride, count, where);
+    out.resize(count);
+    for (size_t i = 0; i < count; ++i) {
+      std::uint32_t v = 0;
+      if (size == 1) v = p[i * stride];
+      if (size == 2) {
+        std::uint16_t s;
+        std::memcpy(&s, p + i * stride, 2);
+        v = s;
+      }
+      if (size == 4) std::memcpy(&v, p + i * stride, 4);
+      if (v >= vertex_count)
+        fail(where,
+             "index " + std::to_string(v) + " out of range (" + std::to_string(vertex_count) + " vertices)");
+      out[i] = static_cast<int>(v);
+    }
+    return out;
+  }
+};
+
+Eigen::Matrix4d local_transform(const tinygltf::Node& n) {
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  if (n.matrix.size() == 16) {
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) m(r, c) = n.matrix[static_cast<size_t>(c * 4 + r)];  // column-major
+    return m;
+  }
+  if (n.translation.size() == 3)
+    m.block<3, 1>(0, 3) = Vec3(n.translation[0], n.translation[1], n.translation[2]);
+  if (n.rotation.size() == 4)  // glTF stores (x, y, z, w)
+    m.block<3, 3>(0, 0) =
+        Quat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]).normalized().toRotationMatrix();
+  if (n.scale.size() == 3)
+    m.block<3, 3>(0, 0) = m.block<3, 3>(0, 0) * Vec3(n.scale[0], n.scale[1], n.scale[2]).asDiagonal();
+  return m;
+}
+
+}  // namespace
+
+SurfaceMesh load_gltf_surface(const std::string& path, double scale) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
+  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  if (!ok) throw InputError(path + ": cannot read glTF: " + (err.empty() ? "unknown error" : err));
+  const Reader reader{model, path};
+
+  std::vector<Vec3> vertices;
+  std::vector<Eigen::Vector3i> triangles;
+  const auto add_mesh = [&](int mesh_index, const Eigen::Matrix4d& world) {
+    if (mesh_index < 0 || mesh_index >= static_cast<int>(model.meshes.size()))
+      reader.fail("nodes", "mesh index " + std::to_string(mesh_index) + " out of range");
+    const tinygltf::Mesh& mesh = model.meshes[static_cast<size_t>(mesh_index)];
+    const bool mirrored = world.block<3, 3>(0, 0).determinant() < 0;
+    for (size_t k = 0; k < mesh.primitives.size(); ++k) {
+      const tinygltf::Primitive& prim = mesh.primitives[k];
+      const std::string where =
+          "meshes[" + std::to_string(mesh_index) + "] '" + mesh.name + "' primitive " + std::to_string(k);
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+          prim.mode != TINYGLTF_MODE_TRIANGLE_FAN && prim.mode != -1)
+        reader.fail(where, "mode " + std::to_string(prim.mode) +
+                               " is not a triangle mode (points/lines cannot be walked on)");
+      const auto pos = prim.attributes.find("POSITION");
+      if (pos == prim.attributes.end()) reader.fail(where, "primitive has no POSITION");
+      const std::vector<Vec3> local = reader.positions(pos->second, where);
+      const std::vector<int> idx = reader.indices(prim.indices, local.size(), where);
+      const int base = static_cast<int>(vertices.size());
+      for (const Vec3& v : local) vertices.push_back(scale * (world * v.homogeneous()).head<3>());
+      const auto emit = [&](int a, int b, int c) {
+        if (mirrored) std::swap(b, c);
+        triangles.emplace_back(base + a, base + b, base + c);
+      };
+      if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        for (size_t t = 0; t + 2 < idx.size(); ++t)
+          t % 2 == 0 ? emit(idx[t], idx[t + 1], idx[t + 2]) : emit(idx[t + 1], idx[t], idx[t + 2]);
+      } else if (prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        for (size_t t = 1; t + 1 < idx.size(); ++t) emit(idx[0], idx[t], idx[t + 1]);
+      } else {
+        if (idx.size() % 3 != 0)
+          reader.fail(where,
+                      "triangle index count " + std::to_string(idx.size()) + " is not a multiple of 3");
+        for (size_t t = 0; t + 2 < idx.size(); t += 3) emit(idx[t], idx[t + 1], idx[t + 2]);
+      }
+    }
+  };
+  std::vector<int> depth_guard(model.nodes.size(), 0);
+  const std::function<void(int, const Eigen::Matrix4d&)> visit = [&](int node,
+                                                                     const Eigen::Matrix4d& parent) {
+    if (node < 0 || node >= static_cast<int>(model.nodes.size()))
+      reader.fail("nodes", "node index " + std::to_string(node) + " out of range");
+    if (depth_guard[static_cast<size_t>(node)]++)
+      reader.fail("nodes", "node " + std::to_string(node) + " is visited twice (cycle or shared child)");
+    const tinygltf::Node& n = model.nodes[static_cast<size_t>(node)];
+    const Eigen::Matrix4d world = parent * local_transform(n);
+    if (n.mesh >= 0) add_mesh(n.mesh, world);
+    for (int child : n.children) visit(child, world);
+  };
+  if (!model.scenes.empty()) {
+    const int scene = model.defaultScene >= 0 && model.defaultScene < static_cast<int>(model.scenes.size())
+                          ? model.defaultScene
+                          : 0;
+    for (int root : model.scenes[static_cast<size_t>(scene)].nodes) visit(root, Eigen::Matrix4d::Identity());
+  } else if (!model.nodes.empty()) {
+    std::vector<bool> is_child(model.nodes.size(), false);
+    for (const auto& n : model.nodes)
+      for (int c : n.children)
+        if (c >= 0 && c < static_cast<int>(is_child.size())) is_child[static_cast<size_t>(c)] = true;
+    for (size_t i = 0; i < model.nodes.size(); ++i)
+      if (!is_child[i]) visit(static_cast<int>(i), Eigen::Matrix4d::Identity());
+  } else {
+    for (size_t m = 0; m < model.meshes.size(); ++m)
+      add_mesh(static_cast<int>(m), Eigen::Matrix4d::Identity());
+  }
+  if (triangles.empty()) throw InputError(path + ": glTF file has no triangle primitives");
+  return make_surface_mesh(std::move(vertices), std::move(triangles), path);
+}
+
+}  // namespace crowdlab
