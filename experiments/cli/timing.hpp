@@ -2,6 +2,7 @@
 // Timing helpers shared by the `crowdlab bench` subcommands.
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <numeric>
 #include <vector>
 
@@ -25,6 +26,19 @@ double time_ms(F&& f) {
   const auto t0 = std::chrono::steady_clock::now();
   f();
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// CPU time of the calling thread (ms) taken by f(). On a shared machine wall time also counts the
+/// time other processes hold the core; this does not. Meaningful for single-threaded runs (with one
+/// TBB thread the work runs on the calling thread).
+template <class F>
+double thread_cpu_ms(F&& f) {
+  timespec t0{}, t1{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t0);
+  f();
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t1);
+  return 1e3 * static_cast<double>(t1.tv_sec - t0.tv_sec) +
+         1e-6 * static_cast<double>(t1.tv_nsec - t0.tv_nsec);
 }
 
 }  // namespace crowdlab::cli

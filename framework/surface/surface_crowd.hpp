@@ -72,6 +72,11 @@ struct SurfaceCrowdState {
   // Scratch, sized once (no allocation per step after the first).
   std::vector<std::uint32_t> cell_slot, slot_start, slot_agents;
   std::vector<Vec3> center_m, up;  ///< (N) body centres and up vectors of the old state
+  struct SortedAgent {             ///< what a neighbour scan reads, in one cache-friendly record
+    Vec3 center_m, feet_m, up;
+    int index;
+  };
+  std::vector<SortedAgent> sorted;  ///< (N) agents in slot (cell) order
   std::vector<Vec3> next_velocity;
   std::vector<int> next_goal;
   std::vector<std::vector<int>> face_agents;  ///< kSurface mode only
