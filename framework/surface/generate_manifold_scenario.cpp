@@ -26,6 +26,21 @@ SurfaceCrowdParams params_from_spec(const ExperimentSpec& spec) {
     throw InputError(SourceLocation{spec.source_path, 0, 0, "crowd.model"},
                      "a manifold scenario needs 'orca' or 'social', not '" + model + "'");
   p.avoidance = parse_surface_avoidance(model, "crowd.model");
+  // The surface crowd's own ranges, checked here so that errors name the spec keys.
+  const auto require = [&](bool ok, const std::string& key, const std::string& range) {
+    if (!ok)
+      throw InputError(SourceLocation{spec.source_path, 0, 0, key}, "a manifold scenario needs " + range);
+  };
+  require(spec.crowd.neighbor_distance_m > 0 && spec.crowd.neighbor_distance_m <= 10,
+          "crowd.neighbor_distance_m", "a value in (0, 10] m");
+  require(spec.crowd.max_neighbors >= 1 && spec.crowd.max_neighbors <= 32, "crowd.max_neighbors",
+          "a value in [1, 32]");
+  require(spec.crowd.time_horizon_s > 0 && spec.crowd.time_horizon_s <= 10, "crowd.time_horizon_s",
+          "a value in (0, 10] s");
+  require(2 * spec.crowd.agent_radius_m <= kAgentHeightM, "crowd.agent_radius_m",
+          "at most half the 1.8 m agent height");
+  require(spec.scenario.walk_speed_mps > 0 && spec.scenario.walk_speed_mps <= 3, "scenario.walk_speed_mps",
+          "a value in (0, 3] m/s");
   p.body.height_m = kAgentHeightM;
   p.body.sphere_radius_m = spec.crowd.agent_radius_m;
   p.neighbor_distance_m = spec.crowd.neighbor_distance_m;
