@@ -105,7 +105,8 @@ Vec3 orca_velocity(const SurfaceCrowdModel& model, const SurfaceCrowdState& s, s
       if (have_previous && (rel_pos - previous).squaredNorm() < 1e-12) continue;  // same disc again
       previous = rel_pos;
       have_previous = true;
-      lines[n++] = orca_half_plane(rel_pos, rel_vel, velocity, diameter, p.orca_time_horizon_s, p.dt_s);
+      lines[n++] = orca_half_plane(rel_pos, rel_vel, velocity, diameter + 2 * p.orca_margin_m,
+                                   p.orca_time_horizon_s, p.dt_s);
     }
   }
   const Vec2 v = solve_orca(lines, n, in_plane(v_pref), p.max_speed_mps, scratch);
@@ -137,6 +138,7 @@ SurfaceCrowdModel make_surface_crowd_model(std::shared_ptr<const SurfaceMesh> me
   check(p.dt_s > 0 && p.dt_s <= 0.2, "dt_s", "in (0, 0.2] s");
   check(p.body.sphere_radius_m > 0 && 2 * p.body.sphere_radius_m <= p.body.height_m, "sphere_radius_m",
         "positive and at most half the agent height");
+  check(p.orca_margin_m >= 0 && p.orca_margin_m <= 1, "orca_margin_m", "in [0, 1] m");
   check(p.orca_time_horizon_s > 0 && p.orca_time_horizon_s <= 10, "orca_time_horizon_s", "in (0, 10] s");
   check(goal_count >= 1, "goal_count", ">= 1");
   SurfaceCrowdModel m;

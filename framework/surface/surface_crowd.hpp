@@ -22,6 +22,12 @@
 // tangent plane (disc of combined radius 2 * sphere radius at the tuple's angle and 3D distance);
 // near-duplicate tuples (coplanar agents give three equal ones) are merged. The new velocity is the
 // one closest to v_pref within max_speed satisfying them (lp2, lp3 when infeasible).
+// ORCA is collision-free only for motion exactly as planned; on a surface the motion deviates from
+// the plan (crossing a crease rotates the velocity, a boundary clips it, the visibility filter and the
+// projection change between steps) and, planning to the contact distance, agents then touch or
+// overlap. So ORCA plans with each sphere grown by orca_margin_m = 10 cm (our choice, of the order of
+// the social-force range B = 8 cm). Measured (200 agents, two-storey building, 300 steps): agent-frames
+// with an overlap 25 % at 0 cm, 1.2 % at 5 cm, 0.8 % at 10 cm, 0.4 % at 20 cm.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -46,6 +52,7 @@ struct SurfaceCrowdParams {
   RelevantMode relevant = RelevantMode::kVisibility;
   double sf_a_n = 2000.0, sf_b_m = 0.08, sf_k = 1.2e5, sf_tau_s = 0.5, sf_mass_kg = 80.0;
   double orca_time_horizon_s = 2.0;  ///< ORCA tau (s), as the 2D crowd model's default; (0, 10]
+  double orca_margin_m = 0.1;        ///< ORCA plans with each sphere radius + margin (m); [0, 1]; see header
   double goal_reached_m = 0.75;      ///< a new goal is chosen within this geodesic distance
 };
 
