@@ -42,9 +42,14 @@ void accumulate_surface_measures(const SurfaceCrowdModel& model, const SurfaceCr
       const auto first = s.neighbors.begin() + static_cast<long>(i * K);
       const bool relevant =
           std::find(first, first + s.neighbor_count[i], static_cast<int>(j)) != first + s.neighbor_count[i];
-      if (relevant && !reachable) ++m.false_positives;
       if (!relevant && reachable) ++m.false_negatives;
       if (reachable && clearance < 0) colliding = true;
+    }
+    // False positives: every neighbour the avoidance model is given (at any distance) that it cannot
+    // reach; it steers around each of them.
+    for (int k = 0; k < s.neighbor_count[i]; ++k) {
+      const SurfacePoint& b = s.points[static_cast<size_t>(s.neighbors[i * K + static_cast<size_t>(k)])];
+      if (bvh.segment_hits(ca, body_center(model, b))) ++m.false_positives;
     }
     ++m.agent_frames;
     if (colliding) ++m.colliding_agent_frames;

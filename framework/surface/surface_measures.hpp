@@ -6,9 +6,11 @@
 //   collision percent  = 100 * (agent-frames whose three-sphere body overlaps a reachable agent's)
 //                        / (agent-frames). Seed 002 reports "collision percentages" without a formula;
 //                        per agent-frame is the usual crowd-simulation convention.
-//   false positive     = an agent the Relevant function kept that is within the interaction range but
-//                        NOT reachable (e.g. the agent on the other side of a floor);
-//   false negative     = an agent within the interaction range, reachable, that Relevant dropped.
+//   false positive     = an agent the Relevant function kept (so the avoidance model steers around it,
+//                        at whatever distance) that is NOT reachable (e.g. the agent on the other side
+//                        of a floor, or on the storey above);
+//   false negative     = an agent within the interaction range (clearance below it), reachable, that
+//                        Relevant dropped.
 // Pairs are counted per agent per frame (ordered pairs).
 #include "framework/surface/surface_crowd.hpp"
 #include "framework/surface/triangle_bvh.hpp"
