@@ -25,9 +25,16 @@ enum class RelevantMode { kVisibility, kEuclidean, kSurface };
 struct StackedBody {
   double height_m = 1.8;          ///< agent height, feet to head (metres)
   double sphere_radius_m = 0.25;  ///< radius of each of the three spheres
-  /// Sphere i (0..2) centre: feet + up * (r + i * (height - 2r) / 2): the stack spans feet to head.
+  /// Distance between consecutive sphere centres along up (metres). 0 (default) = (height - 2r) / 2,
+  /// so that the stack spans feet to head. (Seed 002 writes o + i * o_up, i.e. a spacing of one unit
+  /// of its normal's length; it leaves the scale open.)
+  double sphere_spacing_m = 0.0;
+  double spacing() const {
+    return sphere_spacing_m > 0 ? sphere_spacing_m : (height_m - 2 * sphere_radius_m) / 2;
+  }
+  /// Sphere i (0..2) centre: feet + up * (r + i * spacing).
   Vec3 sphere_center(const Vec3& feet, const Vec3& up, int i) const {
-    return feet + up * (sphere_radius_m + i * (height_m - 2 * sphere_radius_m) / 2);
+    return feet + up * (sphere_radius_m + i * spacing());
   }
 };
 

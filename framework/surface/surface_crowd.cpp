@@ -138,6 +138,8 @@ SurfaceCrowdModel make_surface_crowd_model(std::shared_ptr<const SurfaceMesh> me
   check(p.dt_s > 0 && p.dt_s <= 0.2, "dt_s", "in (0, 0.2] s");
   check(p.body.sphere_radius_m > 0 && 2 * p.body.sphere_radius_m <= p.body.height_m, "sphere_radius_m",
         "positive and at most half the agent height");
+  check(p.body.sphere_spacing_m >= 0 && p.body.sphere_spacing_m <= p.body.height_m, "sphere_spacing_m",
+        "in [0, agent height] (0 = span feet to head)");
   check(p.orca_margin_m >= 0 && p.orca_margin_m <= 1, "orca_margin_m", "in [0, 1] m");
   check(p.orca_time_horizon_s > 0 && p.orca_time_horizon_s <= 10, "orca_time_horizon_s", "in (0, 10] s");
   check(goal_count >= 1, "goal_count", ">= 1");

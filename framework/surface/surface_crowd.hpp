@@ -43,7 +43,7 @@ enum class SurfaceAvoidance { kSocialForces, kOrca };
 
 struct SurfaceCrowdParams {
   SurfaceAvoidance avoidance = SurfaceAvoidance::kSocialForces;
-  StackedBody body;                  ///< height and sphere radius (metres)
+  StackedBody body;                  ///< height, sphere radius and spacing (metres)
   double neighbor_distance_m = 3.0;  ///< candidate radius between body centres; (0, 10]
   int max_neighbors = 10;            ///< [1, 32]
   double preferred_speed_mps = 1.3;  ///< (0, 3]

@@ -3,6 +3,7 @@
 #include <tbb/global_control.h>
 #include <catch2/catch.hpp>
 
+#include "framework/core/error.hpp"
 #include "framework/core/sha256.hpp"
 #include "framework/surface/geodesic_distance.hpp"
 #include "framework/surface/surface_measures.hpp"
@@ -105,6 +106,15 @@ TEST_CASE("agents on perpendicular surfaces avoid each other through the stacked
   // One on the floor walking along the foot of the wall, one on the wall walking along its base the other
   // way: their feet are 1 m apart but their heads would meet.
   const Vec3 a(0.9, 0, 1.0), b(0, 0.9, 7.0);
+  {
+    // Without avoidance their straight paths collide head-on: at the passing point a's middle sphere
+    // and b's middle sphere coincide. With a single sphere at the feet they would never interact.
+    const StackedBody body;
+    CHECK(stacked_clearance(Vec3(0.9, 0, 4), Vec3::UnitY(), Vec3(0, 0.9, 4), Vec3::UnitX(), body) < -0.4);
+    CHECK((Vec3(0.9, 0, 4) + Vec3::UnitY() * body.sphere_radius_m - Vec3(0, 0.9, 4) -
+           Vec3::UnitX() * body.sphere_radius_m)
+              .norm() > 2 * body.sphere_radius_m);
+  }
   for (RelevantMode mode : {RelevantMode::kVisibility, RelevantMode::kSurface}) {
     Duel d = duel(mesh, a, b, Vec3(0.9, 0, 7.5), Vec3(0, 0.9, 0.5), mode, avoidance);
     double min_clearance = 1e9;
@@ -150,4 +160,20 @@ TEST_CASE("a crowd on the blob stays on the surface and is deterministic across 
   CHECK(m1.max_distance_to_surface_m < 1e-5);
   INFO("collision % " << m1.collision_percent());
   CHECK(m1.collision_percent() < 5.0);
+}
+
+TEST_CASE("agent height, sphere radius and spacing are parameters of the stacked body") {
+  StackedBody body;
+  CHECK(body.sphere_center(Vec3::Zero(), Vec3::UnitY(), 2).y() == Approx(1.8 - 0.25));  // spans feet to head
+  body.sphere_spacing_m = 0.3;
+  body.sphere_radius_m = 0.2;
+  for (int i = 0; i < 3; ++i)
+    CHECK((body.sphere_center(Vec3(1, 2, 3), Vec3::UnitX(), i) - Vec3(1.2 + 0.3 * i, 2, 3)).norm() < 1e-12);
+  // Two agents side by side on a floor, 0.45 m apart: the radius decides whether they overlap.
+  CHECK(stacked_clearance(Vec3::Zero(), Vec3::UnitY(), Vec3(0.45, 0, 0), Vec3::UnitY(), body) ==
+        Approx(0.05));
+  SurfaceCrowdParams p;
+  p.body.sphere_spacing_m = -1;
+  auto mesh = std::make_shared<const SurfaceMesh>(make_floor_and_wall(4, 0.5));
+  CHECK_THROWS_AS(make_surface_crowd_model(mesh, p, 1, 1), InputError);
 }
