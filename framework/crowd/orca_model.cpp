@@ -8,6 +8,7 @@
 
 #include "framework/core/error.hpp"
 #include "framework/crowd/orca_linear_program.hpp"
+#include "framework/crowd/orca_obstacle_line.hpp"
 #include "framework/crowd/segment_distance.hpp"
 
 namespace crowdlab {
@@ -95,6 +96,21 @@ Line agent_line(const CrowdWorld& w, std::size_t i, std::uint32_t j, double inv_
   return line;
 }
 
+/// Step guard of agent i against neighbour j: v_i . n_ij <= max(gap, 0) / (2 dt), with n_ij the unit
+/// vector toward j and gap = |p_j - p_i| - (r_i + r_j). If both agents keep their guards, the distance
+/// along n_ij shrinks by at most the gap during the step, so the discs cannot overlap by its end
+/// (nor in between: motion is linear). v = 0 always satisfies it, so a set of guards is feasible.
+Line step_guard(const CrowdWorld& w, std::size_t i, std::uint32_t j, double dist2, double rr) {
+  const double d = std::sqrt(dist2);
+  double nx = 1.0, ny = 0.0;
+  if (d > 1e-12) nx = (w.px[j] - w.px[i]) / d, ny = (w.py[j] - w.py[i]) / d;
+  const double limit = std::fmax(d - rr, 0.0) / (2.0 * w.dt);
+  Line g;
+  g.px = nx * limit, g.py = ny * limit;
+  g.dx = -ny, g.dy = nx;  // left normal (-dy, dx) = -n: the permitted side is "not toward j"
+  return g;
+}
+
 }  // namespace
 
 OrcaModel::OrcaModel(const OrcaParams& p) : params_(p) {
@@ -109,47 +125,139 @@ OrcaModel::OrcaModel(const OrcaParams& p) : params_(p) {
 
 void OrcaModel::compute_velocities(const CrowdWorld& w, std::size_t begin, std::size_t end, double* new_vx,
                                    double* new_vy) const {
-  std::array<Line, kMaxNeighbors + kMaxObstacleLines> lines;
-  std::array<Line, kMaxNeighbors + kMaxObstacleLines> scratch;
+  constexpr std::size_t kMaxLines = 2 * kMaxNeighbors + kMaxObstacleLines;
+  std::array<Line, kMaxLines> lines;      // [obstacles][agents]: the ORCA program
+  std::array<Line, kMaxLines> hard_soft;  // [obstacles][step guards][agents]: the infeasible case
+  std::array<Line, kMaxLines> scratch;
+  std::array<Line, kMaxNeighbors> guards;
   NearestNeighbors nn;
   nn.capacity = params_.max_neighbors;
   const double inv_tau = 1.0 / params_.time_horizon_s;
+  const double inv_tau_obst = 1.0 / params_.obstacle_time_horizon_s;
   const double tau_obst = params_.obstacle_time_horizon_s;
+  std::array<double, kMaxObstacleLines> near_d2;
+  std::array<std::uint32_t, kMaxObstacleLines> near_index;
   const double range = params_.neighbor_distance_m;
   const std::vector<ObstacleSegment>& obstacles = *w.obstacles;
 
-  for (std::size_t i = begin; i < end; ++i) {
+  // Agents are visited in grid order (the range [begin, end) indexes NeighborGrid::order()), and
+  // the candidates of the 3x3 cell block are gathered once per cell and shared by its agents.
+  const NeighborGrid& grid = *w.grid;
+  const bool grid_order = grid.size() == w.count;
+  constexpr int kBlockCapacity = 256;
+  std::array<double, kBlockCapacity> block_x, block_y;
+  std::array<std::uint32_t, kBlockCapacity> block_j;
+  int block_size = -1;  // -1: overflowed, use per-agent queries
+  const double range2 = range * range;
+  // Overlap-free mode (see the header): step guards in the infeasible case and flags for the
+  // simulation's projection. Off: the plain ORCA of the paper / RVO2.
+  const bool guarded = params_.resolve_overlaps && w.needs_contact_check != nullptr;
+
+  for (std::size_t k_order = begin; k_order < end; ++k_order) {
+    const std::size_t i = grid_order ? grid.order(k_order) : k_order;
+    if (grid_order && (k_order == begin || !grid.same_cell(k_order, k_order - 1))) {
+      block_size = 0;
+      grid.for_each_in_block(k_order, [&](std::uint32_t j, double x, double y) {
+        if (block_size < 0) return;
+        if (block_size == kBlockCapacity) {
+          block_size = -1;
+          return;
+        }
+        block_x[block_size] = x, block_y[block_size] = y, block_j[block_size] = j;
+        ++block_size;
+      });
+    }
     const double pix = w.px[i], piy = w.py[i];
     const double max_speed = w.max_speed[i];
     std::size_t n = 0;
-    // Obstacle lines first: they stay hard constraints in lp3.
+    // Obstacle lines first, nearest segment first (Sec. 5.1): they stay hard constraints in lp3.
     const double obstacle_reach = tau_obst * max_speed + w.radius[i];
-    for (const ObstacleSegment& s : obstacles) {
-      if (n == static_cast<std::size_t>(kMaxObstacleLines)) break;
+    const double reach2 = obstacle_reach * obstacle_reach;
+    int num_near = 0;
+    for (std::size_t k = 0; k < obstacles.size(); ++k) {
+      const ObstacleSegment& s = obstacles[k];
       const Vec2 c = closest_point_on_segment(s.a, s.b, Vec2(pix, piy));
-      const double ox = pix - c.x(), oy = piy - c.y();
-      const double d = std::sqrt(ox * ox + oy * oy);
-      if (d > obstacle_reach || d <= 1e-12) continue;
-      const double nx = ox / d, ny = oy / d;
-      const double horizon = d > w.radius[i] ? tau_obst : w.dt;
-      const double offset = (w.radius[i] - d) / horizon;  // v . n >= offset
-      Line& L = lines[n++];
-      L.px = nx * offset, L.py = ny * offset;
-      L.dx = ny, L.dy = -nx;  // left normal of (dx, dy) is n: the permitted side
+      const double d2 = (c.x() - pix) * (c.x() - pix) + (c.y() - piy) * (c.y() - piy);
+      if (!(d2 < reach2)) continue;
+      // Insertion into the nearest-first list (ties keep segment order).
+      int pos = num_near;
+      if (num_near < kMaxObstacleLines) {
+        ++num_near;
+      } else {
+        if (near_d2[kMaxObstacleLines - 1] <= d2) continue;  // farther than all kept
+        pos = kMaxObstacleLines - 1;
+      }
+      while (pos > 0 && near_d2[pos - 1] > d2) {
+        near_d2[pos] = near_d2[pos - 1];
+        near_index[pos] = near_index[pos - 1];
+        --pos;
+      }
+      near_d2[pos] = d2;
+      near_index[pos] = static_cast<std::uint32_t>(k);
+    }
+    const orca::ObstacleAgent self{pix, piy, w.vx[i], w.vy[i], w.radius[i], max_speed};
+    for (int k = 0; k < num_near; ++k) {
+      const ObstacleSegment& s = obstacles[near_index[k]];
+      if (orca::obstacle_line(s.a.x(), s.a.y(), s.b.x(), s.b.y(), self, inv_tau_obst, w.dt, lines.data(), n,
+                              lines[n]))
+        ++n;
     }
     const std::size_t num_obstacle_lines = n;
 
     nn.size = 0;
-    w.grid->for_each_within(pix, piy, range, [&](std::uint32_t j, double, double, double d2, double r2) {
-      if (j == i) return r2;
-      return nn.insert(j, d2, r2);
-    });
-    for (int k = 0; k < nn.size; ++k) lines[n++] = agent_line(w, i, nn.index[k], inv_tau);
+    if (grid_order && block_size >= 0) {
+      double r2 = range2;
+      for (int c = 0; c < block_size; ++c) {
+        const double dx = block_x[c] - pix, dy = block_y[c] - piy;
+        const double d2 = dx * dx + dy * dy;
+        if (d2 <= r2 && block_j[c] != i) r2 = nn.insert(block_j[c], d2, r2);
+      }
+    } else {
+      grid.for_each_within(pix, piy, range, [&](std::uint32_t j, double, double, double d2, double r2) {
+        if (j == i) return r2;
+        return nn.insert(j, d2, r2);
+      });
+    }
+    bool touching = num_near > 0 && near_d2[0] < w.radius[i] * w.radius[i];
+    std::size_t num_guards = 0;
+    for (int k = 0; k < nn.size; ++k) {
+      const std::uint32_t j = nn.index[k];
+      const double rr = w.radius[i] + w.radius[j];
+      const double guard_reach = rr + (max_speed + w.max_speed[j]) * w.dt;
+      if (guarded && nn.d2[k] < guard_reach * guard_reach) {
+        touching = touching || nn.d2[k] <= rr * rr;
+        guards[num_guards++] = step_guard(w, i, j, nn.d2[k], rr);
+      }
+      lines[n++] = agent_line(w, i, j, inv_tau);
+    }
 
     double rx = 0.0, ry = 0.0;
     const std::size_t failed =
         orca::lp2(lines.data(), n, max_speed, w.pref_vx[i], w.pref_vy[i], false, rx, ry);
-    if (failed < n) orca::lp3(lines.data(), n, num_obstacle_lines, failed, max_speed, scratch.data(), rx, ry);
+    if (failed < n && !guarded) {
+      orca::lp3(lines.data(), n, num_obstacle_lines, failed, max_speed, scratch.data(), rx, ry);
+    } else if (failed < n) {
+      // Infeasible: the step guards join the obstacles as hard constraints of the 3D program.
+      std::size_t m = 0;
+      for (std::size_t k = 0; k < num_obstacle_lines; ++k) hard_soft[m++] = lines[k];
+      for (std::size_t k = 0; k < num_guards; ++k) hard_soft[m++] = guards[k];
+      const std::size_t num_hard = m;
+      for (std::size_t k = num_obstacle_lines; k < n; ++k) hard_soft[m++] = lines[k];
+      orca::lp3(hard_soft.data(), m, num_hard, num_hard, max_speed, scratch.data(), rx, ry);
+    }
+    if (guarded) {
+      // Flag the agent for the overlap projection when it may end the step overlapping: it already
+      // does, it breaks a step guard (allowed to ORCA agents whose neighbours keep their half), or
+      // its neighbour list is full inside the guard reach (an agent within reach may be unseen).
+      bool flag = touching;
+      for (std::size_t k = 0; k < num_guards && !flag; ++k)
+        flag = orca::det(guards[k].dx, guards[k].dy, guards[k].px - rx, guards[k].py - ry) > 1e-9;
+      if (!flag && nn.size == nn.capacity) {
+        const double reach = 2.0 * (w.radius[i] + max_speed * w.dt);
+        flag = nn.d2[nn.size - 1] < reach * reach;
+      }
+      if (flag) w.needs_contact_check[i] = 1;
+    }
     new_vx[i] = rx;
     new_vy[i] = ry;
   }

@@ -30,6 +30,8 @@ struct OrcaParams {
   int max_neighbors = 10;                ///< [1, 64]
   double time_horizon_s = 2.0;           ///< tau for agents (> 0)
   double obstacle_time_horizon_s = 2.0;  ///< tau for obstacles (> 0)
+  /// Overlap-free mode (off by default: plain ORCA as in the paper and RVO2). See the header.
+  bool resolve_overlaps = false;
 };
 
 class OrcaModel final : public NavigationModel {
@@ -41,6 +43,7 @@ class OrcaModel final : public NavigationModel {
   explicit OrcaModel(const OrcaParams& params);
   std::string_view name() const override { return "orca"; }
   double neighbor_radius_m() const override { return params_.neighbor_distance_m; }
+  bool resolves_overlaps() const override { return params_.resolve_overlaps; }
   void compute_velocities(const CrowdWorld& world, std::size_t begin, std::size_t end, double* new_vx,
                           double* new_vy) const override;
   const OrcaParams& params() const { return params_; }
