@@ -20,11 +20,12 @@ using orca::Line;
 struct NearestNeighbors {
   std::array<double, OrcaModel::kMaxNeighbors> d2;
   std::array<std::uint32_t, OrcaModel::kMaxNeighbors> index;
+  std::array<std::uint32_t, OrcaModel::kMaxNeighbors> slot;  ///< where the caller keeps j's data
   int size = 0;
   int capacity = 0;
 
   /// Inserts (j, dist2); returns the squared radius still worth searching.
-  double insert(std::uint32_t j, double dist2, double r2) {
+  double insert(std::uint32_t j, std::uint32_t j_slot, double dist2, double r2) {
     int pos = size;
     if (size == capacity) {
       if (dist2 > d2[size - 1] || (dist2 == d2[size - 1] && j > index[size - 1])) return r2;
@@ -35,20 +36,21 @@ struct NearestNeighbors {
     while (pos > 0 && (d2[pos - 1] > dist2 || (d2[pos - 1] == dist2 && index[pos - 1] > j))) {
       d2[pos] = d2[pos - 1];
       index[pos] = index[pos - 1];
+      slot[pos] = slot[pos - 1];
       --pos;
     }
     d2[pos] = dist2;
     index[pos] = j;
+    slot[pos] = j_slot;
     return size == capacity ? d2[size - 1] : r2;
   }
 };
 
-/// ORCA half-plane induced on agent i by neighbour j (see the header for the geometry).
-Line agent_line(const CrowdWorld& w, std::size_t i, std::uint32_t j, double inv_tau) {
-  const double rel_px = w.px[j] - w.px[i], rel_py = w.py[j] - w.py[i];
-  const double rel_vx = w.vx[i] - w.vx[j], rel_vy = w.vy[i] - w.vy[j];
+/// ORCA half-plane induced on an agent with velocity (vix, viy) by a neighbour at relative position
+/// rel_p = p_j - p_i, relative velocity rel_v = v_i - v_j, combined radius r (header: geometry).
+Line agent_line(double rel_px, double rel_py, double rel_vx, double rel_vy, double r, double vix, double viy,
+                double inv_tau, double dt) {
   const double dist2 = rel_px * rel_px + rel_py * rel_py;
-  const double r = w.radius[i] + w.radius[j];
   const double r2 = r * r;
   Line line;
   double ux, uy;
@@ -80,7 +82,7 @@ Line agent_line(const CrowdWorld& w, std::size_t i, std::uint32_t j, double inv_
     }
   } else {
     // Already overlapping: leave the cut-off disc of horizon dt.
-    const double inv_dt = 1.0 / w.dt;
+    const double inv_dt = 1.0 / dt;
     const double wx = rel_vx - inv_dt * rel_px, wy = rel_vy - inv_dt * rel_py;
     const double wl = std::sqrt(wx * wx + wy * wy);
     double nx = 1.0, ny = 0.0;
@@ -91,8 +93,8 @@ Line agent_line(const CrowdWorld& w, std::size_t i, std::uint32_t j, double inv_
     line.dx = ny, line.dy = -nx;
     ux = (r * inv_dt - wl) * nx, uy = (r * inv_dt - wl) * ny;
   }
-  line.px = w.vx[i] + 0.5 * ux;
-  line.py = w.vy[i] + 0.5 * uy;
+  line.px = vix + 0.5 * ux;
+  line.py = viy + 0.5 * uy;
   return line;
 }
 
@@ -145,7 +147,8 @@ void OrcaModel::compute_velocities(const CrowdWorld& w, std::size_t begin, std::
   const NeighborGrid& grid = *w.grid;
   const bool grid_order = grid.size() == w.count;
   constexpr int kBlockCapacity = 256;
-  std::array<double, kBlockCapacity> block_x, block_y;
+  constexpr std::uint32_t kNoSlot = 0xffffffffu;
+  std::array<double, kBlockCapacity> block_x, block_y, block_vx, block_vy, block_r;
   std::array<std::uint32_t, kBlockCapacity> block_j;
   int block_size = -1;  // -1: overflowed, use per-agent queries
   const double range2 = range * range;
@@ -164,6 +167,7 @@ void OrcaModel::compute_velocities(const CrowdWorld& w, std::size_t begin, std::
           return;
         }
         block_x[block_size] = x, block_y[block_size] = y, block_j[block_size] = j;
+        block_vx[block_size] = w.vx[j], block_vy[block_size] = w.vy[j], block_r[block_size] = w.radius[j];
         ++block_size;
       });
     }
@@ -210,25 +214,32 @@ void OrcaModel::compute_velocities(const CrowdWorld& w, std::size_t begin, std::
       for (int c = 0; c < block_size; ++c) {
         const double dx = block_x[c] - pix, dy = block_y[c] - piy;
         const double d2 = dx * dx + dy * dy;
-        if (d2 <= r2 && block_j[c] != i) r2 = nn.insert(block_j[c], d2, r2);
+        if (d2 <= r2 && block_j[c] != i) r2 = nn.insert(block_j[c], static_cast<std::uint32_t>(c), d2, r2);
       }
     } else {
       grid.for_each_within(pix, piy, range, [&](std::uint32_t j, double, double, double d2, double r2) {
         if (j == i) return r2;
-        return nn.insert(j, d2, r2);
+        return nn.insert(j, kNoSlot, d2, r2);
       });
     }
     bool touching = num_near > 0 && near_d2[0] < w.radius[i] * w.radius[i];
     std::size_t num_guards = 0;
+    const double vix = w.vx[i], viy = w.vy[i], ri = w.radius[i];
     for (int k = 0; k < nn.size; ++k) {
-      const std::uint32_t j = nn.index[k];
-      const double rr = w.radius[i] + w.radius[j];
-      const double guard_reach = rr + (max_speed + w.max_speed[j]) * w.dt;
-      if (guarded && nn.d2[k] < guard_reach * guard_reach) {
-        touching = touching || nn.d2[k] <= rr * rr;
-        guards[num_guards++] = step_guard(w, i, j, nn.d2[k], rr);
+      const std::uint32_t j = nn.index[k], c = nn.slot[k];
+      const bool in_block = c != kNoSlot;
+      const double rel_px = in_block ? block_x[c] - pix : w.px[j] - pix;
+      const double rel_py = in_block ? block_y[c] - piy : w.py[j] - piy;
+      const double vjx = in_block ? block_vx[c] : w.vx[j], vjy = in_block ? block_vy[c] : w.vy[j];
+      const double rr = ri + (in_block ? block_r[c] : w.radius[j]);
+      if (guarded) {
+        const double guard_reach = rr + (max_speed + w.max_speed[j]) * w.dt;
+        if (nn.d2[k] < guard_reach * guard_reach) {
+          touching = touching || nn.d2[k] <= rr * rr;
+          guards[num_guards++] = step_guard(w, i, j, nn.d2[k], rr);
+        }
       }
-      lines[n++] = agent_line(w, i, j, inv_tau);
+      lines[n++] = agent_line(rel_px, rel_py, vix - vjx, viy - vjy, rr, vix, viy, inv_tau, w.dt);
     }
 
     double rx = 0.0, ry = 0.0;
