@@ -66,6 +66,9 @@ class NeighborGrid {
   /// a bucket): a permutation of 0..size()-1, so iterating it visits every point once, neighbours
   /// close together in time.
   std::uint32_t order(std::size_t k) const { return sorted_index_[k]; }
+  /// Coordinates of the point at grid-order position k (the same values as the input arrays).
+  double x_at(std::size_t k) const { return sorted_x_[k]; }
+  double y_at(std::size_t k) const { return sorted_y_[k]; }
   /// True when grid-order positions k and l lie in the same cell.
   bool same_cell(std::size_t k, std::size_t l) const {
     return sorted_cx_[k] == sorted_cx_[l] && sorted_cy_[k] == sorted_cy_[l];

@@ -171,7 +171,8 @@ void OrcaModel::compute_velocities(const CrowdWorld& w, std::size_t begin, std::
         ++block_size;
       });
     }
-    const double pix = w.px[i], piy = w.py[i];
+    const double pix = grid_order ? grid.x_at(k_order) : w.px[i],
+                 piy = grid_order ? grid.y_at(k_order) : w.py[i];
     const double max_speed = w.max_speed[i];
     std::size_t n = 0;
     // Obstacle lines first, nearest segment first (Sec. 5.1): they stay hard constraints in lp3.
