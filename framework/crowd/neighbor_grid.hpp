@@ -75,19 +75,20 @@ class NeighborGrid {
   }
 
   /// Calls visit(j, x, y) for every point in the 3x3 cells around the cell of grid-order position
-  /// k, in the same cell order as for_each_within(). Points in consecutive grid-order positions of
-  /// one cell share this block, so a caller gathers it once per cell instead of once per point.
+  /// k: the cell itself first, then its edge neighbours, then the corners, so that a k-nearest
+  /// search over the block meets near points first and rejects most far ones without inserting
+  /// them. Points in consecutive grid-order positions of one cell share this block, so a caller
+  /// gathers it once per cell instead of once per point.
   template <class Visit>
   void for_each_in_block(std::size_t k, Visit&& visit) const {
+    static constexpr std::int32_t kOffsets[9][2] = {{0, 0},   {-1, 0}, {1, 0},  {0, -1}, {0, 1},
+                                                    {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
     const std::int32_t cx = sorted_cx_[k], cy = sorted_cy_[k];
-    for (std::int32_t oy = -1; oy <= 1; ++oy) {
-      for (std::int32_t ox = -1; ox <= 1; ++ox) {
-        const std::int32_t ccx = cx + ox, ccy = cy + oy;
-        const std::uint32_t b = bucket_of(ccx, ccy);
-        for (std::uint32_t e = bucket_start_[b], end = bucket_start_[b + 1]; e < end; ++e)
-          if (sorted_cx_[e] == ccx && sorted_cy_[e] == ccy)
-            visit(sorted_index_[e], sorted_x_[e], sorted_y_[e]);
-      }
+    for (const auto& o : kOffsets) {
+      const std::int32_t ccx = cx + o[0], ccy = cy + o[1];
+      const std::uint32_t b = bucket_of(ccx, ccy);
+      for (std::uint32_t e = bucket_start_[b], end = bucket_start_[b + 1]; e < end; ++e)
+        if (sorted_cx_[e] == ccx && sorted_cy_[e] == ccy) visit(sorted_index_[e], sorted_x_[e], sorted_y_[e]);
     }
   }
 
