@@ -115,6 +115,7 @@ class NeighborGrid {
   std::vector<std::uint32_t> sorted_index_;  // (n) point index in bucket order
   std::vector<double> sorted_x_, sorted_y_;  // (n) coordinates in bucket order (cache locality)
   std::vector<std::int32_t> sorted_cx_, sorted_cy_;
+  std::vector<std::int32_t> point_cx_, point_cy_;  // (n) cell of each point (scratch)
 };
 
 }  // namespace crowdlab
