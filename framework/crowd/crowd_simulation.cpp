@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -42,8 +43,9 @@ CrowdSimulation::CrowdSimulation(std::shared_ptr<const NavigationModel> model, s
   substeps_ = max_h < dt_ ? static_cast<int>(std::ceil(dt_ / max_h - 1e-9)) : 1;
   const std::size_t n = agents.size();
   for (auto* v : {&px_, &py_, &vx_, &vy_, &gx_, &gy_, &pref_speed_, &max_speed_, &radius_, &pref_vx_,
-                  &pref_vy_, &new_vx_, &new_vy_})
+                  &pref_vy_, &new_vx_, &new_vy_, &pre_x_, &pre_y_})
     v->assign(n, 0.0);
+  contact_flags_.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     px_[i] = agents[i].position.x(), py_[i] = agents[i].position.y();
     vx_[i] = agents[i].velocity.x(), vy_[i] = agents[i].velocity.y();
@@ -97,6 +99,11 @@ void CrowdSimulation::substep(double h) {
   world.grid = &grid_;
   world.obstacles = &obstacles_;
   world.dt = h;
+  const bool resolve = model_->resolves_overlaps();
+  if (resolve) {
+    std::fill(contact_flags_.begin(), contact_flags_.end(), 0);
+    world.needs_contact_check = contact_flags_.data();
+  }
   // Phase 1: compute from the old state.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
                     [&](const tbb::blocked_range<std::size_t>& r) {
@@ -112,6 +119,25 @@ void CrowdSimulation::substep(double h) {
                         py_[i] += h * vy_[i];
                       }
                     });
+  if (resolve && std::find(contact_flags_.begin(), contact_flags_.end(), 1) != contact_flags_.end()) {
+    // The grid still holds the positions before the move: at most max_speed * h stale.
+    double stale = 0.0;
+    for (std::size_t i = 0; i < n; ++i) stale = std::max(stale, max_speed_[i] * h);
+    std::copy(px_.begin(), px_.end(), pre_x_.begin());
+    std::copy(py_.begin(), py_.end(), pre_y_.begin());
+    const OverlapResolutionResult r =
+        resolve_disc_overlaps(px_.data(), py_.data(), radius_.data(), n, contact_flags_.data(), grid_, stale,
+                              obstacles_, OverlapResolutionOptions{}, overlap_scratch_);
+    // The velocity is what the agent actually did (as in position-based dynamics), so the next
+    // step's reciprocal constraints start from the blocked motion, not from the intended one.
+    const double inv_h = 1.0 / h;
+    for (std::size_t i = 0; i < n; ++i) {
+      vx_[i] += (px_[i] - pre_x_[i]) * inv_h;
+      vy_[i] += (py_[i] - pre_y_[i]) * inv_h;
+    }
+    ++overlap_resolutions_;
+    overlap_contacts_ += static_cast<long long>(r.contacts);
+  }
   grid_.rebuild(px_.data(), py_.data(), n);
   ++substep_count_;
 }

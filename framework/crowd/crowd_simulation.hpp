@@ -4,6 +4,8 @@
 //
 // Preferred velocity (the usual goal-seeking rule of ORCA/RVO2 and Helbing 2000's e_i v0_i):
 //   v_pref = v0 * (g - p) / |g - p|, shortened to (g - p) / dt within one step of the goal.
+// Models that ask for it (ORCA) get a position-level overlap projection after the commit, seeded by
+// the agents they flag (resolve_disc_overlaps.hpp); it is sequential and ordered.
 // Parallelism: TBB parallel_for over agent ranges; each agent writes only its own slot, so 1 or N
 // threads give bit-identical states. Buffers are sized once; a step allocates nothing.
 #include <cstdint>
@@ -12,6 +14,7 @@
 
 #include "framework/crowd/navigation_model.hpp"
 #include "framework/crowd/neighbor_grid.hpp"
+#include "framework/crowd/resolve_disc_overlaps.hpp"
 
 namespace crowdlab {
 
@@ -43,6 +46,9 @@ class CrowdSimulation {
   double radius(std::size_t i) const { return radius_[i]; }
   const std::vector<ObstacleSegment>& obstacles() const { return obstacles_; }
   void set_goal(std::size_t i, const Vec2& goal) { gx_[i] = goal.x(), gy_[i] = goal.y(); }
+  /// Overlap projections run so far, and contacts they projected (see resolve_disc_overlaps.hpp).
+  long long overlap_resolutions() const { return overlap_resolutions_; }
+  long long overlap_contacts() const { return overlap_contacts_; }
 
   /// Adds a tiny pseudo-random perturbation (uniform in a disc of radius `mps`) to every preferred
   /// velocity, drawn from (seed, agent, substep) so it is deterministic and thread-independent.
@@ -62,8 +68,11 @@ class CrowdSimulation {
   double jitter_ = 0.0;
   std::uint64_t jitter_seed_ = 0;
   std::vector<double> px_, py_, vx_, vy_, gx_, gy_, pref_speed_, max_speed_, radius_;
-  std::vector<double> pref_vx_, pref_vy_, new_vx_, new_vy_;
+  std::vector<double> pref_vx_, pref_vy_, new_vx_, new_vy_, pre_x_, pre_y_;
+  std::vector<unsigned char> contact_flags_;
   NeighborGrid grid_;
+  OverlapResolutionScratch overlap_scratch_;
+  long long overlap_resolutions_ = 0, overlap_contacts_ = 0;
 };
 
 }  // namespace crowdlab

@@ -38,6 +38,10 @@ struct CrowdWorld {
   const NeighborGrid* grid = nullptr;  ///< built over (px, py); cell >= model's neighbour radius
   const std::vector<ObstacleSegment>* obstacles = nullptr;
   double dt = 0.1;  ///< the (sub)step being taken (s)
+  /// Optional per-agent output (count entries, zeroed by the caller): a model sets 1 where it could
+  /// not keep agent i collision-free this step (infeasible constraints, or already overlapping), so
+  /// that the simulation's overlap projection (resolve_disc_overlaps.hpp) looks there. May be null.
+  unsigned char* needs_contact_check = nullptr;
 };
 
 class NavigationModel {
@@ -46,6 +50,9 @@ class NavigationModel {
   virtual std::string_view name() const = 0;
   /// Largest step (s) the model integrates stably; the simulation subdivides its dt below this.
   virtual double max_step_s() const { return std::numeric_limits<double>::infinity(); }
+  /// True when the simulation should project residual overlaps after each step, starting from the
+  /// agents the model flags in CrowdWorld::needs_contact_check (ORCA; see orca_model.hpp).
+  virtual bool resolves_overlaps() const { return false; }
   /// Radius (m) of the neighbourhood the model queries; the grid's cell is at least this.
   virtual double neighbor_radius_m() const = 0;
   /// Phase 1: new velocities of agents [begin, end) from `world`, written to new_vx/new_vy[i].

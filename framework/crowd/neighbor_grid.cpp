@@ -27,32 +27,36 @@ void NeighborGrid::rebuild(const double* x, const double* y, std::size_t n) {
   std::fill(bucket_start_.begin(), bucket_start_.end(), 0u);
   if (sorted_index_.size() < n) {
     point_bucket_.resize(n);
+    point_cx_.resize(n);
+    point_cy_.resize(n);
     sorted_index_.resize(n);
     sorted_x_.resize(n);
     sorted_y_.resize(n);
     sorted_cx_.resize(n);
     sorted_cy_.resize(n);
   }
+  // Count per bucket (cells kept for the scatter), inclusive prefix sums (bucket_start_[b] = end of
+  // bucket b), then scatter in reverse with pre-decrement: each start ends at its bucket's begin and
+  // points keep increasing index order within a bucket (stable), with no extra pass to shift starts.
   for (std::size_t i = 0; i < n; ++i) {
     const auto cx = cell_coord(x[i] * inv_cell_);
     const auto cy = cell_coord(y[i] * inv_cell_);
     const std::uint32_t b = bucket_of(cx, cy);
     point_bucket_[i] = b;
-    ++bucket_start_[b + 1];
+    point_cx_[i] = cx;
+    point_cy_[i] = cy;
+    ++bucket_start_[b];
   }
-  for (std::size_t b = 0; b < table; ++b) bucket_start_[b + 1] += bucket_start_[b];
-  // Stable scatter: within a bucket, points keep increasing index order.
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t slot = bucket_start_[point_bucket_[i]]++;
+  for (std::size_t b = 1; b < table; ++b) bucket_start_[b] += bucket_start_[b - 1];
+  bucket_start_[table] = static_cast<std::uint32_t>(n);
+  for (std::size_t i = n; i-- > 0;) {
+    const std::uint32_t slot = --bucket_start_[point_bucket_[i]];
     sorted_index_[slot] = static_cast<std::uint32_t>(i);
     sorted_x_[slot] = x[i];
     sorted_y_[slot] = y[i];
-    sorted_cx_[slot] = cell_coord(x[i] * inv_cell_);
-    sorted_cy_[slot] = cell_coord(y[i] * inv_cell_);
+    sorted_cx_[slot] = point_cx_[i];
+    sorted_cy_[slot] = point_cy_[i];
   }
-  // Scatter advanced each start to the next bucket's start: shift back by one bucket.
-  for (std::size_t b = table; b > 0; --b) bucket_start_[b] = bucket_start_[b - 1];
-  bucket_start_[0] = 0;
 }
 
 }  // namespace crowdlab

@@ -62,6 +62,36 @@ class NeighborGrid {
     }
   }
 
+  /// Point index at position k of the grid order (points grouped by bucket, ascending index within
+  /// a bucket): a permutation of 0..size()-1, so iterating it visits every point once, neighbours
+  /// close together in time.
+  std::uint32_t order(std::size_t k) const { return sorted_index_[k]; }
+  /// Coordinates of the point at grid-order position k (the same values as the input arrays).
+  double x_at(std::size_t k) const { return sorted_x_[k]; }
+  double y_at(std::size_t k) const { return sorted_y_[k]; }
+  /// True when grid-order positions k and l lie in the same cell.
+  bool same_cell(std::size_t k, std::size_t l) const {
+    return sorted_cx_[k] == sorted_cx_[l] && sorted_cy_[k] == sorted_cy_[l];
+  }
+
+  /// Calls visit(j, x, y) for every point in the 3x3 cells around the cell of grid-order position
+  /// k: the cell itself first, then its edge neighbours, then the corners, so that a k-nearest
+  /// search over the block meets near points first and rejects most far ones without inserting
+  /// them. Points in consecutive grid-order positions of one cell share this block, so a caller
+  /// gathers it once per cell instead of once per point.
+  template <class Visit>
+  void for_each_in_block(std::size_t k, Visit&& visit) const {
+    static constexpr std::int32_t kOffsets[9][2] = {{0, 0},   {-1, 0}, {1, 0},  {0, -1}, {0, 1},
+                                                    {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    const std::int32_t cx = sorted_cx_[k], cy = sorted_cy_[k];
+    for (const auto& o : kOffsets) {
+      const std::int32_t ccx = cx + o[0], ccy = cy + o[1];
+      const std::uint32_t b = bucket_of(ccx, ccy);
+      for (std::uint32_t e = bucket_start_[b], end = bucket_start_[b + 1]; e < end; ++e)
+        if (sorted_cx_[e] == ccx && sorted_cy_[e] == ccy) visit(sorted_index_[e], sorted_x_[e], sorted_y_[e]);
+    }
+  }
+
  private:
   /// floor() for cell indices without a libm call (x86-64 baseline has no SSE4.1 roundsd).
   static std::int32_t cell_coord(double v) {
@@ -85,6 +115,7 @@ class NeighborGrid {
   std::vector<std::uint32_t> sorted_index_;  // (n) point index in bucket order
   std::vector<double> sorted_x_, sorted_y_;  // (n) coordinates in bucket order (cache locality)
   std::vector<std::int32_t> sorted_cx_, sorted_cy_;
+  std::vector<std::int32_t> point_cx_, point_cy_;  // (n) cell of each point (scratch)
 };
 
 }  // namespace crowdlab
