@@ -60,14 +60,7 @@ void plot_lines(const LinePlot& plot, const std::string& path_stem) {
     pls.wind(xr.lo, xr.hi, yr.lo, yr.hi);
     use_axis_colour(pls);
     pls.box("bcnst", 0, 0, "bcnstv", 0, 0);
-    pls.mtex("b", 3.2, 0.5, 0.5, plot.x_label.c_str());
-    pls.mtex("l", 4.0, 0.5, 0.5, plot.y_label.c_str());
-    pls.mtex("t", 1.5, 0.5, 0.5, plot.title.c_str());
-    if (!plot.note.empty()) {
-      pls.schr(0, 0.8);
-      pls.mtex("t", 0.4, 1.0, 1.0, plot.note.c_str());
-      pls.schr(0, 1.1);
-    }
+    draw_titles(pls, plot.title, plot.x_label, plot.y_label, plot.note);
     pls.lsty(3);
     for (double m : plot.x_markers) pls.join(m, yr.lo, m, yr.hi);
     for (size_t k = 0; k < plot.series.size(); ++k) {
@@ -78,19 +71,9 @@ void plot_lines(const LinePlot& plot, const std::string& path_stem) {
       pls.line(static_cast<PLINT>(s.x.size()), s.x.data(), s.y.data());
     }
     pls.lsty(1);
-    // Legend in its own viewport right of the plot (PLplot clips drawing to the current viewport).
-    pls.vpor(0.80, 0.99, 0.14, 0.9);
-    pls.wind(0, 1, 0, 1);
-    for (size_t k = 0; k < plot.series.size(); ++k) {
-      const double ly = 0.95 - 0.07 * static_cast<double>(k);
-      use_series_colour(pls, static_cast<int>(k));
-      pls.width(2.0);
-      pls.lsty(plot.series[k].dashed ? 2 : 1);
-      pls.join(0.02, ly, 0.22, ly);
-      pls.lsty(1);
-      use_axis_colour(pls);
-      pls.ptex(0.27, ly, 1, 0, 0, plot.series[k].label.c_str());
-    }
+    std::vector<LegendEntry> legend;
+    for (const auto& series : plot.series) legend.push_back({series.label, series.dashed ? 2 : 1, 0});
+    draw_legend(pls, legend);
   });
 }
 

@@ -37,14 +37,16 @@ int append_contact_sheets(const fs::path& report_md, const fs::path& stimuli_dir
   if (sheets.empty()) return 0;
   const fs::path figures = report_md.parent_path() / "figures" / "stimuli";
   fs::create_directories(figures);
-  std::string md = "\n## Stimuli: contact sheets\n\nOne frame (mid-clip) of every crowd from the four viewpoints "
-                   "V1 front, V2 upper-front, V3 front-side, V4 overhead, per method.\n\n";
+  std::string md =
+      "\n## Stimuli: contact sheets\n\nOne frame (mid-clip) of every crowd from the four viewpoints "
+      "V1 front, V2 upper-front, V3 front-side, V4 overhead, per method.\n\n";
   for (const fs::path& sheet : sheets) {
     const std::string crowd = sheet.parent_path().filename().string();
     const std::string method = sheet.filename().string().substr(0, sheet.filename().string().find('.'));
     const std::string name = crowd + "_" + method + ".png";
     fs::copy_file(sheet, figures / name, fs::copy_options::overwrite_existing);
-    md += "**" + crowd + ", " + method + "**\n\n![" + crowd + " " + method + "](figures/stimuli/" + name + ")\n\n";
+    md += "**" + crowd + ", " + method + "**\n\n![" + crowd + " " + method + "](figures/stimuli/" + name +
+          ")\n\n";
   }
   std::ofstream(report_md, std::ios::app) << md;
   return static_cast<int>(sheets.size());
@@ -82,8 +84,8 @@ void run_demo(const Options& o) {
               run.stages_run, run.stages_skipped);
   std::printf("  spec:           %s\n", spec_path.c_str());
   std::printf("  stimuli:        %s (manifest: %s)\n", ro.out_dir.c_str(), run.manifest.c_str());
-  std::printf("  contact sheets: %s/crowds/*/*.contact_sheet.png (%d, also in the report)\n", ro.out_dir.c_str(),
-              sheets);
+  std::printf("  contact sheets: %s/crowds/*/*.contact_sheet.png (%d, also in the report)\n",
+              ro.out_dir.c_str(), sheets);
   std::printf("  responses:      %s (%d simulated observers)\n", responses.c_str(), o.observers);
   std::printf("  report:         %s\n", report.c_str());
 }

@@ -16,7 +16,8 @@ CLI::App* add_paper(CLI::App* group, const std::string& name, const std::string&
   auto* cmd = group->add_subcommand(name, description);
   cmd->add_option("-o,--out", o->out, "Output folder (README.md report, checks.json, figures, tables)")
       ->required();
-  cmd->add_flag("--quick", o->quick, "Reduced size for CI (see docs/reproductions.md); same tolerances policy");
+  cmd->add_flag("--quick", o->quick,
+                "Reduced size for CI (see docs/reproductions.md); same tolerances policy");
   cmd->add_option("--duration", o->duration_s, "Override the clip length in seconds")
       ->check(CLI::Range(0.1, 60.0));
   cmd->add_option("--fps", o->fps, "Override the frame rate")->check(CLI::Range(5.0, 120.0));
@@ -37,10 +38,11 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   g->add_flag("--skip-timing", gomez->skip_timing, "Leave out the timing table");
   g->callback([gomez] { reproduce_gomez2024(*gomez); });
   auto hoyet = std::make_shared<ReproduceOptions>();
-  auto* h = add_paper(group, "hoyet2016",
-                      "Seed 001 (Hoyet et al. 2016): Fig. 3 volume vs distance per shoulder condition, Table 1 "
-                      "D_crit/V_crit recovered from simulated observers, Table 2 collisions per scenario x density",
-                      hoyet);
+  auto* h =
+      add_paper(group, "hoyet2016",
+                "Seed 001 (Hoyet et al. 2016): Fig. 3 volume vs distance per shoulder condition, Table 1 "
+                "D_crit/V_crit recovered from simulated observers, Table 2 collisions per scenario x density",
+                hoyet);
   h->add_option("--repetitions", hoyet->repetitions, "Override the repetitions of each pair condition")
       ->check(CLI::Range(1, 32));
   h->callback([hoyet] { reproduce_hoyet2016(*hoyet); });

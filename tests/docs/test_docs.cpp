@@ -33,7 +33,7 @@ TEST_CASE("docs: docs/cli.md is the binary's own --help text", "[docs][cli]") {
 
 TEST_CASE("docs: every subcommand's --help works and matches its reference section", "[docs][cli]") {
   const std::string doc = slurp(source_dir() / "docs/cli.md");
-  for (const std::vector<std::string> cmd :
+  for (const std::vector<std::string>& cmd :
        {std::vector<std::string>{"reproduce", "gomez2024"}, {"reproduce", "hoyet2016"}, {"plan"}, {"run"}}) {
     std::vector<std::string> args = cmd;
     args.push_back("--help");
@@ -52,8 +52,8 @@ TEST_CASE("docs: every subcommand's --help works and matches its reference secti
 
 TEST_CASE("docs: the README links the references", "[docs]") {
   const std::string readme = slurp(source_dir() / "README.md");
-  for (const char* link : {"docs/cli.md", "docs/spec-reference.md", "docs/embedding.md", "docs/reproductions.md",
-                           "docs/architecture.md"}) {
+  for (const char* link : {"docs/cli.md", "docs/spec-reference.md", "docs/embedding.md",
+                           "docs/reproductions.md", "docs/architecture.md"}) {
     INFO(link);
     CHECK(readme.find(std::string("(") + link + ")") != std::string::npos);
     CHECK(std::filesystem::exists(source_dir() / link));

@@ -34,7 +34,7 @@ inline GameLog run_game_loop(int frames, double fps) {
     std::vector<crowdlab::Pose> poses = {crowdlab::Pose::rest(log.bodies[0]),
                                          crowdlab::Pose::rest(log.bodies[1])};
     poses[1].root_position_m.x() = 0.8 - 0.5 * std::min(t / 2.0, 1.0);  // walks into character 0
-    std::vector<crowdlab::Pose> shown = corrector.step(poses);  // same order, one pose per character
+    std::vector<crowdlab::Pose> shown = corrector.step(poses);          // same order, one pose per character
     // ... render `shown` instead of `poses`; corrector.last_stats() counts this step's contacts ...
     log.animated.push_back(std::move(poses));
     log.corrected.push_back(std::move(shown));

@@ -20,7 +20,7 @@ bool have(const std::string& tool) {
 
 /// Runs `command` with SLURM_CONF set; returns its exit status.
 int with_slurm(const fs::path& conf, const std::string& command) {
-  const std::string full = "SLURM_CONF=" + shell_quote(conf.string()) + " " + command;
+  const std::string full = "export SLURM_CONF=" + shell_quote(conf.string()) + "; " + command;
   const int status = std::system(full.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
 }
@@ -29,6 +29,7 @@ struct Cluster {
   fs::path dir;
   bool up = false;
   explicit Cluster(fs::path d) : dir(std::move(d)) {
+    fs::create_directories(dir);
     const std::string script = shell_quote((source_dir() / "scripts/slurm-single-node.sh").string());
     up = std::system((script + " start " + shell_quote(dir.string()) + " >" +
                       shell_quote((dir / "start.log").string()) + " 2>&1")
@@ -45,7 +46,9 @@ struct Cluster {
 
 TEST_CASE("plan --emit slurm: the script runs on a real single-node Slurm cluster", "[pipeline][slurm]") {
   if (!have("sbatch") || !have("slurmctld") || !have("slurmd") || !have("munged")) {
-    WARN("skipping: Slurm (slurm-wlm) or munge is not installed; scripts/install-deps.sh --test installs them");
+    WARN(
+        "skipping: Slurm (slurm-wlm) or munge is not installed; scripts/install-deps.sh --test installs "
+        "them");
     return;
   }
   const fs::path dir = scratch_dir("pipeline_slurm");

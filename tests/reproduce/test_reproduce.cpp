@@ -24,7 +24,8 @@ nlohmann::json read_json(const fs::path& p) {
 
 /// Every check in checks.json passed (except Fig. 3 overlap reductions when `exempt_reductions`), and each
 /// of `expected` is among them.
-void require_checks(const fs::path& dir, const std::set<std::string>& expected, bool exempt_reductions = false) {
+void require_checks(const fs::path& dir, const std::set<std::string>& expected,
+                    bool exempt_reductions = false) {
   const nlohmann::json j = read_json(dir / "checks.json");
   std::set<std::string> ids;
   for (const auto& c : j.at("checks")) {

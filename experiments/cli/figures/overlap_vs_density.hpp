@@ -11,8 +11,8 @@ namespace crowdlab::cli {
 struct OverlapRow {
   std::string scenario;  ///< stationary | corridor
   int characters = 0;
-  double density = 0;  ///< characters per m^2 (the factor level)
-  std::string method;  ///< baseline | ours
+  double density = 0;         ///< characters per m^2 (the factor level)
+  std::string method;         ///< baseline | ours
   double mean_overlap_l = 0;  ///< litres per character, mean over characters and frames
 };
 

@@ -12,8 +12,8 @@
 namespace crowdlab::cli {
 namespace fs = std::filesystem;
 
-SpecRun run_spec_variant(const std::string& yaml_text, const fs::path& dir, const std::string& name, bool force,
-                         const std::function<void(YAML::Node& root)>& edit) {
+SpecRun run_spec_variant(const std::string& yaml_text, const fs::path& dir, const std::string& name,
+                         bool force, const std::function<void(YAML::Node& root)>& edit) {
   SpecRun r;
   r.spec_path = dir / "specs" / (name + ".yaml");
   r.spec = write_spec_variant(yaml_text, r.spec_path, [&](YAML::Node& root) {
@@ -39,7 +39,8 @@ nlohmann::json entry_metrics(const SpecRun& run, const StimulusEntry& entry) {
 }
 
 std::string simulate_study_and_report(const SpecRun& run, const study::ObserverModel& model, int observers,
-                                      std::uint64_t seed, const fs::path& study_dir, const fs::path& report_dir) {
+                                      std::uint64_t seed, const fs::path& study_dir,
+                                      const fs::path& report_dir) {
   fs::remove_all(study_dir);  // a simulated data set is regenerated from its seed, never appended to
   study::SimulateStudyOptions so;
   so.observers = observers;

@@ -20,12 +20,12 @@ namespace crowdlab::cli {
 /// Command-line options of both reproductions. Zero means "the size's default".
 struct ReproduceOptions {
   std::string out;
-  bool quick = false;      ///< the reduced CI size (documented per reproduction)
-  double duration_s = 0;   ///< clip length override
-  double fps = 0;          ///< frame-rate override
-  int observers = 0;       ///< simulated participants
-  int repetitions = 0;     ///< hoyet2016: repetitions of each pair condition
-  bool force = false;      ///< recompute every pipeline stage
+  bool quick = false;        ///< the reduced CI size (documented per reproduction)
+  double duration_s = 0;     ///< clip length override
+  double fps = 0;            ///< frame-rate override
+  int observers = 0;         ///< simulated participants
+  int repetitions = 0;       ///< hoyet2016: repetitions of each pair condition
+  bool force = false;        ///< recompute every pipeline stage
   bool skip_timing = false;  ///< gomez2024: leave out the timing table
 };
 

@@ -5,8 +5,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <fstream>
+#include <limits>
 #include <map>
 
 #include "crowdlab_embedded_paper_specs.hpp"
@@ -55,18 +55,19 @@ void add_overlap_rows(const SpecRun& run, const std::string& scenario, std::vect
   }
   std::stable_sort(rows.begin(), rows.end(), [](const OverlapRow& a, const OverlapRow& b) {
     return a.scenario != b.scenario ? a.scenario > b.scenario  // stationary first
-                                    : a.density != b.density ? a.density < b.density
-                                                             : a.method < b.method;
+           : a.density != b.density ? a.density < b.density
+                                    : a.method < b.method;
   });
 }
 
 void check_overlap(const std::vector<OverlapRow>& rows, double min_reduction, ReproductionChecks& checks,
                    std::string& md) {
-  md += "## Figure 3: mean per-character overlap volume vs density\n\n"
-        "![stationary](fig3/overlap_vs_density_stationary.png) "
-        "![corridor](fig3/overlap_vs_density_corridor.png)\n\n"
-        "| scenario | density (/m²) | characters | baseline (L) | ours (L) | reduction |\n"
-        "|---|---|---|---|---|---|\n";
+  md +=
+      "## Figure 3: mean per-character overlap volume vs density\n\n"
+      "![stationary](fig3/overlap_vs_density_stationary.png) "
+      "![corridor](fig3/overlap_vs_density_corridor.png)\n\n"
+      "| scenario | density (/m²) | characters | baseline (L) | ours (L) | reduction |\n"
+      "|---|---|---|---|---|---|\n";
   for (const std::string scenario : {"stationary", "corridor"}) {
     double lowest = kNaN, highest = kNaN, lowest_density = 1e9, highest_density = -1;
     for (const OverlapRow& r : rows) {
@@ -78,38 +79,44 @@ void check_overlap(const std::vector<OverlapRow>& rows, double min_reduction, Re
       checks.within(fmt::format("fig3.{}.reduction@{}", scenario, r.density),
                     fmt::format("{} at {}/m²: overlap reduction of ours vs baseline", scenario, r.density),
                     reduction, min_reduction, 1.0,
-                    min_reduction >= 0.95 ? "§4.2: ours keeps a 'relatively low' overlap; issue target >= 95 %"
-                                          : "§4.2 'relatively low'; >= 70 % on 1 s clips (start-up transient)");
+                    min_reduction >= 0.95
+                        ? "§4.2: ours keeps a 'relatively low' overlap; issue target >= 95 %"
+                        : "§4.2 'relatively low'; >= 70 % on 1 s clips (start-up transient)");
       if (r.density < lowest_density) lowest_density = r.density, lowest = r.mean_overlap_l;
       if (r.density > highest_density) highest_density = r.density, highest = r.mean_overlap_l;
     }
     checks.within(fmt::format("fig3.{}.baseline_growth", scenario),
                   fmt::format("{}: baseline overlap at {}/m² over that at {}/m²", scenario, highest_density,
                               lowest_density),
-                  highest / lowest, 1.0, kInf, "§4.2: baseline overlap 'increases dramatically' with density");
+                  highest / lowest, 1.0, kInf,
+                  "§4.2: baseline overlap 'increases dramatically' with density");
   }
-  md += "\nThe paper gives Figure 3 as a plot only (no numbers in the text): the baseline grows steeply with "
-        "density while ours stays 'relatively low'.\n\n";
+  md +=
+      "\nThe paper gives Figure 3 as a plot only (no numbers in the text): the baseline grows steeply with "
+      "density while ours stays 'relatively low'.\n\n";
 }
 
 void damping_section(const fs::path& dir, ReproductionChecks& checks, std::string& md) {
-  const std::vector<DampingRun> runs = run_damping_experiment({0.0, 0.006, 0.06, 0.6}, CorrectorParams{}, 8.0);
+  const std::vector<DampingRun> runs =
+      run_damping_experiment({0.0, 0.006, 0.06, 0.6}, CorrectorParams{}, 8.0);
   write_damping_figure(runs, dir / "fig4");
-  md += "## Figure 4: damping sweep (shove at t = 3.5 s)\n\n![damping](fig4/damping.png)\n\n"
-        "| d | RMS deviation after 3.5 s (mm) | max deviation (mm) |\n|---|---|---|\n";
+  md +=
+      "## Figure 4: damping sweep (shove at t = 3.5 s)\n\n![damping](fig4/damping.png)\n\n"
+      "| d | RMS deviation after 3.5 s (mm) | max deviation (mm) |\n|---|---|---|\n";
   std::map<double, const DampingRun*> by_d;
   for (const DampingRun& r : runs) {
     by_d[r.damping] = &r;
     md += fmt::format("| {} | {:.2f} | {:.2f} |\n", r.damping, 1000 * r.rms_deviation_m,
                       1000 * r.max_deviation_m);
   }
-  md += "\nPaper (Fig. 4 caption): d = 0.006 closely matches the target; no damping is unstable; a high d "
-        "drifts from the target.\n\n";
+  md +=
+      "\nPaper (Fig. 4 caption): d = 0.006 closely matches the target; no damping is unstable; a high d "
+      "drifts from the target.\n\n";
   const double best = by_d.at(0.006)->rms_deviation_m;
   checks.within("fig4.push_moves", "largest deviation with d = 0.006 (m): the shove moved the character",
                 by_d.at(0.006)->max_deviation_m, 0.005, kInf, "Fig. 4: a collision at t = 3.5 s");
-  checks.within("fig4.d0_vs_d0.006", "RMS deviation ratio d = 0 / d = 0.006", by_d.at(0.0)->rms_deviation_m / best,
-                1.0, kInf, "Fig. 4: no damping is unstable");
+  checks.within("fig4.d0_vs_d0.006", "RMS deviation ratio d = 0 / d = 0.006",
+                by_d.at(0.0)->rms_deviation_m / best, 1.0, kInf, "Fig. 4: no damping is unstable");
   checks.within("fig4.d0.6_vs_d0.006", "RMS deviation ratio d = 0.6 / d = 0.006",
                 by_d.at(0.6)->rms_deviation_m / best, 1.0, kInf, "Fig. 4: high damping drifts");
 }
@@ -119,11 +126,13 @@ void timing_section(const Size& size, const fs::path& dir, std::string& md) {
     int characters;
     double density, paper_ms;
   };
-  std::string csv = "characters,density_per_m2,ms_per_step_median,ms_per_step_mean,contacts_mean,"
-                    "cg_iterations_mean,threads,paper_ms_per_step\n";
-  md += "## Timing: corrector ms per step\n\n"
-        "| characters | density (/m²) | this machine, median (mean) ms | contacts | CG iterations | threads | "
-        "paper (8-core Ryzen 7 2700) |\n|---|---|---|---|---|---|---|\n";
+  std::string csv =
+      "characters,density_per_m2,ms_per_step_median,ms_per_step_mean,contacts_mean,"
+      "cg_iterations_mean,threads,paper_ms_per_step\n";
+  md +=
+      "## Timing: corrector ms per step\n\n"
+      "| characters | density (/m²) | this machine, median (mean) ms | contacts | CG iterations | threads | "
+      "paper (8-core Ryzen 7 2700) |\n|---|---|---|---|---|---|---|\n";
   for (const Case c : {Case{20, 2.22, 5.0}, Case{60, 6.66, 20.0}}) {
     CorrectBenchOptions b;
     b.characters = c.characters;
@@ -138,9 +147,10 @@ void timing_section(const Size& size, const fs::path& dir, std::string& md) {
                       c.paper_ms);
   }
   write_file_atomic(dir / "timing.csv", csv);
-  md += fmt::format("\n{} timed steps after {} warm-up steps on the swaying-crowd fixture (`crowdlab bench "
-                    "correct`); wall-clock times depend on the machine and its load and are not checked.\n\n",
-                    size.timing_steps, size.timing_warmup);
+  md += fmt::format(
+      "\n{} timed steps after {} warm-up steps on the swaying-crowd fixture (`crowdlab bench "
+      "correct`); wall-clock times depend on the machine and its load and are not checked.\n\n",
+      size.timing_steps, size.timing_warmup);
 }
 
 /// The method main effect of one composite in the report's stats/<measure>.json.
@@ -201,23 +211,22 @@ void reproduce_gomez2024(const ReproduceOptions& o) {
   damping_section(dir, checks, md);
   if (!o.skip_timing) timing_section(size, dir, md);
 
-  md += fmt::format("## Study analysis on simulated observers (stationary stage, §4.4)\n\n"
-                    "{} simulated observers answered the 40 stationary conditions (6 Likert items) from each "
-                    "clip's measured overlap (study_ui/simulated_observer.hpp); full report: "
-                    "[study_report/report.md](study_report/report.md).\n\n",
-                    size.observers);
-  const std::string report = simulate_study_and_report(stationary, study::ObserverModel{}, size.observers,
-                                                       stationary.spec.seed, dir / "study", dir / "study_report");
+  md += fmt::format(
+      "## Study analysis on simulated observers (stationary stage, §4.4)\n\n"
+      "{} simulated observers answered the 40 stationary conditions (6 Likert items) from each "
+      "clip's measured overlap (study_ui/simulated_observer.hpp); full report: "
+      "[study_report/report.md](study_report/report.md).\n\n",
+      size.observers);
+  const std::string report =
+      simulate_study_and_report(stationary, study::ObserverModel{}, size.observers, stationary.spec.seed,
+                                dir / "study", dir / "study_report");
   check_study(dir / "study_report", checks, md);
-  md += "\nThe paper (30 participants) found main effects of method on all three composites, ours higher; the "
-        "simulated observers' method effect is part of their model, so this checks that the pipeline (trial "
-        "lists, logging, composites, RM-ANOVA) recovers it, not the human result.\n\n";
+  md +=
+      "\nThe paper (30 participants) found main effects of method on all three composites, ours higher; the "
+      "simulated observers' method effect is part of their model, so this checks that the pipeline (trial "
+      "lists, logging, composites, RM-ANOVA) recovers it, not the human result.\n\n";
 
-  md += "## Checks\n\n" + checks.markdown();
-  write_file_atomic(dir / "README.md", md);
-  std::printf("%s", md.c_str());
-  std::printf("\nreproduction report: %s\n", (dir / "README.md").c_str());
-  checks.finish(dir, "reproduce gomez2024");
+  checks.finish(dir, "reproduce gomez2024", md);
 }
 
 }  // namespace crowdlab::cli

@@ -33,8 +33,8 @@ const std::map<std::string, double> kPaperDcritSd = {{"0", 0.02}, {"1", 0.01}, {
 const std::map<std::string, double> kPaperVcrit = {{"0", 0.043}, {"1", 0.058}, {"2", 0.075}};
 const std::map<std::string, double> kPaperVcritSd = {{"0", 0.007}, {"1", 0.004}, {"2", 0.008}};
 const std::map<std::pair<std::string, double>, double> kPaperCollisions = {
-    {{"A", 0.5}, 50},  {{"A", 0.7}, 121}, {{"A", 1.0}, 305},  {{"A", 1.6}, 1140},  {{"A", 2.8}, 4546},
-    {{"B", 0.5}, 28},  {{"B", 0.7}, 97},  {{"B", 1.0}, 738},  {{"B", 1.6}, 5336},  {{"B", 2.8}, 26060}};
+    {{"A", 0.5}, 50}, {{"A", 0.7}, 121}, {{"A", 1.0}, 305}, {{"A", 1.6}, 1140}, {{"A", 2.8}, 4546},
+    {{"B", 0.5}, 28}, {{"B", 0.7}, 97},  {{"B", 1.0}, 738}, {{"B", 1.6}, 5336}, {{"B", 2.8}, 26060}};
 
 struct Size {
   int repetitions;
@@ -82,21 +82,25 @@ using VolumeCells = std::map<std::string, std::map<double, Cell>>;
 VolumeCells volume_cells(const SpecRun& pairs) {
   VolumeCells cells;
   for (const StimulusEntry& e : pairs.manifest.entries)
-    if (!e.practice) cells[e.factors.at("shoulder")][std::stod(e.factors.at("distance"))].v.push_back(e.v_i_m);
+    if (!e.practice)
+      cells[e.factors.at("shoulder")][std::stod(e.factors.at("distance"))].v.push_back(e.v_i_m);
   return cells;
 }
 
 void figure3(const VolumeCells& cells, const fs::path& dir, ReproductionChecks& checks, std::string& md) {
   fs::create_directories(dir);
-  std::string csv = "shoulder,distance_m,clips,mean_v_i_m,sd_v_i_m,min_v_i_m,q1_v_i_m,median_v_i_m,q3_v_i_m,"
-                    "max_v_i_m\n";
+  std::string csv =
+      "shoulder,distance_m,clips,mean_v_i_m,sd_v_i_m,min_v_i_m,q1_v_i_m,median_v_i_m,q3_v_i_m,"
+      "max_v_i_m\n";
   analysis::InteractionPlot plot;
   plot.title = "Interpenetration volume V_i vs interpersonal distance";
   plot.x_label = "Interpersonal distance (m)";
   plot.y_label = "V_i (m, Eq. 1)";
   plot.note = "seed 001 Figure 3; error bars: ±1 SD over repetitions";
-  md += "## Figure 3: interpenetration volume V_i vs interpersonal distance\n\n![Fig. 3](fig3/volume_vs_distance.png)"
-        "\n\nMedian V_i (m) over repetitions [min, max]:\n\n| distance (m) |";
+  md +=
+      "## Figure 3: interpenetration volume V_i vs interpersonal distance\n\n![Fig. "
+      "3](fig3/volume_vs_distance.png)"
+      "\n\nMedian V_i (m) over repetitions [min, max]:\n\n| distance (m) |";
   for (const auto& [shoulder, by_d] : cells) md += " shoulder " + shoulder + " |";
   md += "\n|---|";
   for (size_t i = 0; i < cells.size(); ++i) md += "---|";
@@ -134,14 +138,16 @@ void figure3(const VolumeCells& cells, const fs::path& dir, ReproductionChecks& 
     for (const auto& [d, c] : cells.at(shoulder)) s += c.mean();
     return s / static_cast<double>(cells.at(shoulder).size());
   };
-  checks.within("fig3.shoulder_motions_reduce_volume",
-                "mean V_i over distances, 2 shoulder motions / none", mean_over_distances("2") / mean_over_distances("0"),
-                0.0, 1.0, "§3.1.3: shoulder motions modify (reduce) the interpenetration volume");
+  checks.within("fig3.shoulder_motions_reduce_volume", "mean V_i over distances, 2 shoulder motions / none",
+                mean_over_distances("2") / mean_over_distances("0"), 0.0, 1.0,
+                "§3.1.3: shoulder motions modify (reduce) the interpenetration volume");
   plot.stars.assign(plot.x_levels.size(), "");
   write_file_atomic(dir / "volume_vs_distance.csv", csv);
   analysis::plot_interaction(plot, (dir / "volume_vs_distance").string());
-  md += "\nThe paper shows Figure 3 as box plots (no numbers in the text): V_i falls with distance, and shoulder "
-        "motions reduce it at a given distance.\n\n";
+  md +=
+      "\nThe paper shows Figure 3 as box plots (no numbers in the text): V_i falls with distance, and "
+      "shoulder "
+      "motions reduce it at a given distance.\n\n";
 }
 
 /// One psychometric analysis of the collision answers of a simulated study, x = distance or V_i.
@@ -188,7 +194,8 @@ void table1(const SpecRun& pairs, const Size& size, const fs::path& dir, Reprodu
   const auto v_paper_method = fit_thresholds(dir / "study_distance", pairs, "v_i");
   std::string csv = "threshold,shoulder,paper_mean,paper_sd,recovered_mean,recovered_sd,n,error\n";
   md += fmt::format(
-      "## Table 1: critical thresholds recovered from simulated observers\n\n{} simulated observers per study, "
+      "## Table 1: critical thresholds recovered from simulated observers\n\n{} simulated observers per "
+      "study, "
       "each drawing their own thresholds around the paper's means with the paper's SDs "
       "(study_ui/simulated_observer.hpp); one psychometric fit per observer and shoulder condition "
       "(analysis/psychometric_table.hpp), thresholds at P = 0.5. Reports: "
@@ -203,8 +210,8 @@ void table1(const SpecRun& pairs, const Size& size, const fs::path& dir, Reprodu
     std::sort(groups.begin(), groups.end(), [](const auto& x, const auto& y) { return x.by < y.by; });
     for (const auto& g : groups) {
       const double truth = paper.at(g.by), err = g.mean[0] - truth;
-      csv += fmt::format("{},{},{},{},{},{},{},{}\n", name, g.by, truth, paper_sd.at(g.by), g.mean[0], g.sd[0],
-                         g.n, err);
+      csv += fmt::format("{},{},{},{},{},{},{},{}\n", name, g.by, truth, paper_sd.at(g.by), g.mean[0],
+                         g.sd[0], g.n, err);
       md += fmt::format("| {} | {} | {} ± {} | {:.4f} ± {:.4f} | {:+.4f} | {} |\n", name, g.by, truth,
                         paper_sd.at(g.by), g.mean[0], g.sd[0], err,
                         check ? fmt::format("± {}", tolerance) : std::string("not checked"));
@@ -219,9 +226,11 @@ void table1(const SpecRun& pairs, const Size& size, const fs::path& dir, Reprodu
   rows(v_paper_method, "V_crit (paper's method)", kPaperVcrit, kPaperVcritSd, 0, false);
   fs::create_directories(dir / "table1");
   write_file_atomic(dir / "table1" / "thresholds.csv", csv);
-  md += "\n`V_crit (paper's method)` fits the distance-judging observers' answers against each clip's V_i, as the "
-        "paper did with its participants: it measures how our capsule bodies' volumes relate to distance, so "
-        "it is reported but not checked.\n\n";
+  md +=
+      "\n`V_crit (paper's method)` fits the distance-judging observers' answers against each clip's V_i, as "
+      "the "
+      "paper did with its participants: it measures how our capsule bodies' volumes relate to distance, so "
+      "it is reported but not checked.\n\n";
 }
 
 void table2(const Size& size, const fs::path& dir, ReproductionChecks& checks, std::string& md) {
@@ -233,10 +242,11 @@ void table2(const Size& size, const fs::path& dir, ReproductionChecks& checks, s
   const auto cells = collision_table(count_spec_collisions(spec, enumerate_conditions(spec)));
   fs::create_directories(dir / "table2");
   write_file_atomic(dir / "table2" / "collisions.csv", collision_table_csv(cells));
-  md += fmt::format("## Table 2: collisions per scenario × density\n\nDisc collision events of the cost-gradient "
-                    "flows ({} s, {} repetition(s) per cell), mean ± SD; the paper's count in brackets.\n\n"
-                    "| scenario |",
-                    size.flow_duration_s, size.flow_repetitions);
+  md += fmt::format(
+      "## Table 2: collisions per scenario × density\n\nDisc collision events of the cost-gradient "
+      "flows ({} s, {} repetition(s) per cell), mean ± SD; the paper's count in brackets.\n\n"
+      "| scenario |",
+      size.flow_duration_s, size.flow_repetitions);
   std::map<std::string, std::map<double, double>> mean;
   for (const auto& c : cells) mean[c.scenario][c.density] = c.mean;
   for (const auto& [d, m] : mean.begin()->second) md += fmt::format(" {} |", d);
@@ -248,8 +258,9 @@ void table2(const Size& size, const fs::path& dir, ReproductionChecks& checks, s
     for (const auto& c : cells)
       if (c.scenario == scenario) {
         const auto paper = kPaperCollisions.find({scenario, c.density});
-        md += fmt::format(" {:.0f} ± {:.0f} ({}) |", c.mean, c.sd,
-                          paper == kPaperCollisions.end() ? std::string("-") : fmt::format("{}", paper->second));
+        md += fmt::format(
+            " {:.0f} ± {:.0f} ({}) |", c.mean, c.sd,
+            paper == kPaperCollisions.end() ? std::string("-") : fmt::format("{}", paper->second));
       }
     md += "\n";
     int decreases = 0;
@@ -265,8 +276,9 @@ void table2(const Size& size, const fs::path& dir, ReproductionChecks& checks, s
   if (mean.count("A") && mean.count("B") && mean["A"].count(2.8) && mean["B"].count(2.8))
     checks.within("table2.B_over_A@2.8", "collisions B / A at 2.8/m²", mean["B"][2.8] / mean["A"][2.8], 1.0,
                   kInf, "Table 2: 26060 (B) vs 4546 (A)");
-  md += "\nAbsolute counts depend on the cost function's weights, which the paper tuned by hand to produce "
-        "collisions and does not publish; only the trends are checked.\n\n";
+  md +=
+      "\nAbsolute counts depend on the cost function's weights, which the paper tuned by hand to produce "
+      "collisions and does not publish; only the trends are checked.\n\n";
 }
 
 }  // namespace
@@ -278,7 +290,8 @@ void reproduce_hoyet2016(const ReproduceOptions& o) {
   ReproductionChecks checks;
   std::string md = fmt::format(
       "# Reproduction of Hoyet et al. 2016 (seed 001)\n\nGenerated by `crowdlab reproduce hoyet2016{}`: pair "
-      "clips with {} repetition(s) at {} fps (no video), {} simulated observers per study, flows of {} s with "
+      "clips with {} repetition(s) at {} fps (no video), {} simulated observers per study, flows of {} s "
+      "with "
       "{} repetition(s).\n\n",
       o.quick ? " --quick" : "", size.repetitions, size.pair_fps, size.observers, size.flow_duration_s,
       size.flow_repetitions);
@@ -289,11 +302,7 @@ void reproduce_hoyet2016(const ReproduceOptions& o) {
   figure3(volume_cells(pairs), dir / "fig3", checks, md);
   table1(pairs, size, dir, checks, md);
   table2(size, dir, checks, md);
-  md += "## Checks\n\n" + checks.markdown();
-  write_file_atomic(dir / "README.md", md);
-  std::printf("%s", md.c_str());
-  std::printf("\nreproduction report: %s\n", (dir / "README.md").c_str());
-  checks.finish(dir, "reproduce hoyet2016");
+  checks.finish(dir, "reproduce hoyet2016", md);
 }
 
 }  // namespace crowdlab::cli

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/core/error.hpp"
@@ -13,8 +14,8 @@ namespace crowdlab::cli {
 void ReproductionChecks::within(std::string id, std::string claim, double value, double low, double high,
                                 std::string reference) {
   const bool pass = std::isfinite(value) && value >= low && value <= high;
-  spdlog::log(pass ? spdlog::level::info : spdlog::level::warn, "check {}: {} = {} (accepted [{}, {}]) {}", id,
-              claim, repro_number(value), repro_number(low), repro_number(high), pass ? "pass" : "FAIL");
+  spdlog::log(pass ? spdlog::level::info : spdlog::level::warn, "check {}: {} = {} (accepted [{}, {}]) {}",
+              id, claim, repro_number(value), repro_number(low), repro_number(high), pass ? "pass" : "FAIL");
   checks_.push_back({std::move(id), std::move(claim), value, low, high, std::move(reference), pass});
 }
 
@@ -31,7 +32,8 @@ std::string repro_number(double v) {
 }
 
 std::string ReproductionChecks::markdown() const {
-  std::string md = "| check | claim | measured | accepted | reference | result |\n|---|---|---|---|---|---|\n";
+  std::string md =
+      "| check | claim | measured | accepted | reference | result |\n|---|---|---|---|---|---|\n";
   for (const auto& c : checks_)
     md += fmt::format("| `{}` | {} | {} | [{}, {}] | {} | {} |\n", c.id, c.claim, repro_number(c.value),
                       repro_number(c.low), repro_number(c.high), c.reference, c.pass ? "pass" : "**FAIL**");
@@ -51,7 +53,11 @@ nlohmann::json ReproductionChecks::to_json() const {
   return j;
 }
 
-void ReproductionChecks::finish(const std::filesystem::path& dir, const std::string& what) const {
+void ReproductionChecks::finish(const std::filesystem::path& dir, const std::string& what,
+                                std::string md) const {
+  md += "## Checks\n\n" + markdown();
+  write_file_atomic(dir / "README.md", md);
+  std::printf("%s\nreproduction report: %s\n", md.c_str(), (dir / "README.md").c_str());
   nlohmann::json j = {{"reproduction", what}, {"all_pass", all_pass()}, {"checks", to_json()}};
   write_file_atomic(dir / "checks.json", j.dump(2) + "\n");
   std::string failed;

@@ -13,10 +13,10 @@
 namespace crowdlab::cli {
 
 struct ReproductionCheck {
-  std::string id;        ///< stable key, e.g. "fig3.stationary.reduction@6.66"
-  std::string claim;     ///< what is checked, in words
-  double value = 0;      ///< measured
-  double low = 0;        ///< accepted range [low, high]
+  std::string id;     ///< stable key, e.g. "fig3.stationary.reduction@6.66"
+  std::string claim;  ///< what is checked, in words
+  double value = 0;   ///< measured
+  double low = 0;     ///< accepted range [low, high]
   double high = 0;
   std::string reference;  ///< the paper's value or statement the range derives from
   bool pass = false;
@@ -25,14 +25,16 @@ struct ReproductionCheck {
 class ReproductionChecks {
  public:
   /// Records value in [low, high] (NaN fails).
-  void within(std::string id, std::string claim, double value, double low, double high, std::string reference);
+  void within(std::string id, std::string claim, double value, double low, double high,
+              std::string reference);
   const std::vector<ReproductionCheck>& checks() const { return checks_; }
   bool all_pass() const;
   /// | check | measured | accepted | reference | result |
   std::string markdown() const;
   nlohmann::json to_json() const;
-  /// Writes dir/checks.json; throws RuntimeError naming the failed checks when any failed.
-  void finish(const std::filesystem::path& dir, const std::string& what) const;
+  /// Appends the checks table to the report `md`, writes it to dir/README.md and prints it, writes
+  /// dir/checks.json, then throws RuntimeError naming the failed checks when any failed.
+  void finish(const std::filesystem::path& dir, const std::string& what, std::string md) const;
 
  private:
   std::vector<ReproductionCheck> checks_;
