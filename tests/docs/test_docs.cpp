@@ -17,7 +17,7 @@ std::string slurp(const std::filesystem::path& p) {
 }
 }  // namespace
 
-TEST_CASE("docs: docs/cli.md is the binary's own --help text", "[docs][cli]") {
+TEST_CASE("docs/cli.md is the binary's own --help text", "[docs][cli]") {
   const CliResult r = run_cli({"help", "--markdown"});
   REQUIRE(r.exit_code == 0);
   const std::string doc = slurp(source_dir() / "docs/cli.md");
@@ -31,7 +31,7 @@ TEST_CASE("docs: docs/cli.md is the binary's own --help text", "[docs][cli]") {
   }
 }
 
-TEST_CASE("docs: every subcommand's --help works and matches its reference section", "[docs][cli]") {
+TEST_CASE("every subcommand's --help works and matches its reference section", "[docs][cli]") {
   const std::string doc = slurp(source_dir() / "docs/cli.md");
   for (const std::vector<std::string>& cmd :
        {std::vector<std::string>{"reproduce", "gomez2024"}, {"reproduce", "hoyet2016"}, {"plan"}, {"run"}}) {
@@ -50,7 +50,7 @@ TEST_CASE("docs: every subcommand's --help works and matches its reference secti
   }
 }
 
-TEST_CASE("docs: the README links the references", "[docs]") {
+TEST_CASE("the README links the references", "[docs]") {
   const std::string readme = slurp(source_dir() / "README.md");
   for (const char* link : {"docs/cli.md", "docs/spec-reference.md", "docs/embedding.md",
                            "docs/reproductions.md", "docs/architecture.md"}) {

@@ -33,7 +33,7 @@ crowdlab::CrowdAnimation as_crowd(const game::GameLog& log, bool corrected, doub
 
 }  // namespace
 
-TEST_CASE("embedding: the documented game loop removes the collision its animation creates", "[embedding]") {
+TEST_CASE("the documented game loop removes the collision its animation creates", "[embedding]") {
   const double fps = 30;
   const int frames = crowdlab::test::kSanitized ? 45 : 90;
   const game::GameLog log = game::run_game_loop(frames, fps);
@@ -46,7 +46,7 @@ TEST_CASE("embedding: the documented game loop removes the collision its animati
   CHECK(corrected.mean_character_overlap_l < 0.1 * animated.mean_character_overlap_l);
 }
 
-TEST_CASE("embedding: docs/embedding.md shows the compiled example verbatim", "[embedding]") {
+TEST_CASE("docs/embedding.md shows the compiled example verbatim", "[embedding]") {
   const std::string doc = slurp(crowdlab::test::source_dir() / "docs/embedding.md");
   std::string code = slurp(crowdlab::test::source_dir() / "tests/embedding/game_loop_example.hpp");
   REQUIRE(!code.empty());

@@ -179,6 +179,27 @@ analysis::PsychometricAnalysis fit_thresholds(const fs::path& study_dir, const S
   return analysis::analyze_psychometric(trials, request);
 }
 
+/// Per condition: the observers' 50 % thresholds that lie inside the range of stimulus values the
+/// observer saw (a fit with a flat or reversed slope puts its threshold far outside), and how many
+/// observers were excluded for that.
+struct Thresholds : Cell {
+  int excluded = 0;
+};
+
+std::map<std::string, Thresholds> valid_thresholds(const analysis::PsychometricAnalysis& a) {
+  std::map<std::string, Thresholds> out;
+  for (const auto& row : a.fits) {
+    const double t = row.thresholds.empty() ? kNaN : row.thresholds[0];
+    const auto [lo, hi] = std::minmax_element(row.x.begin(), row.x.end());
+    Thresholds& cell = out[row.by];
+    if (std::isfinite(t) && !row.x.empty() && t >= *lo && t <= *hi)
+      cell.v.push_back(t);
+    else
+      ++cell.excluded;
+  }
+  return out;
+}
+
 void table1(const SpecRun& pairs, const Size& size, const fs::path& dir, ReproductionChecks& checks,
             std::string& md) {
   // Observers judging by distance (the default model: seed 001 Table 1 D_crit per shoulder level).
@@ -192,7 +213,7 @@ void table1(const SpecRun& pairs, const Size& size, const fs::path& dir, Reprodu
   const auto d_fit = fit_thresholds(dir / "study_distance", pairs, "distance");
   const auto v_fit = fit_thresholds(dir / "study_volume", pairs, "v_i");
   const auto v_paper_method = fit_thresholds(dir / "study_distance", pairs, "v_i");
-  std::string csv = "threshold,shoulder,paper_mean,paper_sd,recovered_mean,recovered_sd,n,error\n";
+  std::string csv = "threshold,shoulder,paper_mean,paper_sd,recovered_mean,recovered_sd,n,excluded,error\n";
   md += fmt::format(
       "## Table 1: critical thresholds recovered from simulated observers\n\n{} simulated observers per "
       "study, "
@@ -200,25 +221,26 @@ void table1(const SpecRun& pairs, const Size& size, const fs::path& dir, Reprodu
       "(study_ui/simulated_observer.hpp); one psychometric fit per observer and shoulder condition "
       "(analysis/psychometric_table.hpp), thresholds at P = 0.5. Reports: "
       "[distance study](study_distance_report/report.md), [volume study](study_volume_report/report.md).\n\n"
-      "| threshold | shoulder | paper (mean ± SD) | recovered (mean ± SD) | error | tolerance |\n"
-      "|---|---|---|---|---|---|\n",
+      "Observers whose fitted threshold falls outside the tested stimulus range (a flat or reversed "
+      "psychometric function) are excluded, as usual for threshold estimates; n (excluded) per row.\n\n"
+      "| threshold | shoulder | paper (mean ± SD) | recovered (mean ± SD) | n (excluded) | error | tolerance "
+      "|\n"
+      "|---|---|---|---|---|---|---|\n",
       size.observers);
   auto rows = [&](const analysis::PsychometricAnalysis& a, const std::string& name,
                   const std::map<std::string, double>& paper, const std::map<std::string, double>& paper_sd,
                   double tolerance, bool check) {
-    auto groups = a.groups;
-    std::sort(groups.begin(), groups.end(), [](const auto& x, const auto& y) { return x.by < y.by; });
-    for (const auto& g : groups) {
-      const double truth = paper.at(g.by), err = g.mean[0] - truth;
-      csv += fmt::format("{},{},{},{},{},{},{},{}\n", name, g.by, truth, paper_sd.at(g.by), g.mean[0],
-                         g.sd[0], g.n, err);
-      md += fmt::format("| {} | {} | {} ± {} | {:.4f} ± {:.4f} | {:+.4f} | {} |\n", name, g.by, truth,
-                        paper_sd.at(g.by), g.mean[0], g.sd[0], err,
+    for (const auto& [by, t] : valid_thresholds(a)) {
+      const double truth = paper.at(by), err = t.mean() - truth;
+      csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", name, by, truth, paper_sd.at(by), t.mean(), t.sd(),
+                         t.v.size(), t.excluded, err);
+      md += fmt::format("| {} | {} | {} ± {} | {:.4f} ± {:.4f} | {} ({}) | {:+.4f} | {} |\n", name, by, truth,
+                        paper_sd.at(by), t.mean(), t.sd(), t.v.size(), t.excluded, err,
                         check ? fmt::format("± {}", tolerance) : std::string("not checked"));
       if (check)
-        checks.within("table1." + name + ".shoulder" + g.by, name + " (m), shoulder " + g.by + ": recovered",
-                      g.mean[0], truth - tolerance, truth + tolerance,
-                      fmt::format("Table 1: {} ± {}", truth, paper_sd.at(g.by)));
+        checks.within("table1." + name + ".shoulder" + by, name + " (m), shoulder " + by + ": recovered",
+                      t.mean(), truth - tolerance, truth + tolerance,
+                      fmt::format("Table 1: {} ± {}", truth, paper_sd.at(by)));
     }
   };
   rows(d_fit, "D_crit", kPaperDcrit, kPaperDcritSd, size.d_tolerance_m, true);

@@ -19,7 +19,8 @@
 //     interpenetrates (volume falls with distance, Fig. 3); mean V_i over distances with 2 shoulder
 //     motions <= with none (§3.1.3: shoulder motions reduce the interpenetration);
 //   - Table 1: |recovered - paper| <= 0.03 m for D_crit (the largest SD of Table 1), <= 0.008 m for V_crit
-//     (idem); --quick: 0.05 m and 0.015 m (fewer observers and trials);
+//     (idem); --quick: 0.05 m and 0.015 m (fewer observers and trials). The mean is over observers whose
+//     threshold lies inside the stimulus range they saw (flat or reversed fits are excluded and counted);
 //   - Table 2: collisions grow with density in both scenarios (every step up in density gives at least
 //     as many; Table 2), and scenario B has more collisions than A at 2.8/m^2 (Table 2: 26060 vs 4546).
 #include "experiments/cli/reproduce/reproduce_common.hpp"
