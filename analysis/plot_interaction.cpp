@@ -40,14 +40,7 @@ void plot_interaction(const InteractionPlot& plot, const std::string& path_stem)
     pls.box("bc", 1.0, 0, "bcnstv", 0, 0);
     for (size_t i = 0; i < nx; ++i)
       pls.mtex("b", 1.5, (static_cast<double>(i) - xmin) / (xmax - xmin), 0.5, plot.x_levels[i].c_str());
-    pls.mtex("b", 3.2, 0.5, 0.5, plot.x_label.c_str());
-    pls.mtex("l", 4.0, 0.5, 0.5, plot.y_label.c_str());
-    pls.mtex("t", 1.5, 0.5, 0.5, plot.title.c_str());
-    if (!plot.note.empty()) {
-      pls.schr(0, 0.8);
-      pls.mtex("t", 0.4, 1.0, 1.0, plot.note.c_str());
-      pls.schr(0, 1.1);
-    }
+    draw_titles(pls, plot.title, plot.x_label, plot.y_label, plot.note);
     for (size_t k = 0; k < plot.series.size(); ++k) {
       const auto& s = plot.series[k];
       const double shift =
@@ -75,21 +68,10 @@ void plot_interaction(const InteractionPlot& plot, const std::string& path_stem)
       for (const auto& s : plot.series) top = std::max(top, s.mean[i] + s.error[i]);
       pls.ptex(static_cast<double>(i), top + 0.04 * (hi - lo), 1, 0, 0.5, plot.stars[i].c_str());
     }
-    // Legend in its own viewport right of the plot (PLplot clips drawing to the current viewport).
-    pls.vpor(0.80, 0.99, 0.14, 0.9);
-    pls.wind(0, 1, 0, 1);
-    for (size_t k = 0; k < plot.series.size(); ++k) {
-      const double ly = 0.95 - 0.07 * static_cast<double>(k);
-      use_series_colour(pls, static_cast<int>(k));
-      pls.width(2.0);
-      pls.lsty(1 + static_cast<int>(k % 3));
-      pls.join(0.02, ly, 0.22, ly);
-      pls.lsty(1);
-      PLFLT px = 0.12, py = ly;
-      pls.poin(1, &px, &py, k % 2 ? 5 : 17);
-      use_axis_colour(pls);
-      pls.ptex(0.27, ly, 1, 0, 0, plot.series[k].label.c_str());
-    }
+    std::vector<LegendEntry> legend;
+    for (size_t k = 0; k < plot.series.size(); ++k)
+      legend.push_back({plot.series[k].label, 1 + static_cast<int>(k % 3), k % 2 ? 5 : 17});
+    draw_legend(pls, legend);
   });
 }
 

@@ -28,9 +28,7 @@ void plot_psychometric(const PsychometricPlot& plot, const std::string& path_ste
     pls.wind(xmin, xmax, -0.05, 1.08);
     use_axis_colour(pls);
     pls.box("bcnst", 0, 0, "bcnstv", 0.2, 0);
-    pls.mtex("b", 3.2, 0.5, 0.5, plot.x_label.c_str());
-    pls.mtex("l", 4.0, 0.5, 0.5, plot.y_label.c_str());
-    pls.mtex("t", 1.5, 0.5, 0.5, plot.title.c_str());
+    draw_titles(pls, plot.title, plot.x_label, plot.y_label);
     pls.lsty(3);
     pls.join(xmin, 0.5, xmax, 0.5);
     for (size_t k = 0; k < plot.curves.size(); ++k) {
@@ -61,19 +59,10 @@ void plot_psychometric(const PsychometricPlot& plot, const std::string& path_ste
         pls.lsty(1);
       }
     }
-    // Legend in its own viewport (PLplot clips to the current one).
-    pls.vpor(0.80, 0.99, 0.14, 0.9);
-    pls.wind(0, 1, 0, 1);
-    for (size_t k = 0; k < plot.curves.size(); ++k) {
-      const double ly = 0.95 - 0.07 * static_cast<double>(k);
-      use_series_colour(pls, static_cast<int>(k));
-      pls.width(2.0);
-      pls.join(0.02, ly, 0.22, ly);
-      PLFLT px = 0.12, py = ly;
-      pls.poin(1, &px, &py, k % 2 ? 5 : 17);
-      use_axis_colour(pls);
-      pls.ptex(0.27, ly, 1, 0, 0, plot.curves[k].label.c_str());
-    }
+    std::vector<LegendEntry> legend;
+    for (size_t k = 0; k < plot.curves.size(); ++k)
+      legend.push_back({plot.curves[k].label, 1, k % 2 ? 5 : 17});
+    draw_legend(pls, legend);
   });
 }
 

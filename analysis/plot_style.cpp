@@ -45,4 +45,38 @@ void render_figure(const std::string& path_stem, int width, int height,
   }
 }
 
+void draw_titles(plstream& pls, const std::string& title, const std::string& x_label,
+                 const std::string& y_label, const std::string& note) {
+  use_axis_colour(pls);
+  pls.mtex("b", 3.2, 0.5, 0.5, x_label.c_str());
+  pls.mtex("l", 4.0, 0.5, 0.5, y_label.c_str());
+  pls.mtex("t", 1.5, 0.5, 0.5, title.c_str());
+  if (!note.empty()) {
+    PLFLT default_mm = 0, current_mm = 0;
+    pls.gchr(default_mm, current_mm);
+    pls.schr(0, 0.8);
+    pls.mtex("t", 0.4, 1.0, 1.0, note.c_str());
+    pls.schr(0, default_mm > 0 ? current_mm / default_mm : 1.0);
+  }
+}
+
+void draw_legend(plstream& pls, const std::vector<LegendEntry>& entries) {
+  pls.vpor(0.80, 0.99, 0.14, 0.9);
+  pls.wind(0, 1, 0, 1);
+  for (size_t k = 0; k < entries.size(); ++k) {
+    const double ly = 0.95 - 0.07 * static_cast<double>(k);
+    use_series_colour(pls, static_cast<int>(k));
+    pls.width(2.0);
+    pls.lsty(entries[k].line_style);
+    pls.join(0.02, ly, 0.22, ly);
+    pls.lsty(1);
+    if (entries[k].marker != 0) {
+      PLFLT px = 0.12, py = ly;
+      pls.poin(1, &px, &py, entries[k].marker);
+    }
+    use_axis_colour(pls);
+    pls.ptex(0.27, ly, 1, 0, 0, entries[k].label.c_str());
+  }
+}
+
 }  // namespace crowdlab::analysis

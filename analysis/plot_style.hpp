@@ -3,6 +3,7 @@
 // (Okabe & Ito 2008), one call per output format (PNG via pngcairo, SVG via svgcairo).
 #include <functional>
 #include <string>
+#include <vector>
 
 class plstream;
 
@@ -20,5 +21,22 @@ void render_figure(const std::string& path_stem, int width, int height,
 void use_series_colour(plstream& pls, int i);
 /// Black, for axes and text.
 void use_axis_colour(plstream& pls);
+
+/// The texts around the plot area of the current viewport: title above, x label below, y label left,
+/// and `note` (may be empty) small above the right edge.
+void draw_titles(plstream& pls, const std::string& title, const std::string& x_label,
+                 const std::string& y_label, const std::string& note = "");
+
+/// One legend row: series colour i (row order), line style (PLplot lsty, 1 = solid), marker glyph
+/// (PLplot poin code; 0 = none).
+struct LegendEntry {
+  std::string label;
+  int line_style = 1;
+  int marker = 0;
+};
+
+/// The legend in its own viewport right of the plot area (x 0.80..0.99; PLplot clips drawing to the
+/// current viewport), one row per entry from the top. Leaves that viewport current.
+void draw_legend(plstream& pls, const std::vector<LegendEntry>& entries);
 
 }  // namespace crowdlab::analysis

@@ -15,8 +15,9 @@ build_pkgs=(
   libbenchmark-dev catch2 zlib1g-dev
 )
 # Tools the tests drive: a virtual X server and xdotool for the study window, Node.js for the
-# Khronos glTF validator, GNU parallel for the sharding test.
-test_pkgs=(xvfb xdotool x11-apps nodejs npm parallel)
+# Khronos glTF validator, GNU parallel for the sharding test, and Slurm with munge for the real-sbatch
+# test (a private single-node cluster, scripts/slurm-single-node.sh; it starts in about a second).
+test_pkgs=(xvfb xdotool x11-apps nodejs npm parallel slurm-wlm munge)
 
 want=("${build_pkgs[@]}")
 if [[ ${1:-} == --test ]]; then want+=("${test_pkgs[@]}"); fi

@@ -72,6 +72,11 @@ void ObserverModel::set(const std::string& assignment) {
     v_crit_m[key.substr(7)] = v;
     return;
   }
+  if (key == "judge_by_volume") {
+    if (v != 0.0 && v != 1.0) throw InputError(SourceLocation{"", 0, 0, key}, "expected 0 or 1");
+    judge_by_volume = v == 1.0;
+    return;
+  }
   const std::map<std::string, double*> fields = {{"d_crit_sd_m", &d_crit_sd_m},
                                                  {"d_scale_m", &d_scale_m},
                                                  {"v_crit_sd_m", &v_crit_sd_m},
@@ -115,10 +120,11 @@ Observer draw_observer(const ObserverModel& m, std::uint64_t seed) {
   return o;
 }
 
-double collision_probability(const Observer& o, const StimulusEntry& s) {
+double collision_probability(const Observer& o, const StimulusEntry& s, bool judge_by_volume) {
   const std::string shoulder = factor_level(s, "shoulder");
   double d = 0.0;
-  if (numeric_level(s, "distance", d))
+  const bool volume_known = s.v_i_m >= 0 || s.mean_overlap_l >= 0;
+  if (!(judge_by_volume && volume_known) && numeric_level(s, "distance", d))
     return logistic(-(d - threshold_for(o.d_crit_m, shoulder)) / o.d_scale_m);
   double v = -1.0;
   if (s.v_i_m >= 0)
@@ -131,7 +137,7 @@ double collision_probability(const Observer& o, const StimulusEntry& s) {
 
 std::vector<Answer> simulate_answers(const ObserverModel& m, const Observer& o, const StimulusEntry& s,
                                      const std::vector<StudyQuestion>& questions, Rng& rng) {
-  const double p_collision = collision_probability(o, s);
+  const double p_collision = collision_probability(o, s, m.judge_by_volume);
   double effects = 0.0;
   for (const auto& [key, shift] : m.level_effects) {
     const size_t eq = key.find('=');

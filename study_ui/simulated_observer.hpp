@@ -5,6 +5,7 @@
 // Perceived collision ("Did the characters go through each other?"), a logistic psychometric model
 // (seed 001 §3.2, which fitted exactly this family per participant):
 //   distance factor present:  P(yes) = 1 / (1 + exp((d - D_crit) / s_d))      (falls with distance d, m)
+//   (unless judge_by_volume is set: then the volume rule below is used whenever a volume is known)
 //   else volume known:        P(yes) = 1 / (1 + exp(-(v - V_crit) / s_v))    (rises with v, m)
 //   where v = V_i (manifest v_i_m, seed 001 Eq. 1: mean cube root of overlap volume over colliding
 //   frames) or, when only the per-character overlap volume is known, v = cbrt(overlap_l / 1000).
@@ -62,6 +63,9 @@ struct ObserverModel {
   double effect_sd_fraction = 0.3;
   double rt_median_ms = 1500.0;
   double rt_log_sd = 0.35;
+  /// Answer the collision question from the clip's volume even when it has a distance factor (seed
+  /// 001 Table 1's V_crit recovered from observers who judge by volume; key judge_by_volume=0|1).
+  bool judge_by_volume = false;
 
   /// Sets one parameter from "key=value" (keys as the field names; level effects as
   /// "effect.FACTOR.LEVEL=shift", thresholds as "d_crit.LEVEL=m" / "v_crit.LEVEL=m").
@@ -81,8 +85,9 @@ struct Observer {
 Observer draw_observer(const ObserverModel& model, std::uint64_t seed);
 
 /// Probability that `observer` reports a collision for `stimulus` (without lapses); negative when the
-/// stimulus has no distance or volume to judge from.
-double collision_probability(const Observer& observer, const StimulusEntry& stimulus);
+/// stimulus has no distance or volume to judge from. judge_by_volume: see ObserverModel.
+double collision_probability(const Observer& observer, const StimulusEntry& stimulus,
+                             bool judge_by_volume = false);
 
 /// One answer per question for one presentation of `stimulus`, deterministic in `rng`.
 std::vector<Answer> simulate_answers(const ObserverModel& model, const Observer& observer,

@@ -20,6 +20,7 @@
 #include "framework/core/progress.hpp"
 #include "framework/core/trajectories.hpp"
 #include "framework/crowd/collision_table.hpp"
+#include "framework/crowd/count_spec_collisions.hpp"
 #include "framework/crowd/disc_collision_events.hpp"
 #include "framework/crowd/generate_scenario.hpp"
 #include "framework/crowd/interpersonal_distance_histogram.hpp"
@@ -54,26 +55,11 @@ const Condition& find_condition(const std::vector<Condition>& conditions, const 
 
 void run_collision_table(const ExperimentSpec& spec, const std::vector<Condition>& conditions,
                          const Args& a) {
-  // One trajectory set per scenario x density x repetition (other factors do not change the 2D crowd).
-  std::set<std::tuple<std::string, std::string, int>> seen;
-  std::vector<const Condition*> todo;
-  for (const Condition& c : conditions) {
-    if (seen.insert({resolve_scenario_type(spec, c), c.text("density", ""), c.repetition}).second)
-      todo.push_back(&c);
-  }
-  std::vector<CollisionCount> counts;
-  Progress progress("crowd collision table", todo.size());
-  for (const Condition* c : todo) {
-    const ScenarioResult r = generate_scenario(spec, *c);
-    counts.push_back({c->text("scenario", r.scenario), c->number("density", r.achieved_density_per_m2),
-                      c->repetition, static_cast<long long>(disc_collision_events(r.trajectories).size())});
-    progress.advance();
-  }
-  progress.finish();
+  const auto counts = count_spec_collisions(spec, conditions);
   const auto cells = collision_table(counts);
   write_file(a.collision_table, collision_table_csv(cells));
   std::printf("%s", collision_table_markdown(cells).c_str());
-  spdlog::info("wrote {} ({} cells from {} trajectory sets)", a.collision_table, cells.size(), todo.size());
+  spdlog::info("wrote {} ({} cells from {} trajectory sets)", a.collision_table, cells.size(), counts.size());
 }
 
 void run(const Args& a) {

@@ -11,12 +11,10 @@
 #include <memory>
 #include <set>
 
-#include "analysis/plot_interaction.hpp"
 #include "experiments/cli/command_registry.hpp"
 #include "experiments/cli/experiment_group.hpp"
-#include "experiments/cli/pipeline/provenance.hpp"
+#include "experiments/cli/figures/overlap_vs_density.hpp"
 #include "framework/animation/animate_crowd.hpp"
-#include "framework/core/csv.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/core/seed.hpp"
 #include "framework/correction/correct_crowd.hpp"
@@ -36,15 +34,7 @@ struct Options {
   double fps = 30.0;
 };
 
-struct Row {
-  std::string scenario;
-  int characters = 0;
-  double density = 0;
-  std::string method;
-  double mean_overlap_l = 0;
-};
-
-void run_scenario(const std::string& spec_path, const Options& o, std::vector<Row>& rows) {
+void run_scenario(const std::string& spec_path, const Options& o, std::vector<OverlapRow>& rows) {
   ExperimentSpec spec = load_experiment_spec(spec_path);
   spec.duration_s = o.duration_s;
   spec.fps = o.fps;
@@ -79,39 +69,10 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ro
 }
 
 void run(const Options& o) {
-  fs::create_directories(o.out);
-  std::vector<Row> rows;
+  std::vector<OverlapRow> rows;
   run_scenario(o.stationary, o, rows);
   run_scenario(o.corridor, o, rows);
-  std::string csv = csv_line({"scenario", "characters", "density", "method", "mean_overlap_l"});
-  for (const Row& r : rows)
-    csv += csv_line({r.scenario, std::to_string(r.characters), csv_number(r.density), r.method,
-                     csv_number(r.mean_overlap_l)});
-  write_file_atomic(fs::path(o.out) / "overlap_vs_density.csv", csv);
-
-  for (const std::string scenario : {"stationary", "corridor"}) {
-    analysis::InteractionPlot plot;
-    plot.title = "Mean per-character overlap (" + scenario + ")";
-    plot.x_label = "Density (characters/m^2)";
-    plot.y_label = "Overlap volume (L per character)";
-    plot.note = "seed 000 Figure 3";
-    analysis::InteractionSeries base{"Baseline", {}, {}}, ours{"Ours", {}, {}};
-    for (const Row& r : rows) {
-      if (r.scenario != scenario) continue;
-      if (r.method == "baseline") {
-        plot.x_levels.push_back(csv_number(r.density));
-        base.mean.push_back(r.mean_overlap_l);
-        base.error.push_back(0);
-      } else {
-        ours.mean.push_back(r.mean_overlap_l);
-        ours.error.push_back(0);
-      }
-    }
-    if (plot.x_levels.empty()) continue;
-    plot.series = {base, ours};
-    plot.stars.assign(plot.x_levels.size(), "");
-    analysis::plot_interaction(plot, (fs::path(o.out) / ("overlap_vs_density_" + scenario)).string());
-  }
+  write_overlap_vs_density(rows, o.out);
   std::printf("wrote %s/overlap_vs_density.csv and overlap_vs_density_{stationary,corridor}.png|svg\n",
               o.out.c_str());
 }

@@ -1,0 +1,94 @@
+#include "experiments/cli/bench_correct_run.hpp"
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "experiments/cli/timing.hpp"
+#include "framework/core/error.hpp"
+#include "framework/correction/corrector.hpp"
+#include "framework/correction/swaying_crowd_fixture.hpp"
+
+namespace crowdlab::cli {
+namespace {
+
+/// Peak resident set size of this process (MB), from /proc/self/status VmHWM.
+double peak_rss_mb() {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  return 0.0;
+}
+
+}  // namespace
+
+CorrectBenchResult run_correct_bench(const CorrectBenchOptions& o) {
+  if (o.characters < 1) throw InputError("--characters must be >= 1");
+  if (o.steps < 1) throw InputError("--steps must be >= 1");
+  if (o.warmup < 0) throw InputError("--warmup must be >= 0");
+  if (o.threads < 0) throw InputError("--threads must be >= 0");
+  CorrectBenchResult r;
+  r.options = o;
+  r.threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(r.threads));
+
+  SwayingCrowdOptions fixture;
+  fixture.characters = o.characters;
+  fixture.density_per_m2 = o.density;
+  fixture.frames = o.warmup + o.steps;
+  const CrowdAnimation crowd = make_swaying_crowd_fixture(fixture);
+  std::vector<BodyShape> shapes;
+  for (const auto& ch : crowd.characters) shapes.push_back(ch.shape);
+  Corrector corrector(std::move(shapes), o.params, crowd.environment, crowd.meta.fps);
+
+  std::vector<Pose> targets(crowd.characters.size());
+  std::vector<double> ms;
+  for (int f = 0; f < fixture.frames; ++f) {
+    for (size_t c = 0; c < targets.size(); ++c)
+      targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
+    const double step_ms = time_ms([&] { corrector.step(targets); });
+    if (f < o.warmup) continue;
+    ms.push_back(step_ms);
+    const StepStats& st = corrector.last_stats();
+    r.contacts_mean += st.contacts();
+    r.inter_body_contacts_mean += st.inter_body_contacts;
+    r.cg_iterations_mean += st.cg_iterations;
+    r.body_pairs_mean += st.body_pairs;
+    r.rejected_steps += st.rejected ? 1 : 0;
+    r.unconverged_steps += st.converged ? 0 : 1;
+  }
+  const double n = static_cast<double>(ms.size());
+  r.ms_median = median_of(ms);
+  r.ms_mean = mean_of(ms);
+  r.contacts_mean /= n;
+  r.inter_body_contacts_mean /= n;
+  r.cg_iterations_mean /= n;
+  r.body_pairs_mean /= n;
+  r.peak_rss_mb = peak_rss_mb();
+  return r;
+}
+
+nlohmann::json correct_bench_json(const CorrectBenchResult& r) {
+  nlohmann::json j;
+  j["ms_per_step_median"] = r.ms_median;
+  j["ms_per_step_mean"] = r.ms_mean;
+  j["characters"] = r.options.characters;
+  j["density_per_m2"] = r.options.density;
+  j["steps"] = r.options.steps;
+  j["contacts_mean"] = r.contacts_mean;
+  j["inter_body_contacts_mean"] = r.inter_body_contacts_mean;
+  j["body_pairs_mean"] = r.body_pairs_mean;
+  j["cg_iterations_mean"] = r.cg_iterations_mean;
+  j["rejected_steps"] = r.rejected_steps;
+  j["unconverged_steps"] = r.unconverged_steps;
+  j["peak_rss_mb"] = r.peak_rss_mb;
+  j["peak_rss_mb_per_character"] = r.peak_rss_mb / r.options.characters;
+  j["threads"] = r.threads;
+  return j;
+}
+
+}  // namespace crowdlab::cli
