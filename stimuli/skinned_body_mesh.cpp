@@ -26,22 +26,6 @@ bool on_arm(int j) {
   }
 }
 
-bool on_leg(int j) {
-  switch (j) {
-    case kLeftHip:
-    case kRightHip:
-    case kLeftKnee:
-    case kRightKnee:
-    case kLeftAnkle:
-    case kRightAnkle:
-    case kLeftFoot:
-    case kRightFoot:
-      return true;
-    default:
-      return false;
-  }
-}
-
 }  // namespace
 
 SkinRegion body_mesh_region(const Vec3& p, int joint, const std::array<Vec3, kJointCount>& rest_joints,
@@ -57,7 +41,12 @@ SkinRegion body_mesh_region(const Vec3& p, int joint, const std::array<Vec3, kJo
     if (x < wrist - 0.01) return SkinRegion::kSleeve;
     return SkinRegion::kSkin;
   }
-  if (joint == kHead || joint == kNeck) {
+  // Head and neck: above the head joint, or inside the neckline (a 7.5 cm half-width around the neck
+  // joint from 1.5 cm below it, dipping 0.3 m per m toward the front: a crew neck).
+  const Vec3& neck = J(kNeck);
+  const bool in_neckline =
+      std::abs(p.x() - neck.x()) < 0.075 && p.y() > neck.y() - 0.015 - 0.3 * std::max(p.z() - neck.z(), 0.0);
+  if (p.y() > J(kHead).y() || in_neckline) {
     const Vec3 local = p - J(kHead);
     const double h = std::max(head_top_y - J(kHead).y(), 1e-3);  // skull base to crown
     // Hairline: rises toward the forehead (0.55 h at the crown's centre line, + 0.8 m per m forward),
@@ -65,11 +54,11 @@ SkinRegion body_mesh_region(const Vec3& p, int joint, const std::array<Vec3, kJo
     const bool crown = local.y() > 0.55 * h + 0.8 * std::max(local.z(), 0.0);
     const bool back = local.z() < -0.02 && local.y() > 0.12 * h;
     const bool sides = std::abs(local.x()) > 0.055 && local.y() > 0.5 * h && local.z() < 0.02;
-    if (crown || back || sides) return SkinRegion::kHair;
-    return p.y() < J(kNeck).y() ? SkinRegion::kShirt : SkinRegion::kSkin;
+    return crown || back || sides ? SkinRegion::kHair : SkinRegion::kSkin;
   }
+  // Waist: a horizontal cut for trunk and legs alike (the dominant joint does not matter here).
   const double waist = 0.5 * (J(kPelvis).y() + J(kSpine1).y());
-  if (!on_leg(joint) && p.y() >= waist) return SkinRegion::kShirt;  // trunk and collars
+  if (p.y() >= waist) return SkinRegion::kShirt;
   const double knee = J(left ? kLeftKnee : kRightKnee).y();
   const double ankle = J(left ? kLeftAnkle : kRightAnkle).y();
   if (p.y() < ankle + 0.035) return SkinRegion::kShoes;

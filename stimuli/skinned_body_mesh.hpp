@@ -11,10 +11,11 @@
 //   arm (dominant joint on the shoulder..hand chain): shirt up to 45 % of the upper arm (every palette
 //     has at least short sleeves), sleeve to the wrist (shirt colour for long-sleeved palettes, skin
 //     otherwise), skin beyond (hands);
-//   head and neck: hair on the crown, back and upper sides of the head (MakeHuman's base mesh is bald),
-//     skin elsewhere; the neck below the neck joint belongs to the shirt's collar;
-//   trunk: shirt above the waist (halfway between the pelvis and spine1 joints; a low-rise waistband
-//     at about the iliac crest), trousers below;
+//   head and neck (above the head joint, or inside a crew neckline: 7.5 cm either side of the neck
+//     joint, from 1.5 cm below it, dipping toward the front): hair on the crown, back and upper sides
+//     of the head (MakeHuman's base mesh is bald), skin elsewhere;
+//   trunk and legs: shirt above the waist (a horizontal cut halfway between the pelvis and spine1
+//     joints, about the iliac crest), trousers below;
 //   legs: trousers down to 6 cm above the knee joint (shorts or skirt length for short-legged palettes),
 //     lower leg (trouser colour or skin) to 3.5 cm above the ankle joint, shoes below.
 // Regions are assigned per triangle (at its centroid), and vertices on a border are duplicated, one
