@@ -120,7 +120,7 @@ TEST_CASE("walking from clips follows straight and curved paths with planted fee
   }
 }
 
-TEST_CASE("walking from clips: stopping keeps both feet down and still; deterministic") {
+TEST_CASE("walking from clips: stopping keeps both feet down and still - deterministic") {
   const auto dir = test::shared_data("bandai-namco-1");
   if (dir.empty()) return;
   const BodyShape s = make_procedural_body({Sex::kMale, 1.75, 1.0});
@@ -142,7 +142,7 @@ TEST_CASE("walking from clips: stopping keeps both feet down and still; determin
   }
 }
 
-TEST_CASE("a walking crowd from the spec's walk clips; errors name the clip") {
+TEST_CASE("a walking crowd from the spec's walk clips - errors name the clip") {
   const auto dir = test::shared_data("bandai-namco-1");
   if (dir.empty()) return;
   AnimationSpec spec;

@@ -141,7 +141,7 @@ std::shared_ptr<const SkinnedMesh> sphere_surface(const BodyShape& shape) {
 
 }  // namespace
 
-TEST_CASE("a character's own skinned surface round-trips; characters share its topology accessors") {
+TEST_CASE("a character's own skinned surface round-trips - characters share its topology accessors") {
   const auto dir = test::scratch_dir("glb-surface");
   CrowdAnimation crowd = random_crowd(21, 3, 4);
   crowd.characters[0].mesh = sphere_surface(crowd.characters[0].shape);

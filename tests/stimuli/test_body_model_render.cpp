@@ -91,7 +91,7 @@ TEST_CASE("MPFB2 bodies: clothing regions by mesh position, rendered where the c
           "[stimuli]") {
   const auto model = mpfb2_or_skip();
   if (!model) return;
-  const CrowdAnimation crowd = mpfb2_row(*model, test::kSanitized ? 2 : 3);
+  const CrowdAnimation crowd = mpfb2_row(*model, 2);
   for (const CharacterAnimation& ch : crowd.characters) {
     const SkinnedMesh& m = *ch.mesh;
     const MannequinMesh r = build_character_mesh(ch, MannequinOptions{});
