@@ -4,7 +4,8 @@
 // mannequin built around its capsules (mannequin_mesh.hpp). Both give a MannequinMesh, so everything
 // downstream (upload, GPU skinning, shadows, overlap mode) is shared.
 // For a skinned surface the mannequin's voxel size does not apply (the mesh is what it is: one level of
-// detail); inset_m still shrinks shadow casters.
+// detail), except for shadow casters (options.inset_m > 0): those are the coarse capsule mannequin,
+// whose capsules were fitted to the surface (a tenth of the triangles; shadows are soft).
 #include <cstdint>
 
 #include "framework/core/crowd_animation.hpp"
