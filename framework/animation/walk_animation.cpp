@@ -78,6 +78,14 @@ double frac(double x) {
 
 }  // namespace
 
+void store_gait_frame(const BodyShape& shape, Pose pose, const std::array<std::vector<FootState>, 2>& feet,
+                      size_t k, size_t f, WalkResult& out) {
+  out.max_ik_error_m = std::max(out.max_ik_error_m, solve_legs(shape, pose, feet[0][k], feet[1][k]));
+  for (size_t side = 0; side < 2; ++side) out.contact[side][f] = feet[side][k].contact ? 1 : 0;
+  for (Quat& q : pose.local_rotations) q.normalize();
+  out.frames[f] = pose;
+}
+
 WalkResult animate_walking(const BodyShape& shape, const AgentTrajectory& trajectory, double fps,
                            const WalkStyle& style, const std::vector<double>& reaction) {
   check_gait_inputs(trajectory, fps, reaction, "animate_walking");
@@ -194,11 +202,7 @@ WalkResult animate_walking(const BodyShape& shape, const AgentTrajectory& trajec
       pose.local_rotations[static_cast<size_t>(el)] = yaw(-sgn * std::max(0.0, elbow));
     }
     apply_reaction_upper_body(pose, w);
-    // Legs.
-    out.max_ik_error_m = std::max(out.max_ik_error_m, solve_legs(shape, pose, feet[0][k], feet[1][k]));
-    for (size_t side = 0; side < 2; ++side) out.contact[side][f] = feet[side][k].contact ? 1 : 0;
-    for (Quat& q : pose.local_rotations) q.normalize();
-    out.frames[f] = pose;
+    store_gait_frame(shape, pose, feet, k, f, out);  // legs
   }
   return out;
 }

@@ -290,10 +290,7 @@ WalkResult animate_walking_from_clips(const BodyShape& shape, const std::vector<
     const size_t k = pad + f;
     Pose pose = poses[k];
     pose.root_position_m.y() = root_h[k];
-    out.max_ik_error_m = std::max(out.max_ik_error_m, solve_legs(shape, pose, feet[0][k], feet[1][k]));
-    for (size_t s = 0; s < 2; ++s) out.contact[s][f] = feet[s][k].contact ? 1 : 0;
-    for (Quat& q : pose.local_rotations) q.normalize();
-    out.frames[f] = pose;
+    store_gait_frame(shape, pose, feet, k, f, out);
   }
   return out;
 }

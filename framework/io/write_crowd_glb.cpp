@@ -84,6 +84,18 @@ int palette_material(tinygltf::Model& model, std::vector<int>& cache, int palett
   return cache[k];
 }
 
+// A triangle primitive with a character's POSITION and NORMAL accessors (flat float xyz lists).
+tinygltf::Primitive positions_normals_primitive(GltfBuilder& builder, const std::vector<float>& pos,
+                                                const std::vector<float>& nrm, const std::string& name) {
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.attributes["POSITION"] =
+      builder.add_floats(pos, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true, name + "_positions");
+  prim.attributes["NORMAL"] =
+      builder.add_floats(nrm, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false, name + "_normals");
+  return prim;
+}
+
 // Accessors of a skinned surface's topology (indices, joints, weights), shared by every character
 // whose mesh has the same topology (all MPFB2 bodies of one asset folder do): only positions and
 // normals are stored per character.
@@ -139,12 +151,7 @@ tinygltf::Primitive skinned_surface_primitive(GltfBuilder& builder, const Charac
     shared.push_back(t);
     it = shared.end() - 1;
   }
-  tinygltf::Primitive prim;
-  prim.mode = TINYGLTF_MODE_TRIANGLES;
-  prim.attributes["POSITION"] = builder.add_floats(pos, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER,
-                                                   true, ch.name + "_positions");
-  prim.attributes["NORMAL"] = builder.add_floats(nrm, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER,
-                                                 false, ch.name + "_normals");
+  tinygltf::Primitive prim = positions_normals_primitive(builder, pos, nrm, ch.name);
   prim.attributes["JOINTS_0"] = it->joints;
   prim.attributes["WEIGHTS_0"] = it->weights;
   prim.indices = it->indices;
@@ -174,12 +181,7 @@ tinygltf::Primitive capsule_body_primitive(GltfBuilder& builder, const Character
     weights.insert(weights.end(), {1.0f, 0.0f, 0.0f, 0.0f});
   }
   std::vector<std::uint16_t> indices(soup.indices.begin(), soup.indices.end());
-  tinygltf::Primitive prim;
-  prim.mode = TINYGLTF_MODE_TRIANGLES;
-  prim.attributes["POSITION"] = builder.add_floats(pos, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER,
-                                                   true, ch.name + "_positions");
-  prim.attributes["NORMAL"] = builder.add_floats(nrm, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER,
-                                                 false, ch.name + "_normals");
+  tinygltf::Primitive prim = positions_normals_primitive(builder, pos, nrm, ch.name);
   prim.attributes["JOINTS_0"] = builder.add_joints_u8(joints, ch.name + "_joints");
   prim.attributes["WEIGHTS_0"] = builder.add_floats(
       weights, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER, false, ch.name + "_weights");
