@@ -13,6 +13,7 @@
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/seed.hpp"
+#include "stimuli/character_mesh.hpp"
 #include "stimuli/egl_context.hpp"
 #include "stimuli/gl_program.hpp"
 #include "stimuli/gpu_geometry.hpp"
@@ -259,10 +260,10 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   std::vector<Job> jobs;
   std::map<std::uint64_t, bool> queued;
   for (size_t i = 0; i < n; ++i) {
-    const BodyShape& shape = crowd.characters[i].shape;
-    g.character_mesh[i] = mannequin_cache_key(shape, mesh_options_);
-    g.character_coarse_mesh[i] = mannequin_cache_key(shape, coarse_options);
-    g.character_shadow_mesh[i] = mannequin_cache_key(shape, shadow_options);
+    const CharacterAnimation& ch = crowd.characters[i];
+    g.character_mesh[i] = character_mesh_key(ch, mesh_options_);
+    g.character_coarse_mesh[i] = character_mesh_key(ch, coarse_options);
+    g.character_shadow_mesh[i] = character_mesh_key(ch, shadow_options);
     for (const auto& [key, opts] : {std::pair{g.character_mesh[i], mesh_options_},
                                     std::pair{g.character_coarse_mesh[i], coarse_options},
                                     std::pair{g.character_shadow_mesh[i], shadow_options}})
@@ -270,7 +271,7 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   }
   std::vector<MannequinMesh> built(jobs.size());
   tbb::parallel_for(size_t{0}, jobs.size(), [&](size_t k) {
-    built[k] = build_mannequin_mesh(crowd.characters[jobs[k].character].shape, jobs[k].options);
+    built[k] = build_character_mesh(crowd.characters[jobs[k].character], jobs[k].options);
   });
   for (size_t k = 0; k < jobs.size(); ++k) g.mesh_cache.emplace(jobs[k].key, upload_mannequin(built[k]));
   // Inverse bind matrices.

@@ -14,6 +14,7 @@
 #include "experiments/cli/command_registry.hpp"
 #include "experiments/cli/experiment_group.hpp"
 #include "experiments/cli/figures/overlap_vs_density.hpp"
+#include "experiments/cli/pipeline/body_model.hpp"
 #include "framework/animation/animate_crowd.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/core/seed.hpp"
@@ -50,6 +51,7 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
     ctx.scenario_type = s.scenario;
     ctx.seed = crowd_condition.seed;
     ctx.condition_id = "density-" + density;
+    apply_body_model(spec.animation, s.trajectories.agents.size(), ctx);
     const CrowdAnimation baseline = animate_crowd(s.trajectories, s.environment, spec.animation, ctx);
     CorrectorParams params;
     params.damping = spec.correction.damping;

@@ -1,5 +1,6 @@
 #include "framework/animation/animate_crowd.hpp"
 
+#include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "framework/animation/sample_bodies.hpp"
 #include "framework/animation/shoulder_reactions.hpp"
 #include "framework/animation/walk_animation.hpp"
+#include "framework/animation/walk_from_clips.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/seed.hpp"
 
@@ -52,24 +54,30 @@ CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Enviro
   const bool clips = spec.motion == "clips";
   if (spec.motion != "procedural" && !clips)
     throw InputError("animation.motion: '" + spec.motion + "' must be 'procedural' or 'clips'");
-  if (clips && !stationary)
+  if (clips && stationary && spec.dance_clips.empty())
     throw InputError(
-        "animation.motion: 'clips' is supported for stationary (dancing) scenarios only; walking uses the "
-        "procedural gait");
-  if (clips && spec.dance_clips.empty())
-    throw InputError("animation.dance_clips: 'clips' motion needs at least one clip");
-  std::vector<BvhMotion> dance_clips;
-  if (clips)
-    for (const std::string& file : spec.dance_clips) {
-      const std::filesystem::path path = std::filesystem::path(file).is_absolute()
-                                             ? std::filesystem::path(file)
-                                             : context.clip_directory / file;
-      const std::string ext = path.extension().string();
-      dance_clips.push_back(ext == ".gltf" || ext == ".glb" ? import_gltf_animation(path) : import_bvh(path));
-    }
+        "animation.dance_clips: 'clips' motion in a stationary scenario needs at least one dance clip");
+  if (clips && !stationary && spec.walk_clips.empty())
+    throw InputError(
+        "animation.walk_clips: 'clips' motion in a walking scenario needs at least one walk clip");
+  auto import_clip = [&](const std::string& file) {
+    const std::filesystem::path path = std::filesystem::path(file).is_absolute()
+                                           ? std::filesystem::path(file)
+                                           : context.clip_directory / file;
+    const std::string ext = path.extension().string();
+    return ext == ".gltf" || ext == ".glb" ? import_gltf_animation(path) : import_bvh(path);
+  };
+  std::vector<BvhMotion> dance_clips, walk_clips;
+  if (clips && stationary)
+    for (const std::string& file : spec.dance_clips) dance_clips.push_back(import_clip(file));
+  if (clips && !stationary)
+    for (const std::string& file : spec.walk_clips) walk_clips.push_back(import_clip(file));
   if (!context.shapes.empty() && context.shapes.size() != n)
     throw InputError("animate_crowd: " + std::to_string(context.shapes.size()) + " body shapes for " +
                      std::to_string(n) + " agents");
+  if (!context.meshes.empty() && context.meshes.size() != context.shapes.size())
+    throw InputError("animate_crowd: " + std::to_string(context.meshes.size()) + " body meshes for " +
+                     std::to_string(context.shapes.size()) + " body shapes");
   if (context.shapes.empty() && spec.body_model != "procedural")
     throw InputError("animation.body_model: '" + spec.body_model +
                      "' needs its shapes passed in AnimationContext::shapes");
@@ -111,8 +119,26 @@ CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Enviro
     c.name = character_name(i);
     c.shape = shapes[i];
     c.palette = palette[i];
+    if (!context.meshes.empty()) c.mesh = context.meshes[i];
     const std::uint64_t cseed = derive_seed(context.seed, "character/" + c.name);
-    if (clips) {
+    if (clips && !stationary) {
+      // Each walk clip's gait cycle on this body (retargeting scales to its proportions).
+      std::vector<WalkCycle> cycles;
+      for (size_t k = 0; k < walk_clips.size(); ++k) {
+        cycles.push_back(
+            extract_walk_cycle(retarget_bvh(walk_clips[k], c.shape), c.shape, walk_clips[k].source));
+        const double named = k < spec.walk_clip_speeds_mps.size() ? spec.walk_clip_speeds_mps[k] : 0.0;
+        if (i == 0 && named > 0.0 && std::abs(cycles.back().speed_mps / named - 1.0) > 0.3)
+          spdlog::warn(
+              "{}: walks at {:.2f} m/s on {}, not the {:.2f} m/s the spec names; using the measured speed",
+              walk_clips[k].source, cycles.back().speed_mps, c.name, named);
+      }
+      const std::vector<double> none;
+      c.frames = animate_walking_from_clips(c.shape, cycles, trajectories.agents[i], trajectories.fps,
+                                            walk_style_from_seed(cseed).phase0,
+                                            reactions.weight.empty() ? none : reactions.weight[i])
+                     .frames;
+    } else if (clips) {
       Rng rng(derive_seed(cseed, "clip"));
       const BvhMotion& clip = dance_clips[uniform_index(rng, dance_clips.size())];
       const RetargetedClip r = retarget_bvh(clip, c.shape);

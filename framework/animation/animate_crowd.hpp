@@ -11,7 +11,10 @@
 //     animations; relative paths
 //     are taken from AnimationContext::clip_directory) are imported once, retargeted onto each
 //     character's body, looped seamlessly and played in place from a seeded start time
-//     (clip_in_place.hpp). Walking from clips is not supported (InputError);
+//     (clip_in_place.hpp);
+//   - walking scenarios with animation.motion = "clips": the spec's walk_clips are imported once; per
+//     character each is retargeted onto its body and cut to one seamless gait cycle, and the cycles are
+//     blended by speed along the trajectory with planted feet (walk_from_clips.hpp);
 //   - any other scenario: procedural walking along the trajectory (walk_animation.hpp) with shoulder
 //     reactions (shoulder_reactions.hpp) when trigger_probability > 0 or shoulder_count >= 0.
 // Characters are named "c000", "c001", ... in trajectory order; palette = a seeded permutation of
@@ -20,6 +23,7 @@
 // count. The result passes validate_crowd().
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,11 +39,14 @@ struct AnimationContext {
   int shoulder_count = -1;                   ///< >= 0: exactly this many characters react (pairs)
   double trigger_probability = 0.0;          ///< per-event shoulder reaction probability
   std::string condition_id;
-  std::vector<BodyShape> shapes;         ///< optional: one shape per agent (overrides sampling)
+  std::vector<BodyShape> shapes;  ///< optional: one shape per agent (overrides sampling)
+  /// optional (only with `shapes`): one skinned surface per agent, bound to that agent's shape (e.g. the
+  /// shaped MPFB2 mesh); copied into CharacterAnimation::mesh for renderers and crowd files
+  std::vector<std::shared_ptr<const SkinnedMesh>> meshes;
   std::filesystem::path clip_directory;  ///< base for relative clip paths (the spec file's folder)
 };
 
-/// Throws InputError for empty / inconsistent trajectories, a shapes list of the wrong size or an
+/// Throws InputError for empty / inconsistent trajectories, a shapes or meshes list of the wrong size or an
 /// unsupported animation.body_model / animation.motion.
 CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Environment& environment,
                              const AnimationSpec& spec, const AnimationContext& context);

@@ -8,6 +8,18 @@
 
 namespace crowdlab::anim {
 
+double solve_legs(const BodyShape& shape, Pose& pose, const FootState& left, const FootState& right) {
+  double error = 0.0;
+  for (const Side side : {Side::kLeft, Side::kRight}) {
+    const FootState& fs = side == Side::kLeft ? left : right;
+    const Vec3 foot_fwd = fs.rotation * Vec3::UnitZ();
+    const Vec3 body_fwd = pose.local_rotations[kPelvis] * Vec3::UnitZ();
+    const Vec3 pole(foot_fwd.x() + body_fwd.x(), 0, foot_fwd.z() + body_fwd.z());
+    error = std::max(error, solve_leg_ik(shape, pose, side, fs.ankle, fs.rotation, pole));
+  }
+  return error;
+}
+
 Quat foot_rotation(double yaw_rad, double pitch_rad) {
   return (yaw(yaw_rad) * pitch(pitch_rad)).normalized();
 }

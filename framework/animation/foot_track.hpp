@@ -34,6 +34,11 @@ std::vector<FootState> plan_foot_track(const BodyShape& shape, Side side,
                                        const std::vector<std::uint8_t>& contact,
                                        const std::vector<FootTarget>& desired);
 
+/// Solves both legs of `pose` (root already set) onto the feet's ankle targets and rotations by
+/// solve_leg_ik(), each knee pointing between its foot's and the pelvis's forward directions.
+/// Returns the larger unreachable-ankle residual (metres).
+double solve_legs(const BodyShape& shape, Pose& pose, const FootState& left, const FootState& right);
+
 /// World rotation of a foot with heading `yaw_rad` and heel rise `pitch_rad`.
 Quat foot_rotation(double yaw_rad, double pitch_rad);
 

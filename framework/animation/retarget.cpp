@@ -282,7 +282,12 @@ RetargetedClip retarget_bvh(const BvhMotion& motion, const BodyShape& target,
       const Vec3 b1 = tpose[static_cast<size_t>(l)] - tpose[static_cast<size_t>(r)];
       align[static_cast<size_t>(j)] = align_two_axes(a0, b0, a1, b1);
     } else {
-      align[static_cast<size_t>(j)] = shortest_arc(a0, a1);
+      // One child: the bone's direction fixes all but its twist, which is inherited from the parent's
+      // alignment (the minimal turn after it), so a head or hand keeps facing the way its chest or arm
+      // faces even when the source's zero pose turns the body (the twist moves no joint, but it turns
+      // a skinned head or hand).
+      const Quat inherited = align[static_cast<size_t>(j)];
+      align[static_cast<size_t>(j)] = (shortest_arc(inherited * a0, a1) * inherited).normalized();
     }
   }
 

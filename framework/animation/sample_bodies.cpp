@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <string>
 
 #include "framework/core/error.hpp"
@@ -26,21 +25,12 @@ std::vector<BodyParams> sample_bodies(int n, double female_fraction, std::uint64
     throw InputError("sample_bodies: female_fraction must be in [0, 1], got " +
                      std::to_string(female_fraction));
   const auto count = static_cast<size_t>(n);
-  const auto women = static_cast<size_t>(std::lround(female_fraction * n));
-
-  // Which indices are women: a seeded Fisher-Yates shuffle of 0..n-1, the first `women` of it.
-  std::vector<size_t> order(count);
-  std::iota(order.begin(), order.end(), size_t{0});
-  Rng shuffle_rng(derive_seed(seed, "bodies/sex"));
-  for (size_t i = count; i > 1; --i) std::swap(order[i - 1], order[uniform_index(shuffle_rng, i)]);
-  std::vector<bool> is_female(count, false);
-  for (size_t k = 0; k < women; ++k) is_female[order[k]] = true;
-
+  const std::vector<Sex> sex = sample_sexes(n, female_fraction, seed);
   std::vector<BodyParams> out(count);
   for (size_t i = 0; i < count; ++i) {
     Rng rng(derive_seed(seed, "bodies/" + std::to_string(i)));
-    const HeightDistribution d = is_female[i] ? kWorldFemaleHeight : kWorldMaleHeight;
-    out[i].sex = is_female[i] ? Sex::kFemale : Sex::kMale;
+    const HeightDistribution d = sex[i] == Sex::kFemale ? kWorldFemaleHeight : kWorldMaleHeight;
+    out[i].sex = sex[i];
     out[i].height_m = d.mean_m + d.sd_m * truncated_normal(rng, 3.0);
     out[i].girth = std::clamp(kGirthMean + kGirthSd * truncated_normal(rng, 3.0), kGirthMin, kGirthMax);
   }

@@ -3,28 +3,19 @@
 // Gaussian distribution that matched men and women height distributions around the world ... half of
 // them belonging to each gender").
 //
-// Heights (stature, metres), Gaussian per sex, truncated at +-3 SD by resampling:
-//   men   mean 1.71 m, SD 0.07 m
-//   women mean 1.59 m, SD 0.07 m   (kept equal to the men's SD for simplicity; within-country SDs are
-//                                   ~0.065-0.07 m and between-country spread widens the world's slightly)
-// Source: NCD Risk Factor Collaboration (NCD-RisC), "A century of trends in adult human height",
-// eLife 5:e13410 (2016): global mean adult height for the 1996 birth cohort, men ~171 cm, women
-// ~159 cm. Girth (radius multiplier of the procedural body) ~ N(1.0, 0.08), truncated to [0.8, 1.3]:
+// Heights: Gaussian per sex (core/population.hpp: men 1.71 +- 0.07 m, women 1.59 +- 0.07 m, NCD-RisC
+// 2016), truncated at +-3 SD by resampling; sexes from sample_sexes().
+// Girth (radius multiplier of the procedural body) ~ N(1.0, 0.08), truncated to [0.8, 1.3]:
 // a +-8 % spread of limb circumference matches the coefficient of variation of ANSUR II (2012) thigh
 // and arm circumferences (~7-9 %).
 #include <cstdint>
 #include <vector>
 
 #include "framework/core/body_shape.hpp"
+#include "framework/core/population.hpp"
 
 namespace crowdlab {
 
-struct HeightDistribution {
-  double mean_m;
-  double sd_m;
-};
-inline constexpr HeightDistribution kWorldMaleHeight{1.71, 0.07};
-inline constexpr HeightDistribution kWorldFemaleHeight{1.59, 0.07};
 inline constexpr double kGirthMean = 1.0, kGirthSd = 0.08, kGirthMin = 0.8, kGirthMax = 1.3;
 
 /// n bodies; exactly round(female_fraction * n) are women, placed at seeded random indices.

@@ -10,6 +10,7 @@
 #include "framework/animation/pelvis_height_limit.hpp"
 #include "framework/animation/reaction_pose.hpp"
 #include "framework/animation/rotation_helpers.hpp"
+#include "framework/animation/smoothed_track.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/seed.hpp"
@@ -32,92 +33,7 @@ namespace {
 
 constexpr double kDeg = kPi / 180.0;
 constexpr double kGravity = 9.81;
-constexpr double kPadSeconds = 2.0;
 constexpr double kReachFraction = 0.995;  // keep the knee a touch bent: never a locked leg
-
-double activity_of_speed(double v) {
-  return smoothstep01((v - 0.05) / 0.20);
-}
-
-// Centred moving average over +-r samples (truncated at the ends).
-template <class T>
-std::vector<T> moving_average(const std::vector<T>& x, int r) {
-  std::vector<T> out(x.size());
-  const auto n = static_cast<int>(x.size());
-  for (int k = 0; k < n; ++k) {
-    const int lo = std::max(0, k - r), hi = std::min(n - 1, k + r);
-    T sum = x[static_cast<size_t>(lo)] * 0.0;
-    for (int i = lo; i <= hi; ++i) sum += x[static_cast<size_t>(i)];
-    out[static_cast<size_t>(k)] = sum / static_cast<double>(hi - lo + 1);
-  }
-  return out;
-}
-
-struct PaddedTrack {
-  int pad = 0;
-  std::vector<Vec2> pos;
-  std::vector<double> heading;    // unwrapped, smoothed
-  std::vector<double> speed;      // smoothed, m/s
-  std::vector<double> turn_rate;  // rad/s
-};
-
-PaddedTrack pad_and_smooth(const AgentTrajectory& t, double fps) {
-  const auto n = static_cast<int>(t.position_m.size());
-  PaddedTrack p;
-  p.pad = static_cast<int>(std::lround(kPadSeconds * fps));
-  const int m = n + 2 * p.pad;
-  auto vel_at = [&](int k) -> Vec2 {
-    if (n < 2) return Vec2::Zero();
-    const int lo = std::max(0, k - 1), hi = std::min(n - 1, k + 1);
-    return (t.position_m[static_cast<size_t>(hi)] - t.position_m[static_cast<size_t>(lo)]) * fps / (hi - lo);
-  };
-  // Average the end velocities over 0.2 s so one noisy sample does not set the padding.
-  const int w = std::max(1, static_cast<int>(0.2 * fps));
-  Vec2 v0 = Vec2::Zero(), v1 = Vec2::Zero();
-  for (int i = 0; i < w; ++i) v0 += vel_at(std::min(i, n - 1)) / w, v1 += vel_at(std::max(n - 1 - i, 0)) / w;
-  std::vector<double> unwrapped(static_cast<size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    const double h = t.heading_rad[static_cast<size_t>(k)];
-    unwrapped[static_cast<size_t>(k)] = k == 0 ? h
-                                               : unwrapped[static_cast<size_t>(k - 1)] +
-                                                     wrap_angle(h - unwrapped[static_cast<size_t>(k - 1)]);
-  }
-  p.pos.resize(static_cast<size_t>(m));
-  std::vector<double> heading(static_cast<size_t>(m));
-  for (int k = 0; k < m; ++k) {
-    const int f = k - p.pad;
-    if (f < 0) {
-      p.pos[static_cast<size_t>(k)] = t.position_m.front() + v0 * (f / fps);
-      heading[static_cast<size_t>(k)] = unwrapped.front();
-    } else if (f >= n) {
-      p.pos[static_cast<size_t>(k)] = t.position_m.back() + v1 * ((f - n + 1) / fps);
-      heading[static_cast<size_t>(k)] = unwrapped.back();
-    } else {
-      p.pos[static_cast<size_t>(k)] = t.position_m[static_cast<size_t>(f)];
-      heading[static_cast<size_t>(k)] = unwrapped[static_cast<size_t>(f)];
-    }
-  }
-  const int r = std::max(1, static_cast<int>(std::lround(0.15 * fps)));
-  std::vector<Vec2> vel(static_cast<size_t>(m));
-  for (int k = 0; k < m; ++k) {
-    const int lo = std::max(0, k - 1), hi = std::min(m - 1, k + 1);
-    vel[static_cast<size_t>(k)] =
-        (p.pos[static_cast<size_t>(hi)] - p.pos[static_cast<size_t>(lo)]) * fps / std::max(1, hi - lo);
-  }
-  vel = moving_average(vel, r);
-  p.speed.resize(static_cast<size_t>(m));
-  for (int k = 0; k < m; ++k) p.speed[static_cast<size_t>(k)] = vel[static_cast<size_t>(k)].norm();
-  p.heading = moving_average(heading, std::max(1, static_cast<int>(std::lround(0.1 * fps))));
-  p.turn_rate.resize(static_cast<size_t>(m));
-  for (int k = 0; k < m; ++k) {
-    const int lo = std::max(0, k - 1), hi = std::min(m - 1, k + 1);
-    p.turn_rate[static_cast<size_t>(k)] =
-        (p.heading[static_cast<size_t>(hi)] - p.heading[static_cast<size_t>(lo)]) * fps /
-        std::max(1, hi - lo);
-  }
-  p.turn_rate = moving_average(p.turn_rate, r);
-  return p;
-}
 
 bool in_swing(double phase) {
   const double f = phase - std::floor(phase);
@@ -162,17 +78,18 @@ double frac(double x) {
 
 }  // namespace
 
+void store_gait_frame(const BodyShape& shape, Pose pose, const std::array<std::vector<FootState>, 2>& feet,
+                      size_t k, size_t f, WalkResult& out) {
+  out.max_ik_error_m = std::max(out.max_ik_error_m, solve_legs(shape, pose, feet[0][k], feet[1][k]));
+  for (size_t side = 0; side < 2; ++side) out.contact[side][f] = feet[side][k].contact ? 1 : 0;
+  for (Quat& q : pose.local_rotations) q.normalize();
+  out.frames[f] = pose;
+}
+
 WalkResult animate_walking(const BodyShape& shape, const AgentTrajectory& trajectory, double fps,
                            const WalkStyle& style, const std::vector<double>& reaction) {
+  check_gait_inputs(trajectory, fps, reaction, "animate_walking");
   const size_t n = trajectory.position_m.size();
-  if (!(fps > 0) || !std::isfinite(fps)) throw InputError("animate_walking: fps must be > 0");
-  if (n == 0 || trajectory.heading_rad.size() != n)
-    throw InputError("animate_walking: trajectory needs one position and heading per frame (got " +
-                     std::to_string(n) + " and " + std::to_string(trajectory.heading_rad.size()) + ")");
-  for (size_t k = 0; k < n; ++k)
-    if (!trajectory.position_m[k].allFinite() || !std::isfinite(trajectory.heading_rad[k]))
-      throw InputError("animate_walking: trajectory frame " + std::to_string(k) + " is not finite");
-  if (!reaction.empty() && reaction.size() != n) throw InputError("animate_walking: reaction size mismatch");
 
   const double height = shape.params.height_m;
   const PaddedTrack p = pad_and_smooth(trajectory, fps);
@@ -285,19 +202,7 @@ WalkResult animate_walking(const BodyShape& shape, const AgentTrajectory& trajec
       pose.local_rotations[static_cast<size_t>(el)] = yaw(-sgn * std::max(0.0, elbow));
     }
     apply_reaction_upper_body(pose, w);
-    // Legs.
-    for (int side = 0; side < 2; ++side) {
-      const Side sd = side == 0 ? Side::kLeft : Side::kRight;
-      const FootState& fs = feet[static_cast<size_t>(side)][k];
-      const Vec3 foot_fwd = fs.rotation * Vec3::UnitZ();
-      const Vec3 body_fwd = pose.local_rotations[kPelvis] * Vec3::UnitZ();
-      const Vec3 pole = Vec3(foot_fwd.x() + body_fwd.x(), 0, foot_fwd.z() + body_fwd.z());
-      out.max_ik_error_m =
-          std::max(out.max_ik_error_m, solve_leg_ik(shape, pose, sd, fs.ankle, fs.rotation, pole));
-      out.contact[static_cast<size_t>(side)][f] = fs.contact ? 1 : 0;
-    }
-    for (Quat& q : pose.local_rotations) q.normalize();
-    out.frames[f] = pose;
+    store_gait_frame(shape, pose, feet, k, f, out);  // legs
   }
   return out;
 }

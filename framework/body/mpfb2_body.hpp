@@ -36,7 +36,7 @@
 
 #include "framework/body/mpfb2_model.hpp"
 #include "framework/body/mpfb2_shape.hpp"
-#include "framework/body/skinned_mesh.hpp"
+#include "framework/core/skinned_mesh.hpp"
 #include "framework/core/body_shape.hpp"
 
 namespace crowdlab {

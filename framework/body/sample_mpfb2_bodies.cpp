@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include <tbb/parallel_for.h>
+
 #include "framework/core/error.hpp"
 #include "framework/core/seed.hpp"
 
@@ -62,29 +64,29 @@ double solve_height_param(const Mpfb2Model& model, Mpfb2ShapeParams params, doub
 }
 
 std::vector<Mpfb2Sample> sample_mpfb2_bodies(const Mpfb2Model& model, int count, std::uint64_t seed,
-                                             HeightDistribution female, HeightDistribution male) {
+                                             double female_fraction, HeightDistribution female,
+                                             HeightDistribution male) {
   if (count < 0) throw InputError("sample_mpfb2_bodies: count must be >= 0");
   for (const HeightDistribution& d : {female, male})
     if (!(d.mean_m > 1.0 && d.mean_m < 2.5 && d.sd_m >= 0.0 && d.sd_m < 0.3))
       throw InputError(
           "sample_mpfb2_bodies: height distribution needs mean in (1, 2.5) m and sd in [0, 0.3) m");
-  std::vector<Mpfb2Sample> out;
-  out.reserve(static_cast<size_t>(count));
-  for (int i = 0; i < count; ++i) {
+  const std::vector<Sex> sex = sample_sexes(count, female_fraction, seed);
+  std::vector<Mpfb2Sample> out(static_cast<size_t>(count));
+  tbb::parallel_for(0, count, [&](int i) {
     Rng rng(derive_seed(seed, "mpfb2-body/" + std::to_string(i)));
-    const bool is_female = i % 2 == 0;
+    const bool is_female = sex[static_cast<size_t>(i)] == Sex::kFemale;
     const HeightDistribution& d = is_female ? female : male;
     Mpfb2ShapeParams p;
     p.gender = is_female ? 0.0 : 1.0;
     p.age = 0.5 + 0.25 * uniform01(rng);
     p.muscle = std::clamp(0.5 + 0.15 * standard_normal(rng), 0.1, 0.9);
     p.weight = std::clamp(0.5 + 0.15 * standard_normal(rng), 0.1, 0.9);
-    Mpfb2Sample s;
+    Mpfb2Sample& s = out[static_cast<size_t>(i)];
     s.target_height_m = std::clamp(d.mean_m + d.sd_m * standard_normal(rng), 1.40, 2.05);
     p.height = solve_height_param(model, p, s.target_height_m, s.target_reached);
     s.body = make_mpfb2_body(model, p);
-    out.push_back(std::move(s));
-  }
+  });
   return out;
 }
 

@@ -3,32 +3,22 @@
 // §4.1: "beta parameters were selected randomly following a Gaussian distribution that matched men
 // and women height distributions around the world ... half of them belonging to each gender").
 //
-// Default distributions: world adult means from NCD Risk Factor Collaboration, "A century of trends
-// in adult human height", eLife 5:e13410 (2016): 1996-born cohort, men ~171 cm, women ~159 cm
-// (global averages of the country means). The within-population SD of adult height is ~7 cm for men
-// and ~6.5 cm for women (e.g. Jelenkovic et al., eLife 5:e17364, 2016, twin cohorts, ~6-7 cm);
-// we use 7.0 and 6.5 cm.
+// Distributions: core/population.hpp (NCD-RisC 2016 world means, SD 7 cm); sexes from sample_sexes()
+// (exactly round(female_fraction * n) women at seeded indices, as the procedural bodies).
 //
-// Per body i (its own stream derive_seed(seed, "mpfb2-body/<i>")): sex alternates female, male,
-// female ... (half and half); gender = 0 or 1; age uniform in [0.5, 0.75] (25 to ~58 years);
-// muscle and weight 0.5 + 0.15 N(0,1) clamped to [0.1, 0.9]; a target height from the sex's
-// Gaussian, clamped to [1.40, 2.05] m. The macro `height` is then solved by bisection so that the
-// shaped mesh's measured height (lowest to highest body vertex) equals the target within 1 mm; if
+// Per body i (its own stream derive_seed(seed, "mpfb2-body/<i>")): gender = 0 (woman) or 1 (man); age uniform
+// in [0.5, 0.75] (25 to ~58 years); muscle and weight 0.5 + 0.15 N(0,1) clamped to [0.1, 0.9]; a target
+// height from the sex's Gaussian, clamped to [1.40, 2.05] m. The macro `height` is then solved by bisection
+// so that the shaped mesh's measured height (lowest to highest body vertex) equals the target within 1 mm; if
 // the target lies outside what the height targets can reach for that body, the nearest end is used
 // (Mpfb2Sample::target_reached says which).
 #include <cstdint>
 #include <vector>
 
 #include "framework/body/mpfb2_body.hpp"
+#include "framework/core/population.hpp"
 
 namespace crowdlab {
-
-struct HeightDistribution {
-  double mean_m = 1.71;
-  double sd_m = 0.07;
-};
-inline constexpr HeightDistribution kWorldMaleHeight{1.71, 0.070};
-inline constexpr HeightDistribution kWorldFemaleHeight{1.59, 0.065};
 
 struct Mpfb2Sample {
   Mpfb2Body body;
@@ -44,7 +34,9 @@ double solve_height_param(const Mpfb2Model& model, Mpfb2ShapeParams params, doub
 /// Measured height (m) of the body group for the given params (lowest to highest vertex).
 double measure_mpfb2_height(const Mpfb2Model& model, const Mpfb2ShapeParams& params);
 
+/// Bodies are built in parallel (TBB) into per-index slots: identical for any thread count.
 std::vector<Mpfb2Sample> sample_mpfb2_bodies(const Mpfb2Model& model, int count, std::uint64_t seed,
+                                             double female_fraction = 0.5,
                                              HeightDistribution female = kWorldFemaleHeight,
                                              HeightDistribution male = kWorldMaleHeight);
 

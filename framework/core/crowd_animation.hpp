@@ -5,11 +5,13 @@
 //   CrowdAnimation      characters + environment + metadata
 // No behaviour lives here beyond validation; stages are free functions over these types.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "framework/core/body_shape.hpp"
 #include "framework/core/pose.hpp"
+#include "framework/core/skinned_mesh.hpp"
 
 namespace crowdlab {
 
@@ -18,6 +20,10 @@ struct CharacterAnimation {
   BodyShape shape;
   std::vector<Pose> frames;  ///< frame f is at time f / fps seconds
   int palette = 0;           ///< appearance index for rendering (clothing/skin palette)
+  /// Optional skinned body surface in the rest pose of `shape` (e.g. the shaped MPFB2 mesh). nullptr:
+  /// the procedural body (renderers build a surface around the capsules). Shared and immutable, so
+  /// copying a crowd does not copy meshes; the capsules in `shape` stay what correction and metrics use.
+  std::shared_ptr<const SkinnedMesh> mesh;
 };
 
 /// A static oriented box (e.g. a corridor wall or a stage).

@@ -9,12 +9,16 @@
 //                            the pelvis joint node. Holds the body shape:
 //                              name, palette, sex ("female"/"male"), height_m, girth,
 //                              joint_offsets_m [24][3], capsules [24]{a[3], b[3], radius_m},
-//                              rest_contact_pairs [[i, j], ...]
+//                              rest_contact_pairs [[i, j], ...],
+//                              body_mesh: true when the character carries its own skinned surface
 //       24 joint nodes named after the SMPL joints ("pelvis", ..., "right_hand"), nested as
 //       kJointParent says; rest TRS: translation = joint offset, no rotation (the T-pose).
-//     node "<name>_body"     mesh + skin: one low-poly capsule per bone, rigidly skinned (weight 1) to
-//                            its bone, in the bind (rest) pose; the skin's inverseBindMatrices undo
-//                            the rest-pose joint positions.
+//     node "<name>_body"     mesh + skin, in the bind (rest) pose; the skin's inverseBindMatrices undo
+//                            the rest-pose joint positions. Either one low-poly capsule per bone, rigidly
+//                            skinned (weight 1) to its bone (procedural bodies), or, with body_mesh, the
+//                            character's SkinnedMesh: POSITION, NORMAL (unit), JOINTS_0 (u8 x 4),
+//                            WEIGHTS_0 (float x 4, sum 1), uint32 indices; indices/JOINTS_0/WEIGHTS_0
+//                            accessors are shared by characters whose meshes have the same topology.
 //   node "ground"            extras {"crowdlab_environment": "ground"}: a quad at y = 0 (if ground_plane)
 //   node "box_<k>"           extras {"crowdlab_environment": "box"}: the shared unit cube [-1, 1]^3
 //                            scaled by half_extents, rotated and translated to the box

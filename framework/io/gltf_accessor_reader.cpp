@@ -79,11 +79,18 @@ std::vector<float> read_float_accessor(const tinygltf::Model& model, int index, 
 
 std::vector<std::uint32_t> read_index_accessor(const tinygltf::Model& model, int index,
                                                const std::string& context) {
+  return read_uint_accessor(model, index, TINYGLTF_TYPE_SCALAR, context);
+}
+
+std::vector<std::uint32_t> read_uint_accessor(const tinygltf::Model& model, int index, int type,
+                                              const std::string& context) {
   if (index < 0 || static_cast<size_t>(index) >= model.accessors.size())
     throw InputError(who(model, index, context) + ": no such accessor");
   const tinygltf::Accessor& a = model.accessors[static_cast<size_t>(index)];
-  if (a.type != TINYGLTF_TYPE_SCALAR)
-    throw InputError(who(model, index, context) + ": indices must be SCALAR");
+  const int components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(type));
+  if (a.type != type)
+    throw InputError(who(model, index, context) + ": expected " + std::to_string(components) +
+                     " components per element, got element type code " + std::to_string(a.type));
   int size = 0;
   switch (a.componentType) {
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
@@ -96,21 +103,24 @@ std::vector<std::uint32_t> read_index_accessor(const tinygltf::Model& model, int
       size = 4;
       break;
     default:
-      throw InputError(who(model, index, context) + ": indices must be unsigned integers, got type code " +
+      throw InputError(who(model, index, context) + ": expected unsigned integers, got type code " +
                        std::to_string(a.componentType));
   }
-  const RawAccessor raw = locate(model, index, size, 1, context);
-  std::vector<std::uint32_t> out(raw.count);
-  for (size_t i = 0; i < raw.count; ++i) {
-    const unsigned char* p = raw.data + i * raw.stride;
-    if (size == 1) out[i] = *p;
-    if (size == 2) {
-      std::uint16_t v;
-      std::memcpy(&v, p, 2);
-      out[i] = v;
+  const auto n = static_cast<size_t>(components);
+  const RawAccessor raw = locate(model, index, size, components, context);
+  std::vector<std::uint32_t> out(raw.count * n);
+  for (size_t i = 0; i < raw.count; ++i)
+    for (size_t c = 0; c < n; ++c) {
+      const unsigned char* p = raw.data + i * raw.stride + c * static_cast<size_t>(size);
+      std::uint32_t& v = out[i * n + c];
+      if (size == 1) v = *p;
+      if (size == 2) {
+        std::uint16_t u;
+        std::memcpy(&u, p, 2);
+        v = u;
+      }
+      if (size == 4) std::memcpy(&v, p, 4);
     }
-    if (size == 4) std::memcpy(&out[i], p, 4);
-  }
   return out;
 }
 

@@ -20,4 +20,9 @@ std::vector<float> read_float_accessor(const tinygltf::Model& model, int index, 
 std::vector<std::uint32_t> read_index_accessor(const tinygltf::Model& model, int index,
                                                const std::string& context);
 
+/// Unsigned integers (UNSIGNED_BYTE/SHORT/INT) of element type `type` (e.g. VEC4 for JOINTS_0),
+/// count x components, row-major, with the same checks.
+std::vector<std::uint32_t> read_uint_accessor(const tinygltf::Model& model, int index, int type,
+                                              const std::string& context);
+
 }  // namespace crowdlab

@@ -2,12 +2,15 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "framework/core/error.hpp"
+#include "framework/core/forward_kinematics.hpp"
 #include "framework/io/crowd_glb_format.hpp"
 #include "framework/io/gltf_accessor_reader.hpp"
 #include "framework/io/gltf_builder.hpp"
@@ -130,6 +133,74 @@ std::vector<int> joint_nodes_of(const tinygltf::Model& model, int group, const s
                        node_label(model, parent_node));
   }
   return skin->joints;
+}
+
+// The character's own skinned surface (extras body_mesh: true): the mesh of the scene node that uses
+// the character's skin. Vertex data are in the rest pose, character frame (crowd_glb_format.hpp).
+std::shared_ptr<const SkinnedMesh> read_body_mesh(const tinygltf::Model& model, const tinygltf::Scene& scene,
+                                                  int pelvis_node, const CharacterAnimation& ch,
+                                                  const std::string& context) {
+  const std::string who = context + ": character '" + ch.name + "' body mesh";
+  int skin = -1;
+  for (size_t s = 0; s < model.skins.size(); ++s)
+    if (!model.skins[s].joints.empty() && model.skins[s].joints[0] == pelvis_node) skin = static_cast<int>(s);
+  const tinygltf::Node* body = nullptr;
+  for (int n : scene.nodes)
+    if (n >= 0 && static_cast<size_t>(n) < model.nodes.size() &&
+        model.nodes[static_cast<size_t>(n)].skin == skin && model.nodes[static_cast<size_t>(n)].mesh >= 0)
+      body = &model.nodes[static_cast<size_t>(n)];
+  if (skin < 0 || !body || static_cast<size_t>(body->mesh) >= model.meshes.size() ||
+      model.meshes[static_cast<size_t>(body->mesh)].primitives.size() != 1)
+    throw InputError(who + ": no scene node with one mesh primitive uses the character's skin");
+  const tinygltf::Primitive& p = model.meshes[static_cast<size_t>(body->mesh)].primitives[0];
+  auto attribute = [&](const char* name) {
+    auto it = p.attributes.find(name);
+    if (it == p.attributes.end()) throw InputError(who + ": attribute " + name + " is missing");
+    return it->second;
+  };
+  const std::vector<float> pos =
+      read_float_accessor(model, attribute("POSITION"), TINYGLTF_TYPE_VEC3, context);
+  const std::vector<float> nrm = read_float_accessor(model, attribute("NORMAL"), TINYGLTF_TYPE_VEC3, context);
+  const std::vector<float> w =
+      read_float_accessor(model, attribute("WEIGHTS_0"), TINYGLTF_TYPE_VEC4, context);
+  const std::vector<std::uint32_t> j =
+      read_uint_accessor(model, attribute("JOINTS_0"), TINYGLTF_TYPE_VEC4, context);
+  if (p.indices < 0) throw InputError(who + ": no indices");
+  const std::vector<std::uint32_t> idx = read_index_accessor(model, p.indices, context);
+  const size_t n = pos.size() / 3;
+  if (nrm.size() != 3 * n || w.size() != 4 * n || j.size() != 4 * n || idx.size() % 3 != 0)
+    throw InputError(who + ": POSITION, NORMAL, JOINTS_0, WEIGHTS_0 and indices disagree in size");
+  auto mesh = std::make_shared<SkinnedMesh>();
+  mesh->rest_vertices_m.resize(n);
+  mesh->rest_normals.resize(n);
+  mesh->joints.resize(n);
+  mesh->weights.resize(n);
+  mesh->region.resize(n);
+  for (size_t v = 0; v < n; ++v) {
+    mesh->rest_vertices_m[v] = Vec3(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
+    mesh->rest_normals[v] = Vec3(nrm[3 * v], nrm[3 * v + 1], nrm[3 * v + 2]);
+    double total = 0.0;
+    for (size_t k = 0; k < 4; ++k) total += static_cast<double>(w[4 * v + k]);
+    if (!(total > 0.5))
+      throw InputError(who + ": vertex " + std::to_string(v) + " weights sum to " + std::to_string(total));
+    for (size_t k = 0; k < 4; ++k) {
+      if (j[4 * v + k] >= static_cast<std::uint32_t>(kJointCount))
+        throw InputError(who + ": vertex " + std::to_string(v) + " names joint " +
+                         std::to_string(j[4 * v + k]));
+      mesh->joints[v][k] = static_cast<int>(j[4 * v + k]);
+      mesh->weights[v][k] =
+          static_cast<double>(w[4 * v + k]) / total;  // renormalise after the float round trip
+    }
+    // The region is the dominant joint (the writer stores weights in descending order).
+    mesh->region[v] = mesh->joints[v][static_cast<size_t>(
+        std::max_element(mesh->weights[v].begin(), mesh->weights[v].end()) - mesh->weights[v].begin())];
+  }
+  for (size_t t = 0; t < idx.size(); t += 3)
+    mesh->triangles.emplace_back(static_cast<int>(idx[t]), static_cast<int>(idx[t + 1]),
+                                 static_cast<int>(idx[t + 2]));
+  mesh->rest_joints_m = joint_positions(ch.shape, Pose::rest(ch.shape));
+  validate_skinned_mesh(*mesh, context + ": character '" + ch.name + "'");
+  return mesh;
 }
 
 struct JointRef {
@@ -310,6 +381,9 @@ CrowdAnimation read_crowd_glb(const std::string& path) {
       if (const json* c = find_key(extras, kCharacterExtrasKey)) {
         crowd.characters.push_back(character_from_extras(*c, path + ": " + node_label(model, node)));
         const std::vector<int> nodes = joint_nodes_of(model, node, path);
+        if (const json* m = find_key(*c, "body_mesh"); m && m->is_boolean() && m->get<bool>())
+          crowd.characters.back().mesh =
+              read_body_mesh(model, scene, nodes[0], crowd.characters.back(), path);
         for (int j = 0; j < kJointCount; ++j) {
           const bool inserted =
               joints.emplace(nodes[static_cast<size_t>(j)], JointRef{crowd.characters.size() - 1, j}).second;

@@ -9,6 +9,7 @@
 
 #include "crowdlab_version.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/forward_kinematics.hpp"
 #include "framework/io/capsule_mesh.hpp"
 #include "framework/io/crowd_glb_format.hpp"
 #include "framework/io/gltf_builder.hpp"
@@ -49,14 +50,16 @@ nlohmann::json character_extras(const CharacterAnimation& ch) {
   }
   nlohmann::json pairs = nlohmann::json::array();
   for (const auto& [i, j] : s.rest_contact_pairs) pairs.push_back({i, j});
-  return {{"name", ch.name},
-          {"palette", ch.palette},
-          {"sex", std::string(to_string(s.params.sex))},
-          {"height_m", s.params.height_m},
-          {"girth", s.params.girth},
-          {"joint_offsets_m", offsets},
-          {"capsules", capsules},
-          {"rest_contact_pairs", pairs}};
+  nlohmann::json e = {{"name", ch.name},
+                      {"palette", ch.palette},
+                      {"sex", std::string(to_string(s.params.sex))},
+                      {"height_m", s.params.height_m},
+                      {"girth", s.params.girth},
+                      {"joint_offsets_m", offsets},
+                      {"capsules", capsules},
+                      {"rest_contact_pairs", pairs}};
+  if (ch.mesh) e["body_mesh"] = true;  // the skin mesh is the character's own surface (read back)
+  return e;
 }
 
 std::vector<double> quat_xyzw(const Quat& q) {
@@ -81,21 +84,83 @@ int palette_material(tinygltf::Model& model, std::vector<int>& cache, int palett
   return cache[k];
 }
 
-// Rest-pose world position of every joint (all rest rotations are identity, see body_shape.hpp).
-std::array<Vec3, kJointCount> rest_joint_positions(const BodyShape& shape) {
-  std::array<Vec3, kJointCount> p{};
-  for (int j = 0; j < kJointCount; ++j) {
-    const int parent = kJointParent[static_cast<size_t>(j)];
-    p[static_cast<size_t>(j)] = shape.joint_offsets_m[static_cast<size_t>(j)] +
-                                (parent < 0 ? Vec3::Zero() : p[static_cast<size_t>(parent)]);
-  }
-  return p;
+// A triangle primitive with a character's POSITION and NORMAL accessors (flat float xyz lists).
+tinygltf::Primitive positions_normals_primitive(GltfBuilder& builder, const std::vector<float>& pos,
+                                                const std::vector<float>& nrm, const std::string& name) {
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.attributes["POSITION"] =
+      builder.add_floats(pos, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true, name + "_positions");
+  prim.attributes["NORMAL"] =
+      builder.add_floats(nrm, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, false, name + "_normals");
+  return prim;
 }
 
-// The capsule body mesh + skin of one character; returns the skinned mesh node.
-int add_character_body(tinygltf::Model& model, GltfBuilder& builder, const CharacterAnimation& ch,
-                       const std::vector<int>& joint_nodes, int material) {
-  const auto rest = rest_joint_positions(ch.shape);
+// Accessors of a skinned surface's topology (indices, joints, weights), shared by every character
+// whose mesh has the same topology (all MPFB2 bodies of one asset folder do): only positions and
+// normals are stored per character.
+struct SharedTopology {
+  const SkinnedMesh* mesh = nullptr;
+  int indices = -1, joints = -1, weights = -1;
+};
+
+bool same_topology(const SkinnedMesh& a, const SkinnedMesh& b) {
+  return a.triangles == b.triangles && a.joints == b.joints && a.weights == b.weights;
+}
+
+// The primitive of a character's own skinned surface (CharacterAnimation::mesh).
+tinygltf::Primitive skinned_surface_primitive(GltfBuilder& builder, const CharacterAnimation& ch,
+                                              std::vector<SharedTopology>& shared) {
+  const SkinnedMesh& m = *ch.mesh;
+  std::vector<float> pos, nrm;
+  pos.reserve(3 * m.rest_vertices_m.size());
+  nrm.reserve(3 * m.rest_vertices_m.size());
+  for (size_t v = 0; v < m.rest_vertices_m.size(); ++v) {
+    // glTF requires unit normals; a vertex without area (none on the MPFB2 body) gets +Y.
+    const Vec3 n = m.rest_normals[v].norm() > 0.5 ? Vec3(m.rest_normals[v].normalized()) : Vec3::UnitY();
+    for (int c = 0; c < 3; ++c) {
+      pos.push_back(static_cast<float>(m.rest_vertices_m[v][c]));
+      nrm.push_back(static_cast<float>(n[c]));
+    }
+  }
+  auto it = std::find_if(shared.begin(), shared.end(),
+                         [&](const SharedTopology& t) { return same_topology(*t.mesh, m); });
+  if (it == shared.end()) {
+    SharedTopology t;
+    t.mesh = &m;
+    std::vector<std::uint32_t> idx;
+    for (const Eigen::Vector3i& tri : m.triangles)
+      for (int k = 0; k < 3; ++k) idx.push_back(static_cast<std::uint32_t>(tri[k]));
+    std::vector<std::uint8_t> joints;
+    std::vector<float> weights;
+    for (size_t v = 0; v < m.joints.size(); ++v) {
+      // glTF wants each vertex's weights to sum to 1 in the stored precision; the largest (first)
+      // absorbs the float rounding of the others.
+      float rest_sum = 0.0f;
+      for (size_t k = 1; k < 4; ++k) rest_sum += static_cast<float>(m.weights[v][k]);
+      for (size_t k = 0; k < 4; ++k) {
+        joints.push_back(static_cast<std::uint8_t>(m.weights[v][k] > 0.0 ? m.joints[v][k] : 0));
+        weights.push_back(k == 0 ? 1.0f - rest_sum : static_cast<float>(m.weights[v][k]));
+      }
+    }
+    const std::string name = ch.name + "_surface";
+    t.indices = builder.add_indices_u32(idx, name + "_indices");
+    t.joints = builder.add_joints_u8(joints, name + "_joints");
+    t.weights = builder.add_floats(weights, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER, false,
+                                   name + "_weights");
+    shared.push_back(t);
+    it = shared.end() - 1;
+  }
+  tinygltf::Primitive prim = positions_normals_primitive(builder, pos, nrm, ch.name);
+  prim.attributes["JOINTS_0"] = it->joints;
+  prim.attributes["WEIGHTS_0"] = it->weights;
+  prim.indices = it->indices;
+  return prim;
+}
+
+// The capsule preview of a procedural body: one low-poly capsule per bone, rigidly skinned.
+tinygltf::Primitive capsule_body_primitive(GltfBuilder& builder, const CharacterAnimation& ch,
+                                           const std::array<Vec3, kJointCount>& rest) {
   TriangleSoup soup;
   std::vector<std::uint8_t> joints;
   for (int j = 0; j < kJointCount; ++j) {
@@ -116,17 +181,23 @@ int add_character_body(tinygltf::Model& model, GltfBuilder& builder, const Chara
     weights.insert(weights.end(), {1.0f, 0.0f, 0.0f, 0.0f});
   }
   std::vector<std::uint16_t> indices(soup.indices.begin(), soup.indices.end());
-  tinygltf::Primitive prim;
-  prim.mode = TINYGLTF_MODE_TRIANGLES;
-  prim.material = material;
-  prim.attributes["POSITION"] = builder.add_floats(pos, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER,
-                                                   true, ch.name + "_positions");
-  prim.attributes["NORMAL"] = builder.add_floats(nrm, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER,
-                                                 false, ch.name + "_normals");
+  tinygltf::Primitive prim = positions_normals_primitive(builder, pos, nrm, ch.name);
   prim.attributes["JOINTS_0"] = builder.add_joints_u8(joints, ch.name + "_joints");
   prim.attributes["WEIGHTS_0"] = builder.add_floats(
       weights, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER, false, ch.name + "_weights");
   prim.indices = builder.add_indices_u16(indices, ch.name + "_indices");
+  return prim;
+}
+
+// The body mesh + skin of one character (its own surface, or the capsule preview); returns the
+// skinned mesh node.
+int add_character_body(tinygltf::Model& model, GltfBuilder& builder, const CharacterAnimation& ch,
+                       const std::vector<int>& joint_nodes, int material,
+                       std::vector<SharedTopology>& shared) {
+  const auto rest = joint_positions(ch.shape, Pose::rest(ch.shape));
+  tinygltf::Primitive prim =
+      ch.mesh ? skinned_surface_primitive(builder, ch, shared) : capsule_body_primitive(builder, ch, rest);
+  prim.material = material;
   tinygltf::Mesh mesh;
   mesh.name = ch.name + "_body";
   mesh.primitives.push_back(prim);
@@ -356,11 +427,12 @@ void write_crowd_glb(const CrowdAnimation& crowd, const std::string& path) {
   tinygltf::Animation anim;
   anim.name = "crowd";
   std::vector<int> material_cache(kPalette.size(), -1);
+  std::vector<SharedTopology> shared_topology;
   for (const CharacterAnimation& ch : crowd.characters) {
     int group = -1;
     const std::vector<int> joint_nodes = add_character_skeleton(model, ch, group);
     const int material = palette_material(model, material_cache, ch.palette);
-    const int body = add_character_body(model, builder, ch, joint_nodes, material);
+    const int body = add_character_body(model, builder, ch, joint_nodes, material, shared_topology);
     scene.nodes.push_back(group);
     scene.nodes.push_back(body);
     add_character_animation(builder, anim, ch, joint_nodes, times);

@@ -119,7 +119,8 @@ void parse_animation(YamlSection s, ExperimentSpec& spec) {
   s.allow_keys({"body_model", "female_fraction", "motion", "walk_clips", "dance_clips", "ttca_threshold_s",
                 "dtca_threshold_m"});
   const std::vector<std::string> models = {"procedural", "mpfb2"};
-  if (s.has("body_model") && s.get("body_model").IsMap()) {
+  const bool body_model_map = s.has("body_model") && s.get("body_model").IsMap();
+  if (body_model_map) {
     YamlSection bm = s.section("body_model");
     bm.allow_keys({"type", "path"});
     bm.choice("type", a.body_model, models);
@@ -127,7 +128,8 @@ void parse_animation(YamlSection s, ExperimentSpec& spec) {
   } else {
     s.choice("body_model", a.body_model, models);
   }
-  if (a.body_model == "mpfb2" && a.body_model_path.empty() && !s.section("body_model").has("path")) {
+  if (a.body_model == "mpfb2" && a.body_model_path.empty() &&
+      !(body_model_map && s.section("body_model").has("path"))) {
     const char* env = std::getenv("CROWDLAB_MPFB2");
     if (!env || !std::filesystem::is_directory(env))
       diag.error(

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "framework/animation/clip_loop.hpp"
+#include "framework/animation/dance_animation.hpp"
 #include "framework/animation/foot_skate.hpp"
 #include "framework/animation/gait_parameters.hpp"
 #include "framework/animation/leg_ik.hpp"
@@ -202,21 +203,28 @@ TEST_CASE("a shoulder reaction turns the torso toward the passing side while the
               plain.frames[10].local_rotations[static_cast<size_t>(j)]) < 1e-12);
 }
 
-TEST_CASE("FK round trip on generated motion: bone transforms -> pose -> bone transforms") {
+TEST_CASE("FK round trip on generated motion (walking, standing, dancing): bones -> pose -> bones") {
   const BodyShape s = make_procedural_body({Sex::kFemale, 1.58, 1.2});
-  const WalkResult w = animate_walking(s, circle(1.0, 3.0, 3.0, 30.0), 30.0, walk_style_from_seed(2));
-  for (const Pose& p : w.frames) {
-    validate_pose(p, "walk");
-    const BoneTransforms bones = forward_kinematics(s, p);
-    const Pose back = pose_from_bone_transforms(bones);
-    CHECK((back.root_position_m - p.root_position_m).norm() < 1e-12);
-    for (int j = 0; j < kJointCount; ++j)
-      CHECK(back.local_rotations[static_cast<size_t>(j)].angularDistance(
-                p.local_rotations[static_cast<size_t>(j)]) < 1e-9);
-    const BoneTransforms again = forward_kinematics(s, back);
-    for (int j = 0; j < kJointCount; ++j)
-      CHECK((again[static_cast<size_t>(j)].translation - bones[static_cast<size_t>(j)].translation).norm() <
-            1e-9);
+  const AgentTrajectory spot = straight_line(0.0, 3.0, 30.0);
+  const std::vector<std::pair<const char*, std::vector<Pose>>> motions = {
+      {"walking", animate_walking(s, circle(1.0, 3.0, 3.0, 30.0), 30.0, walk_style_from_seed(2)).frames},
+      {"standing", animate_walking(s, spot, 30.0, walk_style_from_seed(2)).frames},
+      {"dancing", animate_dancing(s, spot, 30.0, dance_style_from_seed(2, 3.0)).frames}};
+  for (const auto& [kind, frames] : motions) {
+    INFO(kind);
+    for (const Pose& p : frames) {
+      validate_pose(p, kind);
+      const BoneTransforms bones = forward_kinematics(s, p);
+      const Pose back = pose_from_bone_transforms(bones);
+      CHECK((back.root_position_m - p.root_position_m).norm() < 1e-12);
+      for (int j = 0; j < kJointCount; ++j)
+        CHECK(back.local_rotations[static_cast<size_t>(j)].angularDistance(
+                  p.local_rotations[static_cast<size_t>(j)]) < 1e-9);
+      const BoneTransforms again = forward_kinematics(s, back);
+      for (int j = 0; j < kJointCount; ++j)
+        CHECK((again[static_cast<size_t>(j)].translation - bones[static_cast<size_t>(j)].translation).norm() <
+              1e-9);
+    }
   }
 }
 

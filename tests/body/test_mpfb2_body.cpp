@@ -172,13 +172,18 @@ TEST_CASE("sampled bodies reach their target heights, by sex, measured on the sh
   if (!model) return;
   const int n = test::kSanitized ? 2 : 4;
   const std::vector<Mpfb2Sample> a = sample_mpfb2_bodies(*model, n, 42);
-  const std::vector<Mpfb2Sample> b = sample_mpfb2_bodies(*model, 2, 42);
-  CHECK(a[0].body.params.height == b[0].body.params.height);  // deterministic per index
+  const std::vector<Mpfb2Sample> b = sample_mpfb2_bodies(*model, n, 42);  // built in parallel again
+  for (int i = 0; i < n; ++i) {
+    CHECK(a[static_cast<size_t>(i)].body.params.height == b[static_cast<size_t>(i)].body.params.height);
+    CHECK(a[static_cast<size_t>(i)].body.mesh.rest_vertices_m ==
+          b[static_cast<size_t>(i)].body.mesh.rest_vertices_m);
+  }
   std::array<double, 2> sum{};
   std::array<int, 2> count{};
+  const std::vector<Sex> sexes = sample_sexes(n, 0.5, 42);  // the procedural bodies' assignment
   for (int i = 0; i < n; ++i) {
     const Mpfb2Sample& s = a[static_cast<size_t>(i)];
-    const bool female = i % 2 == 0;
+    const bool female = sexes[static_cast<size_t>(i)] == Sex::kFemale;
     CHECK(s.body.shape.params.sex == (female ? Sex::kFemale : Sex::kMale));
     const double measured = body_height_from_mesh(*model, s.body.params);
     INFO("body " << i << " target " << s.target_height_m << " measured " << measured);
@@ -188,6 +193,7 @@ TEST_CASE("sampled bodies reach their target heights, by sex, measured on the sh
     ++count[female ? 0 : 1];
   }
   // Sample means within 4 standard errors of the distributions' means.
+  REQUIRE(count[0] == n / 2);
   CHECK(std::abs(sum[0] / count[0] - kWorldFemaleHeight.mean_m) <
         4 * kWorldFemaleHeight.sd_m / std::sqrt(count[0]));
   CHECK(std::abs(sum[1] / count[1] - kWorldMaleHeight.mean_m) <

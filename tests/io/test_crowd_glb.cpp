@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "framework/core/error.hpp"
+#include "framework/core/forward_kinematics.hpp"
 #include "framework/core/seed.hpp"
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/io/write_crowd_glb.hpp"
@@ -102,7 +103,85 @@ std::vector<nlohmann::json> khronos_validate(const std::vector<std::filesystem::
   return {all.begin(), all.end()};
 }
 
+// A closed lat-long sphere around the pelvis, skinned to two joints with vertex-dependent weights
+// (the same topology and weights for every shape; positions scale with the body height).
+std::shared_ptr<const SkinnedMesh> sphere_surface(const BodyShape& shape) {
+  auto m = std::make_shared<SkinnedMesh>();
+  m->rest_joints_m = joint_positions(shape, Pose::rest(shape));
+  const int rings = 6, segments = 8;
+  const Vec3 centre = m->rest_joints_m[kPelvis];
+  const double r = 0.1 * shape.params.height_m;
+  auto add = [&](const Vec3& dir) {
+    m->rest_vertices_m.push_back(centre + r * dir);
+    m->rest_normals.push_back(dir);
+    const double w = 0.5 + 0.4 * dir.y();
+    m->joints.push_back({kPelvis, kSpine1, 0, 0});
+    m->weights.push_back({w, 1.0 - w, 0.0, 0.0});
+    m->region.push_back(w >= 0.5 ? kPelvis : kSpine1);
+  };
+  add(-Vec3::UnitY());
+  for (int i = 1; i < rings; ++i)
+    for (int k = 0; k < segments; ++k) {
+      const double th = M_PI * i / rings - M_PI / 2, ph = 2 * M_PI * k / segments;
+      add(Vec3(std::cos(th) * std::sin(ph), std::sin(th), std::cos(th) * std::cos(ph)));
+    }
+  add(Vec3::UnitY());
+  const int top = static_cast<int>(m->rest_vertices_m.size()) - 1;
+  auto ring = [&](int i, int k) { return 1 + (i - 1) * segments + (k % segments); };
+  for (int k = 0; k < segments; ++k) {
+    m->triangles.emplace_back(0, ring(1, k + 1), ring(1, k));
+    for (int i = 1; i + 1 < rings; ++i) {
+      m->triangles.emplace_back(ring(i, k), ring(i, k + 1), ring(i + 1, k + 1));
+      m->triangles.emplace_back(ring(i, k), ring(i + 1, k + 1), ring(i + 1, k));
+    }
+    m->triangles.emplace_back(top, ring(rings - 1, k), ring(rings - 1, k + 1));
+  }
+  return m;
+}
+
 }  // namespace
+
+TEST_CASE("a character's own skinned surface round-trips - characters share its topology accessors") {
+  const auto dir = test::scratch_dir("glb-surface");
+  CrowdAnimation crowd = random_crowd(21, 3, 4);
+  crowd.characters[0].mesh = sphere_surface(crowd.characters[0].shape);
+  crowd.characters[2].mesh = sphere_surface(crowd.characters[2].shape);
+  const auto file = dir / "surface.glb";
+  write_crowd_glb(crowd, file.string());
+  const CrowdAnimation back = read_crowd_glb(file.string());
+  CHECK(back.characters[1].mesh == nullptr);  // the procedural body stays a capsule preview
+  for (size_t c : {size_t{0}, size_t{2}}) {
+    REQUIRE(back.characters[c].mesh);
+    const SkinnedMesh& a = *crowd.characters[c].mesh;
+    const SkinnedMesh& b = *back.characters[c].mesh;
+    REQUIRE(b.rest_vertices_m.size() == a.rest_vertices_m.size());
+    CHECK(b.triangles == a.triangles);
+    CHECK(b.joints == a.joints);
+    CHECK(b.region == a.region);
+    for (size_t v = 0; v < a.rest_vertices_m.size(); ++v) {
+      CHECK((b.rest_vertices_m[v] - a.rest_vertices_m[v]).norm() < 1e-6);
+      CHECK((b.rest_normals[v] - a.rest_normals[v]).norm() < 1e-6);
+      for (size_t k = 0; k < 4; ++k) CHECK(b.weights[v][k] == Approx(a.weights[v][k]).margin(1e-6));
+    }
+    for (size_t j = 0; j < kJointCount; ++j) CHECK((b.rest_joints_m[j] - a.rest_joints_m[j]).norm() < 1e-12);
+  }
+  // Topology (indices, joints, weights) is stored once for both surfaces.
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  REQUIRE(loader.LoadBinaryFromFile(&model, &err, &warn, file.string()));
+  int shared = 0;
+  for (const tinygltf::Accessor& acc : model.accessors)
+    shared += acc.name.find("_surface_indices") != std::string::npos;
+  CHECK(shared == 1);
+  // A surface bound to another skeleton is rejected.
+  crowd.characters[0].mesh = sphere_surface(crowd.characters[2].shape);
+  CHECK_THROWS_AS(write_crowd_glb(crowd, (dir / "bad.glb").string()), InputError);
+  auto broken = std::make_shared<SkinnedMesh>(*crowd.characters[2].mesh);
+  broken->weights[3] = {0.7, 0.7, 0.0, 0.0};
+  crowd.characters[0].mesh = broken;
+  CHECK_THROWS_WITH(write_crowd_glb(crowd, (dir / "bad.glb").string()), Catch::Contains("vertex 3"));
+}
 
 TEST_CASE("a crowd round-trips through .glb: rotations to 1e-6, shapes and metadata exactly") {
   const auto dir = test::scratch_dir("glb-roundtrip");
@@ -163,6 +242,8 @@ TEST_CASE("a crowd round-trips through .glb: rotations to 1e-6, shapes and metad
 TEST_CASE("written .glb files pass the Khronos glTF-Validator with zero errors") {
   const auto dir = test::scratch_dir("glb-validator");
   CrowdAnimation with_env = random_crowd(11, 3, 10);
+  with_env.characters[1].mesh = sphere_surface(with_env.characters[1].shape);
+  with_env.characters[2].mesh = sphere_surface(with_env.characters[2].shape);
   CrowdAnimation bare = random_crowd(12, 1, 2);
   bare.environment = Environment{};
   bare.environment.ground_plane = false;

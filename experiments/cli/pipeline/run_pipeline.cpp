@@ -10,6 +10,7 @@
 #include <set>
 
 #include "experiments/cli/metrics_json.hpp"
+#include "experiments/cli/pipeline/body_model.hpp"
 #include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/animation/animate_crowd.hpp"
 #include "framework/animation/orient_to_surface.hpp"
@@ -144,7 +145,10 @@ class Runner {
     crowd_params["seed"] = g.crowd_condition.seed;
     crowd_params["spec"] = spec_.source_hash;  // scenario/crowd sections live in the spec text
     g.crowd_hash = stage_input_hash("crowd", crowd_params, {});
-    g.baseline_hash = stage_input_hash("animation", json{{"spec", spec_.source_hash}}, {g.crowd_hash});
+    // The MPFB2 asset folder may come from the environment, so it is an input of its own.
+    g.baseline_hash = stage_input_hash(
+        "animation", json{{"spec", spec_.source_hash}, {"body_model_path", spec_.animation.body_model_path}},
+        {g.crowd_hash});
     g.ours_hash = stage_input_hash("correction",
                                    json{{"damping", spec_.correction.damping},
                                         {"stiffness", spec_.correction.stiffness},
@@ -211,8 +215,9 @@ class Runner {
     }
     scenario_type_ = is_manifold(g) ? "manifold" : resolve_scenario_type(spec_, g.crowd_condition);
     const ScenarioResult& s = scenario(g);
-    CrowdAnimation crowd =
-        animate_crowd(s.trajectories, s.environment, spec_.animation, animation_context(g));
+    AnimationContext ctx = animation_context(g);
+    apply_body_model(spec_.animation, s.trajectories.agents.size(), ctx);
+    CrowdAnimation crowd = animate_crowd(s.trajectories, s.environment, spec_.animation, ctx);
     // Surface crowds walk on the developed plane; stand each frame on the surface.
     if (!g.surface.empty()) orient_to_surface(crowd, s.trajectories, g.surface);
     crowd.meta.seed = g.crowd_condition.seed;

@@ -1,12 +1,15 @@
 #pragma once
-// A skinned body mesh for the renderer: rest-pose geometry in the character frame (metres, Y-up,
-// facing +Z, feet on y = 0, pelvis above the origin: the frame of Pose::rest()), up to 4 SMPL joints
-// per vertex with weights, and a region label per vertex.
+// A skinned body surface (e.g. the shaped MPFB2 mesh): rest-pose geometry in the character frame
+// (metres, Y-up, facing +Z, feet on y = 0, pelvis above the origin: the frame of Pose::rest()), up to
+// 4 SMPL joints per vertex with weights, and a region label per vertex. A CharacterAnimation may carry
+// one (CharacterAnimation::mesh); renderers then draw it instead of a surface built from the capsules,
+// and crowd files store it as the character's glTF skin mesh (docs/crowd-files.md).
 //
 // Linear blend skinning (seed 000 Eq. 1, W(...)): with bone transforms B_j from forward_kinematics()
 // and rest joint positions p_j (rest bone frames are translations only, see body_shape.hpp),
 //   v' = sum_k w_k (R_jk (v - p_jk) + t_jk)
 #include <array>
+#include <string>
 #include <vector>
 
 #include "framework/core/forward_kinematics.hpp"
@@ -22,6 +25,11 @@ struct SkinnedMesh {
   std::vector<int> region;                        ///< (V) the dominant SMPL joint (body-part label)
   std::array<Vec3, kJointCount> rest_joints_m{};  ///< rest joint positions, same frame
 };
+
+/// Checks sizes, finite positions/weights, joint indices in [0, 24), weights >= 0 summing to 1 (within
+/// 1e-4) and triangle indices in range. Throws InputError "<context>: body mesh: <problem>".
+/// (validate_crowd() also checks that rest_joints_m matches the character's skeleton.)
+void validate_skinned_mesh(const SkinnedMesh& mesh, const std::string& context);
 
 /// Posed vertex positions (world, metres) for bone transforms from forward_kinematics().
 std::vector<Vec3> skin_vertices(const SkinnedMesh& mesh, const BoneTransforms& bones);

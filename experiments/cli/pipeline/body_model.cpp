@@ -1,0 +1,49 @@
+#include "experiments/cli/pipeline/body_model.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <map>
+#include <mutex>
+
+#include "framework/body/sample_mpfb2_bodies.hpp"
+#include "framework/core/error.hpp"
+#include "framework/core/seed.hpp"
+
+namespace crowdlab::cli {
+namespace {
+
+std::shared_ptr<const Mpfb2Model> cached_model(const std::filesystem::path& dir) {
+  static std::mutex mutex;
+  static std::map<std::filesystem::path, std::shared_ptr<const Mpfb2Model>> models;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto it = models.find(dir);
+  if (it == models.end()) it = models.emplace(dir, Mpfb2Model::load(dir)).first;
+  return it->second;
+}
+
+}  // namespace
+
+void apply_body_model(const AnimationSpec& spec, std::size_t agents, AnimationContext& context) {
+  if (spec.body_model == "procedural") return;
+  if (spec.body_model != "mpfb2")
+    throw InputError("animation.body_model: '" + spec.body_model + "' must be 'procedural' or 'mpfb2'");
+  if (spec.body_model_path.empty())
+    throw InputError(
+        "animation.body_model: mpfb2 needs body_model.path or the CROWDLAB_MPFB2 environment variable");
+  const auto model = cached_model(spec.body_model_path);
+  const std::vector<Mpfb2Sample> samples = sample_mpfb2_bodies(
+      *model, static_cast<int>(agents), derive_seed(context.seed, "bodies"), spec.female_fraction);
+  context.shapes.clear();
+  context.meshes.clear();
+  int unreached = 0;
+  for (const Mpfb2Sample& s : samples) {
+    context.shapes.push_back(s.body.shape);
+    context.meshes.push_back(std::make_shared<const SkinnedMesh>(s.body.mesh));
+    unreached += s.target_reached ? 0 : 1;
+  }
+  if (unreached > 0)
+    spdlog::info("{}: {} of {} MPFB2 bodies took the nearest reachable height", context.condition_id,
+                 unreached, agents);
+}
+
+}  // namespace crowdlab::cli

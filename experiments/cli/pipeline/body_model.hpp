@@ -1,0 +1,19 @@
+#pragma once
+// The spec's body model (animation.body_model) for one crowd: with `mpfb2` the characters' bodies are
+// sampled from the MPFB2 / MakeHuman assets (body/sample_mpfb2_bodies.hpp: heights drawn by sex from
+// the world distributions and matched on the shaped meshes; skeleton and capsules from the shaped
+// mesh) and their skinned surfaces travel with the crowd for the renderer; with `procedural` nothing
+// is set and animate_crowd() samples procedural bodies.
+// Seeds: derive_seed(context.seed, "bodies"), as the procedural bodies.
+// The asset folder is loaded once per process and shared (Mpfb2Model is immutable).
+#include <cstddef>
+
+#include "framework/animation/animate_crowd.hpp"
+
+namespace crowdlab::cli {
+
+/// Fills context.shapes and context.meshes for `agents` characters when spec.body_model is "mpfb2".
+/// Throws InputError when the asset folder is missing or broken (naming the file).
+void apply_body_model(const AnimationSpec& spec, std::size_t agents, AnimationContext& context);
+
+}  // namespace crowdlab::cli

@@ -1,0 +1,87 @@
+// `crowdlab run` with the MPFB2 body model (animation.body_model: mpfb2): the crowd files carry the
+// shaped, skinned meshes, the skeletons and capsules come from those meshes (correction and metrics
+// run on them), and the spec can name the assets by path or through CROWDLAB_MPFB2.
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <fstream>
+
+#include "framework/core/forward_kinematics.hpp"
+#include "framework/io/read_crowd_glb.hpp"
+#include "tests/support/run_cli.hpp"
+
+using namespace crowdlab;
+using namespace crowdlab::test;
+namespace fs = std::filesystem;
+
+namespace {
+std::string spec_text(const std::string& body_model) {
+  return "crowdlab: 1\nname: mpfb2\nseed: 3\nscenario:\n  type: stationary\n  area: {width_m: 1.2, depth_m: "
+         "1.2}\n"
+         "crowd:\n  agent_radius_m: 0.18\nanimation:\n  body_model: " +
+         body_model +
+         "\nfactors:\n  density: [4.0]\n  viewpoint: [V1]\n  method: [baseline, ours]\nrepetitions: 1\n"
+         "duration_s: 0.6\nfps: 10\nresolution: [160, 96]\nprotocol:\n  type: likert\n  scale: {points: 6, "
+         "labels: "
+         "[\"no\", \"yes\"]}\n  questions:\n    - {id: Q1, text: \"natural\"}\noutputs:\n  video: false\n"
+         "  contact_sheet: false\n";
+}
+}  // namespace
+
+TEST_CASE("run with the MPFB2 body model: crowd files carry the shaped meshes - capsules from the mesh") {
+  const fs::path assets = shared_data("mpfb2");
+  if (assets.empty()) return;
+  const fs::path out = scratch_dir("pipeline_mpfb2");
+  const fs::path spec = out / "spec.yaml";
+  std::ofstream(spec) << spec_text("{type: mpfb2, path: " + assets.string() + "}");
+  const CliResult r = run_cli({"-q", "run", spec.string(), "--out", (out / "run").string()});
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  int crowds = 0;
+  for (const auto& dir : fs::directory_iterator(out / "run" / "crowds")) {
+    ++crowds;
+    for (const char* file : {"baseline.glb", "ours.glb"}) {
+      INFO(file);
+      const CrowdAnimation crowd = read_crowd_glb((dir.path() / file).string());
+      REQUIRE(crowd.characters.size() >= 3);
+      int women = 0;
+      for (const CharacterAnimation& ch : crowd.characters) {
+        REQUIRE(ch.mesh);
+        CHECK(ch.mesh->rest_vertices_m.size() > 10000);
+        women += ch.shape.params.sex == Sex::kFemale;
+        // The stature the mesh stands at is the shape's height (T-pose: up to ~1 % taller).
+        double lo = 1e9, hi = -1e9;
+        for (const Vec3& v : ch.mesh->rest_vertices_m) lo = std::min(lo, v.y()), hi = std::max(hi, v.y());
+        CHECK(hi - lo == Approx(ch.shape.params.height_m).epsilon(0.015));
+        CHECK(ch.shape.params.height_m > 1.35);
+        CHECK(ch.shape.params.height_m < 2.1);
+        // Capsules were fitted to this mesh: the head capsule's top is near the crown.
+        const auto rest = joint_positions(ch.shape, Pose::rest(ch.shape));
+        const Capsule& head = ch.shape.capsules[kHead];
+        const double crown = rest[kHead].y() + std::max(head.a.y(), head.b.y()) + head.radius_m;
+        CHECK(crown == Approx(hi).margin(0.03));
+      }
+      const int n = static_cast<int>(crowd.characters.size());
+      CHECK(std::abs(women - n / 2) <= 1);  // half women (female_fraction 0.5)
+    }
+    CHECK(fs::exists(dir.path() / "ours.metrics.json"));
+  }
+  CHECK(crowds == 1);
+  // (Rendering the MPFB2 meshes is tested in tests/stimuli; no video here keeps this test short.)
+}
+
+TEST_CASE("mpfb2 without a path takes CROWDLAB_MPFB2, and says what is missing when neither is set") {
+  const fs::path assets = shared_data("mpfb2");
+  if (assets.empty()) return;
+  const fs::path out = scratch_dir("pipeline_mpfb2_env");
+  const fs::path spec = out / "spec.yaml";
+  std::ofstream(spec) << spec_text("mpfb2");
+  ::unsetenv("CROWDLAB_MPFB2");
+  CliResult r = run_cli({"validate", spec.string()});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("CROWDLAB_MPFB2"));
+  ::setenv("CROWDLAB_MPFB2", assets.c_str(), 1);
+  r = run_cli({"validate", spec.string()});
+  ::unsetenv("CROWDLAB_MPFB2");
+  INFO(r.out << r.err);
+  CHECK(r.exit_code == 0);
+}

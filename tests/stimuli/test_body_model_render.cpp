@@ -1,0 +1,154 @@
+// Rendering characters that carry their own skinned surface (the MPFB2 body model): the mesh source,
+// clothing regions by mesh position, and frames that show the bodies where the camera model predicts.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "framework/body/sample_mpfb2_bodies.hpp"
+#include "framework/core/error.hpp"
+#include "framework/core/forward_kinematics.hpp"
+#include "stimuli/character_mesh.hpp"
+#include "stimuli/render_clip.hpp"
+#include "stimuli/skinned_body_mesh.hpp"
+#include "tests/support/test_paths.hpp"
+
+using namespace crowdlab;
+using namespace crowdlab::stimuli;
+
+namespace {
+
+std::shared_ptr<const Mpfb2Model> mpfb2_or_skip() {
+  static std::shared_ptr<const Mpfb2Model> model;
+  const auto dir = test::shared_data("mpfb2");
+  if (dir.empty()) return nullptr;
+  if (!model) model = Mpfb2Model::load(dir);
+  return model;
+}
+
+/// A row of MPFB2 characters swaying their arms (4 frames).
+CrowdAnimation mpfb2_row(const Mpfb2Model& model, int count) {
+  CrowdAnimation crowd;
+  crowd.meta.fps = 30;
+  crowd.environment.ground_plane = false;
+  const std::vector<Mpfb2Sample> bodies = sample_mpfb2_bodies(model, count, 5);
+  for (int i = 0; i < count; ++i) {
+    CharacterAnimation ch;
+    ch.name = "c" + std::to_string(i);
+    ch.palette = i;
+    ch.shape = bodies[static_cast<size_t>(i)].body.shape;
+    ch.mesh = std::make_shared<const SkinnedMesh>(bodies[static_cast<size_t>(i)].body.mesh);
+    for (int f = 0; f < 4; ++f) {
+      Pose p = Pose::rest(ch.shape);
+      p.root_position_m.x() = 0.8 * (i - 0.5 * (count - 1));
+      for (int side = 0; side < 2; ++side)
+        p.local_rotations[static_cast<size_t>(side == 0 ? kLeftShoulder : kRightShoulder)] =
+            Quat(Eigen::AngleAxisd((side == 0 ? -1 : 1) * (1.2 + 0.05 * f), Vec3::UnitZ()));
+      ch.frames.push_back(p);
+    }
+    crowd.characters.push_back(std::move(ch));
+  }
+  return crowd;
+}
+
+}  // namespace
+
+TEST_CASE("a skinned surface becomes a renderer mesh: same vertices, normalised 8-bit weights, inset",
+          "[stimuli]") {
+  SkinnedMesh m;
+  m.rest_vertices_m = {Vec3(0, 1, 0.1), Vec3(0.1, 1, -0.1), Vec3(-0.1, 1, -0.1), Vec3(0, 1.2, 0)};
+  m.triangles = {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(1, 2, 3),
+                 Eigen::Vector3i(2, 0, 3)};
+  m.rest_normals = vertex_normals(m.rest_vertices_m, m.triangles);
+  m.joints = {
+      {kSpine1, kPelvis, 0, 0}, {kSpine1, 0, 0, 0}, {kPelvis, kSpine1, 0, 0}, {kSpine2, kSpine1, 0, 0}};
+  m.weights = {{0.6, 0.4, 0, 0}, {1, 0, 0, 0}, {0.3, 0.7, 0, 0}, {0.51, 0.49, 0, 0}};
+  m.region = {kSpine1, kSpine1, kSpine1, kSpine2};
+  m.rest_joints_m.fill(Vec3::Zero());  // all at the origin: the whole mesh is above the waist (shirt)
+  const MannequinMesh r = skinned_body_mesh(m);
+  REQUIRE(r.vertices.size() == 4);  // one region (all shirt): no border copies
+  REQUIRE(r.indices.size() == 12);
+  const MannequinMesh in = skinned_body_mesh(m, 0.01);
+  for (size_t c = 0; c < 12; ++c) {
+    const size_t v = static_cast<size_t>(m.triangles[c / 3][static_cast<Eigen::Index>(c % 3)]);
+    const MannequinVertex& o = r.vertices[r.indices[c]];
+    CHECK((Vec3(o.position[0], o.position[1], o.position[2]) - m.rest_vertices_m[v]).norm() < 1e-6);
+    int sum = 0;
+    for (auto w : o.weights) sum += w;
+    CHECK(sum == 255);
+    CHECK(o.weights[0] >= o.weights[1]);                       // descending
+    CHECK(o.bones[0] == (v == 2 ? kSpine1 : m.joints[v][0]));  // the heavier joint first
+    const MannequinVertex& s = in.vertices[in.indices[c]];
+    const Vec3 moved(s.position[0] - o.position[0], s.position[1] - o.position[1],
+                     s.position[2] - o.position[2]);
+    CHECK(moved.norm() == Approx(0.01).margin(1e-6));
+    CHECK(moved.dot(m.rest_normals[v]) < 0);
+  }
+  CHECK(skinned_body_mesh_key(m) != skinned_body_mesh_key(m, 0.01));
+  m.weights[1] = {0.5, 0.0, 0.0, 0.0};
+  CHECK_THROWS_AS(skinned_body_mesh(m), InputError);
+}
+
+TEST_CASE("MPFB2 bodies: clothing regions by mesh position, rendered where the camera predicts",
+          "[stimuli]") {
+  const auto model = mpfb2_or_skip();
+  if (!model) return;
+  const CrowdAnimation crowd = mpfb2_row(*model, 2);
+  for (const CharacterAnimation& ch : crowd.characters) {
+    const SkinnedMesh& m = *ch.mesh;
+    const MannequinMesh r = build_character_mesh(ch, MannequinOptions{});
+    CHECK(r.vertices.size() >= m.rest_vertices_m.size());  // border vertices are duplicated per region
+    CHECK(r.vertices.size() < m.rest_vertices_m.size() + m.rest_vertices_m.size() / 8);
+    CHECK(r.indices.size() == 3 * m.triangles.size());
+    CHECK(character_mesh_key(ch, MannequinOptions{}) != mannequin_cache_key(ch.shape));
+    size_t top = 0, bottom = 0, left_tip = 0, chest = 0;
+    const Vec3 chest_point = m.rest_joints_m[kSpine3] + Vec3(0, 0, 0.3);
+    for (size_t v = 0; v < m.rest_vertices_m.size(); ++v) {
+      const Vec3& p = m.rest_vertices_m[v];
+      if (p.y() > m.rest_vertices_m[top].y()) top = v;
+      if (p.y() < m.rest_vertices_m[bottom].y()) bottom = v;
+      if (p.x() > m.rest_vertices_m[left_tip].x()) left_tip = v;
+      if ((p - chest_point).norm() < (m.rest_vertices_m[chest] - chest_point).norm()) chest = v;
+    }
+    double head_top = -1e9;
+    for (const Vec3& v : m.rest_vertices_m) head_top = std::max(head_top, v.y());
+    auto region_of = [&](size_t v) {
+      return body_mesh_region(m.rest_vertices_m[v], m.region[v], m.rest_joints_m, head_top);
+    };
+    CHECK(region_of(top) == SkinRegion::kHair);
+    CHECK(region_of(bottom) == SkinRegion::kShoes);
+    CHECK(region_of(left_tip) == SkinRegion::kSkin);
+    CHECK(region_of(chest) == SkinRegion::kShirt);
+    // Every region is present on a whole body.
+    std::array<int, static_cast<size_t>(SkinRegion::kCount)> count{};
+    for (const MannequinVertex& v : r.vertices) ++count[v.region];
+    for (int c : count) CHECK(c > 50);
+  }
+  Renderer renderer;
+  RenderOptions options;
+  options.width = 320;
+  options.height = 180;
+  const Camera cam = Viewpoint("V1", crowd, options.width, options.height).at(1);
+  const BgrImage img = render_frame(renderer, crowd, options, cam, 1);
+  const Rgb bg = options.scene.background;
+  auto is_background = [&](int x, int y) {
+    const size_t at = 3 * (static_cast<size_t>(y) * static_cast<size_t>(img.width) + static_cast<size_t>(x));
+    for (int c = 0; c < 3; ++c)
+      if (std::abs(img.bgr[at + static_cast<size_t>(2 - c)] - std::lround(255 * bg[static_cast<size_t>(c)])) >
+          6)
+        return false;
+    return true;
+  };
+  int hit = 0, checked = 0;
+  for (const CharacterAnimation& ch : crowd.characters) {
+    const auto joints = joint_positions(ch.shape, ch.frames[1]);
+    for (int j : {static_cast<int>(kSpine2), static_cast<int>(kPelvis), static_cast<int>(kNeck)}) {
+      const auto px = cam.project(joints[static_cast<size_t>(j)]);
+      if (!px || px->x() < 0 || px->y() < 0 || px->x() >= img.width || px->y() >= img.height) continue;
+      ++checked;
+      hit += is_background(static_cast<int>(px->x()), static_cast<int>(px->y())) ? 0 : 1;
+    }
+  }
+  CHECK(checked >= 6);
+  CHECK(hit == checked);
+  // Deterministic: a second render is bit-identical.
+  CHECK(render_frame(renderer, crowd, options, cam, 1).bgr == img.bgr);
+}
