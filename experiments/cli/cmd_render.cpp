@@ -22,6 +22,7 @@ struct RenderArgs {
                           preset = "veryfast";
   std::vector<std::string> overrides, characters;
   int width = 1920, height = 1080, crf = 18, synthetic = 0, max_frames = -1;
+  double lod_pixels = stimuli::SceneOptions{}.lod_pixels;
   double fog = 0.0;
   bool overlap = false, synthetic_corridor = false;
 };
@@ -75,6 +76,7 @@ void run(const RenderArgs& a) {
   o.scene.background = stimuli::parse_hex_colour(a.background, "--background");
   if (!(a.fog >= 0.0)) throw InputError("--fog must be >= 0");
   o.scene.fog_density = a.fog;
+  o.scene.lod_pixels = a.lod_pixels;
   for (const std::string& text : a.overrides) parse_override(text, o.viewpoint_overrides);
   o.character_files = a.characters;
   stimuli::Renderer renderer;
@@ -139,6 +141,11 @@ const CommandRegistration kRegistration([](CLI::App& root) {
          "Skinned glTF character (.glb/.gltf, e.g. Mixamo) drawn instead of the mannequin; repeatable, "
          "character i uses file i mod N")
       ->check(CLI::ExistingFile);
+  cmd->add_option(
+         "--lod-pixels", a->lod_pixels,
+         "Level of detail: a character uses the coarsest mesh whose grid spans at most this many pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0));
   cmd->add_option("--viewpoint-override", a->overrides, "NAME=px,py,pz,tx,ty,tz,fov_deg (repeatable)");
   cmd->callback([a] { run(*a); });
 });

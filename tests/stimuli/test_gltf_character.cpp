@@ -30,6 +30,14 @@ const char* const kMixamoNames[kJointCount] = {
     "Neck",        "LeftShoulder", "RightShoulder", "Head",      "LeftArm",         "RightArm",
     "LeftForeArm", "RightForeArm", "LeftHand",      "RightHand", "LeftHandMiddle1", "RightHandMiddle1"};
 
+/// Appends the inverse bind matrix of a joint at `p` with the world axes (a translation by -p),
+/// column-major as glTF stores it.
+void append_translation_ibm(const Vec3& p, std::vector<float>& ibm) {
+  ibm.insert(ibm.end(), {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0});
+  ibm.insert(ibm.end(),
+             {static_cast<float>(-p.x()), static_cast<float>(-p.y()), static_cast<float>(-p.z()), 1});
+}
+
 struct WriteOptions {
   bool bad_joint_index = false;   ///< one vertex uses a joint the skin does not have
   bool unmappable_names = false;  ///< joints named bone0, bone1, ...
@@ -58,24 +66,7 @@ size_t write_test_character(const std::filesystem::path& path, const BodyShape& 
                    (parent >= 0 ? rest[static_cast<size_t>(parent)].translation : Vec3::Zero());
     n.translation = {t.x(), t.y(), t.z()};
     model.nodes.push_back(n);
-    const Vec3 p = rest[static_cast<size_t>(j)].translation;
-    const float m[16] = {1,
-                         0,
-                         0,
-                         0,
-                         0,
-                         1,
-                         0,
-                         0,
-                         0,
-                         0,
-                         1,
-                         0,
-                         static_cast<float>(-p.x()),
-                         static_cast<float>(-p.y()),
-                         static_cast<float>(-p.z()),
-                         1};
-    ibm.insert(ibm.end(), m, m + 16);
+    append_translation_ibm(rest[static_cast<size_t>(j)].translation, ibm);
   }
   model.nodes[0].children.push_back(first_joint);
   for (int j = 1; j < kJointCount; ++j)
@@ -87,24 +78,7 @@ size_t write_test_character(const std::filesystem::path& path, const BodyShape& 
   const int finger_node = static_cast<int>(model.nodes.size());
   model.nodes.push_back(finger);
   model.nodes[static_cast<size_t>(first_joint + kLeftWrist)].children.push_back(finger_node);
-  const Vec3 fp = rest[kLeftWrist].translation + Vec3(0.05, 0.0, 0.02);
-  const float fm[16] = {1,
-                        0,
-                        0,
-                        0,
-                        0,
-                        1,
-                        0,
-                        0,
-                        0,
-                        0,
-                        1,
-                        0,
-                        static_cast<float>(-fp.x()),
-                        static_cast<float>(-fp.y()),
-                        static_cast<float>(-fp.z()),
-                        1};
-  ibm.insert(ibm.end(), fm, fm + 16);
+  append_translation_ibm(rest[kLeftWrist].translation + Vec3(0.05, 0.0, 0.02), ibm);
 
   std::vector<float> pos, nrm, weights, colour;
   std::vector<std::uint8_t> joints;
