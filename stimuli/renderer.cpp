@@ -27,13 +27,13 @@ namespace {
 constexpr double kShadowVoxelM = 0.045;
 // Level of detail: llvmpipe shades every triangle in blocks of 4x4 pixels, so a 12k-triangle body whose
 // triangles cover 2-3 pixels each costs several times its pixel count. Each body shape therefore has
-// three meshes (the 2 cm grid, 3.5 cm ~4k triangles, 5 cm ~2k), and a character is drawn with the
-// coarsest whose grid spacing spans at most SceneOptions::lod_pixels pixels at its distance (screen-space
-// error bound, the classic discrete-LOD criterion: Luebke et al., "Level of Detail for 3D Graphics",
-// 2003, ch. 4). Normals come from the implicit surface, so shading is smooth at every level; only the
-// silhouette's polygon edges grow, to at most lod_pixels.
-constexpr double kMediumVoxelM = 0.035;
-constexpr double kCoarseVoxelM = 0.05;
+// four meshes (the 2 cm grid ~12k triangles, 2.6 cm ~7k, 3.5 cm ~4k, 5 cm ~2k), and a character is drawn
+// with the coarsest whose grid spacing spans at most SceneOptions::lod_pixels pixels at its distance
+// (screen-space error bound, the classic discrete-LOD criterion: Luebke et al., "Level of Detail for 3D
+// Graphics", 2003, ch. 4). Normals come from the implicit surface, so shading is smooth at every level; only
+// the silhouette's polygon edges grow, to at most lod_pixels.
+constexpr std::array<double, 3> kLodVoxelM = {0.026, 0.035, 0.05};  // coarser levels after the full mesh
+constexpr size_t kLodLevels = 1 + kLodVoxelM.size();
 
 using Mat4f = Eigen::Matrix4f;
 
@@ -126,8 +126,8 @@ struct Renderer::Gl {
   std::vector<Mat4> box_models;
   std::vector<Box> boxes;
   std::vector<char> box_hidden;
-  std::vector<std::uint64_t> character_mesh, character_medium_mesh, character_coarse_mesh,
-      character_shadow_mesh;
+  std::vector<std::array<std::uint64_t, kLodLevels>> character_lod_mesh;  ///< finest first
+  std::vector<std::uint64_t> character_shadow_mesh;
   GLuint noise_tex = 0;
   std::vector<std::array<Mat4, kJointCount>> inverse_rest;
   Vec3 bounds_lo = Vec3::Zero(), bounds_hi = Vec3::Zero();
@@ -265,17 +265,16 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   crowd_ = &crowd;
   const size_t n = crowd.characters.size();
   // Build the meshes of shapes not yet cached, in parallel (one result slot per job), then upload
-  // them in job order. Each shape gets a full mesh and a coarse one for the shadow pass.
+  // them in job order. Each shape gets its level-of-detail meshes and a coarse one for the shadow pass.
   MannequinOptions shadow_options = mesh_options_;
   shadow_options.voxel_m = std::max(mesh_options_.voxel_m, kShadowVoxelM);
   shadow_options.inset_m =
       0.4 * shadow_options.voxel_m;  // keep the coarse caster inside the visible skin (no acne bands)
-  MannequinOptions medium_options = mesh_options_, coarse_options = mesh_options_;
-  medium_options.voxel_m = std::max(mesh_options_.voxel_m, kMediumVoxelM);
-  coarse_options.voxel_m = std::max(mesh_options_.voxel_m, kCoarseVoxelM);
-  g.character_mesh.resize(n);
-  g.character_medium_mesh.resize(n);
-  g.character_coarse_mesh.resize(n);
+  std::array<MannequinOptions, kLodLevels> lod_options;
+  lod_options.fill(mesh_options_);
+  for (size_t l = 1; l < kLodLevels; ++l)
+    lod_options[l].voxel_m = std::max(mesh_options_.voxel_m, kLodVoxelM[l - 1]);
+  g.character_lod_mesh.resize(n);
   g.character_shadow_mesh.resize(n);
   struct Job {
     size_t character;
@@ -291,20 +290,20 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
       const GltfCharacter& file = *file_characters_[i % file_characters_.size()];
       const std::uint64_t key = stable_hash("gltf:" + file.source + ":" +
                                             std::to_string(mannequin_cache_key(shape, mesh_options_)));
-      g.character_mesh[i] = g.character_medium_mesh[i] = g.character_coarse_mesh[i] =
-          g.character_shadow_mesh[i] = key;
+      g.character_lod_mesh[i].fill(key);
+      g.character_shadow_mesh[i] = key;
       if (!g.mesh_cache.count(key) && queued.emplace(key, true).second)
         jobs.push_back({i, key, mesh_options_, &file});
       continue;
     }
-    g.character_mesh[i] = mannequin_cache_key(shape, mesh_options_);
-    g.character_medium_mesh[i] = mannequin_cache_key(shape, medium_options);
-    g.character_coarse_mesh[i] = mannequin_cache_key(shape, coarse_options);
+    std::vector<std::pair<std::uint64_t, MannequinOptions>> wanted;
+    for (size_t l = 0; l < kLodLevels; ++l) {
+      g.character_lod_mesh[i][l] = mannequin_cache_key(shape, lod_options[l]);
+      wanted.emplace_back(g.character_lod_mesh[i][l], lod_options[l]);
+    }
     g.character_shadow_mesh[i] = mannequin_cache_key(shape, shadow_options);
-    for (const auto& [key, opts] : {std::pair{g.character_mesh[i], mesh_options_},
-                                    std::pair{g.character_medium_mesh[i], medium_options},
-                                    std::pair{g.character_coarse_mesh[i], coarse_options},
-                                    std::pair{g.character_shadow_mesh[i], shadow_options}})
+    wanted.emplace_back(g.character_shadow_mesh[i], shadow_options);
+    for (const auto& [key, opts] : wanted)
       if (!g.mesh_cache.count(key) && queued.emplace(key, true).second) jobs.push_back({i, key, opts});
   }
   std::vector<MannequinMesh> built(jobs.size());
@@ -534,10 +533,11 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   for (const size_t i : order) {
     const double distance = (chars[i].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).norm();
     const double metres_per_pixel = distance * pixel_angle;
-    const GpuMesh& m =
-        g.mesh_cache.at(kCoarseVoxelM <= options.lod_pixels * metres_per_pixel   ? g.character_coarse_mesh[i]
-                        : kMediumVoxelM <= options.lod_pixels * metres_per_pixel ? g.character_medium_mesh[i]
-                                                                                 : g.character_mesh[i]);
+    size_t level = 0;  // the coarsest level whose grid spans at most lod_pixels pixels
+    for (size_t l = 1; l < kLodLevels; ++l)
+      if (std::max(mesh_options_.voxel_m, kLodVoxelM[l - 1]) <= options.lod_pixels * metres_per_pixel)
+        level = l;
+    const GpuMesh& m = g.mesh_cache.at(g.character_lod_mesh[i][level]);
     const Palette& pal = palette(chars[i].palette);
     float colours[8 * 3];
     for (int r = 0; r < 8; ++r) {
