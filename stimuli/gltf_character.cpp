@@ -218,6 +218,7 @@ GltfCharacter load_gltf_character(const std::filesystem::path& path) {
   c.joint_names.resize(nj);
   c.joint_parent.assign(nj, -1);
   c.joint_bind_position.resize(nj);
+  std::vector<Eigen::Matrix4d> skin_matrix(nj);
   std::vector<float> ibm;
   if (skin.inverseBindMatrices >= 0) {
     ibm = read_float_accessor(m, skin.inverseBindMatrices, TINYGLTF_TYPE_MAT4, file + ": " + skin_where);
@@ -236,19 +237,22 @@ GltfCharacter load_gltf_character(const std::filesystem::path& path) {
         break;
       }
     }
-    Eigen::Matrix4d bind = Eigen::Matrix4d::Identity();  // joint -> mesh space in the bind pose
-    if (!ibm.empty()) {
-      Eigen::Matrix4d inv;
-      for (int col = 0; col < 4; ++col)
-        for (int r = 0; r < 4; ++r) inv(r, col) = ibm[16 * k + static_cast<size_t>(col * 4 + r)];
-      if (std::abs(inv.determinant()) < 1e-12)
-        fail(file, skin_where + ".inverseBindMatrices[" + std::to_string(k) + "]", "singular matrix");
-      bind = inv.inverse();
-    } else {  // default identity inverse bind matrices: joints are at their node world transforms
-      for (int a = jn; a >= 0; a = parent_node[static_cast<size_t>(a)])
-        bind = node_matrix(m.nodes[static_cast<size_t>(a)]) * bind;
+    // The joint's world transform in the file's rest node pose (armature rotations and scales included).
+    Eigen::Matrix4d world = Eigen::Matrix4d::Identity();
+    for (int a = jn; a >= 0; a = parent_node[static_cast<size_t>(a)]) {
+      if (++depth > 2 * static_cast<int>(m.nodes.size()))
+        fail(file, "nodes[" + std::to_string(jn) + "]", "the node hierarchy has a cycle");
+      world = node_matrix(m.nodes[static_cast<size_t>(a)]) * world;
     }
-    c.joint_bind_position[k] = bind.block<3, 1>(0, 3);
+    Eigen::Matrix4d inverse_bind = Eigen::Matrix4d::Identity();  // glTF's default
+    if (!ibm.empty()) {
+      for (int col = 0; col < 4; ++col)
+        for (int r = 0; r < 4; ++r) inverse_bind(r, col) = ibm[16 * k + static_cast<size_t>(col * 4 + r)];
+      if (std::abs(inverse_bind.determinant()) < 1e-12)
+        fail(file, skin_where + ".inverseBindMatrices[" + std::to_string(k) + "]", "singular matrix");
+    }
+    skin_matrix[k] = world * inverse_bind;  // mesh space -> world, the joint matrix of glTF 2.0 §3.7.3
+    c.joint_bind_position[k] = world.block<3, 1>(0, 3);
   }
   // Geometry.
   const tinygltf::Mesh& mesh = m.meshes[static_cast<size_t>(holder.mesh)];
@@ -261,6 +265,16 @@ GltfCharacter load_gltf_character(const std::filesystem::path& path) {
   }
   if (c.indices.empty())
     fail(file, "meshes[" + std::to_string(holder.mesh) + "]", "the skinned mesh has no triangles");
+  // Pose the mesh by its skin in the rest node pose: world-space vertices and normals (Y-up, metres
+  // when the file's nodes say so), whatever the mesh space of the file (e.g. Z-up centimetres).
+  for (size_t v = 0; v < c.positions.size(); ++v) {
+    Eigen::Matrix4d blend = Eigen::Matrix4d::Zero();
+    for (size_t k = 0; k < 4; ++k)
+      if (c.weights[v][k] > 0.0) blend += c.weights[v][k] * skin_matrix[static_cast<size_t>(c.joints[v][k])];
+    c.positions[v] = (blend * c.positions[v].homogeneous()).head<3>();
+    const Mat3 linear = blend.block<3, 3>(0, 0);
+    if (std::abs(linear.determinant()) > 1e-18) c.normals[v] = linear.inverse().transpose() * c.normals[v];
+  }
   for (Vec3& n : c.normals) n = n.norm() > 0 ? Vec3(n.normalized()) : Vec3::UnitY();
   // Joint names -> SMPL joints (the animation layer's name maps); a skeleton-only BvhMotion carries them.
   BvhMotion skeleton;

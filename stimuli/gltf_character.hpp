@@ -10,8 +10,9 @@
 // SMPL joints with the animation layer's name maps (map_joint_names in framework/animation/retarget.hpp:
 // Mixamo, CMU, Bandai-Namco or SMPL names; pelvis, hips, knees and ankles are required), and each skin
 // joint is driven by its nearest mapped ancestor (Mixamo's fingers follow the SMPL wrist, etc.).
-// The bind pose must be a T-pose or close to it (Mixamo's is); joint positions come from the inverse
-// bind matrices.
+// The mesh is posed by its own skin in the file's rest node pose (joint matrices = node world transform
+// times inverse bind matrix, glTF 2.0 §3.7.3), so armature rotations and scales (Z-up or centimetre
+// rigs) are applied; that rest pose must be a T-pose or close to it (Mixamo's is).
 // Errors (unreadable file, no skinned mesh, bad accessors, joint indices outside the skin, weights that
 // do not sum to a positive value, unmappable skeletons) throw InputError naming the file and the glTF
 // element ("meshes[0].primitives[1].attributes.JOINTS_0", "skins[0].joints[3]").

@@ -41,6 +41,7 @@ void append_translation_ibm(const Vec3& p, std::vector<float>& ibm) {
 struct WriteOptions {
   bool bad_joint_index = false;   ///< one vertex uses a joint the skin does not have
   bool unmappable_names = false;  ///< joints named bone0, bone1, ...
+  bool centimetres = false;       ///< mesh and joints in cm under an "Armature" node scaled by 0.01
 };
 
 /// Writes a .glb: the mannequin of `shape` (5 cm grid) bound to a Mixamo-named skeleton under an
@@ -55,6 +56,8 @@ size_t write_test_character(const std::filesystem::path& path, const BodyShape& 
   GltfBuilder builder(model);
   tinygltf::Node armature;
   armature.name = "Armature";
+  const double unit = w.centimetres ? 100.0 : 1.0;
+  if (w.centimetres) armature.scale = {0.01, 0.01, 0.01};
   model.nodes.push_back(armature);
   const int first_joint = 1;
   std::vector<float> ibm;
@@ -62,11 +65,11 @@ size_t write_test_character(const std::filesystem::path& path, const BodyShape& 
     tinygltf::Node n;
     n.name = w.unmappable_names ? "bone" + std::to_string(j) : std::string("mixamorig:") + kMixamoNames[j];
     const int parent = kJointParent[static_cast<size_t>(j)];
-    const Vec3 t = rest[static_cast<size_t>(j)].translation -
-                   (parent >= 0 ? rest[static_cast<size_t>(parent)].translation : Vec3::Zero());
+    const Vec3 t = unit * (rest[static_cast<size_t>(j)].translation -
+                           (parent >= 0 ? rest[static_cast<size_t>(parent)].translation : Vec3::Zero()));
     n.translation = {t.x(), t.y(), t.z()};
     model.nodes.push_back(n);
-    append_translation_ibm(rest[static_cast<size_t>(j)].translation, ibm);
+    append_translation_ibm(unit * rest[static_cast<size_t>(j)].translation, ibm);
   }
   model.nodes[0].children.push_back(first_joint);
   for (int j = 1; j < kJointCount; ++j)
@@ -74,17 +77,17 @@ size_t write_test_character(const std::filesystem::path& path, const BodyShape& 
         first_joint + j);
   tinygltf::Node finger;  // unmapped: follows its nearest mapped ancestor, the SMPL left wrist
   finger.name = "mixamorig:LeftHandIndex1";
-  finger.translation = {0.05, 0.0, 0.02};
+  finger.translation = {0.05 * unit, 0.0, 0.02 * unit};
   const int finger_node = static_cast<int>(model.nodes.size());
   model.nodes.push_back(finger);
   model.nodes[static_cast<size_t>(first_joint + kLeftWrist)].children.push_back(finger_node);
-  append_translation_ibm(rest[kLeftWrist].translation + Vec3(0.05, 0.0, 0.02), ibm);
+  append_translation_ibm(unit * (rest[kLeftWrist].translation + Vec3(0.05, 0.0, 0.02)), ibm);
 
   std::vector<float> pos, nrm, weights, colour;
   std::vector<std::uint8_t> joints;
   const Palette& pal = palette(3);
   for (const MannequinVertex& v : mesh.vertices) {
-    pos.insert(pos.end(), v.position.begin(), v.position.end());
+    for (float x : v.position) pos.push_back(static_cast<float>(unit) * x);
     nrm.insert(nrm.end(), v.normal.begin(), v.normal.end());
     for (int k = 0; k < 4; ++k) {
       joints.push_back(v.bones[static_cast<size_t>(k)]);
@@ -145,8 +148,10 @@ double distance_to_body(const Vec3& p, const WorldCapsules& caps) {
 TEST_CASE("a skinned glTF character loads, maps onto the SMPL joints and fits other bodies", "[stimuli]") {
   const auto dir = test::scratch_dir("gltf_character");
   const BodyShape source = make_procedural_body({Sex::kFemale, 1.62, 1.0});
-  const auto path = dir / "woman.glb";
-  const size_t vertices = write_test_character(path, source);
+  const bool centimetres = GENERATE(false, true);  // a centimetre rig under a 0.01-scaled armature too
+  INFO("centimetres " << centimetres);
+  const auto path = dir / (centimetres ? "woman_cm.glb" : "woman.glb");
+  const size_t vertices = write_test_character(path, source, {false, false, centimetres});
   const GltfCharacter c = load_gltf_character(path);
   CHECK(c.positions.size() == vertices);
   CHECK(c.joint_names.size() == kJointCount + 1);
