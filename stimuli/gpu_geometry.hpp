@@ -23,7 +23,8 @@ struct StaticVertex {
 
 /// Attributes 0 position, 1 normal.
 GpuMesh upload_static(const std::vector<StaticVertex>& vertices, const std::vector<std::uint32_t>& indices);
-/// Attributes 0 position, 1 normal, 2 bones (uvec4), 3 weights (normalised), 4 region (uint).
+/// Attributes 0 position, 1 normal, 2 bones (uvec4), 3 weights (normalised), 4 region (uint),
+/// 5 colour (normalised sRGB + alpha).
 GpuMesh upload_mannequin(const MannequinMesh& mesh);
 /// Deletes the buffers and resets `m`.
 void destroy(GpuMesh& m);

@@ -41,6 +41,8 @@ struct MannequinVertex {
   std::array<std::uint8_t, 4> bones;    ///< joint indices
   std::array<std::uint8_t, 4> weights;  ///< weights * 255, summing to 255
   std::uint8_t region;                  ///< SkinRegion
+  std::array<std::uint8_t, 4> colour{};  ///< sRGB vertex colour (mesh files); alpha 255 replaces the
+                                         ///< palette's region colour, alpha 0 (the mannequin) keeps it
 };
 
 struct MannequinMesh {

@@ -26,6 +26,7 @@ double ms_since(Clock::time_point t) {
 
 void prepare(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options) {
   // Always (re)load: cheap with the mesh cache, and a crowd's address says nothing about its content.
+  renderer.set_character_files(options.character_files);
   renderer.load_crowd(crowd);
   if (renderer.width() != options.width || renderer.height() != options.height)
     renderer.set_size(options.width, options.height, options.scene.msaa_samples,

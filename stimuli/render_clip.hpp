@@ -20,8 +20,9 @@ struct RenderOptions {
   std::string x264_preset = "veryfast";
   SceneOptions scene;  ///< overlap mode, background, fog, MSAA, shadow map size
   ViewpointOverrides viewpoint_overrides;
-  std::string frames_png_dir;  ///< when set, also writes DIR/frame_00000.png ...
-  int max_frames = -1;         ///< render only the first N frames (< 0: all)
+  std::vector<std::string> character_files;  ///< skinned glTF characters (Renderer::set_character_files)
+  std::string frames_png_dir;                ///< when set, also writes DIR/frame_00000.png ...
+  int max_frames = -1;                       ///< render only the first N frames (< 0: all)
 };
 
 struct RenderResult {

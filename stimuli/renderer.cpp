@@ -16,6 +16,7 @@
 #include "stimuli/character_mesh.hpp"
 #include "stimuli/egl_context.hpp"
 #include "stimuli/gl_program.hpp"
+#include "stimuli/gltf_character.hpp"
 #include "stimuli/gpu_geometry.hpp"
 #include "stimuli/shaders.hpp"
 
@@ -25,11 +26,15 @@ namespace {
 // Grid spacing of the coarse mannequin meshes drawn into the shadow map: shadows are soft-edged and
 // seen from afar, so a 4.5 cm mesh casts the same shadow at a fraction of the vertex work.
 constexpr double kShadowVoxelM = 0.045;
-// Level of detail: a character whose 3.5 cm voxel spans at most kLodPixels (2.5) pixels on screen is drawn
-// with the 3.5 cm mesh (about 4k instead of 12k triangles); the eye cannot tell the meshes apart there,
-// and vertex work dominates a CPU rasteriser's frame at low resolutions.
-constexpr double kCoarseVoxelM = 0.035;
-constexpr double kLodPixels = 2.5;
+// Level of detail: llvmpipe shades every triangle in blocks of 4x4 pixels, so a 12k-triangle body whose
+// triangles cover 2-3 pixels each costs several times its pixel count. Each body shape therefore has
+// four meshes (the 2 cm grid ~12k triangles, 2.6 cm ~7k, 3.5 cm ~4k, 5 cm ~2k), and a character is drawn
+// with the coarsest whose grid spacing spans at most SceneOptions::lod_pixels pixels at its distance
+// (screen-space error bound, the classic discrete-LOD criterion: Luebke et al., "Level of Detail for 3D
+// Graphics", 2003, ch. 4). Normals come from the implicit surface, so shading is smooth at every level; only
+// the silhouette's polygon edges grow, to at most lod_pixels.
+constexpr std::array<double, 3> kLodVoxelM = {0.026, 0.035, 0.05};  // coarser levels after the full mesh
+constexpr size_t kLodLevels = 1 + kLodVoxelM.size();
 
 using Mat4f = Eigen::Matrix4f;
 
@@ -104,8 +109,15 @@ Rgb parse_hex_colour(const std::string& text, const std::string& context) {
 
 struct Renderer::Gl {
   EglContext context;
-  GlProgram skinned_lit{glsl::kSkinnedVertex, glsl::kLitFragment, "skinned_lit"};
-  GlProgram static_lit{glsl::kStaticVertex, glsl::kLitFragment, "static_lit"};
+  GlProgram skinned_lit{glsl::kSkinnedVertex,
+                        glsl::specialise(glsl::kLitFragment, "MATERIAL_CHARACTER").c_str(), "skinned_lit"};
+  GlProgram skinned_lit_overlap{glsl::kSkinnedVertex,
+                                glsl::specialise(glsl::kLitFragment, "MATERIAL_CHARACTER OVERLAP").c_str(),
+                                "skinned_lit_overlap"};
+  GlProgram ground_lit{glsl::kStaticVertex, glsl::specialise(glsl::kLitFragment, "MATERIAL_GROUND").c_str(),
+                       "ground_lit"};
+  GlProgram flat_lit{glsl::kStaticVertex, glsl::specialise(glsl::kLitFragment, "MATERIAL_FLAT").c_str(),
+                     "flat_lit"};
   GlProgram skinned_depth{glsl::kSkinnedVertex, glsl::kDepthFragment, "skinned_depth"};
   GlProgram static_depth{glsl::kStaticVertex, glsl::kDepthFragment, "static_depth"};
   std::map<std::uint64_t, GpuMesh> mesh_cache;
@@ -115,7 +127,8 @@ struct Renderer::Gl {
   std::vector<Mat4> box_models;
   std::vector<Box> boxes;
   std::vector<char> box_hidden;
-  std::vector<std::uint64_t> character_mesh, character_coarse_mesh, character_shadow_mesh;
+  std::vector<std::array<std::uint64_t, kLodLevels>> character_lod_mesh;  ///< finest first
+  std::vector<std::uint64_t> character_shadow_mesh;
   GLuint noise_tex = 0;
   std::vector<std::array<Mat4, kJointCount>> inverse_rest;
   Vec3 bounds_lo = Vec3::Zero(), bounds_hi = Vec3::Zero();
@@ -181,6 +194,17 @@ std::size_t Renderer::cached_meshes() const {
   return gl_->mesh_cache.size();
 }
 
+void Renderer::set_character_files(const std::vector<std::string>& files) {
+  std::vector<std::shared_ptr<const GltfCharacter>> loaded;
+  for (const std::string& f : files) {
+    auto it = file_cache_.find(f);
+    if (it == file_cache_.end())
+      it = file_cache_.emplace(f, std::make_shared<const GltfCharacter>(load_gltf_character(f))).first;
+    loaded.push_back(it->second);
+  }
+  file_characters_ = std::move(loaded);
+}
+
 void Renderer::set_size(int width, int height, int samples, int shadow_map_size) {
   gl_->context.make_current();
   if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
@@ -242,36 +266,53 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   crowd_ = &crowd;
   const size_t n = crowd.characters.size();
   // Build the meshes of shapes not yet cached, in parallel (one result slot per job), then upload
-  // them in job order. Each shape gets a full mesh and a coarse one for the shadow pass.
+  // them in job order. Each shape gets its level-of-detail meshes and a coarse one for the shadow pass.
   MannequinOptions shadow_options = mesh_options_;
   shadow_options.voxel_m = std::max(mesh_options_.voxel_m, kShadowVoxelM);
   shadow_options.inset_m =
       0.4 * shadow_options.voxel_m;  // keep the coarse caster inside the visible skin (no acne bands)
-  MannequinOptions coarse_options = mesh_options_;
-  coarse_options.voxel_m = std::max(mesh_options_.voxel_m, kCoarseVoxelM);
-  g.character_mesh.resize(n);
-  g.character_coarse_mesh.resize(n);
+  std::array<MannequinOptions, kLodLevels> lod_options;
+  lod_options.fill(mesh_options_);
+  for (size_t l = 1; l < kLodLevels; ++l)
+    lod_options[l].voxel_m = std::max(mesh_options_.voxel_m, kLodVoxelM[l - 1]);
+  g.character_lod_mesh.resize(n);
   g.character_shadow_mesh.resize(n);
   struct Job {
     size_t character;
     std::uint64_t key;
     MannequinOptions options;
+    const GltfCharacter* file = nullptr;  ///< a character from a file instead of the mannequin
   };
   std::vector<Job> jobs;
   std::map<std::uint64_t, bool> queued;
   for (size_t i = 0; i < n; ++i) {
     const CharacterAnimation& ch = crowd.characters[i];
-    g.character_mesh[i] = character_mesh_key(ch, mesh_options_);
-    g.character_coarse_mesh[i] = character_mesh_key(ch, coarse_options);
+    if (!file_characters_.empty()) {  // one fitted mesh serves every pass (no LOD for file meshes)
+      const GltfCharacter& file = *file_characters_[i % file_characters_.size()];
+      const std::uint64_t key = stable_hash("gltf:" + file.source + ":" +
+                                            std::to_string(mannequin_cache_key(ch.shape, mesh_options_)));
+      g.character_lod_mesh[i].fill(key);
+      g.character_shadow_mesh[i] = key;
+      if (!g.mesh_cache.count(key) && queued.emplace(key, true).second)
+        jobs.push_back({i, key, mesh_options_, &file});
+      continue;
+    }
+    // A character's own skinned surface (MPFB2) has one level of detail: its LOD keys coincide.
+    std::vector<std::pair<std::uint64_t, MannequinOptions>> wanted;
+    for (size_t l = 0; l < kLodLevels; ++l) {
+      g.character_lod_mesh[i][l] = character_mesh_key(ch, lod_options[l]);
+      wanted.emplace_back(g.character_lod_mesh[i][l], lod_options[l]);
+    }
     g.character_shadow_mesh[i] = character_mesh_key(ch, shadow_options);
-    for (const auto& [key, opts] : {std::pair{g.character_mesh[i], mesh_options_},
-                                    std::pair{g.character_coarse_mesh[i], coarse_options},
-                                    std::pair{g.character_shadow_mesh[i], shadow_options}})
+    wanted.emplace_back(g.character_shadow_mesh[i], shadow_options);
+    for (const auto& [key, opts] : wanted)
       if (!g.mesh_cache.count(key) && queued.emplace(key, true).second) jobs.push_back({i, key, opts});
   }
   std::vector<MannequinMesh> built(jobs.size());
   tbb::parallel_for(size_t{0}, jobs.size(), [&](size_t k) {
-    built[k] = build_character_mesh(crowd.characters[jobs[k].character], jobs[k].options);
+    const CharacterAnimation& ch = crowd.characters[jobs[k].character];
+    built[k] = jobs[k].file ? fit_gltf_character(*jobs[k].file, ch.shape)
+                            : build_character_mesh(ch, jobs[k].options);
   });
   for (size_t k = 0; k < jobs.size(); ++k) g.mesh_cache.emplace(jobs[k].key, upload_mannequin(built[k]));
   // Inverse bind matrices.
@@ -428,7 +469,7 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   glUseProgram(p);
   set_mat4(p, g.skinned_depth.uniform("u_view_proj"), light_vp);
   const int depth_base = g.skinned_depth.uniform("u_skin_base");
-  for (size_t i = 0; i < n; ++i) {
+  for (size_t i = 0; i < (options.characters ? n : 0); ++i) {
     const GpuMesh& m = g.mesh_cache.at(g.character_shadow_mesh[i]);
     glProgramUniform1i(p, depth_base, static_cast<int>(i * kJointCount));
     glBindVertexArray(m.vao);
@@ -447,13 +488,18 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   const float bg[4] = {options.background[0], options.background[1], options.background[2], 1.0f};
   const float zero[4] = {0, 0, 0, 0};
   const float one = 1.0f;
+  // The overlap mask is drawn, cleared and resolved only in overlap mode (a full-screen multisampled
+  // target less to write and resolve otherwise).
+  const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(g.msaa_fbo, options.overlap ? 2 : 1, attachments);
   glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 0, bg);
-  glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 1, zero);
+  if (options.overlap) glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 1, zero);
   glClearNamedFramebufferfv(g.msaa_fbo, GL_DEPTH, 0, &one);
   glBindTextureUnit(0, g.shadow_tex);
   glBindTextureUnit(1, g.noise_tex);
   const Mat4 shadow_matrix = light_vp;
-  for (GlProgram* prog : {&g.static_lit, &g.skinned_lit}) {
+  GlProgram& character_lit = options.overlap ? g.skinned_lit_overlap : g.skinned_lit;
+  for (GlProgram* prog : {&g.ground_lit, &g.flat_lit, &character_lit}) {
     const GLuint id = prog->id();
     set_mat4(id, prog->uniform("u_view_proj"), view_proj);
     set_mat4(id, prog->uniform("u_light_view_proj"), shadow_matrix);
@@ -466,18 +512,16 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
     glProgramUniform1f(id, prog->uniform("u_shadow_texel"), 1.0f / static_cast<float>(g.shadow_size));
     set_rgb(id, prog->uniform("u_background"), options.background);
     glProgramUniform1f(id, prog->uniform("u_fog_density"), static_cast<float>(options.fog_density));
-    glProgramUniform1i(id, prog->uniform("u_overlap"), options.overlap ? 1 : 0);
   }
   // Characters first, ground last: early depth rejection then skips ground pixels behind people.
-  p = g.skinned_lit.id();
+  p = character_lit.id();
   glUseProgram(p);
   glEnable(GL_CULL_FACE);
   glCullFace(GL_BACK);
-  glProgramUniform1i(p, g.skinned_lit.uniform("u_material"), 0);
-  const int lit_base = g.skinned_lit.uniform("u_skin_base"), palette_loc = g.skinned_lit.uniform("u_palette");
-  const int offset_loc = g.skinned_lit.uniform("u_cap_offset"),
-            count_loc = g.skinned_lit.uniform("u_cap_count");
-  const int own_loc = g.skinned_lit.uniform("u_own_offset");
+  const int lit_base = character_lit.uniform("u_skin_base"), palette_loc = character_lit.uniform("u_palette");
+  const int offset_loc = character_lit.uniform("u_cap_offset"),
+            count_loc = character_lit.uniform("u_cap_count");
+  const int own_loc = character_lit.uniform("u_own_offset");
   triangles_ = 0;
   std::vector<size_t> order(n);
   for (size_t i = 0; i < n; ++i) order[i] = i;
@@ -487,10 +531,15 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   });
   const double pixel_angle =
       2.0 * std::tan(0.5 * camera.fov_y_deg * std::numbers::pi / 180.0) / height_;  // m per px per m
+  if (!options.characters) order.clear();
   for (const size_t i : order) {
     const double distance = (chars[i].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).norm();
-    const bool coarse = kCoarseVoxelM <= kLodPixels * distance * pixel_angle;
-    const GpuMesh& m = g.mesh_cache.at(coarse ? g.character_coarse_mesh[i] : g.character_mesh[i]);
+    const double metres_per_pixel = distance * pixel_angle;
+    size_t level = 0;  // the coarsest level whose grid spans at most lod_pixels pixels
+    for (size_t l = 1; l < kLodLevels; ++l)
+      if (std::max(mesh_options_.voxel_m, kLodVoxelM[l - 1]) <= options.lod_pixels * metres_per_pixel)
+        level = l;
+    const GpuMesh& m = g.mesh_cache.at(g.character_lod_mesh[i][level]);
     const Palette& pal = palette(chars[i].palette);
     float colours[8 * 3];
     for (int r = 0; r < 8; ++r) {
@@ -509,22 +558,24 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
     triangles_ += static_cast<size_t>(m.count) / 3;
   }
   glDisable(GL_CULL_FACE);
-  p = g.static_lit.id();
+  p = g.flat_lit.id();
   glUseProgram(p);
-  glProgramUniform1i(p, g.static_lit.uniform("u_material"), 2);
-  set_rgb(p, g.static_lit.uniform("u_base_color"), options.environment);
-  draw_environment(p, g.static_lit.uniform("u_model"));
+  set_rgb(p, g.flat_lit.uniform("u_base_color"), options.environment);
+  draw_environment(p, g.flat_lit.uniform("u_model"));
   if (crowd_->environment.ground_plane) {
-    glProgramUniform1i(p, g.static_lit.uniform("u_material"), 1);
-    set_rgb(p, g.static_lit.uniform("u_base_color"), options.ground);
-    set_mat4(p, g.static_lit.uniform("u_model"), Mat4::Identity());
+    p = g.ground_lit.id();
+    glUseProgram(p);
+    set_rgb(p, g.ground_lit.uniform("u_base_color"), options.ground);
+    set_mat4(p, g.ground_lit.uniform("u_model"), Mat4::Identity());
     glBindVertexArray(g.ground.vao);
     glDrawElements(GL_TRIANGLES, g.ground.count, GL_UNSIGNED_INT, nullptr);
   }
   glBindVertexArray(0);
 
-  // 4. Resolve both colour attachments.
-  for (GLenum attachment : {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1}) {
+  // 4. Resolve the colour attachment (and the overlap mask in overlap mode).
+  overlap_drawn_ = options.overlap;
+  for (int k = 0; k < (options.overlap ? 2 : 1); ++k) {
+    const GLenum attachment = attachments[k];
     glNamedFramebufferReadBuffer(g.msaa_fbo, attachment);
     glNamedFramebufferDrawBuffer(g.resolve_fbo, attachment);
     glBlitNamedFramebuffer(g.msaa_fbo, g.resolve_fbo, 0, 0, width_, height_, 0, 0, width_, height_,
@@ -566,6 +617,7 @@ void Renderer::finish_read_rgba(int slot, std::vector<std::uint8_t>& rgba) {
 }
 
 double Renderer::overlap_fraction() {
+  if (!overlap_drawn_) return 0.0;  // overlap mode was off: nothing is flagged
   gl_->context.make_current();
   Gl& g = *gl_;
   g.mask_pixels.resize(static_cast<size_t>(width_) * height_);

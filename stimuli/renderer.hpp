@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "framework/core/crowd_animation.hpp"
@@ -27,6 +28,8 @@
 
 namespace crowdlab::stimuli {
 
+struct GltfCharacter;
+
 struct SceneOptions {
   bool overlap = false;                       ///< paint fragments inside other characters red
   Rgb background = {0.847f, 0.867f, 0.890f};  ///< sRGB clear colour (#d8dde3)
@@ -35,6 +38,9 @@ struct SceneOptions {
   int shadow_map_size = 2048;
   Rgb ground = {0.64f, 0.62f, 0.58f};       ///< sRGB base colour of the ground
   Rgb environment = {0.78f, 0.76f, 0.72f};  ///< sRGB colour of boxes and meshes
+  double lod_pixels = 6.0;  ///< screen-space error bound of the level of detail (pixels; see renderer.cpp)
+  bool characters =
+      true;  ///< false: the scene without its characters (the fixed per-frame cost, for benchmarks)
 };
 
 /// Parses "#rrggbb" (or "rrggbb"); throws InputError otherwise.
@@ -52,6 +58,11 @@ class Renderer {
 
   /// (Re)allocates the frame buffers for width x height pixels (> 0) and `samples` MSAA samples.
   void set_size(int width, int height, int samples = 4, int shadow_map_size = 2048);
+
+  /// Characters from files (stimuli/gltf_character.hpp): character i of later crowds is drawn with
+  /// the skinned glTF character files[i % files.size()], fitted to its body; empty = the mannequin.
+  /// Files are read once per renderer (InputError naming the file and element on bad input).
+  void set_character_files(const std::vector<std::string>& files);
 
   /// Prepares a crowd: builds (in parallel, cached across crowds) and uploads the mannequin meshes of
   /// all body shapes, the environment geometry and the clip-wide bounds used by the shadow map.
@@ -87,6 +98,9 @@ class Renderer {
   const CrowdAnimation* crowd_ = nullptr;
   int width_ = 0, height_ = 0;
   std::size_t triangles_ = 0;
+  bool overlap_drawn_ = false;
+  std::map<std::string, std::shared_ptr<const GltfCharacter>> file_cache_;
+  std::vector<std::shared_ptr<const GltfCharacter>> file_characters_;
 };
 
 }  // namespace crowdlab::stimuli

@@ -13,7 +13,13 @@
 // behind the visible surface, passes through a point inside both this character's capsules and
 // another's. The second test is needed because an interpenetration volume is enclosed by the two
 // bodies' surfaces and is never itself the visible surface.
+// Specialisation: the lit fragment shader is compiled once per material (MATERIAL_CHARACTER,
+// MATERIAL_GROUND, MATERIAL_FLAT) and, for characters, with or without OVERLAP. A CPU rasteriser
+// (llvmpipe) runs both sides of a non-uniform branch under a mask, so one shader with runtime material
+// switches paid for the ground's texture lookups and the overlap ray march on every pixel.
 #include "stimuli/shaders.hpp"
+
+#include <string>
 
 namespace crowdlab::stimuli::glsl {
 
@@ -23,12 +29,14 @@ layout(location = 1) in vec3 a_normal;
 layout(location = 2) in uvec4 a_bones;
 layout(location = 3) in vec4 a_weights;
 layout(location = 4) in uint a_region;
+layout(location = 5) in vec4 a_colour;  // sRGB vertex colour; alpha 1 replaces the palette colour
 layout(std430, binding = 0) readonly buffer SkinMatrices { mat4 skin[]; };
 uniform mat4 u_view_proj;
 uniform int u_skin_base;
 out vec3 v_world;
 out vec3 v_normal;
 flat out uint v_region;
+out vec4 v_colour;
 void main() {
   mat4 m = a_weights.x * skin[u_skin_base + int(a_bones.x)] + a_weights.y * skin[u_skin_base + int(a_bones.y)] +
            a_weights.z * skin[u_skin_base + int(a_bones.z)] + a_weights.w * skin[u_skin_base + int(a_bones.w)];
@@ -36,6 +44,7 @@ void main() {
   v_world = world.xyz;
   v_normal = mat3(m) * a_normal;
   v_region = a_region;
+  v_colour = a_colour;
   gl_Position = u_view_proj * world;
 }
 )";
@@ -48,11 +57,13 @@ uniform mat4 u_model;
 out vec3 v_world;
 out vec3 v_normal;
 flat out uint v_region;
+out vec4 v_colour;
 void main() {
   vec4 world = u_model * vec4(a_position, 1.0);
   v_world = world.xyz;
   v_normal = mat3(u_model) * a_normal;
   v_region = 0u;
+  v_colour = vec4(0.0);
   gl_Position = u_view_proj * world;
 }
 )";
@@ -61,14 +72,14 @@ const char* const kDepthFragment = R"(#version 450 core
 void main() {}
 )";
 
-const char* const kLitFragment = R"(#version 450 core
+const char* const kLitFragment = R"(
 in vec3 v_world;
 in vec3 v_normal;
 flat in uint v_region;
+in vec4 v_colour;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out float o_overlap;
 layout(std430, binding = 1) readonly buffer OverlapCapsules { vec4 caps[]; };  // (a, r), (b, 0) pairs
-uniform int u_material;          // 0 character, 1 ground, 2 flat colour
 uniform vec3 u_palette[8];       // LINEAR colour per SkinRegion
 uniform vec3 u_base_color;       // sRGB, material 2
 uniform vec3 u_eye;
@@ -79,7 +90,6 @@ uniform sampler2D u_ground_noise;  // tiling value noise in [0, 1], 1 texel = 5 
 uniform float u_shadow_texel;
 uniform vec3 u_background;       // sRGB
 uniform float u_fog_density;     // 0 = no fog (1/m)
-uniform int u_overlap;
 uniform int u_cap_offset;
 uniform int u_own_offset;         // this character's own 24 capsules
 uniform int u_cap_count;
@@ -93,6 +103,7 @@ float shadow(vec3 p, vec3 n) {
   return texture(u_shadow_map, vec3(s.xy, s.z - 0.0015));  // bilinear depth compare = 2x2 PCF
 }
 
+#ifdef OVERLAP
 bool inside_capsules(vec3 p, int first, int count) {
   for (int i = first; i < first + count; ++i) {
     vec4 a = caps[2 * i];
@@ -118,6 +129,7 @@ bool ray_hits_overlap(vec3 p) {
   }
   return false;
 }
+#endif
 
 void main() {
   vec3 n = normalize(v_normal);
@@ -125,18 +137,20 @@ void main() {
   vec3 albedo;
   float specular = 0.06;
   bool overlap = false;
-  if (u_material == 0) {
-    albedo = u_palette[min(v_region, 7u)];
-    overlap = u_overlap != 0 && ray_hits_overlap(v_world);
-  } else if (u_material == 1) {
-    vec2 g = v_world.xz;
-    float checker = mod(floor(g.x) + floor(g.y), 2.0) == 0.0 ? 1.0 : 0.955;
-    float grain = 0.92 + 0.08 * texture(u_ground_noise, g * 0.078).r + 0.05 * texture(u_ground_noise, g * 0.0061).r;
-    albedo = to_linear(u_base_color) * checker * grain;
-    specular = 0.02;
-  } else {
-    albedo = to_linear(u_base_color);
-  }
+#if defined(MATERIAL_CHARACTER)
+  albedo = v_colour.a > 0.5 ? to_linear(v_colour.rgb) : u_palette[min(v_region, 7u)];
+#ifdef OVERLAP
+  overlap = ray_hits_overlap(v_world);
+#endif
+#elif defined(MATERIAL_GROUND)
+  vec2 g = v_world.xz;
+  float checker = mod(floor(g.x) + floor(g.y), 2.0) == 0.0 ? 1.0 : 0.955;
+  float grain = 0.92 + 0.08 * texture(u_ground_noise, g * 0.078).r + 0.05 * texture(u_ground_noise, g * 0.0061).r;
+  albedo = to_linear(u_base_color) * checker * grain;
+  specular = 0.02;
+#else
+  albedo = to_linear(u_base_color);
+#endif
   vec3 v = normalize(u_eye - v_world);
   float sh = shadow(v_world, n);
   float key = max(dot(n, u_key_dir), 0.0) * sh;
@@ -150,8 +164,13 @@ void main() {
   nh *= nh; nh *= nh; nh *= nh; nh *= nh; nh *= nh;  // ^32 by squaring (cheaper than pow on CPU rasterisers)
   float spec = nh * specular * sh;
   vec3 color = albedo * (ambient + vec3(1.0, 0.97, 0.92) * 1.05 * key + vec3(0.75, 0.82, 1.0) * 0.32 * fill) +
-               vec3(spec) + (u_material == 0 ? vec3(0.22) * rim * albedo + vec3(0.05) * rim : vec3(0.0));
+               vec3(spec);
+#if defined(MATERIAL_CHARACTER)
+  color += vec3(0.22) * rim * albedo + vec3(0.05) * rim;
+#endif
+#ifdef OVERLAP
   if (overlap) color = vec3(0.9, 0.02, 0.02) * (0.45 + 0.55 * max(dot(n, u_key_dir), 0.0) * sh + 0.3 * fill);
+#endif
   if (u_fog_density > 0.0) {
     float d = length(u_eye - v_world) * u_fog_density;
     color = mix(to_linear(u_background), color, exp(-d * d));
@@ -160,5 +179,16 @@ void main() {
   o_overlap = overlap ? 1.0 : 0.0;
 }
 )";
+
+std::string specialise(const char* source, const std::string& defines) {
+  std::string out = "#version 450 core\n";
+  for (size_t begin = 0; begin < defines.size();) {
+    size_t end = defines.find(' ', begin);
+    if (end == std::string::npos) end = defines.size();
+    if (end > begin) out += "#define " + defines.substr(begin, end - begin) + "\n";
+    begin = end + 1;
+  }
+  return out + source;
+}
 
 }  // namespace crowdlab::stimuli::glsl

@@ -1,5 +1,7 @@
 #pragma once
 // GLSL 4.50 sources of the renderer's programs (see shaders.cpp for the lighting model).
+#include <string>
+
 namespace crowdlab::stimuli::glsl {
 
 /// Skinned characters: linear blend skinning from an SSBO of per-bone skin matrices.
@@ -8,7 +10,11 @@ extern const char* const kSkinnedVertex;
 extern const char* const kStaticVertex;
 /// Depth-only fragment shader for the shadow pass.
 extern const char* const kDepthFragment;
-/// Lit fragment shader shared by every material, with shadows, fog and the overlap test.
+/// Lit fragment shader (no #version line: use specialise()) for every material, with shadows, fog
+/// and the overlap test. Defines: MATERIAL_CHARACTER | MATERIAL_GROUND | MATERIAL_FLAT, OVERLAP.
 extern const char* const kLitFragment;
+
+/// "#version 450 core", one "#define NAME" per space-separated word of `defines`, then `source`.
+std::string specialise(const char* source, const std::string& defines);
 
 }  // namespace crowdlab::stimuli::glsl

@@ -45,7 +45,9 @@ struct Args {
   int characters = 60, width = 1920, height = 1080, frames = 60, warmup = 5, crf = 18;
   double spacing = 0.55;
   std::string viewpoint = "V3", preset = "veryfast", out;
-  bool overlap = false, json = false;
+  int msaa = 4, shadow_map = 2048;
+  double lod_pixels = 6.0;
+  bool overlap = false, json = false, empty = false;
 };
 
 void run(const Args& a) {
@@ -61,6 +63,10 @@ void run(const Args& a) {
   ro.crf = a.crf;
   ro.x264_preset = a.preset;
   ro.scene.overlap = a.overlap;
+  ro.scene.msaa_samples = a.msaa;
+  ro.scene.shadow_map_size = a.shadow_map;
+  ro.scene.characters = !a.empty;
+  ro.scene.lod_pixels = a.lod_pixels;
   const std::string out =
       a.out.empty() ? (std::filesystem::temp_directory_path() / "crowdlab_bench_render.mp4").string() : a.out;
   stimuli::Renderer renderer;
@@ -97,6 +103,10 @@ void run(const Args& a) {
                         {"width", a.width},
                         {"height", a.height},
                         {"overlap", a.overlap},
+                        {"empty", a.empty},
+                        {"msaa", a.msaa},
+                        {"shadow_map", a.shadow_map},
+                        {"lod_pixels", a.lod_pixels},
                         {"x264_preset", a.preset},
                         {"mesh_setup_s", mesh_setup_s},
                         {"cpu_ms_per_frame", cpu_ms_per_frame},
@@ -136,6 +146,18 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--preset", args->preset, "x264 preset")->capture_default_str();
   cmd->add_option("--out", args->out, "Keep the clip at this path (default: temporary, deleted)");
   cmd->add_flag("--overlap", args->overlap, "Overlap mode (red pixels)");
+  cmd->add_option("--msaa", args->msaa, "MSAA samples (the stimuli use 4)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 16));
+  cmd->add_option("--shadow-map", args->shadow_map, "Shadow map size (pixels)")
+      ->capture_default_str()
+      ->check(CLI::Range(64, 8192));
+  cmd->add_option("--lod-pixels", args->lod_pixels, "Level-of-detail screen-space error bound (pixels)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0));
+  cmd->add_flag("--empty", args->empty,
+                "Draw the scene without its characters: the fixed cost of a frame (clear, ground, resolve, "
+                "readback, encode), i.e. the ceiling of this machine");
   cmd->add_flag("--json", args->json, "Print one JSON object");
   cmd->callback([args] { run(*args); });
 });

@@ -20,8 +20,9 @@ namespace {
 struct RenderArgs {
   std::string crowd_path, viewpoint = "V3", out, frames_png, contact_sheet, background = "#d8dde3",
                           preset = "veryfast";
-  std::vector<std::string> overrides;
+  std::vector<std::string> overrides, characters;
   int width = 1920, height = 1080, crf = 18, synthetic = 0, max_frames = -1;
+  double lod_pixels = stimuli::SceneOptions{}.lod_pixels;
   double fog = 0.0;
   bool overlap = false, synthetic_corridor = false;
 };
@@ -75,7 +76,9 @@ void run(const RenderArgs& a) {
   o.scene.background = stimuli::parse_hex_colour(a.background, "--background");
   if (!(a.fog >= 0.0)) throw InputError("--fog must be >= 0");
   o.scene.fog_density = a.fog;
+  o.scene.lod_pixels = a.lod_pixels;
   for (const std::string& text : a.overrides) parse_override(text, o.viewpoint_overrides);
+  o.character_files = a.characters;
   stimuli::Renderer renderer;
   const stimuli::RenderResult r = stimuli::render_clip(renderer, crowd, o, a.viewpoint, a.out);
   auto median = [](std::vector<double> v) {
@@ -133,6 +136,16 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--contact-sheet", a->contact_sheet, "Also write a 2x2 PNG of V1-V4 at the middle frame");
   cmd->add_option("--background", a->background, "Background colour #rrggbb")->capture_default_str();
   cmd->add_option("--fog", a->fog, "Exponential-squared fog density (1/m), 0 = off")->capture_default_str();
+  cmd->add_option(
+         "--character", a->characters,
+         "Skinned glTF character (.glb/.gltf, e.g. Mixamo) drawn instead of the mannequin; repeatable, "
+         "character i uses file i mod N")
+      ->check(CLI::ExistingFile);
+  cmd->add_option(
+         "--lod-pixels", a->lod_pixels,
+         "Level of detail: a character uses the coarsest mesh whose grid spans at most this many pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0));
   cmd->add_option("--viewpoint-override", a->overrides, "NAME=px,py,pz,tx,ty,tz,fov_deg (repeatable)");
   cmd->callback([a] { run(*a); });
 });

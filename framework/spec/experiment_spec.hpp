@@ -81,6 +81,7 @@ struct RenderSpec {
   std::string background = "#d8dde3";
   bool fog = false;
   std::map<std::string, std::vector<double>> viewpoint_overrides;  ///< name -> [px,py,pz, tx,ty,tz, fov_deg]
+  std::vector<std::string> characters;  ///< skinned glTF character files (resolved); character i uses i mod N
 };
 
 struct QuestionSpec {

@@ -170,11 +170,24 @@ void parse_correction(YamlSection s, ExperimentSpec& spec) {
 void parse_render(YamlSection s, ExperimentSpec& spec) {
   RenderSpec& r = spec.render;
   SpecDiagnostics& diag = s.diagnostics();
-  s.allow_keys({"crf", "overlap", "frames_png", "background", "fog", "viewpoints"});
+  s.allow_keys({"crf", "overlap", "frames_png", "background", "fog", "viewpoints", "characters"});
   s.integer("crf", r.crf, 0, 51);  // the H.264 constant-rate-factor range
   s.boolean("overlap", r.overlap);
   s.boolean("frames_png", r.frames_png);
   s.boolean("fog", r.fog);
+  if (s.has("characters")) {
+    const YAML::Node list = s.get("characters");
+    if (!list.IsSequence() || list.size() == 0) {
+      diag.error(list, s.child_path("characters"),
+                 "expected a list of glTF character files, got " + describe_node(list));
+    } else {
+      for (size_t i = 0; i < list.size(); ++i) {
+        const std::string path = s.child_path("characters") + "[" + std::to_string(i) + "]";
+        if (auto f = parse_string(diag, list[i], path))
+          if (auto p = resolve_existing_path(diag, list[i], path, *f, false)) r.characters.push_back(*p);
+      }
+    }
+  }
   if (s.has("background")) {
     std::string bg;
     s.string("background", bg);

@@ -297,6 +297,7 @@ class Runner {
     r.scene.background = parse_hex_colour(spec_.render.background, "render.background");
     r.scene.fog_density = spec_.render.fog ? 0.02 : 0.0;
     r.viewpoint_overrides = spec_.render.viewpoint_overrides;
+    r.character_files = spec_.render.characters;
     return r;
   }
 
@@ -331,6 +332,7 @@ class Runner {
                                                           {"height", ro.height},
                                                           {"crf", ro.crf},
                                                           {"overlap", ro.scene.overlap},
+                                                          {"characters", ro.character_files},
                                                           {"spec", spec_.source_hash}},
                                                      {anim_hash});
     if (!up_to_date(clip, render_hash)) {
