@@ -1,6 +1,8 @@
 // `crowdlab experiment damping --out DIR`: seed 000 Fig. 4, the recovery of a shoved character for
 // several values of the Eq. 4 damping d. Writes DIR/damping.csv (columns damping,time_s,position_m,
-// target_m) and DIR/damping_summary.csv (damping,rms_deviation_m,max_deviation_m).
+// target_m), DIR/damping_summary.csv (damping,rms_deviation_m,max_deviation_m,overshoot_m,
+// final_deviation_m) and the figure
+// DIR/damping.png|svg (analysis/plot_lines: pelvis x versus time, one line per d, the target dashed).
 #include <spdlog/spdlog.h>
 
 #include <filesystem>
@@ -9,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/plot_lines.hpp"
 #include "experiments/cli/command_registry.hpp"
 #include "experiments/cli/experiment_group.hpp"
 #include "framework/core/error.hpp"
@@ -40,19 +43,41 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     const auto runs = run_damping_experiment(opt->dampings, CorrectorParams{}, opt->duration_s);
     std::filesystem::create_directories(opt->out_dir);
     std::string series = "damping,time_s,position_m,target_m\n",
-                summary = "damping,rms_deviation_m,max_deviation_m\n";
+                summary = "damping,rms_deviation_m,max_deviation_m,overshoot_m,final_deviation_m\n";
     for (const DampingRun& r : runs) {
       for (size_t i = 0; i < r.time_s.size(); ++i)
         series +=
             fmt::format("{},{:.6f},{:.6f},{:.6f}\n", r.damping, r.time_s[i], r.position_m[i], r.target_m[i]);
-      summary += fmt::format("{},{:.6f},{:.6f}\n", r.damping, r.rms_deviation_m, r.max_deviation_m);
-      spdlog::info("d = {}: RMS deviation after t = 3.5 s {:.2f} mm, max {:.2f} mm", r.damping,
-                   1000 * r.rms_deviation_m, 1000 * r.max_deviation_m);
+      summary += fmt::format("{},{:.6f},{:.6f},{:.6f},{:.6f}\n", r.damping, r.rms_deviation_m,
+                             r.max_deviation_m, r.overshoot_m, r.final_deviation_m);
+      spdlog::info(
+          "d = {}: RMS deviation after t = 3.5 s {:.2f} mm, max {:.2f} mm, overshoot {:.2f} mm, last second "
+          "{:.2f} mm",
+          r.damping, 1000 * r.rms_deviation_m, 1000 * r.max_deviation_m, 1000 * r.overshoot_m,
+          1000 * r.final_deviation_m);
     }
     const std::filesystem::path dir(opt->out_dir);
     write_or_throw(dir / "damping.csv", series);
     write_or_throw(dir / "damping_summary.csv", summary);
-    spdlog::info("wrote {} and {}", (dir / "damping.csv").string(), (dir / "damping_summary.csv").string());
+    analysis::LinePlot plot;
+    plot.title = "Recovery after a collision at t = 3.5 s";
+    plot.x_label = "Time (s)";
+    plot.y_label = "Pelvis x (mm)";
+    plot.note = "seed 000 Figure 4";
+    plot.x_markers = {3.5};
+    for (const DampingRun& r : runs) {
+      analysis::LineSeries s{fmt::format("d = {}", r.damping), r.time_s, {}, false};
+      for (double x : r.position_m) s.y.push_back(1000.0 * x);
+      plot.series.push_back(std::move(s));
+    }
+    if (!runs.empty()) {
+      analysis::LineSeries target{"target", runs.front().time_s, {}, true};
+      for (double x : runs.front().target_m) target.y.push_back(1000.0 * x);
+      plot.series.push_back(std::move(target));
+    }
+    analysis::plot_lines(plot, (dir / "damping").string());
+    spdlog::info("wrote {}, {} and {}.png|svg", (dir / "damping.csv").string(),
+                 (dir / "damping_summary.csv").string(), (dir / "damping").string());
   });
 });
 

@@ -78,8 +78,8 @@ TEST_CASE("correction: the first step returns its targets", "[correction]") {
   for (size_t c = 0; c < out.size(); ++c) {
     CHECK((out[c].root_position_m - targets[c].root_position_m).norm() < 1e-9);
     for (int j = 0; j < kJointCount; ++j)
-      CHECK(test::rotation_angle_deg(out[c].local_rotations[static_cast<size_t>(j)],
-                                     targets[c].local_rotations[static_cast<size_t>(j)]) < 1e-5);
+      CHECK(rotation_angle_deg(out[c].local_rotations[static_cast<size_t>(j)],
+                               targets[c].local_rotations[static_cast<size_t>(j)]) < 1e-5);
   }
 }
 
