@@ -185,6 +185,9 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->capture_default_str();
   cmd->add_flag("--inertial-prediction", o->inertial_prediction,
                 "Detect contacts at the inertial prediction instead of the exact contact-free step");
+  cmd->add_option("--foot-anchor-stiffness", o->params.foot_anchor_stiffness,
+                  "World-position spring on the ankles and feet (1/s^2 per kg, x stiff_joint_gain)")
+      ->capture_default_str();
   cmd->add_option("--settle-steps", o->params.settle_steps, "Steps run on frame 0 before the output starts")
       ->capture_default_str();
   cmd->callback([o] { run(*o); });

@@ -141,7 +141,10 @@ CorrectorBody make_body(BodyShape shape, const CorrectorParams& p) {
   body.root_translation_stiffness = root_gain * p.root_translation_stiffness * body.total_mass_kg;
   body.root_translation_damping = p.damping * body.root_translation_stiffness;
   body.foot_anchor_stiffness = root_gain * p.foot_anchor_stiffness * body.total_mass_kg;
-  body.foot_anchor_damping = p.damping * body.foot_anchor_stiffness;
+  // The feet anchors get the root's damper, not d x their own (10x stiffer) spring: Rayleigh damping
+  // makes every deviation decay with time constant >= d/h (0.18 s at 30 fps), too slow for a walking
+  // foot that plants ~0.1 s after its swing (the corrected foot then slid into place, measured as skate).
+  body.foot_anchor_damping = body.root_translation_damping;
   for (int i = 0; i < kJointCount; ++i)
     for (int j = i + 1; j < kJointCount; ++j) {
       const bool excluded = std::find(shape.rest_contact_pairs.begin(), shape.rest_contact_pairs.end(),
