@@ -11,6 +11,7 @@
 #include "framework/core/error.hpp"
 #include "framework/correction/corrector.hpp"
 #include "framework/correction/swaying_crowd_fixture.hpp"
+#include "framework/metrics/measure_crowd.hpp"
 
 namespace crowdlab::cli {
 namespace {
@@ -46,29 +47,52 @@ CorrectBenchResult run_correct_bench(const CorrectBenchOptions& o) {
   Corrector corrector(std::move(shapes), o.params, crowd.environment, crowd.meta.fps);
 
   std::vector<Pose> targets(crowd.characters.size());
-  std::vector<double> ms;
+  std::vector<double> ms, cpu_ms;
+  CrowdAnimation corrected = o.quality ? crowd : CrowdAnimation{};  // filled outside the timed region
   for (int f = 0; f < fixture.frames; ++f) {
     for (size_t c = 0; c < targets.size(); ++c)
       targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
-    const double step_ms = time_ms([&] { corrector.step(targets); });
+    const double cpu0 = process_cpu_ms();
+    std::vector<Pose> out;
+    const double step_ms = time_ms([&] { out = corrector.step(targets); });
+    const double cpu1 = process_cpu_ms();
+    if (o.quality)
+      for (size_t c = 0; c < targets.size(); ++c)
+        corrected.characters[c].frames[static_cast<size_t>(f)] = out[c];
     if (f < o.warmup) continue;
     ms.push_back(step_ms);
+    cpu_ms.push_back(cpu1 - cpu0);
     const StepStats& st = corrector.last_stats();
     r.contacts_mean += st.contacts();
     r.inter_body_contacts_mean += st.inter_body_contacts;
     r.cg_iterations_mean += st.cg_iterations;
     r.body_pairs_mean += st.body_pairs;
+    r.pulling_contacts_mean += st.pulling_contacts;
+    r.active_set_passes_mean += st.active_set_passes;
     r.rejected_steps += st.rejected ? 1 : 0;
     r.unconverged_steps += st.converged ? 0 : 1;
   }
   const double n = static_cast<double>(ms.size());
   r.ms_median = median_of(ms);
   r.ms_mean = mean_of(ms);
+  r.cpu_ms_median = median_of(cpu_ms);
+  r.pulling_contacts_mean /= n;
+  r.active_set_passes_mean /= n;
   r.contacts_mean /= n;
   r.inter_body_contacts_mean /= n;
   r.cg_iterations_mean /= n;
   r.body_pairs_mean /= n;
   r.peak_rss_mb = peak_rss_mb();
+  if (o.quality) {
+    r.quality = measure_correction_quality(crowd, corrected, o.warmup);
+    MetricsOptions mo;
+    mo.pair_volumes = false;
+    CrowdAnimation in_part = crowd, out_part = corrected;
+    for (CrowdAnimation* a : {&in_part, &out_part})
+      for (auto& ch : a->characters) ch.frames.erase(ch.frames.begin(), ch.frames.begin() + o.warmup);
+    r.overlap_baseline_l = measure_crowd(in_part, mo).mean_character_overlap_l;
+    r.overlap_corrected_l = measure_crowd(out_part, mo).mean_character_overlap_l;
+  }
   return r;
 }
 
@@ -88,6 +112,22 @@ nlohmann::json correct_bench_json(const CorrectBenchResult& r) {
   j["peak_rss_mb"] = r.peak_rss_mb;
   j["peak_rss_mb_per_character"] = r.peak_rss_mb / r.options.characters;
   j["threads"] = r.threads;
+  j["cpu_ms_per_step_median"] = r.cpu_ms_median;
+  j["pulling_contacts_mean"] = r.pulling_contacts_mean;
+  j["active_set_passes_mean"] = r.active_set_passes_mean;
+  if (r.options.quality) {
+    const CorrectionQuality& q = r.quality;
+    j["overlap_baseline_l"] = r.overlap_baseline_l;
+    j["overlap_corrected_l"] = r.overlap_corrected_l;
+    j["overlap_reduction"] =
+        r.overlap_baseline_l > 0 ? 1.0 - r.overlap_corrected_l / r.overlap_baseline_l : 0.0;
+    j["depth_p99_m"] = q.depth_p99_m;
+    j["depth_max_m"] = q.depth_max_m;
+    j["rotation_dev_mean_deg"] = q.rotation_dev_mean_deg;
+    j["rotation_dev_p99_deg"] = q.rotation_dev_p99_deg;
+    j["foot_skate_max_m"] = q.foot_skate_max_m;
+    j["joint_speed_max_mps"] = q.joint_speed_max_mps;
+  }
   return j;
 }
 

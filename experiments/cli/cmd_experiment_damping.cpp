@@ -1,6 +1,8 @@
 // `crowdlab experiment damping --out DIR`: seed 000 Fig. 4, the recovery of a shoved character for
 // several values of the Eq. 4 damping d. Writes DIR/damping.csv (columns damping,time_s,position_m,
-// target_m), DIR/damping_summary.csv (damping,rms_deviation_m,max_deviation_m) and DIR/damping.png|svg.
+// target_m), DIR/damping_summary.csv (damping,rms_deviation_m,max_deviation_m,overshoot_m,
+// final_deviation_m) and the figure DIR/damping.png|svg (pelvis x versus time, one line per d, the
+// target dashed; written by figures/damping_figure, shared with `crowdlab reproduce gomez2024`).
 #include <spdlog/spdlog.h>
 
 #include <memory>
@@ -30,8 +32,11 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->callback([opt] {
     const auto runs = run_damping_experiment(opt->dampings, CorrectorParams{}, opt->duration_s);
     for (const DampingRun& r : runs)
-      spdlog::info("d = {}: RMS deviation after t = 3.5 s {:.2f} mm, max {:.2f} mm", r.damping,
-                   1000 * r.rms_deviation_m, 1000 * r.max_deviation_m);
+      spdlog::info(
+          "d = {}: RMS deviation after t = 3.5 s {:.2f} mm, max {:.2f} mm, overshoot {:.2f} mm, last second "
+          "{:.2f} mm",
+          r.damping, 1000 * r.rms_deviation_m, 1000 * r.max_deviation_m, 1000 * r.overshoot_m,
+          1000 * r.final_deviation_m);
     write_damping_figure(runs, opt->out_dir);
     spdlog::info("wrote {}/damping.csv, damping_summary.csv and damping.png|svg", opt->out_dir);
   });

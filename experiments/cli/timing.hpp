@@ -41,4 +41,12 @@ double thread_cpu_ms(F&& f) {
          1e-6 * static_cast<double>(t1.tv_nsec - t0.tv_nsec);
 }
 
+/// CPU time of the whole process, all threads (ms). For multi-threaded benchmarks on a shared machine:
+/// differences of this around a step count the work done, not the time spent waiting for a core.
+inline double process_cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
+
 }  // namespace crowdlab::cli

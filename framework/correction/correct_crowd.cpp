@@ -21,6 +21,14 @@ CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams&
   CorrectionReport r;
   r.frames = frames;
   double contacts = 0.0, iterations = 0.0;
+  if (frames > 0) {
+    for (size_t c = 0; c < n; ++c) targets[c] = crowd.characters[c].frames[0];
+    for (int k = 0; k < params.settle_steps; ++k) {
+      corrector.step(targets);
+      if (corrector.last_stats().rejected) ++r.rejected_steps;
+    }
+    r.settle_steps = params.settle_steps;
+  }
   for (int f = 0; f < frames; ++f) {
     for (size_t c = 0; c < n; ++c) targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
     const std::vector<Pose> corrected = corrector.step(targets);

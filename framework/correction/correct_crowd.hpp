@@ -2,7 +2,16 @@
 // Offline interface: correct a whole CrowdAnimation (seed 000's "Ours" condition). Runs the online
 // Corrector over every frame in order at the crowd's fps, with its environment, and returns a copy of
 // the crowd whose poses are the corrected ones (shapes, names, palettes, environment and metadata
-// unchanged). Throws InputError for an invalid crowd (validate_crowd: empty crowd, NaN/Inf poses,
+// unchanged).
+//
+// Settling (offline only; params.settle_steps): the online corrector starts at rest ON its first
+// targets, so its first output frame is the input's, interpenetrations included, and the next frames
+// push the bodies apart with a visible jump. Offline, the whole first frame is known in advance, so
+// the corrector is first run settle_steps times on frame 0's targets (time frozen), as a simulation is
+// settled before recording; frame 0 of the output is the settled state and the animation then
+// proceeds normally. The settling steps are not part of the output.
+//
+// Throws InputError for an invalid crowd (validate_crowd: empty crowd, NaN/Inf poses,
 // missing/zero-length bones, unequal frame counts) or invalid params.
 #include "framework/core/crowd_animation.hpp"
 #include "framework/core/progress.hpp"
@@ -14,6 +23,7 @@ namespace crowdlab {
 /// Summary of an offline correction.
 struct CorrectionReport {
   int frames = 0;
+  int settle_steps = 0;        ///< steps run on frame 0 before the output starts
   int rejected_steps = 0;      ///< steps whose solve failed (state kept)
   int unconverged_steps = 0;   ///< steps where CG stopped above its tolerance (result still used)
   double contacts_mean = 0.0;  ///< mean contacts per step

@@ -17,6 +17,7 @@
 
 namespace crowdlab {
 
+using Vec4 = Eigen::Vector4d;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
@@ -27,12 +28,12 @@ struct CorrectorBody {
   std::array<Mat3, kJointCount> inertia_local{};      ///< inertia about the COM, bone frame (kg m^2)
   std::array<Vec3, kJointCount> com_local_m{};        ///< COM in bone frame (m) = capsule midpoint
   std::array<double, kJointCount> rot_stiffness{};    ///< k of Eq. 4 for joint j (J), scaled per header
-  std::array<double, kJointCount> rot_damping{};      ///< d of Eq. 4 for joint j (J s^2)
+  std::array<double, kJointCount> rot_damping{};      ///< d of Eq. 4 for joint j (J s^2) = d x rot_stiffness
   std::array<double, kJointCount> joint_stiffness{};  ///< soft joint spring child j <-> parent (N/m)
   double root_translation_stiffness = 0.0;            ///< N/m
-  double root_translation_damping = 0.0;              ///< kg (d of Eq. 4 applied to the root position)
+  double root_translation_damping = 0.0;              ///< N s^2/m (d of Eq. 4 on the root position)
   double foot_anchor_stiffness = 0.0;                 ///< N/m, ankle and foot joints to their targets
-  double foot_anchor_damping = 0.0;                   ///< kg
+  double foot_anchor_damping = 0.0;                   ///< N s^2/m
   double total_mass_kg = 0.0;
   /// Capsule pairs tested for self-collision: all i < j not in shape.rest_contact_pairs (seed 000
   /// §3.4) and more than two joints apart along the tree. The second rule is ours: around the shoulder

@@ -10,7 +10,18 @@
 // natural frequency sqrt(2 k) rad/s and the same damping behaviour, from the hand to the trunk, the
 // usual "inertia-scaled PD gains" choice (e.g. Tan, Liu & Turk 2011, "Stable proportional-derivative
 // controllers", §4). With this normalisation d is dimensionless in the sense of Eq. 4 (its Frobenius
-// norm of a rotation difference is ~ sqrt(2) x the angle), and the paper's d = 0.006 works unchanged.
+// norm of a rotation difference is ~ sqrt(2) x the angle).
+//
+// Damping normalisation (our choice, the paper is silent): the damper of every term is d times that
+// term's spring, i.e. stiffness-proportional (Rayleigh) damping (the standard choice in structural
+// dynamics and simulation, e.g. Bathe 1996, "Finite Element Procedures", ch. 9). With Eq. 4's d/h^2 the
+// damping force is (d/h) k v_dev, so beta = d/h (s) and the damping ratio of a term with natural
+// frequency w_n is zeta = (d/h) w_n / 2. At 30 fps and d = 0.006: zeta ~ 0.6 for the root translation
+// (w_n ~ 6.3 rad/s) and ~ 1.4 for the joints (w_n ~ 15.5 rad/s), i.e. close to critical: the paper's
+// "closely matches the target" (Fig. 4). d = 0 leaves only backward Euler's numerical damping (the
+// body rings for seconds), d = 0.06 and 0.6 give zeta ~ 6-140 (the recovery drifts), as in Fig. 4.
+// (Session 1 scaled d by the effective inertia instead, which left d = 0.006 at zeta ~ 0.14, visibly
+// oscillating, and made d = 0.06 the best value, contradicting Fig. 4.)
 #include <cstdint>
 
 namespace crowdlab {
@@ -20,10 +31,11 @@ struct CorrectorParams {
   // R_hat_old||_F^2)
   /// Spring k for relative joint rotations (1/s^2, per unit effective inertia). 120 gives a natural
   /// frequency of sqrt(240) ~ 15 rad/s (2.5 Hz): soft enough that neighbours push limbs aside, stiff
-  /// enough to recover within ~0.5 s (seed 000 Fig. 4 shows recovery within about a second). Tuned on
-  /// the dense swaying fixture: mean joint deviation ~8 deg at 6.66 /m^2 (target <= 10 deg).
+  /// enough to recover within ~0.5 s (seed 000 Fig. 4 shows recovery within about a second). Measured
+  /// at 6.66 /m^2 (docs/correction.md): mean joint deviation 6.3 deg stationary, 10.1 deg corridor
+  /// (target <= 10 deg).
   double stiffness = 120.0;
-  /// Damping d of Eq. 4 on the deviation velocity (dimensionless, see the header note).
+  /// Damping d of Eq. 4 on the deviation velocity (s^2: the damper is d x the spring, see the header).
   /// Default 0.006: seed 000 §4.2 and Fig. 4.
   double damping = 0.006;
   /// Gain multiplier for the pelvis (root) and the feet (ankle and foot bones): seed 000 §3.3 "for the
@@ -47,11 +59,14 @@ struct CorrectorParams {
   double joint_stiffness = 1.0e5;
 
   // ---- Collisions, E = 1/2 k_delta delta^2 (seed 000 §3.4)
-  /// Penalty stiffness k_delta (N/m). 1e4 N/m: with one linearised step per frame a stiffer penalty
-  /// chatters on light bones (hands, wrists) and ends up with DEEPER residual penetrations (measured on
-  /// the dense fixture: p99 depth 1.5 cm at 1e4, 2.1 cm at 2e4, 3.5 cm at 1e5), so the softest value
-  /// that still removes > 99 % of the overlap volume was chosen.
-  double contact_stiffness = 1.0e4;
+  /// Penalty stiffness k_delta (N/m). 3e4 N/m, measured on the real scenarios (`crowdlab experiment
+  /// overlap-vs-density --duration 2`, contacts detected at the predicted state, Rayleigh damping):
+  /// 1e4 removes 99.2-99.4 % of the stationary overlap but only 77-94 % in the corridor; 3e4 removes
+  /// 99.0-99.7 % and 93-98.5 %, with the mean joint deviation still <= 10 deg at 6.66 /m^2 (5.6 -> 6.3
+  /// deg stationary, 8.5 -> 9.9 deg corridor). Stiffer contacts cost CG iterations (~9 -> ~12). With
+  /// the session-1 start-of-step detection a stiffer penalty chattered on light bones and ended
+  /// deeper (p99 1.5 cm at 1e4, 3.5 cm at 1e5); detecting at the predicted state removed that limit.
+  double contact_stiffness = 3.0e4;
   /// Contact offset (m) for inter-body contacts: the penalty acts on depth + offset, as if every
   /// capsule were this much thicker (the "collision margin" of Bullet / PhysX contact offset). With
   /// one linearised step per frame a penalty contact chatters at the surface where it switches on;
@@ -79,6 +94,12 @@ struct CorrectorParams {
   /// balance, so without contact the body reproduces it exactly instead of sagging by W / (2 k).
   bool gravity_compensation = true;
 
+  // ---- Offline correction (correct_crowd only; the online Corrector ignores it)
+  /// Steps run on the first frame's targets before the output starts (see correct_crowd.hpp). 30 steps
+  /// = 1 s at 30 fps: about two periods of the root's translation spring (natural frequency ~1 Hz,
+  /// above), enough for the dense fixture's initial interpenetration to be pushed out.
+  int settle_steps = 30;
+
   // ---- Solver
   // One Newton iteration per step, always (seed 000 §3.2: "just one Newton iteration per time step
   // worked well"); the assemble stage linearises at the start-of-step state.
@@ -87,6 +108,15 @@ struct CorrectorParams {
   /// depth and deviation as 1e-4 with a quarter of the CG iterations.
   double cg_tolerance = 1e-2;
   int cg_max_iterations = 100;
+  /// Where contacts are detected (corrector_step.hpp): true = at the exact contact-free solution of the
+  /// step (one extra tree factorisation per character), false = at the inertial prediction
+  /// q_old + h v_old + h^2 a_target (no extra cost; the target's acceleration is the feed-forward).
+  bool exact_prediction = true;
+  /// Active set for the one-sided contact penalty (stage_solve.cpp): how many times per step the
+  /// system is re-solved after removing contacts whose linearised depth ends negative ("pulling").
+  /// Default 0 (off): on the dense fixture it doubles the CG iterations and changes the overlap left
+  /// by < 0.1 percentage points; a pulling contact pulls at most by its 1 cm contact offset.
+  int active_set_passes = 0;
   /// A step is rejected (the last stable state kept) if any bone would move faster than this (m/s).
   /// Human segment speeds stay below ~15 m/s even in throwing (Winter 2009); 50 leaves ample room.
   double max_bone_speed_mps = 50.0;

@@ -15,17 +15,30 @@
 namespace crowdlab {
 
 /// One penalty contact, linearised (seed 000 §3.4: E = 1/2 k delta^2 on the penetration depth).
-/// delta(dq) ~= depth + w_a . dq_a + w_b . dq_b, so the Gauss-Newton Hessian is k w w^T (PSD).
+/// It is found at the contact-free predicted state q_old + dq_free (stage_predict) and linearised
+/// there: delta(dq) ~= depth + w_a . (dq_a - dq_free_a) + w_b . (dq_b - dq_free_b)
+///                   = depth0 + w_a . dq_a + w_b . dq_b,
+/// so the Gauss-Newton Hessian is k w w^T (PSD).
 struct Contact {
   int bone_a = -1;              ///< global bone index
   int bone_b = -1;              ///< global bone index, or -1 for ground / environment (static side)
-  double depth_m = 0.0;         ///< penetration depth at the start of the step (> 0)
+  double depth_m = 0.0;         ///< penetration depth (+ offset) at the predicted state (> 0)
+  double depth0 = 0.0;          ///< linearised depth at dq = 0 (filled by the assemble stage)
   double stiffness = 0.0;       ///< k (N/m)
   Vec3 normal = Vec3::UnitY();  ///< unit, from b (or the static side) toward a
   Vec3 point_a = Vec3::Zero();  ///< contact point on a's capsule axis (world, m)
   Vec3 point_b = Vec3::Zero();  ///< contact point on b's capsule axis (world, m); unused if static
   Vec6 w_a = Vec6::Zero();      ///< d delta / d dq_a (filled by the assemble stage)
   Vec6 w_b = Vec6::Zero();      ///< d delta / d dq_b
+};
+
+/// The structured coupling block H[child, parent] of one soft joint plus its Eq. 4 control term
+/// (see tree_factor.hpp): H[c,p] = -joint_k a_c^T a_p - rot_k [0 0; 0 I3], a_x = [I3, -[arm_x]x].
+struct JointCoupling {
+  Vec3 arm_child = Vec3::Zero();   ///< joint point - child COM (world, m)
+  Vec3 arm_parent = Vec3::Zero();  ///< joint attachment point - parent COM (world, m)
+  double joint_k = 0.0;            ///< soft joint spring (N/m)
+  double rot_k = 0.0;              ///< 2 (k + d/h^2) of Eq. 4 (N m / rad)
 };
 
 enum class ContactKind : std::uint8_t { kInterBody, kIntraBody, kGround, kEnvironment };
@@ -41,7 +54,9 @@ struct StepStats {
   double cg_relative_residual = 0.0;
   bool converged = true;           ///< CG met its tolerance
   bool rejected = false;           ///< the step was discarded and the last stable state kept
-  double max_penetration_m = 0.0;  ///< deepest inter-body contact found at the start of the step
+  double max_penetration_m = 0.0;  ///< deepest inter-body contact (+ offset) at the predicted state
+  int pulling_contacts = 0;   ///< contacts whose linearised depth ends negative (then removed, re-solved)
+  int active_set_passes = 0;  ///< extra CG solves after removing pulling contacts
   int contacts() const {
     return inter_body_contacts + intra_body_contacts + ground_contacts + environment_contacts;
   }
@@ -67,11 +82,21 @@ struct CorrectorState {
   std::vector<Vec3> target_omega_radps;   ///< target angular velocity over the last step (rad/s)
   std::vector<Vec3> target_accel_mps2;    ///< target COM acceleration this step (m/s^2)
   std::vector<Vec3> target_alpha_radps2;  ///< target angular acceleration this step (rad/s^2)
+  /// World position of every target joint (bone origin) at this step and the previous one (m), for
+  /// the foot anchors.
+  std::vector<Vec3> target_origin_m, target_origin_old_m;
+
+  // ---- contact-free prediction (stage_predict): the step every body would take if nothing touched it
+  std::vector<Vec6> dq_free;        ///< per bone increment (dx m, dtheta rad), solution of T dq = b
+  std::vector<Vec3> pred_com_m;     ///< COM after dq_free (m)
+  std::vector<Quat> pred_rotation;  ///< rotation after dq_free
 
   // ---- broad/narrow phase scratch
-  std::vector<Capsule> world_capsule;                   ///< per bone, world frame
-  std::vector<Aabb> body_box;                           ///< per character, capsule AABB
-  std::vector<int> sweep_order;                         ///< characters sorted by body_box.lo.x
+  std::vector<Capsule> world_capsule;  ///< per bone, world frame, predicted state
+  std::vector<Aabb> capsule_box;       ///< per bone: AABB of the world capsule grown by the contact offset
+  std::vector<Vec4> capsule_sphere;    ///< per bone: bounding sphere (centre xyz, radius) of the capsule
+  std::vector<Aabb> body_box;          ///< per character, capsule AABB
+  std::vector<int> sweep_order;        ///< characters sorted by body_box.lo.x
   std::vector<std::pair<int, int>> body_pairs;          ///< (i < j) candidate character pairs
   std::vector<std::vector<Contact>> per_pair_contacts;  ///< narrow-phase output per body pair
   std::vector<std::vector<Contact>> per_body_contacts;  ///< intra/ground/env output per character
@@ -82,16 +107,18 @@ struct CorrectorState {
   std::vector<int> incidence_offset, incidence, incidence_cursor;
 
   // ---- linear system H dq = b (per bone blocks); tree part + contact rank-1 terms
-  std::vector<Mat6> diag;      ///< H[b,b] without contact terms
-  std::vector<Mat6> coupling;  ///< H[b, parent(b)] (child rows, parent columns); unused for roots
-  std::vector<Mat6> precond;   ///< per bone: inverse of the tree-eliminated block S after factorising
-  std::vector<Mat6> elim;      ///< per bone: S^-1 coupling (back-substitution operator) after factorising
-  std::vector<Vec6> rhs;       ///< b = -gradient
-  std::vector<Vec6> cg_x, cg_r, cg_z, cg_p, cg_q, cg_y;  ///< CG vectors
-  std::vector<double> contact_scalar;                    ///< per contact: k w . x during a matvec
-  std::vector<double> partial, partial2;  ///< per character: partial dot products (fixed-order reduce)
-  std::vector<char> factor_ok;            ///< per character: preconditioner blocks were SPD
-  std::vector<char> bad_character;        ///< per character: the integrated step is non-finite/too fast
+  std::vector<Mat6> diag;               ///< H[b,b] without contact terms
+  std::vector<JointCoupling> coupling;  ///< H[b, parent(b)] (child rows, parent columns); unused for roots
+  std::vector<Mat6> precond;   ///< per bone: diagonal block to factorise, then S^-1 after factorising
+  std::vector<Vec6> rhs;       ///< b = -gradient (tree part + contacts)
+  std::vector<Vec6> rhs_tree;  ///< the tree part of b alone (every term but E_collisions)
+  std::vector<Vec6> cg_x, cg_r, cg_z, cg_p, cg_q;  ///< CG vectors
+  std::vector<double> contact_scalar;              ///< per contact: k w . x during a matvec
+  std::vector<double> partial, partial2,
+      partial3;                     ///< per character: partial dot products (fixed-order reduce)
+  std::vector<char> factor_ok;      ///< per character: preconditioner blocks were SPD
+  std::vector<char> has_contacts;   ///< per character: some contact touches it this step
+  std::vector<char> bad_character;  ///< per character: the integrated step is non-finite/too fast
 
   // ---- two-phase commit
   std::vector<Vec3> new_com_m;

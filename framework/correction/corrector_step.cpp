@@ -36,6 +36,8 @@ CorrectorState make_corrector_state(const CorrectorModel& model) {
     v->assign(bones, Vec3::Zero());
   s.world_capsule.assign(bones, Capsule{});
   s.body_box.assign(n, Aabb{});
+  s.capsule_box.assign(bones, Aabb{});
+  s.capsule_sphere.assign(bones, Vec4::Zero());
   s.sweep_order.assign(n, 0);
   s.body_pairs.reserve(8 * n);
   s.per_body_contacts.assign(n, {});
@@ -44,14 +46,20 @@ CorrectorState make_corrector_state(const CorrectorModel& model) {
   s.incidence_offset.assign(n + 1, 0);
   s.incidence_cursor.assign(n, 0);
   s.diag.assign(bones, Mat6::Zero());
-  s.coupling.assign(bones, Mat6::Zero());
+  s.target_origin_m.assign(bones, Vec3::Zero());
+  s.target_origin_old_m.assign(bones, Vec3::Zero());
+  s.dq_free.assign(bones, Vec6::Zero());
+  s.pred_com_m.assign(bones, Vec3::Zero());
+  s.pred_rotation.assign(bones, Quat::Identity());
+  s.coupling.assign(bones, JointCoupling{});
   s.precond.assign(bones, Mat6::Zero());
-  s.elim.assign(bones, Mat6::Zero());
-  for (auto* v : {&s.rhs, &s.cg_x, &s.cg_r, &s.cg_z, &s.cg_p, &s.cg_q, &s.cg_y})
+  for (auto* v : {&s.rhs, &s.rhs_tree, &s.cg_x, &s.cg_r, &s.cg_z, &s.cg_p, &s.cg_q})
     v->assign(bones, Vec6::Zero());
   s.partial.assign(n, 0.0);
   s.partial2.assign(n, 0.0);
+  s.partial3.assign(n, 0.0);
   s.factor_ok.assign(n, 1);
+  s.has_contacts.assign(n, 0);
   s.bad_character.assign(n, 0);
   s.new_com_m.assign(bones, Vec3::Zero());
   s.new_rotation.assign(bones, Quat::Identity());
@@ -99,6 +107,9 @@ void stage_targets(const CorrectorModel& model, CorrectorState& state, const std
     }
     state.target_com_m = state.com_m;
     state.target_rotation = state.rotation;
+    for (size_t g = 0; g < state.com_m.size(); ++g)
+      state.target_origin_m[g] = bone_origin(model, state, static_cast<int>(g));
+    state.target_origin_old_m = state.target_origin_m;
     for (auto* v : {&state.velocity_mps, &state.omega_radps, &state.target_velocity_mps,
                     &state.target_omega_radps, &state.target_accel_mps2, &state.target_alpha_radps2})
       std::fill(v->begin(), v->end(), Vec3::Zero());
@@ -125,6 +136,8 @@ void stage_targets(const CorrectorModel& model, CorrectorState& state, const std
       state.target_omega_radps[g] = dtheta / h;
       state.target_com_m[g] = com;
       state.target_rotation[g] = bones[j].rotation;
+      state.target_origin_old_m[g] = state.target_origin_m[g];
+      state.target_origin_m[g] = bones[j].translation;
     }
   });
 }
@@ -139,9 +152,11 @@ const std::vector<Pose>& corrector_step(const CorrectorModel& model, CorrectorSt
     ++state.step_index;
     return state.output;
   }
+  stage_assemble(model, state);
+  stage_predict(model, state);
   stage_broad_phase(model, state);
   stage_narrow_phase(model, state);
-  stage_assemble(model, state);
+  stage_assemble_contacts(model, state);
   stage_solve(model, state);
   stage_integrate(model, state);
   ++state.step_index;

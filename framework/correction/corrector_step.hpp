@@ -2,13 +2,25 @@
 // One time step of the collision-correction solver (seed 000 Eq. 3, backward Euler as an
 // optimisation, one Newton iteration), as named stages run in this order:
 //
-//   stage_targets         validate the input poses, initialise the state on the first step
-//   stage_broad_phase     world capsules, body AABBs, sweep-and-prune -> candidate body pairs
-//   stage_narrow_phase    bounding spheres -> exact capsule-capsule / ground / environment contacts
-//   stage_assemble        gradient and PSD (Gauss-Newton) Hessian of E_inertia + E_gravity +
-//                         E_joints + E_control + E_collisions at the start-of-step state
-//   stage_solve           per-character tree-structured exact factorisation (preconditioner) + PCG
-//   stage_integrate       apply the increment, project to joint rotations + root position, commit
+//   stage_targets           validate the input poses, initialise the state on the first step
+//   stage_assemble          gradient and PSD (Gauss-Newton) Hessian of E_inertia + E_gravity +
+//                           E_joints + E_control at the start-of-step state (the tree part T, b)
+//   stage_predict           exact per-character tree solve T dq_free = b: where every body would be
+//                           at the end of the step if nothing touched it
+//   stage_broad_phase       world capsules at that predicted state, body AABBs, sweep -> body pairs
+//   stage_narrow_phase      bounding spheres -> exact capsule-capsule / ground / environment contacts
+//   stage_assemble_contacts E_collisions linearised at the predicted state (rows w, depth0)
+//   stage_solve             per-character tree factorisation with contact blocks (preconditioner) +
+//                           PCG warm-started at dq_free; pulling contacts removed (active set)
+//   stage_integrate         apply the increment, project to joint rotations + root position, commit
+//
+// Why contacts are found at the predicted state (ours; the paper does not say where its one Newton
+// iteration finds its contacts): contacts found at the start-of-step state miss every contact that a
+// limb runs into during the step. A dancer's hand moves 5-10 cm per frame at 30 fps, so those
+// contacts start deep and are pushed out one frame late. Detecting at the contact-free end-of-step
+// state is the "speculative contact" idea of game physics (Catto, GDC 2013 "Continuous collision")
+// applied to the penalty formulation: a Newton step whose linearisation point for E_collisions is the
+// contact-free prediction, which for the untouched parts of every body is the exact solution.
 //
 // Every stage computes from the state left by the previous one and writes only its own arrays; work
 // is split across characters (TBB) with per-index output slots and fixed-order reductions, so the
@@ -28,11 +40,21 @@ const std::vector<Pose>& corrector_step(const CorrectorModel& model, CorrectorSt
                                         const std::vector<Pose>& targets);
 
 void stage_targets(const CorrectorModel& model, CorrectorState& state, const std::vector<Pose>& targets);
+void stage_assemble(const CorrectorModel& model, CorrectorState& state);
+void stage_predict(const CorrectorModel& model, CorrectorState& state);
 void stage_broad_phase(const CorrectorModel& model, CorrectorState& state);
 void stage_narrow_phase(const CorrectorModel& model, CorrectorState& state);
-void stage_assemble(const CorrectorModel& model, CorrectorState& state);
+void stage_assemble_contacts(const CorrectorModel& model, CorrectorState& state);
 void stage_solve(const CorrectorModel& model, CorrectorState& state);
 void stage_integrate(const CorrectorModel& model, CorrectorState& state);
+
+/// Character c's contact terms: precond = tree diagonal + sum of k w w^T over its contacts, rhs =
+/// rhs_tree - sum of k depth0 w (contacts with stiffness 0 skipped). Used by stage_assemble_contacts
+/// and by the active set of stage_solve.
+void assemble_character_contacts(CorrectorState& state, int c);
+
+/// The unit quaternion of a rotation vector (axis * angle).
+Quat rotation_from_vector(const Vec3& v);
 
 /// The rotation vector (axis * angle, angle in [-pi, pi]) of a unit quaternion.
 Vec3 rotation_vector(const Quat& q);

@@ -13,7 +13,7 @@ namespace {
 
 /// Target root x of the pusher at time t (see header).
 double pusher_x(double t) {
-  constexpr double kRest = 0.60, kDeepest = 0.30;
+  constexpr double kRest = 1.00, kDeepest = 0.30;
   if (t <= 3.0 || t >= 3.8) return kRest;
   if (t <= 3.5) return kRest + (kDeepest - kRest) * (t - 3.0) / 0.5;
   return kDeepest + (kRest - kDeepest) * (t - 3.5) / 0.3;
@@ -49,8 +49,8 @@ std::vector<DampingRun> run_damping_experiment(const std::vector<double>& dampin
     DampingRun run;
     run.damping = d;
     std::vector<Pose> targets(2);
-    double sum2 = 0.0;
-    int count = 0;
+    double sum2 = 0.0, tail = 0.0;
+    int count = 0, tail_count = 0;
     for (int f = 0; f < frames; ++f) {
       const double t = f / fps;
       targets[0] = standing_pose(shape, Vec3(0, 0, 0), t);
@@ -64,9 +64,15 @@ std::vector<DampingRun> run_damping_experiment(const std::vector<double>& dampin
       if (t >= 3.5) {
         sum2 += (x - target) * (x - target);
         ++count;
+        run.overshoot_m = std::max(run.overshoot_m, x - target);
+      }
+      if (t >= duration_s - 1.0) {
+        tail += std::abs(x - target);
+        ++tail_count;
       }
     }
     run.rms_deviation_m = count > 0 ? std::sqrt(sum2 / count) : 0.0;
+    run.final_deviation_m = tail_count > 0 ? tail / tail_count : 0.0;
     runs.push_back(std::move(run));
   }
   return runs;

@@ -6,8 +6,10 @@
 // and with large d it drifts.
 //
 // Set-up (fixture, seconds and metres): two 1.75 m male procedural bodies facing +Z, the observed one
-// at x = 0 with a motionless target pose (arms hanging 55 deg below horizontal); the pusher at x = 0.60 m
-// moves its target root linearly to x = 0.30 m between t = 3.0 s and 3.5 s, then back to 0.60 m by t = 3.8 s.
+// at x = 0 with a motionless target pose (arms hanging 55 deg below horizontal); the pusher at x = 1.00 m
+// (out of reach: hanging arms reach ~0.5 m from the body axis, so the observed character starts exactly
+// on its target, as in Fig. 4) moves its target root linearly to x = 0.30 m between t = 3.0 s and
+// 3.5 s, then back to 1.00 m by t = 3.8 s.
 // Duration 8 s at 30 fps.
 #include <vector>
 
@@ -22,6 +24,11 @@ struct DampingRun {
   std::vector<double> target_m;    ///< its target root x (m)
   double rms_deviation_m = 0.0;    ///< RMS of position - target over t >= 3.5 s (the recovery)
   double max_deviation_m = 0.0;    ///< largest |position - target| over the whole run
+  /// Largest swing past the target to the side opposite the push (+x), after t = 3.5 s: the ringing of
+  /// an underdamped recovery (Fig. 4's "unstable" d = 0).
+  double overshoot_m = 0.0;
+  /// Mean |position - target| over the last second: what is left of the push (Fig. 4's "drift").
+  double final_deviation_m = 0.0;
 };
 
 /// Runs the experiment once per damping value (all other parameters from `base`).

@@ -1,5 +1,7 @@
 // Assemble the Newton system of seed 000 Eq. 3 at the start-of-step state q_old (one Newton
-// iteration; increments dq = (dx, dtheta) per bone, world frame):
+// iteration; increments dq = (dx, dtheta) per bone, world frame). stage_assemble builds the tree part
+// (every term but the collisions); stage_assemble_contacts adds E_collisions, linearised at the
+// contact-free predicted state where the contacts were found (see corrector_step.hpp):
 //
 //   E_inertia   = 1/(2h^2) (dq - h v_old - h^2 a_hat)^T M (dq - h v_old - h^2 a_hat),
 //                 M = diag(m I3, I_world) (Gast et al. 2015). a_hat is the acceleration of the target
@@ -77,7 +79,7 @@ void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
     b.head<3>() = m * (s.velocity_mps[g] / h + s.target_accel_mps2[g]);
     b.tail<3>() = inertia * (s.omega_radps[g] / h + s.target_alpha_radps2[g]);
     if (!p.gravity_compensation) b[1] -= m * p.gravity_mps2;  // -dE_gravity/dy
-    s.coupling[g].setZero();
+    s.coupling[g] = JointCoupling{};
   }
 
   // E_joints and E_control for every non-root joint (child j, parent pj).
@@ -91,7 +93,10 @@ void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
     const double kj = body.joint_stiffness[j];
     s.diag[gc] += kj * a_c.transpose() * a_c;
     s.diag[gp] += kj * a_p.transpose() * a_p;
-    s.coupling[gc] -= kj * a_c.transpose() * a_p;
+    JointCoupling& coupling = s.coupling[gc];
+    coupling.arm_child = origin[j] - s.com_m[gc];
+    coupling.arm_parent = attach - s.com_m[gp];
+    coupling.joint_k = kj;
     s.rhs[gc] -= kj * a_c.transpose() * r0;
     s.rhs[gp] += kj * a_p.transpose() * r0;
 
@@ -104,7 +109,7 @@ void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
     const double c2 = 2.0 * (ks + kd);
     s.diag[gc].bottomRightCorner<3, 3>() += c2 * Mat3::Identity();
     s.diag[gp].bottomRightCorner<3, 3>() += c2 * Mat3::Identity();
-    s.coupling[gc].bottomRightCorner<3, 3>() -= c2 * Mat3::Identity();
+    coupling.rot_k = c2;
     s.rhs[gc].tail<3>() -= grad_w;
     s.rhs[gp].tail<3>() += grad_w;
   }
@@ -130,32 +135,44 @@ void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
 
   // Feet: world position of the ankle and foot joints held on the target's (seed 000 §3.3, see params).
   if (body.foot_anchor_stiffness > 0.0 || body.foot_anchor_damping > 0.0) {
-    const BoneTransforms goal = forward_kinematics(body.shape, target);
-    const BoneTransforms goal_old = forward_kinematics(body.shape, target_old);
     const double kt = body.foot_anchor_stiffness, dt = body.foot_anchor_damping * inv_h2;
     for (size_t j : {size_t{kLeftAnkle}, size_t{kRightAnkle}, size_t{kLeftFoot}, size_t{kRightFoot}}) {
       const size_t g = static_cast<size_t>(base) + j;
-      const Vec3 resid =
-          kt * (origin[j] - goal[j].translation) - dt * (goal[j].translation - goal_old[j].translation);
+      const Vec3& goal = s.target_origin_m[g];
+      const Vec3 resid = kt * (origin[j] - goal) - dt * (goal - s.target_origin_old_m[g]);
       const auto a = point_jacobian(origin[j] - s.com_m[g]);
       s.diag[g] += (kt + dt) * a.transpose() * a;
       s.rhs[g] -= a.transpose() * resid;
     }
   }
 
-  // Preconditioner blocks start from the tree part; add each incident contact's diagonal blocks.
-  for (size_t j = 0; j < kJointCount; ++j)
+  for (size_t j = 0; j < kJointCount; ++j) {
     s.precond[static_cast<size_t>(base) + j] = s.diag[static_cast<size_t>(base) + j];
+    s.rhs_tree[static_cast<size_t>(base) + j] = s.rhs[static_cast<size_t>(base) + j];
+  }
+}
+
+/// Adds character c's incident contacts: their diagonal blocks k w w^T to the preconditioner blocks
+/// (precond, reset to the tree diagonal first) and their gradient k depth0 w to the right-hand side.
+}  // namespace
+
+void assemble_character_contacts(CorrectorState& s, int c) {
+  const size_t base = static_cast<size_t>(c) * kJointCount;
+  for (size_t j = base; j < base + kJointCount; ++j) {
+    s.precond[j] = s.diag[j];
+    s.rhs[j] = s.rhs_tree[j];
+  }
   const int begin = s.incidence_offset[static_cast<size_t>(c)],
             end = s.incidence_offset[static_cast<size_t>(c) + 1];
   for (int e = begin; e < end; ++e) {
     const int entry = s.incidence[static_cast<size_t>(e)];
     const Contact& k = s.contacts[static_cast<size_t>(entry / 2)];
+    if (k.stiffness == 0.0) continue;  // removed by the active set (stage_solve)
     const bool side_b = (entry & 1) != 0;
     const bool self = k.bone_b >= 0 && k.bone_b / kJointCount == k.bone_a / kJointCount;
     auto add_side = [&](int bone, const Vec6& w) {
       s.precond[static_cast<size_t>(bone)] += (k.stiffness * w) * w.transpose();
-      s.rhs[static_cast<size_t>(bone)] -= (k.stiffness * k.depth_m) * w;
+      s.rhs[static_cast<size_t>(bone)] -= (k.stiffness * k.depth0) * w;
     };
     if (side_b) {
       add_side(k.bone_b, k.w_b);
@@ -166,17 +183,29 @@ void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
   }
 }
 
-}  // namespace
-
 void stage_assemble(const CorrectorModel& model, CorrectorState& state) {
-  // Contact Jacobian rows: delta decreases when a moves along +n or b along -n.
+  tbb::parallel_for(0, model.characters(), [&](int c) { assemble_character(model, state, c); });
+}
+
+void stage_assemble_contacts(const CorrectorModel& model, CorrectorState& state) {
+  // Contact Jacobian rows at the predicted state: delta decreases when a moves along +n or b along -n.
+  // depth0 moves the linearisation point from the prediction back to dq = 0 (see Contact).
   tbb::parallel_for(size_t{0}, state.contacts.size(), [&](size_t k) {
     Contact& c = state.contacts[k];
-    c.w_a = contact_row(c.normal, c.point_a - state.com_m[static_cast<size_t>(c.bone_a)], -1.0);
-    if (c.bone_b >= 0)
-      c.w_b = contact_row(c.normal, c.point_b - state.com_m[static_cast<size_t>(c.bone_b)], +1.0);
+    const auto a = static_cast<size_t>(c.bone_a);
+    c.w_a = contact_row(c.normal, c.point_a - state.pred_com_m[a], -1.0);
+    c.depth0 = c.depth_m - c.w_a.dot(state.dq_free[a]);
+    if (c.bone_b >= 0) {
+      const auto b = static_cast<size_t>(c.bone_b);
+      c.w_b = contact_row(c.normal, c.point_b - state.pred_com_m[b], +1.0);
+      c.depth0 -= c.w_b.dot(state.dq_free[b]);
+    }
   });
-  tbb::parallel_for(0, model.characters(), [&](int c) { assemble_character(model, state, c); });
+  tbb::parallel_for(0, model.characters(), [&](int c) {
+    const auto cc = static_cast<size_t>(c);
+    state.has_contacts[cc] = state.incidence_offset[cc + 1] > state.incidence_offset[cc] ? 1 : 0;
+    if (state.has_contacts[cc]) assemble_character_contacts(state, c);
+  });
 }
 
 }  // namespace crowdlab

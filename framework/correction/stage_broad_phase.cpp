@@ -1,6 +1,7 @@
-// Broad phase (seed 000 §3.4: "for each body, we build an AABB after each simulation time step ...
-// for inter-body collisions, we first test body-level AABBs to cull body pairs").
-// Body AABBs are swept along x (sort and sweep, Baraff 1992), which is O(N log N + pairs).
+// Broad phase, on the world capsules at the predicted state (see corrector_step.hpp) (seed 000 §3.4: "for
+// each body, we build an AABB after each simulation time step ... for inter-body collisions, we first test
+// body-level AABBs to cull body pairs"). Body AABBs are swept along x (sort and sweep, Baraff 1992), which is
+// O(N log N + pairs).
 #include <algorithm>
 
 #include <tbb/parallel_for.h>
@@ -16,8 +17,8 @@ void stage_broad_phase(const CorrectorModel& model, CorrectorState& state) {
     Aabb box;
     for (size_t j = 0; j < kJointCount; ++j) {
       const size_t g = static_cast<size_t>(c) * kJointCount + j;
-      const Quat& r = state.rotation[g];
-      const Vec3 origin = state.com_m[g] - r * body.com_local_m[j];
+      const Quat& r = state.pred_rotation[g];
+      const Vec3 origin = state.pred_com_m[g] - r * body.com_local_m[j];
       const Capsule& local = body.shape.capsules[j];
       Capsule& w = state.world_capsule[g];
       w.a = r * local.a + origin;
@@ -26,6 +27,11 @@ void stage_broad_phase(const CorrectorModel& model, CorrectorState& state) {
       const Vec3 rad = Vec3::Constant(local.radius_m);
       box.extend(w.a.cwiseMin(w.b) - rad);
       box.extend(w.a.cwiseMax(w.b) + rad);
+      // Per-capsule culling data for the narrow phase, computed once per step.
+      const Vec3 grow = Vec3::Constant(local.radius_m + model.params.contact_offset_m);
+      state.capsule_box[g].lo = w.a.cwiseMin(w.b) - grow;
+      state.capsule_box[g].hi = w.a.cwiseMax(w.b) + grow;
+      state.capsule_sphere[g] << 0.5 * (w.a + w.b), 0.5 * (w.b - w.a).norm() + local.radius_m;
     }
     // Half the contact offset on each side, so bodies closer than the offset are paired.
     box.lo -= Vec3::Constant(0.5 * model.params.contact_offset_m);

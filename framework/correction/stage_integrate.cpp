@@ -20,15 +20,11 @@
 #include "framework/correction/corrector_step.hpp"
 
 namespace crowdlab {
-namespace {
-
 Quat rotation_from_vector(const Vec3& v) {
   const double angle = v.norm();
   if (angle < 1e-12) return Quat::Identity();
   return Quat(Eigen::AngleAxisd(angle, v / angle));
 }
-
-}  // namespace
 
 void stage_integrate(const CorrectorModel& model, CorrectorState& s) {
   const int n = model.characters();

@@ -13,25 +13,28 @@
 namespace crowdlab {
 namespace {
 
-bool spheres_overlap(const Capsule& a, const Capsule& b, double offset) {
-  // Bounding spheres: centre at the axis midpoint, radius half-length + capsule radius.
-  const Vec3 ca = 0.5 * (a.a + a.b), cb = 0.5 * (b.a + b.b);
-  const double reach = 0.5 * std::sqrt((a.b - a.a).squaredNorm()) + a.radius_m +
-                       0.5 * std::sqrt((b.b - b.a).squaredNorm()) + b.radius_m + offset;
-  return (ca - cb).squaredNorm() < reach * reach;
+/// Bounding spheres (centre at the axis midpoint, radius half-length + capsule radius; precomputed by
+/// the broad phase) closer than the contact offset.
+bool spheres_overlap(const Vec4& a, const Vec4& b, double offset) {
+  const double reach = a.w() + b.w() + offset;
+  return (a.head<3>() - b.head<3>()).squaredNorm() < reach * reach;
 }
 
-Aabb capsule_box(const Capsule& c, double offset = 0.0) {
+Aabb capsule_box(const Capsule& c) {
   Aabb box;
-  box.lo = c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m + offset);
-  box.hi = c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m + offset);
+  box.lo = c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m);
+  box.hi = c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m);
   return box;
 }
 
 /// offset: contact offset (m) added to the depth (inter-body contacts only; see CorrectorParams).
-bool make_capsule_contact(const Capsule& ca, const Capsule& cb, int ga, int gb, double k, double offset,
+bool make_capsule_contact(const CorrectorState& state, int ga, int gb, double k, double offset,
                           Contact& out) {
-  if (!spheres_overlap(ca, cb, offset)) return false;
+  if (!spheres_overlap(state.capsule_sphere[static_cast<size_t>(ga)],
+                       state.capsule_sphere[static_cast<size_t>(gb)], offset))
+    return false;
+  const Capsule& ca = state.world_capsule[static_cast<size_t>(ga)];
+  const Capsule& cb = state.world_capsule[static_cast<size_t>(gb)];
   const CapsuleContact cc = capsule_contact(ca, cb);
   if (!(cc.depth_m + offset > 0.0)) return false;
   out = Contact{};
@@ -54,19 +57,15 @@ void body_pair_contacts(const CorrectorModel& model, const CorrectorState& state
   int ni = 0, nj = 0;
   const double offset = model.params.contact_offset_m;
   for (int b = 0; b < kJointCount; ++b) {
-    if (capsule_box(state.world_capsule[static_cast<size_t>(ci * kJointCount + b)], offset).overlaps(box_j))
-      list_i[ni++] = b;
-    if (capsule_box(state.world_capsule[static_cast<size_t>(cj * kJointCount + b)], offset).overlaps(box_i))
-      list_j[nj++] = b;
+    if (state.capsule_box[static_cast<size_t>(ci * kJointCount + b)].overlaps(box_j)) list_i[ni++] = b;
+    if (state.capsule_box[static_cast<size_t>(cj * kJointCount + b)].overlaps(box_i)) list_j[nj++] = b;
   }
   const double k = model.params.contact_stiffness;
   Contact c;
   for (int x = 0; x < ni; ++x)
     for (int y = 0; y < nj; ++y) {
       const int ga = ci * kJointCount + list_i[x], gb = cj * kJointCount + list_j[y];
-      if (make_capsule_contact(state.world_capsule[static_cast<size_t>(ga)],
-                               state.world_capsule[static_cast<size_t>(gb)], ga, gb, k, offset, c))
-        out.push_back(c);
+      if (make_capsule_contact(state, ga, gb, k, offset, c)) out.push_back(c);
     }
 }
 
@@ -79,10 +78,7 @@ void single_body_contacts(const CorrectorModel& model, const CorrectorState& sta
   // Intra-body (self) contacts.
   for (const auto& [i, j] : body.self_pairs) {
     const int ga = base + i, gb = base + j;
-    if (make_capsule_contact(state.world_capsule[static_cast<size_t>(ga)],
-                             state.world_capsule[static_cast<size_t>(gb)], ga, gb,
-                             model.params.contact_stiffness, 0.0, c))
-      out.push_back(c);
+    if (make_capsule_contact(state, ga, gb, model.params.contact_stiffness, 0.0, c)) out.push_back(c);
   }
   counts[0] = static_cast<int>(out.size());
   // Ground: each capsule end sphere against y = 0, normal +Y.

@@ -1,7 +1,8 @@
 #pragma once
 // Test-only measures of correction quality, computed independently of the solver's own contact code:
-//   overlap volume between characters (grid sampling of capsule unions), inter-body penetration depths,
-//   joint-rotation deviation, foot skate.
+//   overlap volume between characters (grid sampling of capsule unions, independent of metrics/'s
+//   exact lens integration). Depths, rotation deviation and foot skate come from
+//   framework/metrics/correction_quality.hpp (which does not use the solver either).
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -9,6 +10,7 @@
 
 #include "framework/core/crowd_animation.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/metrics/correction_quality.hpp"
 
 namespace crowdlab::test {
 
@@ -56,47 +58,7 @@ inline std::vector<WorldCapsules> frame_capsules(const CrowdAnimation& crowd, in
   return out;
 }
 
-/// Every positive capsule-capsule penetration depth between different characters (metres).
-inline std::vector<double> inter_body_depths(const std::vector<WorldCapsules>& bodies) {
-  std::vector<double> depths;
-  for (size_t i = 0; i < bodies.size(); ++i)
-    for (size_t j = i + 1; j < bodies.size(); ++j)
-      for (const Capsule& a : bodies[i])
-        for (const Capsule& b : bodies[j]) {
-          const double d = capsule_contact(a, b).depth_m;
-          if (d > 0.0) depths.push_back(d);
-        }
-  return depths;
-}
-
-inline double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5));
-  return v[k];
-}
-
-/// Angle (degrees) between two unit quaternions as rotations.
-inline double rotation_angle_deg(const Quat& a, const Quat& b) {
-  const double d = std::min(1.0, std::abs(a.normalized().dot(b.normalized())));
-  return 2.0 * std::acos(d) * 180.0 / std::numbers::pi;
-}
-
-/// Mean over characters, frames and the 24 joints of the local-rotation deviation (degrees).
-inline double mean_rotation_deviation_deg(const CrowdAnimation& a, const CrowdAnimation& b,
-                                          int first_frame = 0) {
-  double sum = 0.0;
-  long count = 0;
-  for (size_t c = 0; c < a.characters.size(); ++c)
-    for (size_t f = static_cast<size_t>(first_frame); f < a.characters[c].frames.size(); ++f)
-      for (int j = 0; j < kJointCount; ++j) {
-        sum += rotation_angle_deg(a.characters[c].frames[f].local_rotations[static_cast<size_t>(j)],
-                                  b.characters[c].frames[f].local_rotations[static_cast<size_t>(j)]);
-        ++count;
-      }
-  return count ? sum / static_cast<double>(count) : 0.0;
-}
-
+/// Largest local-rotation deviation (degrees) over characters, frames and joints.
 inline double max_rotation_deviation_deg(const CrowdAnimation& a, const CrowdAnimation& b) {
   double m = 0.0;
   for (size_t c = 0; c < a.characters.size(); ++c)
@@ -106,33 +68,6 @@ inline double max_rotation_deviation_deg(const CrowdAnimation& a, const CrowdAni
                      rotation_angle_deg(a.characters[c].frames[f].local_rotations[static_cast<size_t>(j)],
                                         b.characters[c].frames[f].local_rotations[static_cast<size_t>(j)]));
   return m;
-}
-
-/// Foot skate: the largest horizontal slide (metres) of a planted foot. A foot joint (ankle or ball)
-/// counts as planted when, in the input, it stays within 1 mm of its first-frame position and below
-/// 15 cm; its slide is the horizontal distance of the corrected joint from its corrected first-frame
-/// position, maximised over frames, joints and characters.
-inline double foot_skate_m(const CrowdAnimation& input, const CrowdAnimation& corrected) {
-  double worst = 0.0;
-  for (size_t c = 0; c < input.characters.size(); ++c) {
-    const auto& ch_in = input.characters[c];
-    const auto& ch_out = corrected.characters[c];
-    const auto in0 = joint_positions(ch_in.shape, ch_in.frames.front());
-    const auto out0 = joint_positions(ch_out.shape, ch_out.frames.front());
-    for (int j : {kLeftAnkle, kRightAnkle, kLeftFoot, kRightFoot}) {
-      const auto jj = static_cast<size_t>(j);
-      bool planted = in0[jj].y() < 0.15;
-      double slide = 0.0;
-      for (size_t f = 0; f < ch_in.frames.size() && planted; ++f) {
-        const auto pin = joint_positions(ch_in.shape, ch_in.frames[f]);
-        const auto pout = joint_positions(ch_out.shape, ch_out.frames[f]);
-        if ((pin[jj] - in0[jj]).norm() > 1e-3) planted = false;
-        slide = std::max(slide, std::hypot(pout[jj].x() - out0[jj].x(), pout[jj].z() - out0[jj].z()));
-      }
-      if (planted) worst = std::max(worst, slide);
-    }
-  }
-  return worst;
 }
 
 }  // namespace crowdlab::test

@@ -2,6 +2,9 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
+#include <fstream>
+
 #include "framework/correction/swaying_crowd_fixture.hpp"
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/io/write_crowd_glb.hpp"
@@ -62,4 +65,13 @@ TEST_CASE("correction cli: experiment damping writes the Fig. 4 series", "[corre
   int rows = 0;
   for (std::string line; std::getline(in, line);) ++rows;
   CHECK(rows == 4 * 120);
+  std::ifstream summary(dir / "damping_summary.csv");
+  std::getline(summary, header);
+  CHECK(header == "damping,rms_deviation_m,max_deviation_m,overshoot_m,final_deviation_m");
+  // The figure (PLplot via analysis/plot_lines): both formats written and not empty.
+  for (const char* name : {"damping.png", "damping.svg"}) {
+    INFO(name);
+    REQUIRE(std::filesystem::exists(dir / name));
+    CHECK(std::filesystem::file_size(dir / name) > 1000);
+  }
 }

@@ -78,8 +78,8 @@ TEST_CASE("correction: the first step returns its targets", "[correction]") {
   for (size_t c = 0; c < out.size(); ++c) {
     CHECK((out[c].root_position_m - targets[c].root_position_m).norm() < 1e-9);
     for (int j = 0; j < kJointCount; ++j)
-      CHECK(test::rotation_angle_deg(out[c].local_rotations[static_cast<size_t>(j)],
-                                     targets[c].local_rotations[static_cast<size_t>(j)]) < 1e-5);
+      CHECK(rotation_angle_deg(out[c].local_rotations[static_cast<size_t>(j)],
+                               targets[c].local_rotations[static_cast<size_t>(j)]) < 1e-5);
   }
 }
 
@@ -191,4 +191,55 @@ TEST_CASE("correction: the ground pushes a sunken body up", "[correction]") {
   for (int f = 0; f < 30; ++f) out = corrector.step({sunk})[0];
   CHECK(out.root_position_m.y() > sunk.root_position_m.y() + 0.015);
   CHECK(corrector.last_stats().ground_contacts > 0);
+}
+
+TEST_CASE("correction: a rejected step keeps the last stable state and says so", "[correction]") {
+  SwayingCrowdOptions o;
+  o.characters = 2;
+  o.density_per_m2 = 0.5;
+  o.frames = 4;
+  const CrowdAnimation crowd = make_swaying_crowd_fixture(o);
+  std::vector<BodyShape> shapes;
+  for (const auto& ch : crowd.characters) shapes.push_back(ch.shape);
+  CorrectorParams params;
+  params.max_bone_speed_mps = 1e-3;  // every real motion now counts as "too fast": each step is rejected
+  Corrector corrector(shapes, params, {}, 30);
+  auto frame = [&](int f) {
+    std::vector<Pose> targets;
+    for (const auto& ch : crowd.characters) targets.push_back(ch.frames[static_cast<size_t>(f)]);
+    return targets;
+  };
+  const std::vector<Pose> first = corrector.step(frame(0));
+  for (int f = 1; f < o.frames; ++f) {
+    std::vector<Pose> out;
+    CHECK_NOTHROW(out = corrector.step(frame(f)));
+    CHECK(corrector.last_stats().rejected);
+    for (size_t c = 0; c < out.size(); ++c) {  // the state stayed where it was after frame 0
+      CHECK((out[c].root_position_m - first[c].root_position_m).norm() < 1e-9);
+      for (int j = 0; j < kJointCount; ++j)
+        CHECK(rotation_angle_deg(out[c].local_rotations[static_cast<size_t>(j)],
+                                 first[c].local_rotations[static_cast<size_t>(j)]) < 1e-6);
+    }
+  }
+  CorrectionReport report;
+  params.settle_steps = 0;
+  correct_crowd(crowd, params, nullptr, &report);
+  CHECK(report.rejected_steps == o.frames - 1);
+}
+
+TEST_CASE("correction: an unconverged solve is reported", "[correction]") {
+  SwayingCrowdOptions o;
+  o.characters = test::kSanitized ? 4 : 9;
+  o.density_per_m2 = 6.66;  // many contacts: CG needs several iterations
+  o.frames = 6;
+  const CrowdAnimation crowd = make_swaying_crowd_fixture(o);
+  CorrectorParams params;
+  params.cg_max_iterations = 1;
+  params.cg_tolerance = 1e-12;
+  params.settle_steps = 0;
+  CorrectionReport report;
+  const CrowdAnimation out = correct_crowd(crowd, params, nullptr, &report);
+  CHECK(report.unconverged_steps > 0);
+  for (const auto& ch : out.characters)  // and the output is still a valid animation
+    for (const Pose& p : ch.frames) CHECK_NOTHROW(validate_pose(p, "test"));
 }

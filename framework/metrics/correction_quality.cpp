@@ -1,0 +1,100 @@
+#include "framework/metrics/correction_quality.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "framework/core/error.hpp"
+#include "framework/core/forward_kinematics.hpp"
+#include "framework/metrics/character_overlap.hpp"
+
+namespace crowdlab {
+
+double nearest_rank_quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const auto k = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5));
+  return v[k];
+}
+
+double rotation_angle_deg(const Quat& a, const Quat& b) {
+  const double d = std::min(1.0, std::abs(a.normalized().dot(b.normalized())));
+  return 2.0 * std::acos(d) * 180.0 / std::numbers::pi;
+}
+
+CorrectionQuality measure_correction_quality(const CrowdAnimation& input, const CrowdAnimation& corrected,
+                                             int first_frame, int frame_stride) {
+  if (input.characters.size() != corrected.characters.size() ||
+      input.frame_count() != corrected.frame_count())
+    throw InputError("correction quality: input and corrected animations differ in size");
+  if (frame_stride < 1) throw InputError("correction quality: frame_stride must be >= 1");
+  CorrectionQuality q;
+  const int frames = input.frame_count();
+  const size_t n = input.characters.size();
+  const double fps = input.meta.fps;
+
+  std::vector<double> depths, deviations;
+  for (int f = std::max(0, first_frame); f < frames; f += frame_stride) {
+    std::vector<WorldCapsules> bodies;
+    std::vector<BodyBounds> bounds;
+    for (const CharacterAnimation& ch : corrected.characters) {
+      bodies.push_back(world_capsules(ch.shape, ch.frames[static_cast<size_t>(f)]));
+      bounds.push_back(body_bounds(bodies.back()));
+    }
+    for (size_t i = 0; i < n; ++i)
+      for (size_t j = i + 1; j < n; ++j) {
+        if (!bounds[i].overlaps(bounds[j])) continue;
+        for (const Capsule& a : bodies[i])
+          for (const Capsule& b : bodies[j]) {
+            const double d = capsule_contact(a, b).depth_m;
+            if (d > 0.0) depths.push_back(d);
+          }
+      }
+  }
+  q.depth_samples = static_cast<long>(depths.size());
+  q.depth_p99_m = nearest_rank_quantile(depths, 0.99);
+  q.depth_max_m = depths.empty() ? 0.0 : *std::max_element(depths.begin(), depths.end());
+
+  double sum = 0.0;
+  for (size_t c = 0; c < n; ++c) {
+    const CharacterAnimation& in = input.characters[c];
+    const CharacterAnimation& out = corrected.characters[c];
+    for (int f = std::max(0, first_frame); f < frames; ++f)
+      for (size_t j = 0; j < kJointCount; ++j) {
+        const double a = rotation_angle_deg(in.frames[static_cast<size_t>(f)].local_rotations[j],
+                                            out.frames[static_cast<size_t>(f)].local_rotations[j]);
+        deviations.push_back(a);
+        sum += a;
+      }
+    // Foot skate and joint speed need consecutive frames.
+    std::array<Vec3, kJointCount> prev_in, prev_out, run_start;
+    prev_in.fill(Vec3::Zero());
+    prev_out.fill(Vec3::Zero());
+    run_start.fill(Vec3::Zero());
+    std::array<bool, kJointCount> planted{};
+    for (int f = std::max(0, first_frame); f < frames; ++f) {
+      const auto pin = joint_positions(in.shape, in.frames[static_cast<size_t>(f)]);
+      const auto pout = joint_positions(out.shape, out.frames[static_cast<size_t>(f)]);
+      if (f > std::max(0, first_frame)) {
+        for (size_t j = 0; j < kJointCount; ++j)
+          q.joint_speed_max_mps = std::max(q.joint_speed_max_mps, (pout[j] - prev_out[j]).norm() * fps);
+        for (int jj : {kLeftAnkle, kRightAnkle, kLeftFoot, kRightFoot}) {
+          const auto j = static_cast<size_t>(jj);
+          const bool still = (pin[j] - prev_in[j]).norm() < 1e-3 && pin[j].y() < 0.15;
+          if (still && !planted[j]) run_start[j] = prev_out[j];
+          planted[j] = still;
+          if (still)
+            q.foot_skate_max_m = std::max(q.foot_skate_max_m, std::hypot(pout[j].x() - run_start[j].x(),
+                                                                         pout[j].z() - run_start[j].z()));
+        }
+      }
+      prev_in = pin;
+      prev_out = pout;
+    }
+  }
+  q.rotation_dev_mean_deg = deviations.empty() ? 0.0 : sum / static_cast<double>(deviations.size());
+  q.rotation_dev_p99_deg = nearest_rank_quantile(deviations, 0.99);
+  return q;
+}
+
+}  // namespace crowdlab

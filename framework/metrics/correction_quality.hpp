@@ -1,0 +1,40 @@
+#pragma once
+// How faithfully a corrected crowd animation keeps its input while removing interpenetration: the
+// quality targets of the collision correction (issue 5; seed 000 §4.2), measured on the capsule
+// bodies independently of the solver's own contact lists.
+//
+//   depth_p99_m, depth_max_m   99th percentile / maximum of every positive inter-body capsule-capsule
+//                              penetration depth r_a + r_b - axis distance (m), over all frames
+//   rotation_dev_mean_deg      mean over characters, frames and the 24 joints of the angle between the
+//   rotation_dev_p99_deg       input and corrected local rotations (degrees); and its 99th percentile
+//   foot_skate_max_m           largest horizontal slide (m) of a foot joint (ankles, feet) while the
+//                              input holds it planted: a run of frames in which the input joint moves
+//                              less than 1 mm per frame and stays below 15 cm; the slide is the
+//                              corrected joint's horizontal distance from where it was at the run start
+//   joint_speed_max_mps        largest joint speed of the corrected animation (m/s, finite differences)
+// Frames are taken from first_frame on (0 = all), every `frame_stride`-th for the depths.
+#include "framework/core/crowd_animation.hpp"
+
+namespace crowdlab {
+
+struct CorrectionQuality {
+  double depth_p99_m = 0.0;
+  double depth_max_m = 0.0;
+  long depth_samples = 0;  ///< number of positive capsule-pair depths seen
+  double rotation_dev_mean_deg = 0.0;
+  double rotation_dev_p99_deg = 0.0;
+  double foot_skate_max_m = 0.0;
+  double joint_speed_max_mps = 0.0;
+};
+
+/// Throws InputError when the two animations differ in characters or frames.
+CorrectionQuality measure_correction_quality(const CrowdAnimation& input, const CrowdAnimation& corrected,
+                                             int first_frame = 0, int frame_stride = 1);
+
+/// The q-quantile (0..1) of v by nearest rank (0 for an empty vector).
+double nearest_rank_quantile(std::vector<double> v, double q);
+
+/// Angle (degrees) between two unit quaternions as rotations.
+double rotation_angle_deg(const Quat& a, const Quat& b);
+
+}  // namespace crowdlab
