@@ -11,18 +11,20 @@ namespace crowdlab {
 
 std::vector<CollisionTableCell> collision_table(const std::vector<CollisionCount>& counts) {
   std::vector<std::string> order;
-  std::map<std::pair<std::string, double>, std::vector<double>> groups;
+  std::map<std::pair<std::string, double>, std::vector<double>> groups, events;
   for (const CollisionCount& c : counts) {
     if (std::find(order.begin(), order.end(), c.scenario) == order.end()) order.push_back(c.scenario);
     groups[{c.scenario, c.density}].push_back(static_cast<double>(c.collisions));
+    events[{c.scenario, c.density}].push_back(static_cast<double>(c.events));
   }
   std::vector<CollisionTableCell> cells;
   for (const std::string& sc : order) {
     for (const auto& [key, values] : groups) {
       if (key.first != sc) continue;
-      CollisionTableCell cell{sc, key.second, static_cast<int>(values.size()), 0.0, 0.0};
+      CollisionTableCell cell{sc, key.second, static_cast<int>(values.size()), 0.0, 0.0, 0.0};
       for (double v : values) cell.mean += v;
       cell.mean /= static_cast<double>(values.size());
+      for (double v : events[key]) cell.mean_events += v / static_cast<double>(values.size());
       if (values.size() > 1) {
         double ss = 0.0;
         for (double v : values) ss += (v - cell.mean) * (v - cell.mean);
@@ -35,10 +37,11 @@ std::vector<CollisionTableCell> collision_table(const std::vector<CollisionCount
 }
 
 std::string collision_table_csv(const std::vector<CollisionTableCell>& cells) {
-  std::string s = csv_line({"scenario", "density", "repetitions", "mean_collisions", "sd_collisions"});
+  std::string s =
+      csv_line({"scenario", "density", "repetitions", "mean_collisions", "sd_collisions", "mean_events"});
   for (const CollisionTableCell& c : cells)
     s += csv_line({c.scenario, csv_number(c.density), std::to_string(c.repetitions), csv_number(c.mean),
-                   csv_number(c.sd)});
+                   csv_number(c.sd), csv_number(c.mean_events)});
   return s;
 }
 

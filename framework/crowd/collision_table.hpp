@@ -11,7 +11,8 @@ struct CollisionCount {
   std::string scenario;  ///< e.g. "A" / "B" / "flow_a"
   double density = 0.0;  ///< characters per m^2
   int repetition = 1;
-  long long collisions = 0;
+  long long collisions = 0;  ///< colliding pair-frames (count_spec_collisions.hpp says why)
+  long long events = 0;      ///< distinct collision events (pairs starting to overlap), for reference
 };
 
 struct CollisionTableCell {
@@ -20,12 +21,13 @@ struct CollisionTableCell {
   int repetitions = 0;
   double mean = 0.0;
   double sd = 0.0;
+  double mean_events = 0.0;  ///< mean of CollisionCount::events
 };
 
 /// One cell per (scenario, density), scenarios in first-seen order, densities ascending.
 std::vector<CollisionTableCell> collision_table(const std::vector<CollisionCount>& counts);
 
-/// CSV: scenario,density,repetitions,mean_collisions,sd_collisions.
+/// CSV: scenario,density,repetitions,mean_collisions,sd_collisions,mean_events.
 std::string collision_table_csv(const std::vector<CollisionTableCell>& cells);
 
 /// Markdown like Table 2: a Density header row, one row per scenario with "mean ± sd" cells.

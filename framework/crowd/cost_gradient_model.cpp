@@ -1,5 +1,6 @@
 #include "framework/crowd/cost_gradient_model.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -91,13 +92,18 @@ void CostGradientModel::compute_velocities(const CrowdWorld& w, std::size_t begi
       double curvature = 2.0 * quad;
       for (int k = 0; k < count; ++k) {
         const std::uint32_t j = nb[k];
-        const double qx = xi - w.px[j] + (vx - w.vx[j]) * T, qy = yi - w.py[j] + (vy - w.vy[j]) * T;
+        // Closest approach within the look-ahead (seed 001 eqs. 2-3): t = clamp(ttca, 0, T).
+        const double px = xi - w.px[j], py = yi - w.py[j], dvx = vx - w.vx[j], dvy = vy - w.vy[j];
+        const double dv2 = dvx * dvx + dvy * dvy;
+        const double t = dv2 > 1e-12 ? std::clamp(-(px * dvx + py * dvy) / dv2, 0.0, T) : T;
+        const double qx = px + dvx * t, qy = py + dvy * t;
         const double q = std::sqrt(qx * qx + qy * qy);
         if (q <= 1e-9) continue;
         const double e = P.separation * std::exp(-(q - ri - w.radius[j]) * inv_sigma);
-        const double s = -e * inv_sigma * T / q;  // d/dv of the exp term is s * q_vec
+        // d|q|/dv = t q/|q| (Danskin: |q| is the minimum over t, so t's own dependence on v drops).
+        const double s = -e * inv_sigma * t / q;  // d/dv of the exp term is s * q_vec
         gx += s * qx, gy += s * qy;
-        curvature += e * inv_sigma * inv_sigma * T * T;
+        curvature += e * inv_sigma * inv_sigma * t * t;
       }
       if (P.walls > 0.0) {
         for (const ObstacleSegment& seg : *w.obstacles) {

@@ -22,8 +22,11 @@ std::vector<CollisionCount> count_spec_collisions(const ExperimentSpec& spec,
   for (const Condition* cp : todo) {
     const Condition& c = *cp;
     const ScenarioResult r = generate_scenario(spec, c);
+    const std::vector<CollisionEvent> events = disc_collision_events(r.trajectories);
+    long long pair_frames = 0;
+    for (const CollisionEvent& e : events) pair_frames += e.end_frame - e.start_frame;
     counts.push_back({c.text("scenario", r.scenario), c.number("density", r.achieved_density_per_m2),
-                      c.repetition, static_cast<long long>(disc_collision_events(r.trajectories).size())});
+                      c.repetition, pair_frames, static_cast<long long>(events.size())});
     progress.advance();
   }
   progress.finish();

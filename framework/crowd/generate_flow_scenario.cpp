@@ -10,8 +10,9 @@
 //     scenario.agents characters; each agent sits in its cell centre plus a uniform jitter of
 //     +-10 % of s ("different random initialisations" per repetition). The density reported is
 //     N / (cells x s^2) = 1/s^2;
-//   * A: the flow (group 0) walks +Z; the focal character (group 1) starts on the axis, s + 2.6 m in
-//     front of the flow and walks -Z through it (they meet after about a second);
+//   * A: the flow (group 0) walks +Z; the focal character (group 1) starts s + 2.6 m in front of the
+//     flow, at a lateral x uniform in [-s/2, s/2) drawn per repetition, and walks -Z through it (they
+//     meet after about a second);
 //   * B: group 0 starts behind z = -1 m walking +Z, group 1 ahead of z = +1 m walking -Z;
 //   * preferred speeds walk_speed_mps x (1 + 0.05 N(0,1)) clamped to +-10 %; no walls.
 #include <algorithm>
@@ -90,7 +91,14 @@ ScenarioResult generate_flow_scenario(const ExperimentSpec& spec, const Conditio
     }
   }
   const std::size_t crowd_size = agents.size();
-  if (!flow_b) add(Vec2(0.0, s + 2.0 * v0), -1.0, 1, "speed/focal");
+  if (!flow_b) {
+    // Lateral start uniform over one lattice cell around the axis, drawn per repetition: on a fixed
+    // x = 0 the focal character would pass exactly between two columns (even column counts, never
+    // touching anyone at low density) or exactly head-on with one (odd counts), an artefact of
+    // the street width rather than of the density.
+    Rng rng(derive_seed(condition.seed, "focal/x"));
+    add(Vec2((uniform01(rng) - 0.5) * s, s + 2.0 * v0), -1.0, 1, "speed/focal");
+  }
 
   CrowdSimulation sim(make_navigation_model(spec.crowd), agents, {}, spec.crowd.dt_s);
   ScenarioResult r;

@@ -93,8 +93,8 @@ TEST_CASE("measures: interpersonal distance histogram", "[crowd][measures]") {
 }
 
 TEST_CASE("measures: collision table in the form of seed 001 Table 2", "[crowd][measures]") {
-  std::vector<CollisionCount> c = {{"A", 0.5, 1, 46}, {"A", 0.5, 2, 50},   {"A", 0.5, 3, 54},
-                                   {"B", 0.5, 1, 28}, {"A", 2.8, 1, 4546}, {"B", 2.8, 1, 26060}};
+  std::vector<CollisionCount> c = {{"A", 0.5, 1, 46, 2}, {"A", 0.5, 2, 50, 3},    {"A", 0.5, 3, 54, 4},
+                                   {"B", 0.5, 1, 28, 1}, {"A", 2.8, 1, 4546, 90}, {"B", 2.8, 1, 26060, 700}};
   const auto cells = collision_table(c);
   REQUIRE(cells.size() == 4);
   CHECK(cells[0].scenario == "A");
@@ -106,5 +106,5 @@ TEST_CASE("measures: collision table in the form of seed 001 Table 2", "[crowd][
   const std::string md = collision_table_markdown(cells);
   CHECK(md.find("| Density | 0.5 | 2.8 |") != std::string::npos);
   CHECK(md.find("| Scenario A | 50 \u00b1 4 | 4546 \u00b1 0 |") != std::string::npos);
-  CHECK(collision_table_csv(cells).find("A,0.5,3,50,4\n") != std::string::npos);
+  CHECK(collision_table_csv(cells).find("A,0.5,3,50,4,3\n") != std::string::npos);
 }

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "framework/core/error.hpp"
+#include "framework/crowd/count_spec_collisions.hpp"
 #include "framework/crowd/generate_scenario.hpp"
 #include "tests/crowd/crowd_test_helpers.hpp"
 #include "tests/support/test_paths.hpp"
@@ -213,4 +214,39 @@ TEST_CASE("scenarios: deterministic per seed and thread count", "[crowd][scenari
   CHECK(h1 == hash(1));
   CHECK(h1 != test::trajectories_hash(
                   generate_scenario(spec, condition({{"density", level(5.5)}}, 1, 78)).trajectories));
+}
+
+TEST_CASE("scenarios: Table 2 counts colliding pair-frames over all pairs, varying per repetition",
+          "[crowd][scenario][measures]") {
+  // The count of count_spec_collisions is sum over frames of the pairs whose discs overlap; checked
+  // against a brute-force count over all pairs of the same trajectories, for both flows.
+  ExperimentSpec spec = spec_for("flow_b", 6.0, 12.0, test::kSanitized ? 3.0 : 6.0);
+  spec.crowd.model = "cost";
+  spec.crowd.cost_weights = {{"separation", 1.0}, {"sigma_m", 0.3}, {"lookahead_s", 2.0}};
+  for (const char* type : {"A", "B"}) {
+    std::vector<Condition> conditions;
+    for (int rep = 1; rep <= 3; ++rep)
+      conditions.push_back(condition({{"scenario", FactorLevel{type, std::nullopt}}, {"density", level(2.8)}},
+                                     rep, 100 + rep));
+    const auto counts = count_spec_collisions(spec, conditions);
+    REQUIRE(counts.size() == 3);
+    for (std::size_t k = 0; k < counts.size(); ++k) {
+      const auto t = generate_scenario(spec, conditions[k]).trajectories;
+      long long brute = 0;
+      for (int f = 0; f < t.frame_count(); ++f)
+        for (std::size_t i = 0; i < t.agents.size(); ++i)
+          for (std::size_t j = i + 1; j < t.agents.size(); ++j)
+            if ((t.agents[i].position_m[static_cast<std::size_t>(f)] -
+                 t.agents[j].position_m[static_cast<std::size_t>(f)])
+                    .norm() < t.agents[i].radius_m + t.agents[j].radius_m)
+              ++brute;
+      INFO("scenario " << type << " repetition " << counts[k].repetition);
+      CHECK(counts[k].scenario == type);
+      CHECK(counts[k].collisions == brute);
+      CHECK(counts[k].collisions > 0);
+      CHECK(counts[k].events <= counts[k].collisions);  // every event lasts at least one frame
+    }
+    // Different random initialisations give different counts (seed 001 §4.2.1: 3 repetitions).
+    CHECK((counts[0].collisions != counts[1].collisions || counts[1].collisions != counts[2].collisions));
+  }
 }

@@ -265,8 +265,9 @@ void table2(const Size& size, const fs::path& dir, ReproductionChecks& checks, s
   fs::create_directories(dir / "table2");
   write_file_atomic(dir / "table2" / "collisions.csv", collision_table_csv(cells));
   md += fmt::format(
-      "## Table 2: collisions per scenario × density\n\nDisc collision events of the cost-gradient "
-      "flows ({} s, {} repetition(s) per cell), mean ± SD; the paper's count in brackets.\n\n"
+      "## Table 2: collisions per scenario × density\n\nColliding disc pairs summed over the frames of the "
+      "cost-gradient flows ({} s at 30 Hz, {} repetition(s) per cell; count_spec_collisions.hpp gives the "
+      "definition), mean ± SD; the paper's count in brackets.\n\n"
       "| scenario |",
       size.flow_duration_s, size.flow_repetitions);
   std::map<std::string, std::map<double, double>> mean;
@@ -296,11 +297,27 @@ void table2(const Size& size, const fs::path& dir, ReproductionChecks& checks, s
                   decreases, 0, 0, "Table 2: collisions grow with density");
   }
   if (mean.count("A") && mean.count("B") && mean["A"].count(2.8) && mean["B"].count(2.8))
-    checks.within("table2.B_over_A@2.8", "collisions B / A at 2.8/m²", mean["B"][2.8] / mean["A"][2.8], 1.0,
-                  kInf, "Table 2: 26060 (B) vs 4546 (A)");
+    checks.within("table2.B_over_A@2.8", "collisions B / A at 2.8/m²", mean["B"][2.8] / mean["A"][2.8], 2.0,
+                  kInf, "Table 2: 26060 (B) vs 4546 (A), 5.7×");
+  // Absolute counts, where an honest model with one set of weights gets them (docs/reproductions.md):
+  // within a factor 3 of the paper for B from 1.0/m² up and for A at 2.8/m². Only for the paper's
+  // 10 s clips: a shorter --duration counts fewer frames.
+  const std::vector<std::pair<std::string, double>> absolute =
+      size.flow_duration_s == 10.0
+          ? std::vector<std::pair<std::string, double>>{{"B", 1.0}, {"B", 1.6}, {"B", 2.8}, {"A", 2.8}}
+          : std::vector<std::pair<std::string, double>>{};
+  for (const auto& [scenario, d] : absolute) {
+    if (!mean.count(scenario) || !mean[scenario].count(d)) continue;
+    const double paper = kPaperCollisions.at({scenario, d});
+    checks.within(fmt::format("table2.{}@{}.vs_paper", scenario, d),
+                  fmt::format("collisions {} at {}/m² / paper", scenario, d), mean[scenario][d] / paper,
+                  1.0 / 3.0, 3.0, fmt::format("Table 2: {}", paper));
+  }
   md +=
-      "\nAbsolute counts depend on the cost function's weights, which the paper tuned by hand to produce "
-      "collisions and does not publish; only the trends are checked.\n\n";
+      "\nThe cost function's weights are not published (the paper tuned them by hand); ours are chosen once "
+      "for the whole table (experiments/hoyet2016_crowds.yaml). Checked: the trends, B/A at 2.8/m², and "
+      "B from 1.0/m² and A at 2.8/m² within 3× of the paper. Not reproduced: A below 2.8/m², where our "
+      "focal character avoids the flow far better than the paper's.\n\n";
 }
 
 }  // namespace

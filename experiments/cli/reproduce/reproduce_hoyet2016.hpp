@@ -10,8 +10,9 @@
 //            distance (-> D_crit), one of observers who judge by V_i (-> V_crit), with the recovery error;
 //            plus V_crit as the paper computed it (the distance-judging observers' answers against each
 //            clip's V_i), which depends on our bodies' geometry and is reported, not checked;
-//   Table 2  disc collision events per scenario (A, B) x density (0.5..2.8 /m^2), mean ± SD over
-//            repetitions, of the cost-gradient flows of the crowd spec (count_spec_collisions).
+//   Table 2  colliding disc pairs summed over frames per scenario (A, B) x density (0.5..2.8 /m^2),
+//            mean ± SD over repetitions, of the cost-gradient flows of the crowd spec
+//            (count_spec_collisions.hpp defines the count after seed 001 §3.1/§4.3).
 // Sizes: full = the specs' sizes (8 repetitions of 3.5 s pair clips at 60 fps; 15 observers, the paper's
 // N; 3 repetitions of 10 s flows); --quick = 2 repetitions at 30 fps, 8 observers, 1 flow repetition.
 // Checks and tolerances (documented in docs/reproductions.md):
@@ -22,7 +23,8 @@
 //     (idem); --quick: 0.05 m and 0.015 m (fewer observers and trials). The mean is over observers whose
 //     threshold lies inside the stimulus range they saw (flat or reversed fits are excluded and counted);
 //   - Table 2: collisions grow with density in both scenarios (every step up in density gives at least
-//     as many; Table 2), and scenario B has more collisions than A at 2.8/m^2 (Table 2: 26060 vs 4546).
+//     as many; Table 2), B / A at 2.8/m^2 >= 2 (Table 2: 26060 vs 4546, 5.7x), and with 10 s flows
+//     (the paper's clips) B at 1.0, 1.6, 2.8/m^2 and A at 2.8/m^2 within a factor 3 of Table 2.
 #include "experiments/cli/reproduce/reproduce_common.hpp"
 
 namespace crowdlab::cli {
