@@ -1,5 +1,6 @@
 #include "framework/surface/relevance.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -21,6 +22,44 @@ bool mutually_visible(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_b, 
   const Vec3 head_b = feet_b + up_b * body.height_m;
   return !segment_pierces_disk(from, head_b, feet_b, up_b, kFeetDiskRadius) &&
          !segment_pierces_disk(from, head_b, feet_a, up_a, kFeetDiskRadius);
+}
+
+const char* relevant_mode_name(RelevantMode m) {
+  switch (m) {
+    case RelevantMode::kVisibility:
+      return "visibility";
+    case RelevantMode::kVisibilityMesh:
+      return "visibility_mesh";
+    case RelevantMode::kEuclidean:
+      return "euclidean";
+    case RelevantMode::kSurface:
+      return "surface";
+  }
+  return "?";
+}
+
+namespace {
+/// The part of segment p -> q inside the ball (centre, radius) hits the mesh.
+bool segment_hits_within_ball(const Vec3& p, const Vec3& q, const Vec3& centre, double radius,
+                              const TriangleBvh& bvh) {
+  // |p + t d - c|^2 = r^2  <=>  a t^2 + 2 b t + c0 = 0
+  const Vec3 d = q - p, m = p - centre;
+  const double a = d.squaredNorm(), b = m.dot(d), c0 = m.squaredNorm() - radius * radius;
+  const double disc = b * b - a * c0;
+  if (a <= 0 || disc <= 0) return false;
+  const double root = std::sqrt(disc);
+  const double t0 = std::max(0.0, (-b - root) / a), t1 = std::min(1.0, (-b + root) / a);
+  if (t1 <= t0) return false;
+  return bvh.segment_hits(p + t0 * d, p + t1 * d);
+}
+}  // namespace
+
+bool mutually_visible_near_feet(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_b, const Vec3& up_b,
+                                const StackedBody& body, const TriangleBvh& bvh) {
+  const Vec3 from = feet_a + up_a * kEyeLift;
+  const Vec3 head_b = feet_b + up_b * body.height_m;
+  return !segment_hits_within_ball(from, head_b, feet_b, kFeetDiskRadius, bvh) &&
+         !segment_hits_within_ball(from, head_b, feet_a, kFeetDiskRadius, bvh);
 }
 
 std::array<OffsetTuple, 3> offset_three_spheres(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_o,

@@ -7,6 +7,13 @@
 //       up) or the 1 m disk at a's feet (normal = a's up). The disks approximate the surface each agent
 //       stands on. The segment starts `kEyeLift` above a's feet so that it does not touch a's own disk
 //       at its origin (the paper starts "from the agent"; a 5 cm lift is our choice).
+//   kVisibilityMesh (our refinement, an option; seed 002 §3 calls the disk "not perfect"): the same
+//       segment, tested against the real mesh instead of the disks, but only where the disks are: its
+//       parts within 1 m of either agent's feet (TriangleBvh). The 1 m disk claims surface that is not
+//       there wherever the surface ends or turns within 1 m (a convex edge narrower than the disk: the
+//       20 cm sides of a slab, the rim of a storey); there the disk hides agents that are in plain
+//       sight and can touch (false negatives), and the mesh test does not. Occluders farther than 1 m
+//       from both feet are ignored by both tests alike.
 //   kEuclidean (Torchelsen et al. 2010 style baseline): every agent within the neighbour distance.
 //   kSurface (surface-path baseline): agents whose geodesic (face-graph) distance is within the
 //       neighbour distance.
@@ -16,10 +23,14 @@
 #include <vector>
 
 #include "framework/surface/surface_walk.hpp"
+#include "framework/surface/triangle_bvh.hpp"
 
 namespace crowdlab {
 
-enum class RelevantMode { kVisibility, kEuclidean, kSurface };
+enum class RelevantMode { kVisibility, kVisibilityMesh, kEuclidean, kSurface };
+
+/// "visibility" | "visibility_mesh" | "euclidean" | "surface".
+const char* relevant_mode_name(RelevantMode m);
 
 /// Body of an agent standing on a surface: a vertical (along "up") stack of three spheres.
 struct StackedBody {
@@ -48,6 +59,11 @@ bool segment_pierces_disk(const Vec3& p, const Vec3& q, const Vec3& centre, cons
 /// Seed 002's visibility test: false when v_head pierces either agent's feet disk.
 bool mutually_visible(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_b, const Vec3& up_b,
                       const StackedBody& body);
+
+/// The kVisibilityMesh test: false when the segment from a's eye point (feet + kEyeLift * up_a) to
+/// b's head crosses a triangle of `bvh` within kFeetDiskRadius of feet_a or of feet_b.
+bool mutually_visible_near_feet(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_b, const Vec3& up_b,
+                                const StackedBody& body, const TriangleBvh& bvh);
 
 /// One Offset tuple: unit direction in a's tangent plane (world frame) and surface clearance (metres;
 /// negative when the spheres overlap).
