@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "framework/core/error.hpp"
+
 namespace crowdlab {
 
 bool segment_pierces_disk(const Vec3& p, const Vec3& q, const Vec3& centre, const Vec3& normal,
@@ -16,12 +18,11 @@ bool segment_pierces_disk(const Vec3& p, const Vec3& q, const Vec3& centre, cons
   return (hit - centre).squaredNorm() <= radius * radius;
 }
 
-bool mutually_visible(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_b, const Vec3& up_b,
-                      const StackedBody& body) {
-  const Vec3 from = feet_a + up_a * kEyeLift;
-  const Vec3 head_b = feet_b + up_b * body.height_m;
-  return !segment_pierces_disk(from, head_b, feet_b, up_b, kFeetDiskRadius) &&
-         !segment_pierces_disk(from, head_b, feet_a, up_a, kFeetDiskRadius);
+bool mutually_visible(const Vec3& feet_a, const Vec3& normal_a, const Vec3& feet_b, const Vec3& normal_b,
+                      const Vec3& head_b) {
+  const Vec3 from = feet_a + normal_a * kEyeLift;
+  return !segment_pierces_disk(from, head_b, feet_b, normal_b, kFeetDiskRadius) &&
+         !segment_pierces_disk(from, head_b, feet_a, normal_a, kFeetDiskRadius);
 }
 
 const char* relevant_mode_name(RelevantMode m) {
@@ -36,6 +37,14 @@ const char* relevant_mode_name(RelevantMode m) {
       return "surface";
   }
   return "?";
+}
+
+RelevantMode parse_relevant_mode(const std::string& text, const std::string& key) {
+  for (RelevantMode m : {RelevantMode::kVisibility, RelevantMode::kVisibilityMesh, RelevantMode::kEuclidean,
+                         RelevantMode::kSurface})
+    if (text == relevant_mode_name(m)) return m;
+  throw InputError(SourceLocation{"", 0, 0, key},
+                   "must be visibility, visibility_mesh, euclidean or surface, not '" + text + "'");
 }
 
 namespace {
@@ -54,10 +63,9 @@ bool segment_hits_within_ball(const Vec3& p, const Vec3& q, const Vec3& centre, 
 }
 }  // namespace
 
-bool mutually_visible_near_feet(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_b, const Vec3& up_b,
-                                const StackedBody& body, const TriangleBvh& bvh) {
-  const Vec3 from = feet_a + up_a * kEyeLift;
-  const Vec3 head_b = feet_b + up_b * body.height_m;
+bool mutually_visible_near_feet(const Vec3& feet_a, const Vec3& normal_a, const Vec3& feet_b,
+                                const Vec3& head_b, const TriangleBvh& bvh) {
+  const Vec3 from = feet_a + normal_a * kEyeLift;
   return !segment_hits_within_ball(from, head_b, feet_b, kFeetDiskRadius, bvh) &&
          !segment_hits_within_ball(from, head_b, feet_a, kFeetDiskRadius, bvh);
 }

@@ -20,6 +20,7 @@
 // Offset(a, o): the union over three spheres stacked along o's up vector (seed 002's OffsetImproved)
 //   of the Euclidean offset from a: the vector from a's nearest body sphere to each sphere centre,
 //   projected onto a's tangent plane (angle) and its 3D length minus both radii (distance).
+#include <string>
 #include <vector>
 
 #include "framework/surface/surface_walk.hpp"
@@ -31,6 +32,8 @@ enum class RelevantMode { kVisibility, kVisibilityMesh, kEuclidean, kSurface };
 
 /// "visibility" | "visibility_mesh" | "euclidean" | "surface".
 const char* relevant_mode_name(RelevantMode m);
+/// Inverse of relevant_mode_name; InputError naming `key` otherwise.
+RelevantMode parse_relevant_mode(const std::string& text, const std::string& key);
 
 /// Body of an agent standing on a surface: a vertical (along "up") stack of three spheres.
 struct StackedBody {
@@ -56,14 +59,25 @@ inline constexpr double kFeetDiskRadius = 1.0;  ///< seed 002 §3: "one meter ra
 bool segment_pierces_disk(const Vec3& p, const Vec3& q, const Vec3& centre, const Vec3& normal,
                           double radius);
 
-/// Seed 002's visibility test: false when v_head pierces either agent's feet disk.
-bool mutually_visible(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_b, const Vec3& up_b,
-                      const StackedBody& body);
+/// Seed 002's visibility test: false when v_head (a's eye point feet_a + kEyeLift * normal_a -> head_b)
+/// pierces either agent's feet disk (normals normal_a, normal_b: each agent's normal, seed 002 §3).
+bool mutually_visible(const Vec3& feet_a, const Vec3& normal_a, const Vec3& feet_b, const Vec3& normal_b,
+                      const Vec3& head_b);
+/// Bodies standing along the surface normals (head_b = feet_b + up_b * height).
+inline bool mutually_visible(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_b, const Vec3& up_b,
+                             const StackedBody& body) {
+  return mutually_visible(feet_a, up_a, feet_b, up_b, feet_b + up_b * body.height_m);
+}
 
-/// The kVisibilityMesh test: false when the segment from a's eye point (feet + kEyeLift * up_a) to
-/// b's head crosses a triangle of `bvh` within kFeetDiskRadius of feet_a or of feet_b.
-bool mutually_visible_near_feet(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_b, const Vec3& up_b,
-                                const StackedBody& body, const TriangleBvh& bvh);
+/// The kVisibilityMesh test: false when the same segment crosses a triangle of `bvh` within
+/// kFeetDiskRadius of feet_a or of feet_b.
+bool mutually_visible_near_feet(const Vec3& feet_a, const Vec3& normal_a, const Vec3& feet_b,
+                                const Vec3& head_b, const TriangleBvh& bvh);
+/// Bodies standing along the surface normals.
+inline bool mutually_visible_near_feet(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_b,
+                                       const Vec3& up_b, const StackedBody& body, const TriangleBvh& bvh) {
+  return mutually_visible_near_feet(feet_a, up_a, feet_b, feet_b + up_b * body.height_m, bvh);
+}
 
 /// One Offset tuple: unit direction in a's tangent plane (world frame) and surface clearance (metres;
 /// negative when the spheres overlap).

@@ -270,11 +270,16 @@ void step_surface_crowd(const SurfaceCrowdModel& model, SurfaceCrowdState& s) {
         if (static_cast<size_t>(o.index) == i) return;
         const double d2 = (o.center_m - center_a).squaredNorm();
         if (d2 > radius2) return;
+        // Seed 002 §3 gives each agent one normal, used both for the disk at its feet and for stacking
+        // its spheres (o_up): here the body's up. (Disks in the face planes under tilted bodies were
+        // measured too, docs/surfaces.md: fewer false negatives on the thin slab, more at the building's
+        // convex ramp crests; the mesh test has neither.)
         if (p.relevant == RelevantMode::kVisibility &&
-            !mutually_visible(a.position_m, up_a, o.feet_m, o.up, p.body))
+            !mutually_visible(a.position_m, up_a, o.feet_m, o.up, o.feet_m + o.up * p.body.height_m))
           return;
         if (p.relevant == RelevantMode::kVisibilityMesh &&
-            !mutually_visible_near_feet(a.position_m, up_a, o.feet_m, o.up, p.body, *model.bvh))
+            !mutually_visible_near_feet(a.position_m, up_a, o.feet_m, o.feet_m + o.up * p.body.height_m,
+                                        *model.bvh))
           return;
         candidates.emplace_back(stacked_clearance(a.position_m, up_a, o.feet_m, o.up, p.body), o.index);
       };
