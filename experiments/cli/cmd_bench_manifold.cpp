@@ -22,6 +22,8 @@ struct Options {
   int agents = 1000;
   std::string mesh = "blobby";
   std::string model = "social";
+  std::string relevant = "visibility";
+  bool face_up = false;
   int steps = 200;
   int threads = 1;
   bool json = false;
@@ -36,6 +38,8 @@ void run(const Options& o) {
                          : make_surface_scene(o.mesh));
   SurfaceCrowdParams params;
   params.avoidance = parse_surface_avoidance(o.model, "--model");
+  params.relevant = parse_relevant_mode(o.relevant, "--relevant");
+  params.smooth_body_up = !o.face_up;
   const SurfaceCrowdModel model = make_surface_crowd_model(mesh, params, 8, 1);
   SurfaceCrowdState state = spawn_surface_agents(model, o.agents, 1);
   for (int k = 0; k < 10; ++k) step_surface_crowd(model, state);  // warm-up: caches, first allocation
@@ -60,12 +64,14 @@ void run(const Options& o) {
                      {"triangles", mesh->face_count()},
                      {"mesh", o.mesh},
                      {"model", o.model},
+                     {"relevant", o.relevant},
+                     {"body_up", o.face_up ? "face" : "smooth"},
                      {"threads", o.threads},
                      {"steps", o.steps}};
     std::printf("%s\n", j.dump().c_str());
   } else {
-    std::printf("manifold crowd (%s): %d agents on '%s' (%d triangles), %d thread(s)\n", o.model.c_str(),
-                o.agents, o.mesh.c_str(), mesh->face_count(), o.threads);
+    std::printf("manifold crowd (%s, %s Relevant): %d agents on '%s' (%d triangles), %d thread(s)\n",
+                o.model.c_str(), o.relevant.c_str(), o.agents, o.mesh.c_str(), mesh->face_count(), o.threads);
     std::printf("  median %.3f ms/step (%.0f steps/s), mean %.3f ms over %d steps\n", med, 1000.0 / med,
                 mean_of(ms), o.steps);
     std::printf(
@@ -87,6 +93,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--model", opts->model, "Obstacle avoidance in the tangent plane")
       ->check(CLI::IsMember({"social", "orca"}))
       ->capture_default_str();
+  cmd->add_option("--relevant", opts->relevant, "Relevant function (relevance.hpp)")
+      ->check(CLI::IsMember({"visibility", "visibility_mesh", "euclidean", "surface"}))
+      ->capture_default_str();
+  cmd->add_flag("--face-up", opts->face_up, "Bodies along each face's normal instead of the smoothed up");
   cmd->add_option("--steps", opts->steps, "Timed steps")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();

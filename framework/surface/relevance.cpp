@@ -1,7 +1,10 @@
 #include "framework/surface/relevance.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "framework/core/error.hpp"
 
 namespace crowdlab {
 
@@ -15,12 +18,56 @@ bool segment_pierces_disk(const Vec3& p, const Vec3& q, const Vec3& centre, cons
   return (hit - centre).squaredNorm() <= radius * radius;
 }
 
-bool mutually_visible(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_b, const Vec3& up_b,
-                      const StackedBody& body) {
-  const Vec3 from = feet_a + up_a * kEyeLift;
-  const Vec3 head_b = feet_b + up_b * body.height_m;
-  return !segment_pierces_disk(from, head_b, feet_b, up_b, kFeetDiskRadius) &&
-         !segment_pierces_disk(from, head_b, feet_a, up_a, kFeetDiskRadius);
+bool mutually_visible(const Vec3& feet_a, const Vec3& normal_a, const Vec3& feet_b, const Vec3& normal_b,
+                      const Vec3& head_b) {
+  const Vec3 from = feet_a + normal_a * kEyeLift;
+  return !segment_pierces_disk(from, head_b, feet_b, normal_b, kFeetDiskRadius) &&
+         !segment_pierces_disk(from, head_b, feet_a, normal_a, kFeetDiskRadius);
+}
+
+const char* relevant_mode_name(RelevantMode m) {
+  switch (m) {
+    case RelevantMode::kVisibility:
+      return "visibility";
+    case RelevantMode::kVisibilityMesh:
+      return "visibility_mesh";
+    case RelevantMode::kEuclidean:
+      return "euclidean";
+    case RelevantMode::kSurface:
+      return "surface";
+  }
+  return "?";
+}
+
+RelevantMode parse_relevant_mode(const std::string& text, const std::string& key) {
+  for (RelevantMode m : {RelevantMode::kVisibility, RelevantMode::kVisibilityMesh, RelevantMode::kEuclidean,
+                         RelevantMode::kSurface})
+    if (text == relevant_mode_name(m)) return m;
+  throw InputError(SourceLocation{"", 0, 0, key},
+                   "must be visibility, visibility_mesh, euclidean or surface, not '" + text + "'");
+}
+
+namespace {
+/// The part of segment p -> q inside the ball (centre, radius) hits the mesh.
+bool segment_hits_within_ball(const Vec3& p, const Vec3& q, const Vec3& centre, double radius,
+                              const TriangleBvh& bvh) {
+  // |p + t d - c|^2 = r^2  <=>  a t^2 + 2 b t + c0 = 0
+  const Vec3 d = q - p, m = p - centre;
+  const double a = d.squaredNorm(), b = m.dot(d), c0 = m.squaredNorm() - radius * radius;
+  const double disc = b * b - a * c0;
+  if (a <= 0 || disc <= 0) return false;
+  const double root = std::sqrt(disc);
+  const double t0 = std::max(0.0, (-b - root) / a), t1 = std::min(1.0, (-b + root) / a);
+  if (t1 <= t0) return false;
+  return bvh.segment_hits(p + t0 * d, p + t1 * d);
+}
+}  // namespace
+
+bool mutually_visible_near_feet(const Vec3& feet_a, const Vec3& normal_a, const Vec3& feet_b,
+                                const Vec3& head_b, const TriangleBvh& bvh) {
+  const Vec3 from = feet_a + normal_a * kEyeLift;
+  return !segment_hits_within_ball(from, head_b, feet_b, kFeetDiskRadius, bvh) &&
+         !segment_hits_within_ball(from, head_b, feet_a, kFeetDiskRadius, bvh);
 }
 
 std::array<OffsetTuple, 3> offset_three_spheres(const Vec3& feet_a, const Vec3& up_a, const Vec3& feet_o,

@@ -11,6 +11,7 @@
 #include "framework/core/error.hpp"
 #include "framework/core/seed.hpp"
 #include "framework/surface/geodesic_distance.hpp"
+#include "framework/surface/smooth_surface_up.hpp"
 #include "framework/surface/tangent_orca.hpp"
 
 namespace crowdlab {
@@ -125,8 +126,12 @@ const char* surface_avoidance_name(SurfaceAvoidance a) {
   return a == SurfaceAvoidance::kOrca ? "orca" : "social";
 }
 
+Vec3 body_up(const SurfaceCrowdModel& model, const SurfacePoint& p) {
+  return model.params.smooth_body_up ? smooth_surface_up(*model.mesh, p) : p.up(*model.mesh);
+}
+
 Vec3 body_center(const SurfaceCrowdModel& model, const SurfacePoint& p) {
-  return p.position_m + p.up(*model.mesh) * (model.params.body.height_m / 2);
+  return p.position_m + body_up(model, p) * (model.params.body.height_m / 2);
 }
 
 SurfaceCrowdModel make_surface_crowd_model(std::shared_ptr<const SurfaceMesh> mesh,
@@ -146,6 +151,7 @@ SurfaceCrowdModel make_surface_crowd_model(std::shared_ptr<const SurfaceMesh> me
   SurfaceCrowdModel m;
   m.mesh = std::move(mesh);
   m.params = p;
+  if (p.relevant == RelevantMode::kVisibilityMesh) m.bvh = std::make_shared<const TriangleBvh>(*m.mesh);
   Rng rng(derive_seed(seed, "surface-goals"));
   const auto cumulative = cumulative_areas(*m.mesh);
   for (int g = 0; g < goal_count; ++g) {
@@ -163,7 +169,10 @@ SurfaceCrowdState spawn_surface_agents(const SurfaceCrowdModel& model, int n, st
   const auto cumulative = cumulative_areas(mesh);
   SurfaceCrowdState s;
   const double min_gap = 2.0 * model.params.body.sphere_radius_m;
-  const double cell = std::max(min_gap, 0.5);
+  // Grid cell: two stacks within 5 cm of touching have body centres at most height + 5 cm apart
+  // (spheres at the ends of each stack), so the 27 cells around a centre hold every possible contact
+  // (a smaller cell missed stacks on perpendicular surfaces: heads touching, centres 1.3 m apart).
+  const double cell = model.params.body.height_m + 0.05;
   std::unordered_multimap<std::uint32_t, int> occupied;
   long attempts = 0;
   while (static_cast<int>(s.points.size()) < n) {
@@ -183,8 +192,8 @@ SurfaceCrowdState spawn_surface_agents(const SurfaceCrowdModel& model, int n, st
           auto range = occupied.equal_range(cell_hash(key + Eigen::Vector3i(dx, dy, dz)));
           for (auto it = range.first; it != range.second && free; ++it) {
             const SurfacePoint& q = s.points[static_cast<size_t>(it->second)];
-            if (stacked_clearance(p.position_m, p.up(mesh), q.position_m, q.up(mesh), model.params.body) <
-                0.05)
+            if (stacked_clearance(p.position_m, body_up(model, p), q.position_m, body_up(model, q),
+                                  model.params.body) < 0.05)
               free = false;
           }
         }
@@ -214,7 +223,7 @@ void step_surface_crowd(const SurfaceCrowdModel& model, SurfaceCrowdState& s) {
   s.center_m.resize(N);
   s.up.resize(N);
   for (size_t i = 0; i < N; ++i) {
-    s.up[i] = s.points[i].up(mesh);
+    s.up[i] = body_up(model, s.points[i]);
     s.center_m[i] = s.points[i].position_m + s.up[i] * (p.body.height_m / 2);
   }
   s.cell_slot.resize(N);
@@ -261,10 +270,18 @@ void step_surface_crowd(const SurfaceCrowdModel& model, SurfaceCrowdState& s) {
         if (static_cast<size_t>(o.index) == i) return;
         const double d2 = (o.center_m - center_a).squaredNorm();
         if (d2 > radius2) return;
+        // Seed 002 §3 gives each agent one normal, used both for the disk at its feet and for stacking
+        // its spheres (o_up): here the body's up. (Disks in the face planes under tilted bodies were
+        // measured too, docs/surfaces.md: fewer false negatives on the thin slab, more at the building's
+        // convex ramp crests; the mesh test has neither.)
         if (p.relevant == RelevantMode::kVisibility &&
-            !mutually_visible(a.position_m, up_a, o.feet_m, o.up, p.body))
+            !mutually_visible(a.position_m, up_a, o.feet_m, o.up, o.feet_m + o.up * p.body.height_m))
           return;
-        candidates.emplace_back(d2, o.index);
+        if (p.relevant == RelevantMode::kVisibilityMesh &&
+            !mutually_visible_near_feet(a.position_m, up_a, o.feet_m, o.feet_m + o.up * p.body.height_m,
+                                        *model.bvh))
+          return;
+        candidates.emplace_back(stacked_clearance(a.position_m, up_a, o.feet_m, o.up, p.body), o.index);
       };
       if (p.relevant == RelevantMode::kSurface) {
         // Bounded Dijkstra over the face graph (centroid distances) up to the neighbour distance.
@@ -286,7 +303,9 @@ void step_surface_crowd(const SurfaceCrowdModel& model, SurfaceCrowdState& s) {
         for (int f : reached_faces)
           for (int j : s.face_agents[static_cast<size_t>(f)]) {
             if (static_cast<size_t>(j) == i) continue;
-            candidates.emplace_back((s.center_m[static_cast<size_t>(j)] - center_a).squaredNorm(), j);
+            const size_t js = static_cast<size_t>(j);
+            candidates.emplace_back(
+                stacked_clearance(a.position_m, up_a, s.points[js].position_m, s.up[js], p.body), j);
           }
       } else {
         const Eigen::Vector3i c = cell_of(center_a, p.neighbor_distance_m);

@@ -35,8 +35,8 @@ void accumulate_surface_measures(const SurfaceCrowdModel& model, const SurfaceCr
       const SurfacePoint& b = s.points[j];
       const Vec3 cb = body_center(model, b);
       if ((cb - ca).norm() > model.params.body.height_m + range + 0.5) continue;
-      const double clearance =
-          stacked_clearance(a.position_m, a.up(mesh), b.position_m, b.up(mesh), model.params.body);
+      const double clearance = stacked_clearance(a.position_m, body_up(model, a), b.position_m,
+                                                 body_up(model, b), model.params.body);
       if (clearance > range) continue;
       const bool reachable = !bvh.segment_hits(ca, cb);
       const auto first = s.neighbors.begin() + static_cast<long>(i * K);

@@ -4,8 +4,11 @@
 // Ground truth for "could these two agents touch?" is exact: the straight segment between their body
 // centres must not pass through the mesh (TriangleBvh). Against it:
 //   collision percent  = 100 * (agent-frames whose three-sphere body overlaps a reachable agent's)
-//                        / (agent-frames). Seed 002 reports "collision percentages" without a formula;
-//                        per agent-frame is the usual crowd-simulation convention.
+//                        / (agent-frames). Seed 002 §4 reports "collision percentages" and "median
+//                        collision rates" (.05 %, .009 %; 1,000 agents) without a formula, denominator,
+//                        time step or density; per agent-frame is our reading (the usual crowd-simulation
+//                        convention). Bodies stand along body_up (the simulator's body), so ground truth
+//                        and simulation agree on where each body is.
 //   false positive     = an agent the Relevant function kept (so the avoidance model steers around it,
 //                        at whatever distance) that is NOT reachable (e.g. the agent on the other side
 //                        of a floor, or on the storey above);

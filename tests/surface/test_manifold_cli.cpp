@@ -4,8 +4,10 @@
 #include <catch2/catch.hpp>
 
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
@@ -78,5 +80,48 @@ TEST_CASE("bench manifold --json reports its fields for both models") {
     CHECK(j.at("triangles").get<int>() > 0);
     CHECK(j.at("ms_per_step_median").get<double>() > 0);
     CHECK(j.at("model") == model);
+    CHECK(j.at("relevant") == "visibility");
+    CHECK(j.at("body_up") == "smooth");
   }
+  const auto r = test::run_cli({"bench", "manifold", "--agents", "20", "--mesh", "floor_ceiling", "--steps",
+                                "3", "--relevant", "visibility_mesh", "--face-up", "--json"});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j.at("relevant") == "visibility_mesh");
+  CHECK(j.at("body_up") == "face");
+  CHECK(test::run_cli({"bench", "manifold", "--relevant", "disk"}).exit_code != 0);
+}
+
+TEST_CASE("experiment manifold-compare measures every scene, model and Relevant function") {
+  const fs::path out = test::scratch_dir("manifold_compare_cli");
+  const auto r = test::run_cli({"experiment", "manifold-compare", "--agents", "60", "--steps", "30", "--runs",
+                                "1", "--out", out.string()});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  std::ifstream in(out / "manifold_compare.csv");
+  std::string line;
+  std::getline(in, line);
+  std::map<std::string, std::vector<double>> rows;  // "scene model relevant" -> collisions %, FP, FN
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::vector<std::string> f;
+    for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
+    REQUIRE(f.size() == 9);
+    rows[f[0] + " " + f[1] + " " + f[2]] = {std::stod(f[6]), std::stod(f[7]), std::stod(f[8])};
+  }
+  CHECK(rows.size() == 3 * 2 * 4);
+  for (const auto& [key, v] : rows) {
+    INFO(key);
+    CHECK(v[0] >= 0);
+    CHECK(v[0] <= 100);
+  }
+  for (const std::string model : {"social", "orca"}) {
+    // Seed 002 Fig. 2: the Euclidean baseline avoids agents through the slab; the visibility tests do
+    // not (the refinement tests the real mesh where the disk stands for it).
+    CHECK(rows.at("floor_ceiling " + model + " euclidean")[1] > 0.1);
+    CHECK(rows.at("floor_ceiling " + model + " visibility")[1] < 0.01);
+    CHECK(rows.at("floor_ceiling " + model + " visibility_mesh")[1] < 0.01);
+  }
+  CHECK(r.out.find("median collision rate, visibility_mesh Relevant") != std::string::npos);
 }

@@ -4,10 +4,12 @@
 #include <catch2/catch.hpp>
 
 #include "framework/core/error.hpp"
+#include "framework/core/seed.hpp"
 #include "framework/core/sha256.hpp"
 #include "framework/surface/geodesic_distance.hpp"
 #include "framework/surface/surface_measures.hpp"
 #include "framework/surface/surface_scenes.hpp"
+#include "framework/surface/triangle_bvh.hpp"
 #include "tests/support/test_paths.hpp"
 
 using namespace crowdlab;
@@ -122,8 +124,8 @@ TEST_CASE("agents on perpendicular surfaces avoid each other through the stacked
       step_surface_crowd(d.model, d.state);
       const auto& p = d.state.points;
       min_clearance =
-          std::min(min_clearance, stacked_clearance(p[0].position_m, p[0].up(*mesh), p[1].position_m,
-                                                    p[1].up(*mesh), d.model.params.body));
+          std::min(min_clearance, stacked_clearance(p[0].position_m, body_up(d.model, p[0]), p[1].position_m,
+                                                    body_up(d.model, p[1]), d.model.params.body));
     }
     INFO("model " << surface_avoidance_name(avoidance) << " relevant " << static_cast<int>(mode)
                   << " min clearance " << min_clearance);
@@ -176,4 +178,107 @@ TEST_CASE("agent height, sphere radius and spacing are parameters of the stacked
   p.body.sphere_spacing_m = -1;
   auto mesh = std::make_shared<const SurfaceMesh>(make_floor_and_wall(4, 0.5));
   CHECK_THROWS_AS(make_surface_crowd_model(mesh, p, 1, 1), InputError);
+}
+
+TEST_CASE("a body crossing a crease tilts over several steps instead of snapping by the crease angle") {
+  auto mesh = std::make_shared<const SurfaceMesh>(make_floor_and_wall(4, 0.5));
+  for (bool smooth : {true, false}) {
+    SurfaceCrowdParams p;
+    p.smooth_body_up = smooth;
+    const SurfaceCrowdModel model = make_surface_crowd_model(mesh, p, 1, 1);
+    SurfacePoint pt = place(*mesh, Vec3(1.5, 0, 2.1));
+    Vec3 v(-1.3, 0, 0);
+    double worst_turn_deg = 0, worst_centre_jump_m = 0;
+    Vec3 up = body_up(model, pt), centre = body_center(model, pt);
+    for (int k = 0; k < 90; ++k) {  // 3 s at 1.3 m/s, 30 Hz: from the floor 2.4 m up the wall
+      move_on_surface(*mesh, pt, v * p.dt_s, v);
+      const Vec3 next_up = body_up(model, pt), next_centre = body_center(model, pt);
+      worst_turn_deg =
+          std::max(worst_turn_deg, std::acos(std::clamp(up.dot(next_up), -1.0, 1.0)) * 180 / M_PI);
+      worst_centre_jump_m = std::max(worst_centre_jump_m, (next_centre - centre).norm());
+      up = next_up;
+      centre = next_centre;
+    }
+    INFO("smooth " << smooth << ": worst turn " << worst_turn_deg << " deg, worst centre jump "
+                   << worst_centre_jump_m << " m per step");
+    CHECK(up.isApprox(Vec3::UnitX()));  // standing on the wall at the end either way
+    if (smooth) {
+      // The 90 degree turn spreads over the two 0.5 m triangles at the crease: ~1 m of walking, ~23
+      // steps, about 4 degrees each; the body centre moves little more than the feet (4.3 cm).
+      CHECK(worst_turn_deg < 10);
+      CHECK(worst_centre_jump_m < 0.15);
+    } else {
+      CHECK(worst_turn_deg > 89);  // the face normal snaps: the head sweeps 1.3 m in one step
+      CHECK(worst_centre_jump_m > 1.0);
+    }
+  }
+}
+
+TEST_CASE(
+    "neighbours are ranked by body clearance: a head-on-head agent on the wall beats ten on the floor") {
+  auto mesh = std::make_shared<const SurfaceMesh>(make_floor_and_wall(10, 0.5));
+  SurfaceCrowdParams p;
+  p.relevant = RelevantMode::kEuclidean;
+  p.max_neighbors = 10;
+  SurfaceCrowdModel model = make_surface_crowd_model(mesh, p, 1, 1);
+  SurfaceCrowdState s;
+  // a on the floor 1.9 m from the wall; w on the wall 1.83 m up: their heads touch (clearance < 0)
+  // although their centres are 1.38 m apart. Ten floor agents on the far side of a, with centres 0.95 to
+  // 1.3 m from a's, have larger clearances (0.45 to 0.8 m) but nearer centres.
+  s.points.push_back(place(*mesh, Vec3(1.9, 0, 5)));
+  s.points.push_back(place(*mesh, Vec3(0, 1.83, 5.2)));
+  for (int k = 0; k < 10; ++k) {
+    const double angle = -1.2 + 2.4 * k / 9.0, r = 0.95 + 0.35 * k / 9.0;
+    s.points.push_back(place(*mesh, Vec3(1.9 + r * std::cos(angle), 0, 5 + r * std::sin(angle))));
+  }
+  const size_t n = s.points.size();
+  s.velocity_mps.assign(n, Vec3::Zero());
+  s.goal.assign(n, 0);
+  const Vec3 up_a = body_up(model, s.points[0]), up_w = body_up(model, s.points[1]);
+  REQUIRE(stacked_clearance(s.points[0].position_m, up_a, s.points[1].position_m, up_w, p.body) < 0);
+  for (size_t k = 2; k < n; ++k) {
+    REQUIRE((body_center(model, s.points[k]) - body_center(model, s.points[0])).norm() <
+            (body_center(model, s.points[1]) - body_center(model, s.points[0])).norm());
+    REQUIRE(stacked_clearance(s.points[0].position_m, up_a, s.points[k].position_m,
+                              body_up(model, s.points[k]), p.body) > 0.3);
+  }
+  step_surface_crowd(model, s);
+  REQUIRE(s.neighbor_count[0] == 10);
+  const auto first = s.neighbors.begin();
+  CHECK(std::find(first, first + 10, 1) != first + 10);
+}
+
+TEST_CASE("the mesh-near-feet visibility sees over a thin slab's edge where the 1 m disk hides") {
+  const SurfaceMesh slab = make_floor_ceiling_slab(10, 0.2, 0.5);  // top y = 2.7, sides x = +-5
+  const TriangleBvh bvh(slab);
+  const StackedBody body;
+  // a on the top 10 cm from the edge, b on the 20 cm side face: the segment to b's head leaves the
+  // slab above its top, where the disk at b's feet claims surface that is not there.
+  const Vec3 feet_a(-4.9, 2.7, 0), up_a = Vec3::UnitY(), feet_b(-5.0, 2.6, 0.3), up_b = -Vec3::UnitX();
+  CHECK_FALSE(mutually_visible(feet_a, up_a, feet_b, up_b, body));           // disk: a false negative
+  CHECK(mutually_visible_near_feet(feet_a, up_a, feet_b, up_b, body, bvh));  // mesh: visible
+  CHECK(stacked_clearance(feet_a, up_a, feet_b, up_b, body) < 0.5);          // and they can touch
+  // Through the slab (one on top, one below): both tests hide the agent.
+  const Vec3 feet_c(-1.0, 2.5, 0.4), up_c = -Vec3::UnitY();
+  CHECK_FALSE(mutually_visible(Vec3(-1, 2.7, 0), up_a, feet_c, up_c, body));
+  CHECK_FALSE(mutually_visible_near_feet(Vec3(-1, 2.7, 0), up_a, feet_c, up_c, body, bvh));
+  // Property over random pairs on the two-storey building: "hidden near the feet" implies the full
+  // segment hits the mesh (the test inspects a part of it).
+  const SurfaceMesh building = make_two_storey_building();
+  const TriangleBvh bvh_b(building);
+  Rng rng(7);
+  int hidden = 0;
+  for (int k = 0; k < (test::kSanitized ? 300 : 3000); ++k) {
+    const int fa = static_cast<int>(uniform_index(rng, static_cast<size_t>(building.face_count())));
+    const int fb = static_cast<int>(uniform_index(rng, static_cast<size_t>(building.face_count())));
+    const Vec3 pa = building.centroid(fa), pb = building.centroid(fb);
+    const Vec3 ua = building.face_normals[static_cast<size_t>(fa)],
+               ub = building.face_normals[static_cast<size_t>(fb)];
+    if ((pa - pb).norm() > 4) continue;
+    if (!mutually_visible_near_feet(pa, ua, pb, ub, body, bvh_b)) {
+      ++hidden;
+      CHECK(bvh_b.segment_hits(pa + ua * kEyeLift, pb + ub * body.height_m));
+    }
+  }
+  CHECK(hidden > 0);
 }
