@@ -23,7 +23,6 @@
 #include "framework/core/error.hpp"
 #include "framework/crowd/crowd_simulation.hpp"
 #include "framework/crowd/make_navigation_model.hpp"
-#include "framework/crowd/orca_model.hpp"
 
 namespace crowdlab::cli {
 namespace {
@@ -78,13 +77,10 @@ void run(const Args& a) {
                             static_cast<std::size_t>(a.threads));
   CrowdSpec spec;  // the benchmark's parameters are crowd.* defaults
   spec.model = a.model;
-  std::shared_ptr<const NavigationModel> model = make_navigation_model(spec);
-  if (a.overlap_free) {
-    if (a.model != "orca") throw InputError("bench crowd: --overlap-free applies to --model orca only");
-    OrcaParams p = static_cast<const OrcaModel&>(*model).params();
-    p.resolve_overlaps = true;
-    model = std::make_shared<OrcaModel>(p);
-  }
+  if (a.overlap_free && a.model != "orca")
+    throw InputError("bench crowd: --overlap-free applies to --model orca only");
+  spec.overlap_free = a.overlap_free;  // crowd.overlap_free
+  const std::shared_ptr<const NavigationModel> model = make_navigation_model(spec);
   const std::vector<AgentInit> agents = circle_agents(a.agents);
   {
     CrowdSimulation warm(model, agents, {}, spec.dt_s);

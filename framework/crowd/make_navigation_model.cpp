@@ -31,12 +31,15 @@ std::shared_ptr<const NavigationModel> make_navigation_model(const CrowdSpec& c)
   if (!(c.dt_s > 0.0) || !std::isfinite(c.dt_s)) throw InputError("crowd.dt_s: must be > 0");
   if (!(c.neighbor_distance_m > 0.0) || !std::isfinite(c.neighbor_distance_m))
     throw InputError("crowd.neighbor_distance_m: must be > 0");
+  if (c.overlap_free && c.model != "orca")
+    throw InputError("crowd.overlap_free: applies to model orca only (model is '" + c.model + "')");
   if (c.model == "orca") {
     OrcaParams p;
     p.neighbor_distance_m = c.neighbor_distance_m;
     p.max_neighbors = c.max_neighbors;
     p.time_horizon_s = c.time_horizon_s;
     p.obstacle_time_horizon_s = c.obstacle_time_horizon_s;
+    p.resolve_overlaps = c.overlap_free;
     return std::make_shared<OrcaModel>(p);
   }
   if (c.model == "social") {

@@ -98,15 +98,23 @@ Line agent_line(double rel_px, double rel_py, double rel_vx, double rel_vy, doub
   return line;
 }
 
-/// Step guard of agent i against neighbour j: v_i . n_ij <= max(gap, 0) / (2 dt), with n_ij the unit
-/// vector toward j and gap = |p_j - p_i| - (r_i + r_j). If both agents keep their guards, the distance
-/// along n_ij shrinks by at most the gap during the step, so the discs cannot overlap by its end
-/// (nor in between: motion is linear). v = 0 always satisfies it, so a set of guards is feasible.
+/// Step guard of agent i against neighbour j: v_i . n_ij <= b_ij, with n_ij the unit vector toward j,
+/// gap = |p_j - p_i| - (r_i + r_j) and the pair's allowance gap / dt shared as
+///   b_ij = gap / (2 dt) + s_ij,   s_ij = clamp((v_i + v_j) . n_ij / 2, -gap / (2 dt), gap / (2 dt))
+/// from the current velocities. s_ji = -s_ij (n_ji = -n_ij), so b_ij + b_ji = gap / dt: if both agents
+/// keep their guards, (v_i - v_j) . n_ij <= gap / dt and the distance along n_ij shrinks by at most the
+/// gap during the step, so the discs cannot overlap by its end (nor in between: motion is linear).
+/// Both shares lie in [0, gap / dt], so v = 0 satisfies every guard: a set of guards is feasible.
+/// Sharing by the common motion (ORCA's reciprocity applied to the one-step constraint) lets a
+/// follower keep pace with the neighbour it follows, which equal halves (s = 0) do not: measured in
+/// orca_model.hpp.
 Line step_guard(const CrowdWorld& w, std::size_t i, std::uint32_t j, double dist2, double rr) {
   const double d = std::sqrt(dist2);
   double nx = 1.0, ny = 0.0;
   if (d > 1e-12) nx = (w.px[j] - w.px[i]) / d, ny = (w.py[j] - w.py[i]) / d;
-  const double limit = std::fmax(d - rr, 0.0) / (2.0 * w.dt);
+  const double half = std::fmax(d - rr, 0.0) / (2.0 * w.dt);
+  const double common = 0.5 * ((w.vx[i] + w.vx[j]) * nx + (w.vy[i] + w.vy[j]) * ny);
+  const double limit = half + std::clamp(common, -half, half);
   Line g;
   g.px = nx * limit, g.py = ny * limit;
   g.dx = -ny, g.dy = nx;  // left normal (-dy, dx) = -n: the permitted side is "not toward j"

@@ -22,18 +22,27 @@
 // overlap (tests/crowd/test_orca.cpp); when a jam makes them infeasible, lp3 only minimises the largest
 // violation, so discs can overlap: up to ~0.29 m for 250 agents meeting at the centre of the 0.6 m
 // antipodal circle at dt = 0.1 s. RVO2 behaves the same way (same programs).
-// Overlap-free mode (params.resolve_overlaps, off by default; crowdlab's addition, not the paper's):
+// Overlap-free mode (params.resolve_overlaps, spec key crowd.overlap_free, off by default;
+// crowdlab's addition, not the paper's):
 //   * step guards: for each neighbour j that one step could bring into contact
-//     (|p_j - p_i| < r_i + r_j + (v_max,i + v_max,j) dt), the half-plane
-//     v_i . n_ij <= max(gap_ij, 0) / (2 dt). If both keep it the pair cannot overlap by the end of
-//     the step; v = 0 satisfies all guards, so they are always jointly feasible. They join the
-//     obstacles as HARD lines of lp3 only (in feasible steps ORCA is left exactly as published);
+//     (|p_j - p_i| < r_i + r_j + (v_max,i + v_max,j) dt), the half-plane v_i . n_ij <= b_ij, where the
+//     pair's allowance gap / dt is shared by the pair's common motion along n_ij (step_guard in the
+//     .cpp). If both keep their guards the pair cannot overlap by the end of the step; v = 0 satisfies
+//     all guards, so they are always jointly feasible. They join the obstacles as HARD lines of lp3
+//     only (in feasible steps ORCA is left exactly as published);
 //   * agents that may still end the step overlapping (already touching, breaking a guard, or with
 //     a full neighbour list inside the guard reach) are flagged; the simulation then projects the
 //     remaining overlaps out (resolve_disc_overlaps.hpp) and sets v to the motion actually made.
-//   Measured: 250-agent circle, deepest overlap 0.29 m -> < 0.1 mm, arrival 77 s -> ~100 s; dense
-//   crowds jam harder (guards freeze touching pairs), which is why it is not the default: the
-//   corridor/flow scenarios are tuned for plain ORCA.
+//   Measured (plain ORCA -> overlap-free; last arrival / mean arrival, dt 0.1 s, jitter 0.01 m/s):
+//     250-agent circle (plain 2 runs, overlap-free 5): deepest overlap 0.29-0.31 m -> <= 0.8 mm
+//       (equal halves: up to 2.0 mm in 1 of 5); 81 / 58 s -> 102 / 81 s (equal halves 103 / 82 s);
+//     24 agents through a 1.4 m doorway (10 seeds): 3-4.5 cm -> 0; 16.0 / 7.9 s -> 19.2 / 9.0 s;
+//     40 agents in a 2.9 m corridor, two groups swapping ends (10 seeds): 11-12.5 cm -> 0;
+//       77 / 33.6 s -> 97 / 36.8 s.
+//   Equal halves (b_ij = gap / (2 dt), the first version) were slower: doorway 20.6 / 9.9 s,
+//   corridor 122 / 40.1 s. Dense scenes still clear more slowly than with plain
+//   ORCA (discs that must not interpenetrate queue instead), so it stays opt-in; the papers' studies
+//   want the residual collisions of plain 2D models anyway.
 #include "framework/crowd/navigation_model.hpp"
 
 namespace crowdlab {

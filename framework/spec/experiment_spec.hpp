@@ -46,7 +46,10 @@ struct CrowdSpec {
   double time_horizon_s = 2.0;
   double obstacle_time_horizon_s = 2.0;
   double max_speed_mps = 1.5;
-  double dt_s = 0.1;                           ///< simulation step (trajectories are resampled to fps)
+  double dt_s = 0.1;  ///< simulation step (trajectories are resampled to fps)
+  /// ORCA only: the overlap-free mode (OrcaParams::resolve_overlaps; step guards plus the overlap
+  /// projection, framework/crowd/orca_model.hpp). Off: plain ORCA as published (residual overlaps in jams).
+  bool overlap_free = false;
   std::map<std::string, double> cost_weights;  ///< cost model: goal, separation, smoothness...
 };
 

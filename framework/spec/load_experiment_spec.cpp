@@ -70,7 +70,7 @@ void parse_scenario(YamlSection s, ExperimentSpec& spec) {
 void parse_crowd(YamlSection s, ExperimentSpec& spec) {
   CrowdSpec& c = spec.crowd;
   s.allow_keys({"model", "agent_radius_m", "neighbor_distance_m", "max_neighbors", "time_horizon_s",
-                "obstacle_time_horizon_s", "max_speed_mps", "dt_s", "cost_weights"});
+                "obstacle_time_horizon_s", "max_speed_mps", "dt_s", "cost_weights", "overlap_free"});
   s.choice("model", c.model, {"orca", "social", "cost", "none"});
   s.number("agent_radius_m", c.agent_radius_m, Range::positive(1.0));
   s.number("neighbor_distance_m", c.neighbor_distance_m, Range::positive(100.0));
@@ -79,6 +79,10 @@ void parse_crowd(YamlSection s, ExperimentSpec& spec) {
   s.number("obstacle_time_horizon_s", c.obstacle_time_horizon_s, Range::positive(60.0));
   s.number("max_speed_mps", c.max_speed_mps, Range::positive(10.0));
   s.number("dt_s", c.dt_s, Range::positive(1.0));
+  s.boolean("overlap_free", c.overlap_free);
+  if (c.overlap_free && c.model != "orca")
+    s.diagnostics().error(s.get("overlap_free"), s.child_path("overlap_free"),
+                          "applies to model orca only (model is '" + c.model + "')");
   YamlSection w = s.section("cost_weights");
   if (w.present()) {
     for (auto it = w.node().begin(); it != w.node().end(); ++it) {
