@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
+#include <algorithm>
 
 #include <cmath>
 #include <cstdio>
@@ -102,23 +103,32 @@ void damping_section(const fs::path& dir, ReproductionChecks& checks, std::strin
   write_damping_figure(runs, dir / "fig4");
   md +=
       "## Figure 4: damping sweep (shove at t = 3.5 s)\n\n![damping](fig4/damping.png)\n\n"
-      "| d | RMS deviation after 3.5 s (mm) | max deviation (mm) |\n|---|---|---|\n";
+      "| d | RMS deviation after 3.5 s (mm) | max deviation (mm) | overshoot past the target (mm) | "
+      "mean deviation, last second (mm) |\n|---|---|---|---|---|\n";
   std::map<double, const DampingRun*> by_d;
   for (const DampingRun& r : runs) {
     by_d[r.damping] = &r;
-    md += fmt::format("| {} | {:.2f} | {:.2f} |\n", r.damping, 1000 * r.rms_deviation_m,
-                      1000 * r.max_deviation_m);
+    md += fmt::format("| {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |\n", r.damping, 1000 * r.rms_deviation_m,
+                      1000 * r.max_deviation_m, 1000 * r.overshoot_m, 1000 * r.final_deviation_m);
   }
   md +=
       "\nPaper (Fig. 4 caption): d = 0.006 closely matches the target; no damping is unstable; a high d "
       "drifts from the target.\n\n";
-  const double best = by_d.at(0.006)->rms_deviation_m;
+  // The caption's two failure modes, each measured by what it is: an undamped character rings past its
+  // target after the shove (overshoot), an over-damped one is still away from it at the end (final
+  // deviation). RMS over the whole recovery mixes the shove itself in and does not separate them. The
+  // factor 3 is our tolerance: the paper shows the curves only (measured ~15x for both,
+  // docs/reproductions.md).
+  const DampingRun& nominal = *by_d.at(0.006);
+  constexpr double kFactor = 3.0;
   checks.within("fig4.push_moves", "largest deviation with d = 0.006 (m): the shove moved the character",
-                by_d.at(0.006)->max_deviation_m, 0.005, kInf, "Fig. 4: a collision at t = 3.5 s");
-  checks.within("fig4.d0_vs_d0.006", "RMS deviation ratio d = 0 / d = 0.006",
-                by_d.at(0.0)->rms_deviation_m / best, 1.0, kInf, "Fig. 4: no damping is unstable");
-  checks.within("fig4.d0.6_vs_d0.006", "RMS deviation ratio d = 0.6 / d = 0.006",
-                by_d.at(0.6)->rms_deviation_m / best, 1.0, kInf, "Fig. 4: high damping drifts");
+                nominal.max_deviation_m, 0.005, kInf, "Fig. 4: a collision at t = 3.5 s");
+  checks.within("fig4.d0_vs_d0.006", "overshoot past the target, ratio d = 0 / d = 0.006",
+                by_d.at(0.0)->overshoot_m / std::max(nominal.overshoot_m, 1e-4), kFactor, kInf,
+                "Fig. 4: no damping is unstable (rings)");
+  checks.within("fig4.d0.6_vs_d0.006", "deviation in the last second, ratio d = 0.6 / d = 0.006",
+                by_d.at(0.6)->final_deviation_m / std::max(nominal.final_deviation_m, 1e-4), kFactor, kInf,
+                "Fig. 4: high damping drifts from the target");
 }
 
 void timing_section(const Size& size, const fs::path& dir, std::string& md) {
