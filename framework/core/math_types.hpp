@@ -10,6 +10,13 @@ using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Quat = Eigen::Quaterniond;
 
+/// The cross-product matrix [v]x, so that skew(v) * u == v.cross(u).
+inline Mat3 skew(const Vec3& v) {
+  Mat3 m;
+  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return m;
+}
+
 /// A rigid transform: rotation then translation (x_world = rotation * x_local + translation).
 struct RigidTransform {
   Quat rotation = Quat::Identity();

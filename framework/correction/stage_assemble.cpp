@@ -26,12 +26,6 @@
 namespace crowdlab {
 namespace {
 
-Mat3 skew(const Vec3& v) {
-  Mat3 m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
-
 /// (<[e_x]x, N>, <[e_y]x, N>, <[e_z]x, N>) for the Frobenius inner product.
 Vec3 skew_projection(const Mat3& n) {
   return {n(2, 1) - n(1, 2), n(0, 2) - n(2, 0), n(1, 0) - n(0, 1)};

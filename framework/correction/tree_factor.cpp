@@ -4,14 +4,6 @@
 
 namespace crowdlab {
 
-namespace {
-Mat3 skew(const Vec3& v) {
-  Mat3 m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
-}  // namespace
-
 Mat6 coupling_matrix(const JointCoupling& k) {
   // a_c^T a_p = [I, -[r_p]x; [r_c]x, -[r_c]x [r_p]x].
   const Mat3 sc = skew(k.arm_child), sp = skew(k.arm_parent);

@@ -1,5 +1,5 @@
 #pragma once
-// Bounds-checked reading of glTF accessors (internal to framework/io). tinygltf parses the container
+// Bounds-checked reading of glTF accessors (framework/io's crowd files and framework/surface's meshes). tinygltf parses the container
 // but does not check that an accessor's data lies inside its buffer, so every read goes through here.
 #include <tiny_gltf.h>
 

@@ -3,14 +3,16 @@
 #include <tiny_gltf.h>
 
 #include <cmath>
-#include <cstring>
 #include <functional>
 
 #include "framework/core/error.hpp"
+#include "framework/io/gltf_accessor_reader.hpp"
 
 namespace crowdlab {
 namespace {
 
+/// Reads a primitive's accessors through framework/io's bounds-checked accessor reader (the one the
+/// crowd-file reader uses), adding the surface's own checks.
 struct Reader {
   const tinygltf::Model& model;
   std::string path;
@@ -19,41 +21,15 @@ struct Reader {
     throw InputError(SourceLocation{path, 0, 0, where}, msg);
   }
 
-  /// The bytes an accessor reads: data pointer, element stride, element count, with bounds checked.
-  const unsigned char* view(int accessor, size_t element_size, size_t& stride, size_t& count,
-                            const std::string& where) const {
-    if (accessor < 0 || accessor >= static_cast<int>(model.accessors.size()))
-      fail(where, "accessor index out of range");
-    const tinygltf::Accessor& a = model.accessors[static_cast<size_t>(accessor)];
-    if (a.sparse.isSparse) fail(where, "sparse accessors are not supported");
-    if (a.bufferView < 0 || a.bufferView >= static_cast<int>(model.bufferViews.size()))
-      fail(where, "accessor has no buffer view");
-    const tinygltf::BufferView& v = model.bufferViews[static_cast<size_t>(a.bufferView)];
-    if (v.buffer < 0 || v.buffer >= static_cast<int>(model.buffers.size()))
-      fail(where, "buffer view has no buffer");
-    const auto& data = model.buffers[static_cast<size_t>(v.buffer)].data;
-    stride = v.byteStride ? v.byteStride : element_size;
-    count = a.count;
-    const size_t begin = v.byteOffset + a.byteOffset;
-    if (count > 0 && (begin + stride * (count - 1) + element_size > data.size() ||
-                      begin + stride * (count - 1) + element_size > v.byteOffset + v.byteLength))
-      fail(where, "accessor reads past the end of its buffer");
-    return data.data() + begin;
+  std::string context(const std::string& where, const std::string& what) const {
+    return path + ": " + where + " " + what;
   }
 
   std::vector<Vec3> positions(int accessor, const std::string& where) const {
-    const tinygltf::Accessor& a = model.accessors.at(static_cast<size_t>(accessor));
-    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.type != TINYGLTF_TYPE_VEC3)
-      fail(where, "POSITION must be a float VEC3 accessor");
-    size_t stride = 0, count = 0;
-    const unsigned char* p = view(accessor, 3 * sizeof(float), stride, count, where);
-    std::vector<Vec3> out(count);
-    for (size_t i = 0; i < count; ++i) {
-      float xyz[3];
-      std::memcpy(xyz, p + i * stride, sizeof xyz);
-      out[i] = Vec3(xyz[0], xyz[1], xyz[2]);
-      if (!out[i].allFinite()) fail(where, "vertex " + std::to_string(i) + " is not finite");
-    }
+    const std::vector<float> xyz =
+        read_float_accessor(model, accessor, TINYGLTF_TYPE_VEC3, context(where, "POSITION"));
+    std::vector<Vec3> out(xyz.size() / 3);
+    for (size_t i = 0; i < out.size(); ++i) out[i] = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
     return out;
   }
 
@@ -63,39 +39,11 @@ struct Reader {
       for (size_t i = 0; i < vertex_count; ++i) out.push_back(static_cast<int>(i));
       return out;
     }
-    if (accessor >= static_cast<int>(model.accessors.size())) fail(where, "indices accessor out of range");
-    const tinygltf::Accessor& a = model.accessors[static_cast<size_t>(accessor)];
-    if (a.type != TINYGLTF_TYPE_SCALAR) fail(where, "indices must be SCALAR");
-    size_t size = 0;
-    switch (a.componentType) {
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        size = 1;
-        break;
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-        size = 2;
-        break;
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        size = 4;
-        break;
-      default:
-        fail(where, "indices must be unsigned byte, short or int");
-    }
-    size_t stride = 0, count = 0;
-    const unsigned char* p = view(accessor, size, stride, count, where);
-    out.resize(count);
-    for (size_t i = 0; i < count; ++i) {
-      std::uint32_t v = 0;
-      if (size == 1) v = p[i * stride];
-      if (size == 2) {
-        std::uint16_t s;
-        std::memcpy(&s, p + i * stride, 2);
-        v = s;
-      }
-      if (size == 4) std::memcpy(&v, p + i * stride, 4);
+    for (const std::uint32_t v : read_index_accessor(model, accessor, context(where, "indices"))) {
       if (v >= vertex_count)
         fail(where,
              "index " + std::to_string(v) + " out of range (" + std::to_string(vertex_count) + " vertices)");
-      out[i] = static_cast<int>(v);
+      out.push_back(static_cast<int>(v));
     }
     return out;
   }

@@ -165,7 +165,7 @@ TEST_CASE("bad glTF meshes give clear errors naming the file") {
   // Every triangle degenerate (collinear points).
   fails_with(write_gltf("degenerate", {0, 0, 0, 1, 0, 0, 2, 0, 0}, {0, 1, 2}), "degenerate");
   const std::vector<float> nan_square = {0, 0, 0, 0, 0, 1, 1, 0, 1, 1, std::nanf(""), 0};
-  fails_with(write_gltf("nan", nan_square, kSquareTris), "not finite");
+  fails_with(write_gltf("nan", nan_square, kSquareTris), "not a finite number");
   // Truncated JSON, and a missing .bin.
   const fs::path& dir = gltf_dir();
   std::ofstream(dir / "truncated.gltf") << R"({"asset":{"version":"2.0"},"meshes":[{"primi)";
