@@ -153,6 +153,9 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--foot-anchor-stiffness", o->params.foot_anchor_stiffness,
                   "World-position spring on the ankles and feet (1/s^2 per kg, x stiff_joint_gain)")
       ->capture_default_str();
+  cmd->add_option("--max-rotation-step", o->params.max_rotation_step_rad,
+                  "Trust region on each bone's contact rotation per step (rad, 0 = off)")
+      ->capture_default_str();
   cmd->add_option("--settle-steps", o->params.settle_steps, "Steps run on frame 0 before the output starts")
       ->capture_default_str();
   cmd->callback([o] { run(*o); });

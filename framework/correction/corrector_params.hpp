@@ -33,7 +33,7 @@ struct CorrectorParams {
   /// frequency of sqrt(240) ~ 15 rad/s (2.5 Hz): soft enough that neighbours push limbs aside, stiff
   /// enough to recover within ~0.5 s (seed 000 Fig. 4 shows recovery within about a second). Measured
   /// at 6.66 /m^2 (docs/correction.md): mean joint deviation 6.3 deg stationary, 10.1 deg corridor
-  /// (target <= 10 deg).
+  /// (target <= 10 deg); 8.5 deg corridor with the rotation trust region below (2 s runs).
   double stiffness = 120.0;
   /// Damping d of Eq. 4 on the deviation velocity (s^2: the damper is d x the spring, see the header).
   /// Default 0.006: seed 000 §4.2 and Fig. 4.
@@ -120,6 +120,17 @@ struct CorrectorParams {
   /// A step is rejected (the last stable state kept) if any bone would move faster than this (m/s).
   /// Human segment speeds stay below ~15 m/s even in throwing (Winter 2009); 50 leaves ample room.
   double max_bone_speed_mps = 50.0;
+  /// Trust region on each bone's rotation increment (rad per step), measured from the contact-free
+  /// step dq_free (stage_integrate.cpp); 0 = off. The Newton system linearises every point of a bone
+  /// as dx + dtheta x r, which is only valid for small dtheta (the error is |r| |dtheta|^2 / 2): the
+  /// standard remedy is to restrict the step to where the model holds (trust-region / step-length
+  /// control, Nocedal & Wright 2006, "Numerical Optimization", ch. 4). Measured without it (corridor,
+  /// 6.66 /m^2): light distal bones (hands, toes: tiny rotational inertia and control gain) took
+  /// contact responses of 3-9 rad in ONE step, after which the projection snapped them back; this left
+  /// a p99 joint deviation of ~90-100 deg. 0.5 rad per step (15 rad/s at 30 fps, above the segment
+  /// angular velocities of walking and dancing) removes those spins and leaves ordinary contact
+  /// responses untouched (docs/correction.md).
+  double max_rotation_step_rad = 0.5;
 };
 
 /// Throws InputError naming the field when a parameter is out of range or not finite.

@@ -7,6 +7,13 @@
 // soft joints never accumulate a gap. Velocities are the backward-Euler ones of the projected motion,
 // v = (x_new - x_old) / h and omega = log(R_new R_old^T) / h.
 //
+// Trust region (params.max_rotation_step_rad): before integrating, each bone's rotation increment is
+// kept within theta_max of its contact-free increment dq_free (the part of the step that contacts
+// added is scaled down, its direction kept). The Newton step linearises every bone point as
+// dx + dtheta x r, valid only for small dtheta; light bones (hands, toes) otherwise spin by radians in
+// one step. Clamping one bone's rotation leaves the joints slightly inconsistent, which the projection
+// below removes like any other joint gap.
+//
 // A step is rejected (state kept, velocities zeroed, a warning logged) when the solve produced
 // non-finite numbers, a preconditioner block was not positive definite, CG stalled above 10 % relative
 // residual, or any bone would exceed max_bone_speed_mps.
@@ -26,6 +33,17 @@ Quat rotation_from_vector(const Vec3& v) {
   return Quat(Eigen::AngleAxisd(angle, v / angle));
 }
 
+namespace {
+void limit_rotation_steps(CorrectorState& s, size_t base, double theta_max) {
+  if (!(theta_max > 0.0)) return;
+  for (size_t j = base; j < base + kJointCount; ++j) {
+    const Vec3 contact_part = s.cg_x[j].tail<3>() - s.dq_free[j].tail<3>();
+    const double angle = contact_part.norm();
+    if (angle > theta_max) s.cg_x[j].tail<3>() = s.dq_free[j].tail<3>() + contact_part * (theta_max / angle);
+  }
+}
+}  // namespace
+
 void stage_integrate(const CorrectorModel& model, CorrectorState& s) {
   const int n = model.characters();
   const double h = model.h;
@@ -34,6 +52,7 @@ void stage_integrate(const CorrectorModel& model, CorrectorState& s) {
   std::vector<char>& fast = s.bad_character;
   tbb::parallel_for(0, n, [&](int c) {
     const size_t base = static_cast<size_t>(c) * kJointCount;
+    limit_rotation_steps(s, base, model.params.max_rotation_step_rad);
     for (size_t j = base; j < base + kJointCount; ++j) {
       s.new_com_m[j] = s.com_m[j] + s.cg_x[j].head<3>();
       s.new_rotation[j] = (rotation_from_vector(s.cg_x[j].tail<3>()) * s.rotation[j]).normalized();

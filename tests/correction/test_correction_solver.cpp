@@ -146,6 +146,13 @@ TEST_CASE("correction: bad input is rejected with InputError", "[correction]") {
     p.damping = -1;
     CHECK_THROWS_AS(Corrector({body}, p), InputError);
     CHECK_THROWS_AS(Corrector({body}, {}, {}, 0.0), InputError);
+    CorrectorParams trust;
+    trust.max_rotation_step_rad = -0.1;
+    CHECK_THROWS_AS(Corrector({body}, trust), InputError);
+    trust.max_rotation_step_rad = std::nan("");
+    CHECK_THROWS_AS(Corrector({body}, trust), InputError);
+    trust.max_rotation_step_rad = 0.0;  // 0 switches the trust region off
+    CHECK_NOTHROW(Corrector({body}, trust));
   }
 }
 
