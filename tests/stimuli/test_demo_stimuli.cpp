@@ -37,21 +37,26 @@ bool differs_at(const BgrImage& a, const BgrImage& b, int x, int y) {
 
 TEST_CASE("demo stimuli at 640x360: not blank, characters where predicted, less red once corrected",
           "[stimuli][pipeline]") {
+  if (test::kSanitized) {
+    // The check is about the stimuli, not memory safety: the Release run performs it, and the renderer,
+    // the pipeline's render stage and overlap mode run under the sanitizers in the other stimuli and
+    // pipeline tests. Regenerating the demo under ASan costs about two minutes of CI on two cores.
+    WARN("skipped under sanitizers (run in the Release configuration)");
+    return;
+  }
   const fs::path out = test::scratch_dir("demo_stimuli");
   std::ifstream in(test::source_dir() / "experiments/demo.yaml");
   std::stringstream ss;
   ss << in.rdbuf();
   std::string spec = replaced(ss.str(), "resolution: [480, 270]", "resolution: [640, 360]");
   spec = replaced(spec, "duration_s: 2.0", "duration_s: 0.2");  // 3 frames per clip keep CI fast
-  if (test::kSanitized)
-    spec = replaced(spec, "density: [3.33, 6.66]", "density: [6.66]");  // the colliding one
   const fs::path spec_path = out / "demo_640.yaml";
   std::ofstream(spec_path) << spec;
   const test::CliResult r = test::run_cli({"-q", "run", spec_path.string(), "--out", (out / "run").string()});
   INFO(r.out << r.err);
   REQUIRE(r.exit_code == 0);
   const StimulusManifest manifest = read_manifest((out / "run" / "manifest.csv").string());
-  REQUIRE(manifest.entries.size() == (test::kSanitized ? 4u : 8u));  // densities x 2 viewpoints x 2 methods
+  REQUIRE(manifest.entries.size() == 8u);  // 2 densities x 2 viewpoints x 2 methods
 
   MannequinOptions coarse_meshes;  // 3.5 cm grid: 3x faster to build, plenty at 640 x 360
   coarse_meshes.voxel_m = 0.035;

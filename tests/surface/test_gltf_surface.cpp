@@ -23,8 +23,9 @@ const fs::path& gltf_dir() {
 
 std::string bytes_of(const std::vector<float>& floats, const std::vector<std::uint16_t>& indices) {
   std::string b(floats.size() * 4 + indices.size() * 2, '\0');
-  std::memcpy(b.data(), floats.data(), floats.size() * 4);
-  std::memcpy(b.data() + floats.size() * 4, indices.data(), indices.size() * 2);
+  // memcpy from an empty vector's data() (which may be null) is undefined even for 0 bytes.
+  if (!floats.empty()) std::memcpy(b.data(), floats.data(), floats.size() * 4);
+  if (!indices.empty()) std::memcpy(b.data() + floats.size() * 4, indices.data(), indices.size() * 2);
   while (b.size() % 4) b.push_back('\0');
   return b;
 }
