@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <map>
 
 #include "framework/animation/bvh.hpp"
@@ -12,63 +11,14 @@
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/io/gltf_accessor_reader.hpp"
+#include "framework/io/gltf_node_matrix.hpp"
+#include "framework/io/load_gltf_model.hpp"
 
 namespace crowdlab::stimuli {
 namespace {
 
 [[noreturn]] void fail(const std::string& file, const std::string& where, const std::string& message) {
   throw InputError(SourceLocation{file, 0, 0, where}, message);
-}
-
-/// Local transform of a node (matrix, or T * R * S), glTF 2.0 §3.5.3.
-Eigen::Matrix4d node_matrix(const tinygltf::Node& n) {
-  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
-  if (n.matrix.size() == 16) {
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r) m(r, c) = n.matrix[static_cast<size_t>(c * 4 + r)];
-    return m;
-  }
-  if (n.scale.size() == 3) m.block<3, 3>(0, 0) = Vec3(n.scale[0], n.scale[1], n.scale[2]).asDiagonal();
-  if (n.rotation.size() == 4)
-    m.block<3, 3>(0, 0) =
-        Quat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]).normalized().toRotationMatrix() *
-        m.block<3, 3>(0, 0);
-  if (n.translation.size() == 3)
-    m.block<3, 1>(0, 3) = Vec3(n.translation[0], n.translation[1], n.translation[2]);
-  return m;
-}
-
-/// JOINTS_0: VEC4 of unsigned byte or unsigned short (glTF 2.0 §3.7.3.1), bounds-checked.
-std::vector<std::array<int, 4>> read_joints(const tinygltf::Model& m, int index, const std::string& file,
-                                            const std::string& where) {
-  if (index < 0 || index >= static_cast<int>(m.accessors.size())) fail(file, where, "no such accessor");
-  const tinygltf::Accessor& a = m.accessors[static_cast<size_t>(index)];
-  const int size = a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
-                   : a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
-                                                                               : 0;
-  if (a.type != TINYGLTF_TYPE_VEC4 || size == 0 || a.sparse.isSparse)
-    fail(file, where, "must be a dense VEC4 of unsigned byte or unsigned short");
-  if (a.bufferView < 0 || a.bufferView >= static_cast<int>(m.bufferViews.size()))
-    fail(file, where, "accessor has no buffer view");
-  const tinygltf::BufferView& v = m.bufferViews[static_cast<size_t>(a.bufferView)];
-  if (v.buffer < 0 || v.buffer >= static_cast<int>(m.buffers.size()))
-    fail(file, where, "buffer view has no buffer");
-  const auto& data = m.buffers[static_cast<size_t>(v.buffer)].data;
-  const size_t stride = v.byteStride ? v.byteStride : 4 * static_cast<size_t>(size);
-  const size_t begin = v.byteOffset + a.byteOffset;
-  if (a.count > 0 &&
-      (begin + stride * (a.count - 1) + 4 * static_cast<size_t>(size) > data.size() ||
-       begin + stride * (a.count - 1) + 4 * static_cast<size_t>(size) > v.byteOffset + v.byteLength))
-    fail(file, where, "accessor reads past the end of its buffer");
-  std::vector<std::array<int, 4>> out(a.count);
-  for (size_t i = 0; i < a.count; ++i)
-    for (size_t k = 0; k < 4; ++k) {
-      const unsigned char* p = data.data() + begin + i * stride + k * static_cast<size_t>(size);
-      std::uint16_t value = p[0];
-      if (size == 2) std::memcpy(&value, p, 2);
-      out[i][k] = value;
-    }
-  return out;
 }
 
 std::uint8_t encode_gamma2(double linear) {  // the renderer's colour convention (shaders.cpp)
@@ -96,8 +46,12 @@ void append_primitive(const tinygltf::Model& m, const tinygltf::Primitive& prim,
     fail(file, where + ".attributes", "a skinned primitive needs JOINTS_0 and WEIGHTS_0");
   const std::vector<float> pos = read_float_accessor(m, attribute("POSITION"), TINYGLTF_TYPE_VEC3, ctx);
   const size_t count = pos.size() / 3;
-  const std::vector<std::array<int, 4>> joints =
-      read_joints(m, attribute("JOINTS_0"), file, where + ".attributes.JOINTS_0");
+  // JOINTS_0 (glTF 2.0 §3.7.3.1: VEC4 of unsigned byte or short), bounds-checked by the shared reader.
+  const std::vector<std::uint32_t> joint_ids =
+      read_uint_accessor(m, attribute("JOINTS_0"), TINYGLTF_TYPE_VEC4, ctx + ".attributes.JOINTS_0");
+  std::vector<std::array<int, 4>> joints(joint_ids.size() / 4);
+  for (size_t v = 0; v < joints.size(); ++v)
+    for (size_t k = 0; k < 4; ++k) joints[v][k] = static_cast<int>(joint_ids[4 * v + k]);
   const std::vector<float> weights = read_float_accessor(m, attribute("WEIGHTS_0"), TINYGLTF_TYPE_VEC4, ctx);
   std::vector<float> normals;
   if (attribute("NORMAL") >= 0)
@@ -177,14 +131,7 @@ void append_primitive(const tinygltf::Model& m, const tinygltf::Primitive& prim,
 
 GltfCharacter load_gltf_character(const std::filesystem::path& path) {
   const std::string file = path.string();
-  tinygltf::Model m;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  if (!std::filesystem::is_regular_file(path)) fail(file, "", "no such file");
-  const bool binary = path.extension() == ".glb";
-  const bool ok = binary ? loader.LoadBinaryFromFile(&m, &err, &warn, file)
-                         : loader.LoadASCIIFromFile(&m, &err, &warn, file);
-  if (!ok) fail(file, "", "cannot load glTF: " + (err.empty() ? std::string("unknown error") : err));
+  const tinygltf::Model m = load_gltf_model(path);
   int node = -1;
   for (size_t i = 0; i < m.nodes.size() && node < 0; ++i)
     if (m.nodes[i].mesh >= 0 && m.nodes[i].skin >= 0) node = static_cast<int>(i);
@@ -242,7 +189,7 @@ GltfCharacter load_gltf_character(const std::filesystem::path& path) {
     for (int a = jn; a >= 0; a = parent_node[static_cast<size_t>(a)]) {
       if (++depth > 2 * static_cast<int>(m.nodes.size()))
         fail(file, "nodes[" + std::to_string(jn) + "]", "the node hierarchy has a cycle");
-      world = node_matrix(m.nodes[static_cast<size_t>(a)]) * world;
+      world = gltf_node_matrix(m.nodes[static_cast<size_t>(a)]) * world;
     }
     Eigen::Matrix4d inverse_bind = Eigen::Matrix4d::Identity();  // glTF's default
     if (!ibm.empty()) {

@@ -4,13 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <functional>
 #include <map>
 #include <set>
 
 #include "framework/animation/rotation_helpers.hpp"
 #include "framework/core/error.hpp"
+#include "framework/io/gltf_accessor_reader.hpp"
+#include "framework/io/load_gltf_model.hpp"
 
 namespace crowdlab {
 
@@ -20,38 +21,15 @@ namespace {
   throw InputError(SourceLocation{path.string(), 0, 0, where}, msg);
 }
 
-// Reads a float accessor of `components` floats per element.
+// Reads a float accessor of `components` (1, 3 or 4) floats per element through the shared bounds-checked
+// reader (framework/io/gltf_accessor_reader.hpp); errors name the file, the sampler and the accessor.
 std::vector<double> read_floats(const tinygltf::Model& m, int accessor, int components,
                                 const std::filesystem::path& path, const std::string& where) {
-  if (accessor < 0 || accessor >= static_cast<int>(m.accessors.size()))
-    fail(path, where, "accessor index out of range");
-  const tinygltf::Accessor& a = m.accessors[static_cast<size_t>(accessor)];
-  if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) fail(path, where, "accessor must hold floats");
-  const int per = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type));
-  if (per != components)
-    fail(path, where,
-         "accessor has " + std::to_string(per) + " components, expected " + std::to_string(components));
-  if (a.bufferView < 0 || a.bufferView >= static_cast<int>(m.bufferViews.size()))
-    fail(path, where, "accessor has no buffer view");
-  const tinygltf::BufferView& v = m.bufferViews[static_cast<size_t>(a.bufferView)];
-  if (v.buffer < 0 || v.buffer >= static_cast<int>(m.buffers.size()))
-    fail(path, where, "buffer view has no buffer");
-  const auto& data = m.buffers[static_cast<size_t>(v.buffer)].data;
-  const size_t stride = v.byteStride ? v.byteStride : sizeof(float) * static_cast<size_t>(components);
-  const size_t begin = v.byteOffset + a.byteOffset;
-  if (a.count > 0 &&
-      begin + stride * (a.count - 1) + sizeof(float) * static_cast<size_t>(components) > data.size())
-    fail(path, where, "accessor reads past the end of its buffer");
-  std::vector<double> out;
-  out.reserve(a.count * static_cast<size_t>(components));
-  for (size_t i = 0; i < a.count; ++i)
-    for (int c = 0; c < components; ++c) {
-      float f;
-      std::memcpy(&f, data.data() + begin + i * stride + sizeof(float) * static_cast<size_t>(c), sizeof f);
-      if (!std::isfinite(f)) fail(path, where, "non-finite value in accessor " + std::to_string(accessor));
-      out.push_back(f);
-    }
-  return out;
+  const int type = components == 1   ? TINYGLTF_TYPE_SCALAR
+                   : components == 3 ? TINYGLTF_TYPE_VEC3
+                                     : TINYGLTF_TYPE_VEC4;
+  const std::vector<float> values = read_float_accessor(m, accessor, type, path.string() + ": " + where);
+  return {values.begin(), values.end()};
 }
 
 struct Trs {
@@ -116,13 +94,7 @@ Quat sample_quat(const Track& k, double t) {
 BvhMotion import_gltf_animation(const std::filesystem::path& path, int animation_index, int skin_index,
                                 double fps) {
   if (!(fps > 0)) fail(path, "", "fps must be > 0");
-  tinygltf::Model m;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  const bool binary = path.extension() == ".glb";
-  const bool ok = binary ? loader.LoadBinaryFromFile(&m, &err, &warn, path.string())
-                         : loader.LoadASCIIFromFile(&m, &err, &warn, path.string());
-  if (!ok) fail(path, "", "cannot load glTF: " + (err.empty() ? std::string("unknown error") : err));
+  const tinygltf::Model m = load_gltf_model(path);
   if (animation_index < 0 || animation_index >= static_cast<int>(m.animations.size()))
     fail(path, "animations[" + std::to_string(animation_index) + "]",
          "no such animation (file has " + std::to_string(m.animations.size()) + ")");

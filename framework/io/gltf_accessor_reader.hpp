@@ -1,6 +1,8 @@
 #pragma once
-// Bounds-checked reading of glTF accessors (framework/io's crowd files and framework/surface's meshes). tinygltf parses the container
-// but does not check that an accessor's data lies inside its buffer, so every read goes through here.
+// Bounds-checked reading of glTF accessors, shared by every glTF reader (crowd files, surface meshes,
+// motion clips, skinned characters).
+// tinygltf parses the container but does not check that an accessor's data lies inside its buffer, so every
+// read goes through here.
 #include <tiny_gltf.h>
 
 #include <cstdint>

@@ -7,6 +7,8 @@
 
 #include "framework/core/error.hpp"
 #include "framework/io/gltf_accessor_reader.hpp"
+#include "framework/io/gltf_node_matrix.hpp"
+#include "framework/io/load_gltf_model.hpp"
 
 namespace crowdlab {
 namespace {
@@ -49,33 +51,10 @@ struct Reader {
   }
 };
 
-Eigen::Matrix4d local_transform(const tinygltf::Node& n) {
-  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
-  if (n.matrix.size() == 16) {
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r) m(r, c) = n.matrix[static_cast<size_t>(c * 4 + r)];  // column-major
-    return m;
-  }
-  if (n.translation.size() == 3)
-    m.block<3, 1>(0, 3) = Vec3(n.translation[0], n.translation[1], n.translation[2]);
-  if (n.rotation.size() == 4)  // glTF stores (x, y, z, w)
-    m.block<3, 3>(0, 0) =
-        Quat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]).normalized().toRotationMatrix();
-  if (n.scale.size() == 3)
-    m.block<3, 3>(0, 0) = m.block<3, 3>(0, 0) * Vec3(n.scale[0], n.scale[1], n.scale[2]).asDiagonal();
-  return m;
-}
-
 }  // namespace
 
 SurfaceMesh load_gltf_surface(const std::string& path, double scale) {
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
-  if (!ok) throw InputError(path + ": cannot read glTF: " + (err.empty() ? "unknown error" : err));
+  const tinygltf::Model model = load_gltf_model(path);
   const Reader reader{model, path};
 
   std::vector<Vec3> vertices;
@@ -124,7 +103,7 @@ SurfaceMesh load_gltf_surface(const std::string& path, double scale) {
     if (depth_guard[static_cast<size_t>(node)]++)
       reader.fail("nodes", "node " + std::to_string(node) + " is visited twice (cycle or shared child)");
     const tinygltf::Node& n = model.nodes[static_cast<size_t>(node)];
-    const Eigen::Matrix4d world = parent * local_transform(n);
+    const Eigen::Matrix4d world = parent * gltf_node_matrix(n);
     if (n.mesh >= 0) add_mesh(n.mesh, world);
     for (int child : n.children) visit(child, world);
   };

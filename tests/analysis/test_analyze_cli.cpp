@@ -102,12 +102,7 @@ TEST_CASE("analysis: bad CSVs give exit code 2 and name the row and column", "[a
 }
 
 namespace {
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p.string());
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using crowdlab::test::slurp;
 
 // Simulated sessions: tidy response rows as study sessions write them.
 void simulate_likert_study(const std::filesystem::path& dir) {

@@ -9,12 +9,7 @@
 using namespace crowdlab::test;
 
 namespace {
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using crowdlab::test::slurp;
 }  // namespace
 
 TEST_CASE("docs/cli.md is the binary's own --help text", "[docs][cli]") {

@@ -10,12 +10,7 @@
 
 namespace {
 
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using crowdlab::test::slurp;
 
 crowdlab::CrowdAnimation as_crowd(const game::GameLog& log, bool corrected, double fps) {
   crowdlab::CrowdAnimation crowd;

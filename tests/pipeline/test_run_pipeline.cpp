@@ -21,12 +21,7 @@ std::map<std::string, std::string> hashes(const fs::path& manifest) {
   for (const auto& e : read_manifest(manifest.string()).entries) out[e.id] = e.sha256;
   return out;
 }
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using crowdlab::test::slurp;
 }  // namespace
 
 TEST_CASE("run makes every condition's crowd, metrics and clip, then reuses them") {

@@ -35,12 +35,7 @@ std::string joined(const std::vector<std::string>& v) {
   return s;
 }
 
-std::string read_file(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using crowdlab::test::slurp;
 
 const std::string kHeader = "crowdlab: 1\nname: t\nseed: 5\n";
 
@@ -169,7 +164,7 @@ TEST_CASE("adding a level keeps every other condition's id and seed") {
 }
 
 TEST_CASE("enumeration is deterministic and follows the spec seed") {
-  const std::string text = read_file(test::source_dir() / "experiments" / "hoyet2016_pairs.yaml");
+  const std::string text = slurp(test::source_dir() / "experiments" / "hoyet2016_pairs.yaml");
   const auto base = (test::source_dir() / "experiments").string();
   const auto a = enumerate_conditions(load_experiment_spec_text(text, "a", base));
   const auto b = enumerate_conditions(load_experiment_spec_text(text, "b", base));
@@ -363,7 +358,7 @@ TEST_CASE("a spec without factors has one condition per repetition") {
 }
 
 TEST_CASE("truncated and mangled specs give SpecError, never a crash") {
-  const std::string text = read_file(test::source_dir() / "experiments" / "hoyet2016_crowds.yaml");
+  const std::string text = slurp(test::source_dir() / "experiments" / "hoyet2016_crowds.yaml");
   const size_t step = test::kSanitized ? 37 : 7;
   int failures = 0;
   for (size_t n = 0; n < text.size(); n += step) {

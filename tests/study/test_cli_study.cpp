@@ -61,12 +61,7 @@ protocol:
     - {id: naturalness, text: "How natural was the interaction?"}
 )";
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using crowdlab::test::slurp;
 
 fs::path write_text(const fs::path& p, const std::string& text) {
   std::ofstream(p) << text;

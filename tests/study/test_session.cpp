@@ -14,6 +14,7 @@
 #include "study_ui/simulate_study.hpp"
 #include "study_ui/simulated_presenter.hpp"
 #include "tests/study/study_fixture.hpp"
+#include "tests/support/test_paths.hpp"
 
 using namespace crowdlab;
 using namespace crowdlab::study;
@@ -21,12 +22,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using crowdlab::test::slurp;
 
 /// A script answering every (stimulus, question): raw = 1 + (hash of both) mod k.
 fs::path write_script(const fs::path& dir, const StimulusManifest& m, const std::vector<StudyQuestion>& qs) {

@@ -3,13 +3,21 @@
 // machine does not have: tests that need it call shared_data_or_skip()).
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 namespace crowdlab::test {
 
-inline std::filesystem::path source_dir() { return CROWDLAB_SOURCE_DIR; }
-inline std::filesystem::path binary_dir() { return CROWDLAB_BINARY_DIR; }
-inline std::filesystem::path crowdlab_exe() { return CROWDLAB_EXE; }
+inline std::filesystem::path source_dir() {
+  return CROWDLAB_SOURCE_DIR;
+}
+inline std::filesystem::path binary_dir() {
+  return CROWDLAB_BINARY_DIR;
+}
+inline std::filesystem::path crowdlab_exe() {
+  return CROWDLAB_EXE;
+}
 inline constexpr bool kSanitized = CROWDLAB_SANITIZED;
 
 /// `../shared/data/<sub>` beside the checkout, or empty when absent (a message is printed).
@@ -25,6 +33,14 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
   std::filesystem::remove_all(p);
   std::filesystem::create_directories(p);
   return p;
+}
+
+/// The whole content of a file, byte for byte (empty when it cannot be opened).
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
 }
 
 }  // namespace crowdlab::test
