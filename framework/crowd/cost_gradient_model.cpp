@@ -60,7 +60,8 @@ void CostGradientModel::compute_velocities(const CrowdWorld& w, std::size_t begi
   const double quad = P.goal + P.smoothness;
   std::array<std::uint32_t, kMaxNeighbors> nb;
   std::array<double, kMaxNeighbors> nb_d2;
-  for (std::size_t i = begin; i < end; ++i) {
+  for (std::size_t k_order = begin; k_order < end; ++k_order) {
+    const std::uint32_t i = w.grid->order(k_order);
     const double xi = w.px[i], yi = w.py[i], ri = w.radius[i];
     // Nearest neighbours (sorted by distance, ties by index), as in ORCA.
     int count = 0;
@@ -126,8 +127,8 @@ void CostGradientModel::compute_velocities(const CrowdWorld& w, std::size_t begi
       const double s = vmax / std::sqrt(speed2);
       vx *= s, vy *= s;
     }
-    new_vx[i] = vx;
-    new_vy[i] = vy;
+    new_vx[k_order] = vx;
+    new_vy[k_order] = vy;
   }
 }
 

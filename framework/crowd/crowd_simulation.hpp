@@ -6,8 +6,9 @@
 //   v_pref = v0 * (g - p) / |g - p|, shortened to (g - p) / dt within one step of the goal.
 // Models that ask for it (ORCA) get a position-level overlap projection after the commit, seeded by
 // the agents they flag (resolve_disc_overlaps.hpp); it is sequential and ordered.
-// Parallelism: TBB parallel_for over agent ranges; each agent writes only its own slot, so 1 or N
-// threads give bit-identical states. Buffers are sized once; a step allocates nothing.
+// Parallelism: TBB parallel_for over agent ranges (the model's phase over grid-order ranges); each
+// agent writes only its own slot, so 1 or N threads give bit-identical states. Buffers are sized once; a step
+// allocates nothing.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -58,7 +59,7 @@ class CrowdSimulation {
 
  private:
   void substep(double h);
-  void update_preferred_velocities(double h, std::size_t begin, std::size_t end);
+  void update_preferred_velocity(double h, std::size_t i);
 
   std::shared_ptr<const NavigationModel> model_;
   std::vector<ObstacleSegment> obstacles_;
@@ -68,7 +69,9 @@ class CrowdSimulation {
   double jitter_ = 0.0;
   std::uint64_t jitter_seed_ = 0;
   std::vector<double> px_, py_, vx_, vy_, gx_, gy_, pref_speed_, max_speed_, radius_;
-  std::vector<double> pref_vx_, pref_vy_, new_vx_, new_vy_, pre_x_, pre_y_;
+  std::vector<double> pref_vx_, pref_vy_;
+  std::vector<double> grid_vx_, grid_vy_;  // phase-1 velocities in grid order (NeighborGrid::order)
+  std::vector<double> pre_x_, pre_y_;      // positions before the overlap projection
   std::vector<unsigned char> contact_flags_;
   NeighborGrid grid_;
   OverlapResolutionScratch overlap_scratch_;

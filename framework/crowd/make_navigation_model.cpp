@@ -11,15 +11,16 @@ namespace crowdlab {
 
 void StraightLineModel::compute_velocities(const CrowdWorld& w, std::size_t begin, std::size_t end,
                                            double* new_vx, double* new_vy) const {
-  for (std::size_t i = begin; i < end; ++i) {
+  for (std::size_t k = begin; k < end; ++k) {
+    const std::uint32_t i = w.grid->order(k);
     double vx = w.pref_vx[i], vy = w.pref_vy[i];
     const double s2 = vx * vx + vy * vy, vmax = w.max_speed[i];
     if (s2 > vmax * vmax) {
       const double s = vmax / std::sqrt(s2);
       vx *= s, vy *= s;
     }
-    new_vx[i] = vx;
-    new_vy[i] = vy;
+    new_vx[k] = vx;
+    new_vy[k] = vy;
   }
 }
 

@@ -55,7 +55,9 @@ class NavigationModel {
   virtual bool resolves_overlaps() const { return false; }
   /// Radius (m) of the neighbourhood the model queries; the grid's cell is at least this.
   virtual double neighbor_radius_m() const = 0;
-  /// Phase 1: new velocities of agents [begin, end) from `world`, written to new_vx/new_vy[i].
+  /// Phase 1: new velocities of the agents at grid-order positions [begin, end) of world.grid (agent
+  /// i = grid->order(k)), written to new_vx/new_vy[k], i.e. in grid order: each parallel task then
+  /// writes one contiguous block, and no two cores write the same cache line.
   /// Must be thread-safe (const, no shared mutable state) and allocation-free.
   virtual void compute_velocities(const CrowdWorld& world, std::size_t begin, std::size_t end, double* new_vx,
                                   double* new_vy) const = 0;

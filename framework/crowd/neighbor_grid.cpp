@@ -30,6 +30,7 @@ void NeighborGrid::rebuild(const double* x, const double* y, std::size_t n) {
     point_cx_.resize(n);
     point_cy_.resize(n);
     sorted_index_.resize(n);
+    position_of_.resize(n);
     sorted_x_.resize(n);
     sorted_y_.resize(n);
     sorted_cx_.resize(n);
@@ -52,6 +53,7 @@ void NeighborGrid::rebuild(const double* x, const double* y, std::size_t n) {
   for (std::size_t i = n; i-- > 0;) {
     const std::uint32_t slot = --bucket_start_[point_bucket_[i]];
     sorted_index_[slot] = static_cast<std::uint32_t>(i);
+    position_of_[i] = slot;
     sorted_x_[slot] = x[i];
     sorted_y_[slot] = y[i];
     sorted_cx_[slot] = point_cx_[i];

@@ -66,6 +66,8 @@ class NeighborGrid {
   /// a bucket): a permutation of 0..size()-1, so iterating it visits every point once, neighbours
   /// close together in time.
   std::uint32_t order(std::size_t k) const { return sorted_index_[k]; }
+  /// Inverse of order(): the grid-order position of point i.
+  std::uint32_t position_of(std::size_t i) const { return position_of_[i]; }
   /// Coordinates of the point at grid-order position k (the same values as the input arrays).
   double x_at(std::size_t k) const { return sorted_x_[k]; }
   double y_at(std::size_t k) const { return sorted_y_[k]; }
@@ -113,6 +115,7 @@ class NeighborGrid {
   std::vector<std::uint32_t> bucket_start_;  // (table + 1) prefix sums
   std::vector<std::uint32_t> point_bucket_;  // (n) bucket of each point (scratch)
   std::vector<std::uint32_t> sorted_index_;  // (n) point index in bucket order
+  std::vector<std::uint32_t> position_of_;   // (n) inverse of sorted_index_
   std::vector<double> sorted_x_, sorted_y_;  // (n) coordinates in bucket order (cache locality)
   std::vector<std::int32_t> sorted_cx_, sorted_cy_;
   std::vector<std::int32_t> point_cx_, point_cy_;  // (n) cell of each point (scratch)

@@ -278,8 +278,8 @@ void OrcaModel::compute_velocities(const CrowdWorld& w, std::size_t begin, std::
       }
       if (flag) w.needs_contact_check[i] = 1;
     }
-    new_vx[i] = rx;
-    new_vy[i] = ry;
+    new_vx[k_order] = rx;
+    new_vy[k_order] = ry;
   }
 }
 

@@ -24,7 +24,8 @@ void SocialForceModel::compute_velocities(const CrowdWorld& w, std::size_t begin
                                           double* new_vx, double* new_vy) const {
   const SocialForceParams& P = params_;
   const double inv_m = 1.0 / P.mass_kg;
-  for (std::size_t i = begin; i < end; ++i) {
+  for (std::size_t k = begin; k < end; ++k) {
+    const std::uint32_t i = w.grid->order(k);
     const double xi = w.px[i], yi = w.py[i], vxi = w.vx[i], vyi = w.vy[i], ri = w.radius[i];
     // Driving term, per unit mass.
     double ax = (w.pref_vx[i] - vxi) / P.relaxation_s;
@@ -64,8 +65,8 @@ void SocialForceModel::compute_velocities(const CrowdWorld& w, std::size_t begin
       const double s = vmax / std::sqrt(speed2);
       nvx *= s, nvy *= s;
     }
-    new_vx[i] = nvx;
-    new_vy[i] = nvy;
+    new_vx[k] = nvx;
+    new_vy[k] = nvy;
   }
 }
 
