@@ -6,11 +6,11 @@
 
 #include "framework/animation/dance_motions.hpp"
 #include "framework/animation/foot_track.hpp"
-#include "framework/animation/leg_ik.hpp"
 #include "framework/animation/pelvis_height_limit.hpp"
 #include "framework/animation/rotation_helpers.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/leg_ik.hpp"
 #include "framework/core/seed.hpp"
 
 namespace crowdlab {
@@ -110,7 +110,7 @@ DanceResult animate_padded(const BodyShape& shape, const AgentTrajectory& anchor
   std::array<std::vector<FootState>, 2> feet;
   for (int side = 0; side < 2; ++side) {
     const double sign = side == 0 ? 1.0 : -1.0;
-    const Side sd = side == 0 ? Side::kLeft : Side::kRight;
+    const LegSide sd = side == 0 ? LegSide::kLeft : LegSide::kRight;
     const LegJoints lj = leg_joints(sd);
     const Vec3 foot_off = shape.joint_offsets_m[static_cast<size_t>(lj.foot)];
     std::vector<std::uint8_t> contact(n);
@@ -170,14 +170,8 @@ DanceResult animate_padded(const BodyShape& shape, const AgentTrajectory& anchor
           roll(-s * a.shrug) * shortest_arc(Vec3(s, 0, 0), dir);
       pose.local_rotations[static_cast<size_t>(side == 0 ? kLeftElbow : kRightElbow)] = yaw(-s * a.elbow);
     }
-    for (int side = 0; side < 2; ++side) {
-      const Side sd = side == 0 ? Side::kLeft : Side::kRight;
-      const FootState& fs = feet[static_cast<size_t>(side)][k];
-      const Vec3 fwd = fs.rotation * Vec3::UnitZ() + pelvis_rot[k] * Vec3::UnitZ();
-      out.max_ik_error_m = std::max(out.max_ik_error_m, solve_leg_ik(shape, pose, sd, fs.ankle, fs.rotation,
-                                                                     Vec3(fwd.x(), 0, fwd.z())));
-      out.contact[static_cast<size_t>(side)][k] = fs.contact ? 1 : 0;
-    }
+    out.max_ik_error_m = std::max(out.max_ik_error_m, solve_legs(shape, pose, feet[0][k], feet[1][k]));
+    for (size_t side = 0; side < 2; ++side) out.contact[side][k] = feet[side][k].contact ? 1 : 0;
     for (Quat& q : pose.local_rotations) q.normalize();
     out.frames[k] = pose;
   }

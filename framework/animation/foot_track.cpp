@@ -10,12 +10,13 @@ namespace crowdlab::anim {
 
 double solve_legs(const BodyShape& shape, Pose& pose, const FootState& left, const FootState& right) {
   double error = 0.0;
-  for (const Side side : {Side::kLeft, Side::kRight}) {
-    const FootState& fs = side == Side::kLeft ? left : right;
+  for (const LegSide side : {LegSide::kLeft, LegSide::kRight}) {
+    const FootState& fs = side == LegSide::kLeft ? left : right;
     const Vec3 foot_fwd = fs.rotation * Vec3::UnitZ();
     const Vec3 body_fwd = pose.local_rotations[kPelvis] * Vec3::UnitZ();
     const Vec3 pole(foot_fwd.x() + body_fwd.x(), 0, foot_fwd.z() + body_fwd.z());
     error = std::max(error, solve_leg_ik(shape, pose, side, fs.ankle, fs.rotation, pole));
+    pose.local_rotations[static_cast<size_t>(leg_joints(side).foot)] = Quat::Identity();  // flat toes
   }
   return error;
 }
@@ -42,7 +43,7 @@ std::vector<Interval> contact_intervals(const std::vector<std::uint8_t>& contact
 }
 }  // namespace
 
-std::vector<FootState> plan_foot_track(const BodyShape& shape, Side side,
+std::vector<FootState> plan_foot_track(const BodyShape& shape, LegSide side,
                                        const std::vector<std::uint8_t>& contact,
                                        const std::vector<FootTarget>& desired) {
   if (contact.size() != desired.size()) throw RuntimeError("plan_foot_track: contact/desired size mismatch");

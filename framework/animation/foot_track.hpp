@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "framework/animation/leg_ik.hpp"
+#include "framework/core/leg_ik.hpp"
 
 namespace crowdlab::anim {
 
@@ -30,7 +30,7 @@ struct FootState {
 };
 
 /// One FootState per frame. `contact` and `desired` have one entry per frame.
-std::vector<FootState> plan_foot_track(const BodyShape& shape, Side side,
+std::vector<FootState> plan_foot_track(const BodyShape& shape, LegSide side,
                                        const std::vector<std::uint8_t>& contact,
                                        const std::vector<FootTarget>& desired);
 

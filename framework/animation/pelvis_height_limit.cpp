@@ -12,12 +12,12 @@ void limit_pelvis_height(const BodyShape& shape, std::vector<double>& root_heigh
   const size_t n = root_height.size();
   std::vector<double> limit(root_height);
   for (size_t k = 0; k < n; ++k) {
-    for (Side side : {Side::kLeft, Side::kRight}) {
+    for (LegSide side : {LegSide::kLeft, LegSide::kRight}) {
       const double reach = reach_fraction * leg_length(shape, side);
       const Vec3 hip_rel =
           pelvis_rotation[k] * shape.joint_offsets_m[static_cast<size_t>(leg_joints(side).hip)];
       const Vec3 hip_ground(root_xz[k].x() + hip_rel.x(), 0.0, root_xz[k].z() + hip_rel.z());
-      const Vec3& ankle = (*feet[side == Side::kLeft ? 0 : 1])[k].ankle;
+      const Vec3& ankle = (*feet[side == LegSide::kLeft ? 0 : 1])[k].ankle;
       const double horiz = std::hypot(ankle.x() - hip_ground.x(), ankle.z() - hip_ground.z());
       const double vertical = std::sqrt(std::max(reach * reach - horiz * horiz, 0.0));
       limit[k] = std::min(limit[k], ankle.y() - hip_rel.y() + vertical);

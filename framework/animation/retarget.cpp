@@ -10,7 +10,6 @@
 
 namespace crowdlab {
 
-using anim::align_two_axes;
 using anim::shortest_arc;
 
 std::string_view to_string(SkeletonConvention c) {

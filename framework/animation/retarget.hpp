@@ -11,9 +11,9 @@
 //    the target's T-pose bone direction; for the pelvis and the upper spine (spine3) a second,
 //    lateral direction between their direct children (left minus right hip / collar) fixes the twist
 //    (align_two_axes). Other bones have one child: their twist moves no joint but turns a skinned head or
-//    hand, so it is inherited from the parent's alignment (A_j = minimal arc after A_parent). The target bone's
-//    world rotation is then W_j(t) = G_j(t) * A_j^-1, where G_j(t) is the source joint's world rotation:
-//    every mapped bone points where the source bone points, whatever the rest poses.
+//    hand, so it is inherited from the parent's alignment (A_j = minimal arc after A_parent). The target
+//    bone's world rotation is then W_j(t) = G_j(t) * A_j^-1, where G_j(t) is the source joint's world
+//    rotation: every mapped bone points where the source bone points, whatever the rest poses.
 // 3. Feet: each foot is turned about its lateral axis so that it is flat (at the target's rest
 //    pitch) while it stands (its 20 % lowest frames), since ankle-over-toe geometry differs between
 //    skeletons; the toes keep their world orientation.

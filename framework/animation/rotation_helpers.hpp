@@ -6,6 +6,7 @@
 //   roll(a)  rotates about +Z (a > 0 raises the left (+X) side)
 #include <cmath>
 
+#include "framework/core/align_two_axes.hpp"  // align_two_axes, used with these helpers
 #include "framework/core/math_types.hpp"
 
 namespace crowdlab::anim {
@@ -27,11 +28,6 @@ inline Quat roll(double a) {
 inline Quat shortest_arc(const Vec3& from, const Vec3& to) {
   return Quat::FromTwoVectors(from.normalized(), to.normalized());
 }
-
-/// The rotation R with R * a0 = a1 (primary directions, exact) and R * b0 as close as possible to b1
-/// (secondary directions, projected orthogonal to the primary). Inputs need not be unit; the
-/// secondary vectors must not be parallel to their primaries.
-Quat align_two_axes(const Vec3& a0, const Vec3& b0, const Vec3& a1, const Vec3& b1);
 
 /// Wraps an angle to (-pi, pi].
 inline double wrap_angle(double a) {

@@ -6,13 +6,13 @@
 
 #include "framework/animation/foot_track.hpp"
 #include "framework/animation/gait_parameters.hpp"
-#include "framework/animation/leg_ik.hpp"
 #include "framework/animation/pelvis_height_limit.hpp"
 #include "framework/animation/reaction_pose.hpp"
 #include "framework/animation/rotation_helpers.hpp"
 #include "framework/animation/smoothed_track.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/leg_ik.hpp"
 #include "framework/core/seed.hpp"
 
 namespace crowdlab {
@@ -104,10 +104,10 @@ WalkResult animate_walking(const BodyShape& shape, const AgentTrajectory& trajec
 
   // ---- feet: contacts and desired plants ------------------------------------------------------
   std::array<std::vector<FootState>, 2> feet;
-  for (Side side : {Side::kLeft, Side::kRight}) {
-    const int si = side == Side::kLeft ? 0 : 1;
-    const double sign = side == Side::kLeft ? 1.0 : -1.0;
-    const double offset = side == Side::kLeft ? 0.0 : 0.5;
+  for (LegSide side : {LegSide::kLeft, LegSide::kRight}) {
+    const int si = side == LegSide::kLeft ? 0 : 1;
+    const double sign = side == LegSide::kLeft ? 1.0 : -1.0;
+    const double offset = side == LegSide::kLeft ? 0.0 : 0.5;
     const LegJoints lj = leg_joints(side);
     const Vec3 ball_rest = rest[static_cast<size_t>(lj.foot)];
     const Vec3 foot_off = shape.joint_offsets_m[static_cast<size_t>(lj.foot)];

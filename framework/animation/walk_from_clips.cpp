@@ -7,13 +7,13 @@
 
 #include "framework/animation/clip_loop.hpp"
 #include "framework/animation/foot_track.hpp"
-#include "framework/animation/leg_ik.hpp"
 #include "framework/animation/pelvis_height_limit.hpp"
 #include "framework/animation/reaction_pose.hpp"
 #include "framework/animation/rotation_helpers.hpp"
 #include "framework/animation/smoothed_track.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/leg_ik.hpp"
 
 namespace crowdlab {
 
@@ -256,7 +256,7 @@ WalkResult animate_walking_from_clips(const BodyShape& shape, const std::vector<
     if (f < n && !reaction.empty()) apply_reaction_upper_body(pose, std::clamp(reaction[f], -1.0, 1.0));
     const BoneTransforms bones = forward_kinematics(shape, pose);
     for (size_t s = 0; s < 2; ++s) {
-      const LegJoints lj = leg_joints(s == 0 ? Side::kLeft : Side::kRight);
+      const LegJoints lj = leg_joints(s == 0 ? LegSide::kLeft : LegSide::kRight);
       contact[s][k] = at_rest[k] || (1.0 - bl.w) * ca[s] + bl.w * cb[s] >= 0.5 ? 1 : 0;
       FootTarget& d = desired[s][k];
       d.ball = bones[static_cast<size_t>(lj.foot)].translation;
@@ -269,7 +269,7 @@ WalkResult animate_walking_from_clips(const BodyShape& shape, const std::vector<
   }
   std::array<std::vector<FootState>, 2> feet;
   for (size_t s = 0; s < 2; ++s)
-    feet[s] = plan_foot_track(shape, s == 0 ? Side::kLeft : Side::kRight, contact[s], desired[s]);
+    feet[s] = plan_foot_track(shape, s == 0 ? LegSide::kLeft : LegSide::kRight, contact[s], desired[s]);
 
   // ---- pelvis height where the legs cannot reach, then leg IK ---------------------------------------
   std::vector<double> root_h(m);

@@ -6,10 +6,10 @@
 #include "framework/animation/dance_animation.hpp"
 #include "framework/animation/foot_skate.hpp"
 #include "framework/animation/gait_parameters.hpp"
-#include "framework/animation/leg_ik.hpp"
 #include "framework/animation/rotation_helpers.hpp"
 #include "framework/animation/walk_animation.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/leg_ik.hpp"
 #include "framework/core/seed.hpp"
 
 using namespace crowdlab;
@@ -63,19 +63,19 @@ TEST_CASE("leg IK round trip: FK of the solved leg reaches the ankle target and 
     Pose pose = Pose::rest(s);
     pose.root_position_m = Vec3(uniform01(rng), 0.85 + 0.1 * uniform01(rng), uniform01(rng));
     pose.local_rotations[kPelvis] = anim::yaw(6 * uniform01(rng)) * anim::roll(0.1 * (uniform01(rng) - 0.5));
-    for (anim::Side side : {anim::Side::kLeft, anim::Side::kRight}) {
-      const Vec3 hip = anim::hip_position(s, pose, side);
+    for (LegSide side : {LegSide::kLeft, LegSide::kRight}) {
+      const Vec3 hip = hip_position(s, pose, side);
       const Vec3 target =
           hip + Vec3(0.5 * (uniform01(rng) - 0.5), -0.6 - 0.2 * uniform01(rng), 0.5 * (uniform01(rng) - 0.5));
       const Quat foot = anim::yaw(uniform01(rng)) * anim::pitch(0.6 * uniform01(rng));
       const double err =
-          anim::solve_leg_ik(s, pose, side, target, foot, pose.local_rotations[kPelvis] * Vec3::UnitZ());
+          solve_leg_ik(s, pose, side, target, foot, pose.local_rotations[kPelvis] * Vec3::UnitZ());
       const BoneTransforms bones = forward_kinematics(s, pose);
-      const int ankle = anim::leg_joints(side).ankle;
+      const int ankle = leg_joints(side).ankle;
       if (err == 0.0) CHECK((bones[static_cast<size_t>(ankle)].translation - target).norm() < 1e-9);
       CHECK(bones[static_cast<size_t>(ankle)].rotation.angularDistance(foot) < 1e-9);
       // Knee is a hinge: its local rotation axis is the bone's lateral (x) axis.
-      const Quat knee = pose.local_rotations[static_cast<size_t>(anim::leg_joints(side).knee)];
+      const Quat knee = pose.local_rotations[static_cast<size_t>(leg_joints(side).knee)];
       const Eigen::AngleAxisd aa(knee);
       if (aa.angle() > 1e-3) CHECK(std::abs(aa.axis().x()) > 0.999);
     }

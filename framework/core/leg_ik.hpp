@@ -1,5 +1,7 @@
 #pragma once
 // Analytic two-bone leg IK on the SMPL skeleton (hip -> knee -> ankle), plus the foot orientation.
+// Shared by the animation stage (placing walking and dancing feet) and the correction stage (holding
+// planted feet where they landed after each solver step).
 //
 // Given a pose whose pelvis (root) is already set, solve_leg_ik() writes the local rotations of the
 // hip, knee and ankle of one leg so that
@@ -8,32 +10,33 @@
 //     the knee should point toward, e.g. the foot's forward), i.e. a pure hinge about the knee's
 //     local lateral axis, and
 //   - the ankle bone's world rotation equals `foot_rotation` (e.g. yaw(heading) * pitch(heel rise)).
+// The ball ("foot") joint's local rotation (the toes) is left as it is.
 // The reach is the law of cosines on the thigh and shank lengths (|offset(knee)|, |offset(ankle)|);
 // targets closer than |l1 - l2| or farther than l1 + l2 are clamped onto the reachable shell, and the
 // returned value is the remaining ankle error (metres, 0 when reachable).
 #include "framework/core/body_shape.hpp"
 #include "framework/core/pose.hpp"
 
-namespace crowdlab::anim {
+namespace crowdlab {
 
-enum class Side { kLeft, kRight };
+enum class LegSide { kLeft, kRight };
 
 struct LegJoints {
   int hip, knee, ankle, foot;
 };
-LegJoints leg_joints(Side side);
+LegJoints leg_joints(LegSide side);
 
 /// Thigh + shank length of one leg (metres).
-double leg_length(const BodyShape& shape, Side side);
+double leg_length(const BodyShape& shape, LegSide side);
 
 /// The world position of the hip joint of `side` for the pose's root position and pelvis rotation.
-Vec3 hip_position(const BodyShape& shape, const Pose& pose, Side side);
+Vec3 hip_position(const BodyShape& shape, const Pose& pose, LegSide side);
 
-double solve_leg_ik(const BodyShape& shape, Pose& pose, Side side, const Vec3& ankle_target,
+double solve_leg_ik(const BodyShape& shape, Pose& pose, LegSide side, const Vec3& ankle_target,
                     const Quat& foot_rotation, const Vec3& knee_pole);
 
 /// Ankle position for a foot whose ball (the SMPL "foot" joint) rests at `ball` with world rotation
 /// `foot_rotation`: ball - foot_rotation * offset(foot).
-Vec3 ankle_from_ball(const BodyShape& shape, Side side, const Vec3& ball, const Quat& foot_rotation);
+Vec3 ankle_from_ball(const BodyShape& shape, LegSide side, const Vec3& ball, const Quat& foot_rotation);
 
-}  // namespace crowdlab::anim
+}  // namespace crowdlab

@@ -1,6 +1,6 @@
-#include "framework/animation/rotation_helpers.hpp"
+#include "framework/core/align_two_axes.hpp"
 
-namespace crowdlab::anim {
+namespace crowdlab {
 
 namespace {
 // Orthonormal frame whose first column is a and whose second lies in the (a, b) plane.
@@ -23,4 +23,4 @@ Quat align_two_axes(const Vec3& a0, const Vec3& b0, const Vec3& a1, const Vec3& 
   return Quat(r).normalized();
 }
 
-}  // namespace crowdlab::anim
+}  // namespace crowdlab

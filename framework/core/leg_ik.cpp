@@ -1,35 +1,35 @@
-#include "framework/animation/leg_ik.hpp"
+#include "framework/core/leg_ik.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "framework/animation/rotation_helpers.hpp"
+#include "framework/core/align_two_axes.hpp"
 #include "framework/core/capsule.hpp"
 
-namespace crowdlab::anim {
+namespace crowdlab {
 
-LegJoints leg_joints(Side side) {
-  return side == Side::kLeft ? LegJoints{kLeftHip, kLeftKnee, kLeftAnkle, kLeftFoot}
-                             : LegJoints{kRightHip, kRightKnee, kRightAnkle, kRightFoot};
+LegJoints leg_joints(LegSide side) {
+  return side == LegSide::kLeft ? LegJoints{kLeftHip, kLeftKnee, kLeftAnkle, kLeftFoot}
+                                : LegJoints{kRightHip, kRightKnee, kRightAnkle, kRightFoot};
 }
 
-double leg_length(const BodyShape& shape, Side side) {
+double leg_length(const BodyShape& shape, LegSide side) {
   const LegJoints j = leg_joints(side);
   return shape.joint_offsets_m[static_cast<size_t>(j.knee)].norm() +
          shape.joint_offsets_m[static_cast<size_t>(j.ankle)].norm();
 }
 
-Vec3 hip_position(const BodyShape& shape, const Pose& pose, Side side) {
+Vec3 hip_position(const BodyShape& shape, const Pose& pose, LegSide side) {
   const LegJoints j = leg_joints(side);
   return pose.root_position_m +
          pose.local_rotations[kPelvis] * shape.joint_offsets_m[static_cast<size_t>(j.hip)];
 }
 
-Vec3 ankle_from_ball(const BodyShape& shape, Side side, const Vec3& ball, const Quat& foot_rotation) {
+Vec3 ankle_from_ball(const BodyShape& shape, LegSide side, const Vec3& ball, const Quat& foot_rotation) {
   return ball - foot_rotation * shape.joint_offsets_m[static_cast<size_t>(leg_joints(side).foot)];
 }
 
-double solve_leg_ik(const BodyShape& shape, Pose& pose, Side side, const Vec3& ankle_target,
+double solve_leg_ik(const BodyShape& shape, Pose& pose, LegSide side, const Vec3& ankle_target,
                     const Quat& foot_rotation, const Vec3& knee_pole) {
   const LegJoints j = leg_joints(side);
   const Vec3 off_knee = shape.joint_offsets_m[static_cast<size_t>(j.knee)];
@@ -62,8 +62,7 @@ double solve_leg_ik(const BodyShape& shape, Pose& pose, Side side, const Vec3& a
   pose.local_rotations[static_cast<size_t>(j.hip)] = (pelvis.conjugate() * thigh).normalized();
   pose.local_rotations[static_cast<size_t>(j.knee)] = (thigh.conjugate() * shank).normalized();
   pose.local_rotations[static_cast<size_t>(j.ankle)] = (shank.conjugate() * foot_rotation).normalized();
-  pose.local_rotations[static_cast<size_t>(j.foot)] = Quat::Identity();
   return error;
 }
 
-}  // namespace crowdlab::anim
+}  // namespace crowdlab
