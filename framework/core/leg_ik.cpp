@@ -65,4 +65,41 @@ double solve_leg_ik(const BodyShape& shape, Pose& pose, LegSide side, const Vec3
   return error;
 }
 
+double reach_ankle(const BodyShape& shape, Pose& pose, LegSide side, const Vec3& ankle_target,
+                   const Quat& foot_rotation) {
+  const LegJoints j = leg_joints(side);
+  const BoneTransforms bones = forward_kinematics(shape, pose);
+  const Vec3 hip = bones[static_cast<size_t>(j.hip)].translation;
+  const Vec3 knee = bones[static_cast<size_t>(j.knee)].translation;
+  const Vec3 ankle = bones[static_cast<size_t>(j.ankle)].translation;
+  Quat thigh = bones[static_cast<size_t>(j.hip)].rotation;
+  Quat shank = bones[static_cast<size_t>(j.knee)].rotation;
+  const double l1 = (knee - hip).norm(), l2 = (ankle - knee).norm();
+
+  const double d_goal_raw = (ankle_target - hip).norm();
+  const double d_goal = std::clamp(d_goal_raw, std::abs(l1 - l2) + 1e-9, l1 + l2 - 1e-9);
+  // Knee: the angle beta between thigh and shank directions sets the hip-ankle distance,
+  // d^2 = l1^2 + l2^2 + 2 l1 l2 cos(beta). Rotating the shank about n = t x s by +a increases beta.
+  const Vec3 t = (knee - hip) / l1, s = (ankle - knee) / l2;
+  Vec3 n = t.cross(s);
+  if (n.norm() < 1e-9) n = thigh * Vec3::UnitX();  // straight leg: the knee's hinge axis
+  n.normalize();
+  const double beta_now = std::atan2(t.cross(s).dot(n), t.dot(s));
+  const double beta_goal =
+      std::acos(std::clamp((d_goal * d_goal - l1 * l1 - l2 * l2) / (2.0 * l1 * l2), -1.0, 1.0));
+  const Quat flex(Eigen::AngleAxisd(beta_goal - beta_now, n));
+  shank = (flex * shank).normalized();
+  const Vec3 ankle_flexed = knee + flex * (ankle - knee);
+  // Hip: swing the leg so that the hip-ankle line points at the target.
+  const Quat swing = Quat::FromTwoVectors(ankle_flexed - hip, ankle_target - hip);
+  thigh = (swing * thigh).normalized();
+  shank = (swing * shank).normalized();
+
+  const Quat pelvis = bones[static_cast<size_t>(kJointParent[static_cast<size_t>(j.hip)])].rotation;
+  pose.local_rotations[static_cast<size_t>(j.hip)] = (pelvis.conjugate() * thigh).normalized();
+  pose.local_rotations[static_cast<size_t>(j.knee)] = (thigh.conjugate() * shank).normalized();
+  pose.local_rotations[static_cast<size_t>(j.ankle)] = (shank.conjugate() * foot_rotation).normalized();
+  return std::abs(d_goal_raw - d_goal);
+}
+
 }  // namespace crowdlab

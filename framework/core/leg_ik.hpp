@@ -15,6 +15,7 @@
 // targets closer than |l1 - l2| or farther than l1 + l2 are clamped onto the reachable shell, and the
 // returned value is the remaining ankle error (metres, 0 when reachable).
 #include "framework/core/body_shape.hpp"
+#include "framework/core/forward_kinematics.hpp"
 #include "framework/core/pose.hpp"
 
 namespace crowdlab {
@@ -34,6 +35,18 @@ Vec3 hip_position(const BodyShape& shape, const Pose& pose, LegSide side);
 
 double solve_leg_ik(const BodyShape& shape, Pose& pose, LegSide side, const Vec3& ankle_target,
                     const Quat& foot_rotation, const Vec3& knee_pole);
+
+/// Least-change two-bone IK: moves the ankle of a posed leg onto `ankle_target` (world, m) by the
+/// smallest edit of the existing rotations, and sets the ankle bone's world rotation to
+/// `foot_rotation`. The knee flexes or extends about its current bend axis (the thigh x shank normal;
+/// the thigh's lateral axis when the leg is straight) to give the hip-target distance, then the
+/// whole leg swings about the hip by the shortest arc onto the target. Unlike solve_leg_ik the
+/// thigh's and shank's twists and the knee's off-hinge components are kept, so a leg already on its
+/// target is left exactly as it was. Targets out of reach are clamped onto the reachable shell as in
+/// solve_leg_ik; returns the remaining ankle error (m, 0 when reachable). The hip must be a child of
+/// the pelvis (SMPL).
+double reach_ankle(const BodyShape& shape, Pose& pose, LegSide side, const Vec3& ankle_target,
+                   const Quat& foot_rotation);
 
 /// Ankle position for a foot whose ball (the SMPL "foot" joint) rests at `ball` with world rotation
 /// `foot_rotation`: ball - foot_rotation * offset(foot).

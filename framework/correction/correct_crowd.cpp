@@ -23,11 +23,15 @@ CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams&
   double contacts = 0.0, iterations = 0.0;
   if (frames > 0) {
     for (size_t c = 0; c < n; ++c) targets[c] = crowd.characters[c].frames[0];
+    // Feet are free while the crowd settles (the first frame's overlaps are pushed out, feet included);
+    // holds start on the first output frame.
+    corrector.set_foot_holds(false);
     for (int k = 0; k < params.settle_steps; ++k) {
       corrector.step(targets);
       if (corrector.last_stats().rejected) ++r.rejected_steps;
     }
     r.settle_steps = params.settle_steps;
+    corrector.set_foot_holds(true);
   }
   for (int f = 0; f < frames; ++f) {
     for (size_t c = 0; c < n; ++c) targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];

@@ -28,6 +28,10 @@ class Corrector {
 
   const CorrectorModel& model() const { return model_; }
   const CorrectorState& state() const { return state_; }
+  /// Foot holds on (default) or off. Off releases every held foot; when turned back on, feet the
+  /// input plants are held from where they are then. correct_crowd() turns them off while it settles.
+  void set_foot_holds(bool on) { state_.foot_holds_enabled = on; }
+
   /// Statistics of the last step (contacts, CG iterations, convergence, rejection).
   const StepStats& last_stats() const { return state_.stats; }
 

@@ -21,6 +21,9 @@ void validate_corrector_params(const CorrectorParams& p) {
   check(p.stiff_joint_gain, "stiff_joint_gain", 0.0);
   check(p.root_translation_stiffness, "root_translation_stiffness", 0.0);
   check(p.foot_anchor_stiffness, "foot_anchor_stiffness", 0.0);
+  check(p.foot_plant_speed_mps, "foot_plant_speed_mps", 0.0);
+  check(p.foot_plant_height_m, "foot_plant_height_m", 0.0);
+  check(p.foot_hold_tolerance_m, "foot_hold_tolerance_m", 0.0);
   check(p.joint_stiffness, "joint_stiffness", 0.0);
   check(p.contact_stiffness, "contact_stiffness", 0.0);
   check(p.contact_offset_m, "contact_offset_m", 0.0);

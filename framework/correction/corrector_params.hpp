@@ -51,6 +51,18 @@ struct CorrectorParams {
   /// the feet gains "to avoid footskate"; relative joint rotations alone cannot hold a foot in place
   /// once the leg above it is pushed, so, like the root, the feet are coupled in world space.
   double foot_anchor_stiffness = 40.0;
+  /// Foot holds (stage_foot_holds.cpp): a foot joint whose input moves slower than this (m/s) while
+  /// below foot_plant_height_m is planted, and the corrected foot is held where it landed. 0.03 m/s
+  /// is 1 mm per frame at 30 fps, the criterion of the skate measure (correction_quality.hpp).
+  double foot_plant_speed_mps = 0.03;
+  /// Highest a planted foot joint (ankle or ball) may be above the ground (m): 15 cm, above an adult
+  /// ankle joint (~8-10 cm) with room for shoes and uneven input, below any swing-phase foot.
+  double foot_plant_height_m = 0.15;
+  /// A held foot whose solved ankle and ball are within this distance (m) of their anchors is left
+  /// as the solve put it (no leg IK). 1 mm: a tenth of the skate target, and far below what shows at
+  /// the viewing distances of the stimuli; a near-straight leg would otherwise bend its knee by degrees
+  /// to move the ankle by a fraction of a millimetre. The world spring keeps pulling it to the anchor.
+  double foot_hold_tolerance_m = 0.001;
 
   // ---- Joints (soft constraint keeping a child's joint on its parent's attachment point)
   /// Joint spring (1/s^2, multiplied by the child bone's mass to give N/m). 1e5 keeps the joint gap

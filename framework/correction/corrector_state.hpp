@@ -62,6 +62,16 @@ struct StepStats {
   }
 };
 
+/// A foot held on the ground while the input plants it (stage_foot_holds.cpp). World frame, metres.
+struct FootHold {
+  bool ankle = false;  ///< the ankle joint is planted and held at ankle_anchor_m
+  bool ball = false;   ///< the ball ("foot") joint is planted and held at ball_anchor_m
+  Vec3 ankle_anchor_m = Vec3::Zero();
+  Vec3 ball_anchor_m = Vec3::Zero();
+  Quat rotation_offset = Quat::Identity();  ///< output foot rotation = offset * input foot rotation
+  bool held() const { return ankle || ball; }
+};
+
 struct CorrectorState {
   bool initialized = false;
   std::int64_t step_index = 0;
@@ -85,6 +95,9 @@ struct CorrectorState {
   /// World position of every target joint (bone origin) at this step and the previous one (m), for
   /// the foot anchors.
   std::vector<Vec3> target_origin_m, target_origin_old_m;
+  /// Per character and foot (2c = left, 2c+1 = right): where planted feet are held.
+  std::vector<FootHold> foot_holds;
+  bool foot_holds_enabled = true;  ///< Corrector::set_foot_holds (off while an offline run settles)
 
   // ---- contact-free prediction (stage_predict): the step every body would take if nothing touched it
   std::vector<Vec6> dq_free;        ///< per bone increment (dx m, dtheta rad), solution of T dq = b

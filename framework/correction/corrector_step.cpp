@@ -48,6 +48,7 @@ CorrectorState make_corrector_state(const CorrectorModel& model) {
   s.diag.assign(bones, Mat6::Zero());
   s.target_origin_m.assign(bones, Vec3::Zero());
   s.target_origin_old_m.assign(bones, Vec3::Zero());
+  s.foot_holds.assign(2 * n, FootHold{});
   s.dq_free.assign(bones, Vec6::Zero());
   s.pred_com_m.assign(bones, Vec3::Zero());
   s.pred_rotation.assign(bones, Quat::Identity());
@@ -124,6 +125,8 @@ void stage_targets(const CorrectorModel& model, CorrectorState& state, const std
     for (Quat& q : state.target[cc].local_rotations) q.normalize();
     // Target bone motion: displacement over this step, acceleration relative to the last step.
     const CorrectorBody& body = model.bodies[cc];
+    const std::array<Quat, 2> old_foot_rotation = {state.target_rotation[cc * kJointCount + kLeftAnkle],
+                                                   state.target_rotation[cc * kJointCount + kRightAnkle]};
     const BoneTransforms bones = forward_kinematics(body.shape, state.target[cc]);
     for (size_t j = 0; j < kJointCount; ++j) {
       const size_t g = cc * kJointCount + j;
@@ -139,6 +142,7 @@ void stage_targets(const CorrectorModel& model, CorrectorState& state, const std
       state.target_origin_old_m[g] = state.target_origin_m[g];
       state.target_origin_m[g] = bones[j].translation;
     }
+    update_foot_holds(model, state, c, old_foot_rotation);
   });
 }
 

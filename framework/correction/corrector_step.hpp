@@ -2,7 +2,8 @@
 // One time step of the collision-correction solver (seed 000 Eq. 3, backward Euler as an
 // optimisation, one Newton iteration), as named stages run in this order:
 //
-//   stage_targets           validate the input poses, initialise the state on the first step
+//   stage_targets           validate the input poses, initialise the state on the first step,
+//                           update which feet the input plants (foot holds)
 //   stage_assemble          gradient and PSD (Gauss-Newton) Hessian of E_inertia + E_gravity +
 //                           E_joints + E_control at the start-of-step state (the tree part T, b)
 //   stage_predict           exact per-character tree solve T dq_free = b: where every body would be
@@ -12,7 +13,8 @@
 //   stage_assemble_contacts E_collisions linearised at the predicted state (rows w, depth0)
 //   stage_solve             per-character tree factorisation with contact blocks (preconditioner) +
 //                           PCG warm-started at dq_free; pulling contacts removed (active set)
-//   stage_integrate         apply the increment, project to joint rotations + root position, commit
+//   stage_integrate         apply the increment, project to joint rotations + root position,
+//                           re-plant held feet by leg IK, commit
 //
 // Why contacts are found at the predicted state (ours; the paper does not say where its one Newton
 // iteration finds its contacts): contacts found at the start-of-step state miss every contact that a
@@ -25,6 +27,7 @@
 // Every stage computes from the state left by the previous one and writes only its own arrays; work
 // is split across characters (TBB) with per-index output slots and fixed-order reductions, so the
 // result is bit-identical for any thread count.
+#include <array>
 #include <vector>
 
 #include "framework/core/pose.hpp"
@@ -52,6 +55,20 @@ void stage_integrate(const CorrectorModel& model, CorrectorState& state);
 /// rhs_tree - sum of k depth0 w (contacts with stiffness 0 skipped). Used by stage_assemble_contacts
 /// and by the active set of stage_solve.
 void assemble_character_contacts(CorrectorState& state, int c);
+
+/// Foot holds (stage_foot_holds.cpp). update_foot_holds runs in stage_targets once character c's
+/// target joints are updated (old_target_foot_rotation: the input's left/right ankle-bone rotations
+/// at the previous step); hold_feet re-plants c's held feet in its projected pose (stage_integrate).
+void update_foot_holds(const CorrectorModel& model, CorrectorState& state, int c,
+                       const std::array<Quat, 2>& old_target_foot_rotation);
+void hold_feet(const CorrectorModel& model, CorrectorState& state, int c, Pose& pose);
+/// Where a held foot of character c (side 0 left, 1 right) must be: ankle and ball joints (world, m)
+/// and the ankle bone's world rotation. Also the goal of the feet's world springs in the solve.
+struct FootGoal {
+  Vec3 ankle_m = Vec3::Zero(), ball_m = Vec3::Zero();
+  Quat rotation = Quat::Identity();
+};
+FootGoal foot_goal(const CorrectorModel& model, const CorrectorState& state, int c, int side);
 
 /// The unit quaternion of a rotation vector (axis * angle).
 Quat rotation_from_vector(const Vec3& v);

@@ -2,9 +2,14 @@
 // with test-only code (correction_measures.hpp), not the solver's own contact lists.
 #include <catch2/catch.hpp>
 
+#include "framework/animation/animate_crowd.hpp"
 #include "framework/correction/correct_crowd.hpp"
 #include "framework/correction/damping_experiment.hpp"
 #include "framework/correction/swaying_crowd_fixture.hpp"
+#include "framework/crowd/generate_scenario.hpp"
+#include "framework/metrics/correction_quality.hpp"
+#include "framework/metrics/measure_crowd.hpp"
+#include "framework/spec/load_experiment_spec.hpp"
 #include "tests/correction/correction_measures.hpp"
 #include "tests/support/test_paths.hpp"
 
@@ -137,4 +142,33 @@ TEST_CASE("correction: damping experiment (seed 000 Fig. 4): d = 0 rings, d = 0.
   CHECK(none.overshoot_m > 2.0 * paper.overshoot_m);               // without damping it rings
   CHECK(heavy.final_deviation_m > 3.0 * paper.final_deviation_m);  // heavy damping drifts
   CHECK(paper.final_deviation_m < 0.002);                          // d = 0.006 is back on target
+}
+
+TEST_CASE("correction: planted feet of a walking corridor crowd stay put (skate <= 1 cm)", "[correction]") {
+  // The gomez2024 corridor (seed 000's non-stationary scenario) at its lowest density: walkers whose
+  // legs touch their neighbours'. Without foot holds the correction slid planted feet by ~6 cm here.
+  ExperimentSpec spec =
+      load_experiment_spec((test::source_dir() / "experiments/gomez2024_nonstationary.yaml").string());
+  spec.duration_s = test::kSanitized ? 0.5 : 1.5;
+  const std::vector<Condition> conditions = enumerate_conditions(spec);
+  REQUIRE(!conditions.empty());
+  Condition condition = conditions.front();
+  const ScenarioResult s = generate_scenario(spec, condition);
+  AnimationContext ctx;
+  ctx.scenario_type = s.scenario;
+  ctx.seed = condition.seed;
+  const CrowdAnimation in = animate_crowd(s.trajectories, s.environment, spec.animation, ctx);
+  CorrectorParams params;
+  params.settle_steps = test::kSanitized ? 5 : 30;
+  const CrowdAnimation out = correct_crowd(in, params);
+  const CorrectionQuality q = measure_correction_quality(in, out);
+  const double overlap_in = measure_crowd(in).mean_character_overlap_l;
+  const double overlap_out = measure_crowd(out).mean_character_overlap_l;
+  INFO(in.characters.size() << " characters, " << in.frame_count() << " frames: skate " << q.foot_skate_max_m
+                            << " m, overlap " << overlap_in << " -> " << overlap_out << " L, deviation "
+                            << q.rotation_dev_mean_deg << " deg");
+  REQUIRE(overlap_in > 0.0);  // the input's legs really do interpenetrate
+  CHECK(q.foot_skate_max_m <= 0.01);
+  CHECK(overlap_out <= 0.05 * overlap_in);
+  CHECK(q.rotation_dev_mean_deg <= 10.0);
 }

@@ -1,0 +1,139 @@
+// Foot holds: planted feet stay exactly where they landed (ours; seed 000 §3.3 only says the feet get
+// higher gains "to avoid footskate", which bounds but does not remove the slide once neighbours push
+// the legs). Two parts, both per character and per foot:
+//
+//   update_foot_holds (stage_targets)  A joint of the foot (ankle, ball) is PLANTED while its target
+//       moves slower than foot_plant_speed_mps and stays below foot_plant_height_m: the input holds it
+//       on the ground. When a joint becomes planted its anchor is where the corrected animation has
+//       it now (the last output), so a hold never pulls a foot back to the input's spot. While either
+//       joint is held, the foot's world rotation is the input's, turned by the offset the output had
+//       from the input when the hold began (heel rise and toe roll follow the input).
+//   hold_feet (stage_integrate)  after the projection to a pose, the analytic two-bone leg IK
+//       (core/leg_ik.hpp) puts the held ankle back on its anchor (or, for a rolling foot held at the
+//       ball, where the ball anchor and the foot rotation put the ankle), bending the knee in the plane
+//       the solved thigh already bends in. The bones are then rebuilt from that pose, so the next step
+//       starts from the held foot.
+//
+// The same criterion (1 mm per frame at 30 fps, 15 cm) defines "planted" in the quality measure
+// (metrics/correction_quality.hpp), the usual foot-contact test on joint speed and height (e.g.
+// Ikemoto, Arikan & Forsyth 2006, "Knowing when to put your foot down"). While a foot is held its
+// world-position spring in the solve pulls it to the anchor; a swinging foot has no world spring and
+// gives way to contacts like any other limb. If the pelvis was pushed beyond the leg's reach, the foot
+// goes as far as the leg allows and the anchor follows (that slide is real skate, and rare).
+#include <array>
+#include <cmath>
+#include "framework/core/forward_kinematics.hpp"
+#include "framework/core/leg_ik.hpp"
+#include "framework/correction/corrector_step.hpp"
+
+namespace crowdlab {
+namespace {
+constexpr LegSide kSides[2] = {LegSide::kLeft, LegSide::kRight};
+
+bool planted(const CorrectorParams& p, double h, const Vec3& before, const Vec3& now) {
+  return (now - before).norm() < p.foot_plant_speed_mps * h && now.y() < p.foot_plant_height_m;
+}
+
+/// A held foot out of the leg's reach (the solve pushed the pelvis away from it) would be dragged
+/// along. Instead the pelvis is lowered until every held ankle is within the leg's length, the usual pelvis
+/// adjustment of foot-locking IK (e.g. Unity's / Unreal's "pelvis offset"): a drop of a few millimetres is
+/// invisible where a sliding foot is not. When even a lower pelvis cannot reach (the foot is farther sideways
+/// than the leg is long), the hip is pulled toward it.
+void lower_pelvis_to_reach(const BodyShape& shape, const std::array<FootGoal, 2>& goals,
+                           const std::array<bool, 2>& fix, Pose& pose) {
+  constexpr double kReachMargin_m = 1e-7;    // reach_ankle's clamp would otherwise bite
+  for (int round = 0; round < 2; ++round) {  // a second round when the other leg's fix moved the hip
+    for (int side = 0; side < 2; ++side) {
+      if (!fix[static_cast<size_t>(side)]) continue;
+      const Vec3 to_hip = hip_position(shape, pose, kSides[side]) - goals[static_cast<size_t>(side)].ankle_m;
+      const double reach = leg_length(shape, kSides[side]) - kReachMargin_m;
+      if (to_hip.norm() <= reach) continue;
+      const double horizontal2 = to_hip.x() * to_hip.x() + to_hip.z() * to_hip.z();
+      if (horizontal2 < reach * reach) {
+        pose.root_position_m.y() -= to_hip.y() - std::sqrt(reach * reach - horizontal2);
+      } else {
+        pose.root_position_m -= to_hip * (1.0 - reach / to_hip.norm());
+      }
+    }
+  }
+}
+}  // namespace
+
+void update_foot_holds(const CorrectorModel& model, CorrectorState& s, int c,
+                       const std::array<Quat, 2>& old_target_foot_rotation) {
+  const CorrectorParams& p = model.params;
+  const size_t base = static_cast<size_t>(c) * kJointCount;
+  for (int side = 0; side < 2; ++side) {
+    FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
+    if (!s.foot_holds_enabled) {
+      hold = FootHold{};
+      continue;
+    }
+    const LegJoints lj = leg_joints(kSides[side]);
+    const size_t ankle = base + static_cast<size_t>(lj.ankle), ball = base + static_cast<size_t>(lj.foot);
+    const bool ankle_planted = planted(p, model.h, s.target_origin_old_m[ankle], s.target_origin_m[ankle]);
+    const bool ball_planted = planted(p, model.h, s.target_origin_old_m[ball], s.target_origin_m[ball]);
+    if ((ankle_planted || ball_planted) && !hold.held())
+      hold.rotation_offset =
+          (s.rotation[ankle] * old_target_foot_rotation[static_cast<size_t>(side)].conjugate()).normalized();
+    if (ankle_planted && !hold.ankle) hold.ankle_anchor_m = bone_origin(model, s, static_cast<int>(ankle));
+    if (ball_planted && !hold.ball) hold.ball_anchor_m = bone_origin(model, s, static_cast<int>(ball));
+    hold.ankle = ankle_planted;
+    hold.ball = ball_planted;
+  }
+}
+
+FootGoal foot_goal(const CorrectorModel& model, const CorrectorState& s, int c, int side) {
+  const FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
+  const BodyShape& shape = model.bodies[static_cast<size_t>(c)].shape;
+  const LegJoints lj = leg_joints(kSides[side]);
+  const size_t ankle = static_cast<size_t>(c) * kJointCount + static_cast<size_t>(lj.ankle);
+  FootGoal g;
+  g.rotation = (hold.rotation_offset * s.target_rotation[ankle]).normalized();
+  const Vec3 ball_offset = g.rotation * shape.joint_offsets_m[static_cast<size_t>(lj.foot)];
+  g.ankle_m = hold.ankle ? hold.ankle_anchor_m : Vec3(hold.ball_anchor_m - ball_offset);
+  g.ball_m = hold.ball ? hold.ball_anchor_m : Vec3(g.ankle_m + ball_offset);
+  return g;
+}
+
+void hold_feet(const CorrectorModel& model, CorrectorState& s, int c, Pose& pose) {
+  const BodyShape& shape = model.bodies[static_cast<size_t>(c)].shape;
+  bool any = false;
+  for (int side = 0; side < 2; ++side) any = any || s.foot_holds[static_cast<size_t>(2 * c + side)].held();
+  if (!any) return;
+  const BoneTransforms solved = forward_kinematics(shape, pose);
+  std::array<FootGoal, 2> goals;
+  std::array<bool, 2> fix = {false, false};
+  for (int side = 0; side < 2; ++side) {
+    if (!s.foot_holds[static_cast<size_t>(2 * c + side)].held()) continue;
+    FootGoal& g = goals[static_cast<size_t>(side)];
+    g = foot_goal(model, s, c, side);
+    const LegJoints lj = leg_joints(kSides[side]);
+    const Vec3& ankle = solved[static_cast<size_t>(lj.ankle)].translation;
+    const Vec3& ball = solved[static_cast<size_t>(lj.foot)].translation;
+    // Held horizontally only: the height stays the solve's, so the ground can still lift a foot and
+    // the hold never pins a foot below the floor (skate is a horizontal slide).
+    const double lift = ankle.y() - g.ankle_m.y();
+    g.ankle_m.y() += lift;
+    g.ball_m.y() += lift;
+    // Within tolerance the solve's leg is kept as it is: a near-straight leg turns a sub-millimetre
+    // ankle correction into degrees of knee rotation, which would show as deviation, not as motion.
+    const double tol = model.params.foot_hold_tolerance_m;
+    fix[static_cast<size_t>(side)] = (ankle - g.ankle_m).norm() >= tol || (ball - g.ball_m).norm() >= tol;
+  }
+  lower_pelvis_to_reach(shape, goals, fix, pose);
+  for (int side = 0; side < 2; ++side) {
+    if (!fix[static_cast<size_t>(side)]) continue;
+    FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
+    const LegJoints lj = leg_joints(kSides[side]);
+    const FootGoal& goal = goals[static_cast<size_t>(side)];
+    if (reach_ankle(shape, pose, kSides[side], goal.ankle_m, goal.rotation) > 0.0) {
+      // Out of reach even so: the foot lands as near as the leg allows, and the anchors move there.
+      const BoneTransforms reached = forward_kinematics(shape, pose);
+      hold.ankle_anchor_m = reached[static_cast<size_t>(lj.ankle)].translation;
+      hold.ball_anchor_m = reached[static_cast<size_t>(lj.foot)].translation;
+    }
+  }
+}
+
+}  // namespace crowdlab
