@@ -151,7 +151,11 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_flag("--inertial-prediction", o->inertial_prediction,
                 "Detect contacts at the inertial prediction instead of the exact contact-free step");
   cmd->add_option("--foot-anchor-stiffness", o->params.foot_anchor_stiffness,
-                  "World-position spring on the ankles and feet (1/s^2 per kg, x stiff_joint_gain)")
+                  "World-position spring on planted ankles and feet (1/s^2 per kg, x stiff_joint_gain)")
+      ->capture_default_str();
+  cmd->add_option("--foot-hold-tolerance", o->params.foot_hold_tolerance_m,
+                  "How far (m) a planted foot may be pushed before leg IK puts it back")
+      ->check(CLI::Range(0.0, 0.1))
       ->capture_default_str();
   cmd->add_option("--max-rotation-step", o->params.max_rotation_step_rad,
                   "Trust region on each bone's contact rotation per step (rad, 0 = off)")

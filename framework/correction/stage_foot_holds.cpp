@@ -39,12 +39,13 @@ bool planted(const CorrectorParams& p, double h, const Vec3& before, const Vec3&
 /// adjustment of foot-locking IK (e.g. Unity's / Unreal's "pelvis offset"): a drop of a few millimetres is
 /// invisible where a sliding foot is not. When even a lower pelvis cannot reach (the foot is farther sideways
 /// than the leg is long), the hip is pulled toward it.
-void lower_pelvis_to_reach(const BodyShape& shape, const std::array<FootGoal, 2>& goals,
-                           const std::array<bool, 2>& fix, Pose& pose) {
-  constexpr double kReachMargin_m = 1e-7;    // reach_ankle's clamp would otherwise bite
+bool lower_pelvis_to_reach(const BodyShape& shape, const std::array<FootGoal, 2>& goals,
+                           const std::array<bool, 2>& held, Pose& pose) {
+  constexpr double kReachMargin_m = 1e-7;  // reach_ankle's clamp would otherwise bite
+  const Vec3 root_before = pose.root_position_m;
   for (int round = 0; round < 2; ++round) {  // a second round when the other leg's fix moved the hip
     for (int side = 0; side < 2; ++side) {
-      if (!fix[static_cast<size_t>(side)]) continue;
+      if (!held[static_cast<size_t>(side)]) continue;
       const Vec3 to_hip = hip_position(shape, pose, kSides[side]) - goals[static_cast<size_t>(side)].ankle_m;
       const double reach = leg_length(shape, kSides[side]) - kReachMargin_m;
       if (to_hip.norm() <= reach) continue;
@@ -56,6 +57,7 @@ void lower_pelvis_to_reach(const BodyShape& shape, const std::array<FootGoal, 2>
       }
     }
   }
+  return pose.root_position_m != root_before;
 }
 }  // namespace
 
@@ -121,7 +123,11 @@ void hold_feet(const CorrectorModel& model, CorrectorState& s, int c, Pose& pose
     const double tol = model.params.foot_hold_tolerance_m;
     fix[static_cast<size_t>(side)] = (ankle - g.ankle_m).norm() >= tol || (ball - g.ball_m).norm() >= tol;
   }
-  lower_pelvis_to_reach(shape, goals, fix, pose);
+  if (!fix[0] && !fix[1]) return;
+  // Moving the pelvis for one leg moves the other leg's foot too: every held foot is then re-planted.
+  const std::array<bool, 2> held = {s.foot_holds[static_cast<size_t>(2 * c)].held(),
+                                    s.foot_holds[static_cast<size_t>(2 * c + 1)].held()};
+  if (lower_pelvis_to_reach(shape, goals, held, pose)) fix = held;
   for (int side = 0; side < 2; ++side) {
     if (!fix[static_cast<size_t>(side)]) continue;
     FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
