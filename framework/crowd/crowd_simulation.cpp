@@ -110,7 +110,10 @@ void CrowdSimulation::substep(double h) {
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       model_->compute_velocities(world, r.begin(), r.end(), grid_vx_.data(), grid_vy_.data());
                     });
-  // Phase 2: commit (each agent its own slot).
+  // Phase 2: commit (each agent its own slot). Each agent's cell in the next grid is found here too,
+  // in parallel (NeighborGrid::prepare_point writes only its own scratch slot, not what position_of
+  // reads), so only the counting sort of finish_rebuild stays serial.
+  grid_.begin_rebuild(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i < r.end(); ++i) {
@@ -119,6 +122,7 @@ void CrowdSimulation::substep(double h) {
                         vy_[i] = grid_vy_[k];
                         px_[i] += h * vx_[i];
                         py_[i] += h * vy_[i];
+                        grid_.prepare_point(i, px_[i], py_[i]);
                       }
                     });
   if (resolve && std::find(contact_flags_.begin(), contact_flags_.end(), 1) != contact_flags_.end()) {
@@ -139,8 +143,10 @@ void CrowdSimulation::substep(double h) {
     }
     ++overlap_resolutions_;
     overlap_contacts_ += static_cast<long long>(r.contacts);
+    grid_.rebuild(px_.data(), py_.data(), n);  // the projection moved agents after prepare_point
+  } else {
+    grid_.finish_rebuild(px_.data(), py_.data(), n);
   }
-  grid_.rebuild(px_.data(), py_.data(), n);
   ++substep_count_;
 }
 

@@ -18,13 +18,18 @@ void NeighborGrid::set_cell_size(double cell_size_m) {
 }
 
 void NeighborGrid::rebuild(const double* x, const double* y, std::size_t n) {
+  begin_rebuild(n);
+  for (std::size_t i = 0; i < n; ++i) prepare_point(i, x[i], y[i]);
+  finish_rebuild(x, y, n);
+}
+
+void NeighborGrid::begin_rebuild(std::size_t n) {
   count_ = n;
   std::size_t table = 16;
   unsigned bits = 4;
   while (table < 2 * n) table *= 2, ++bits;
   shift_ = 64 - bits;
   if (bucket_start_.size() != table + 1) bucket_start_.assign(table + 1, 0);
-  std::fill(bucket_start_.begin(), bucket_start_.end(), 0u);
   if (sorted_index_.size() < n) {
     point_bucket_.resize(n);
     point_cx_.resize(n);
@@ -36,18 +41,15 @@ void NeighborGrid::rebuild(const double* x, const double* y, std::size_t n) {
     sorted_cx_.resize(n);
     sorted_cy_.resize(n);
   }
-  // Count per bucket (cells kept for the scatter), inclusive prefix sums (bucket_start_[b] = end of
-  // bucket b), then scatter in reverse with pre-decrement: each start ends at its bucket's begin and
-  // points keep increasing index order within a bucket (stable), with no extra pass to shift starts.
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto cx = cell_coord(x[i] * inv_cell_);
-    const auto cy = cell_coord(y[i] * inv_cell_);
-    const std::uint32_t b = bucket_of(cx, cy);
-    point_bucket_[i] = b;
-    point_cx_[i] = cx;
-    point_cy_[i] = cy;
-    ++bucket_start_[b];
-  }
+}
+
+void NeighborGrid::finish_rebuild(const double* x, const double* y, std::size_t n) {
+  // Count per bucket, inclusive prefix sums (bucket_start_[b] = end of bucket b), then scatter in
+  // reverse with pre-decrement: each start ends at its bucket's begin and points keep increasing
+  // index order within a bucket (stable), with no extra pass to shift starts.
+  const std::size_t table = bucket_start_.size() - 1;
+  std::fill(bucket_start_.begin(), bucket_start_.end(), 0u);
+  for (std::size_t i = 0; i < n; ++i) ++bucket_start_[point_bucket_[i]];
   for (std::size_t b = 1; b < table; ++b) bucket_start_[b] += bucket_start_[b - 1];
   bucket_start_[table] = static_cast<std::uint32_t>(n);
   for (std::size_t i = n; i-- > 0;) {

@@ -3,6 +3,15 @@
 // Hashing for Collision Detection of Deformable Objects": cells hashed into a table of ~2N buckets), so
 // memory and rebuild time are O(N) however far apart the points are.
 //
+// Bucket layout (ours): the plane is cut into windows of W x H cells (W H = table size, W = H or 2H),
+// a window's cells fill the table in row-major order, and each window starts at a Fibonacci-hashed
+// offset (Knuth, TAOCP vol. 3, 6.4). Any crowd denser than ~0.13 agents/m^2 fits in one window, so
+// its cells never alias and the grid order (bucket order) is spatially coherent: a contiguous range of
+// grid positions is a band of space. Parallel tasks over grid-order ranges then read mostly their own
+// neighbours' data, which made the second core worth 1.73-1.8x instead of 1.56x on the 10k-agent
+// benchmark (a pure hash scatters each task's agents over the whole crowd). Wider layouts alias like a
+// hash, at random window offsets rather than in a pattern.
+//
 // Rebuild is a stable counting sort of the points by bucket into reused buffers: no allocation once
 // the capacity has been reached, and the visit order is a deterministic function of the input.
 // A query scans the 3x3 cells around the query point, so every query radius must be <= cell size.
@@ -25,6 +34,18 @@ class NeighborGrid {
 
   /// Rebuilds the grid from n points given as separate x and y arrays (metres).
   void rebuild(const double* x, const double* y, std::size_t n);
+
+  /// rebuild() in three parts, so that the per-point part can run in parallel inside a caller's own
+  /// loop: begin_rebuild(n) once, prepare_point(i, x_i, y_i) for every i (thread-safe for distinct i),
+  /// then finish_rebuild(x, y, n) once (the counting sort, serial). Same result as rebuild().
+  void begin_rebuild(std::size_t n);
+  void prepare_point(std::size_t i, double x, double y) {
+    const auto cx = cell_coord(x * inv_cell_), cy = cell_coord(y * inv_cell_);
+    point_bucket_[i] = bucket_of(cx, cy);
+    point_cx_[i] = cx;
+    point_cy_[i] = cy;
+  }
+  void finish_rebuild(const double* x, const double* y, std::size_t n);
 
   std::size_t size() const { return count_; }
 
@@ -101,12 +122,15 @@ class NeighborGrid {
     return i - (v < static_cast<double>(i) ? 1 : 0);
   }
 
-  // Fibonacci hashing of the packed cell coordinates (Knuth, TAOCP vol. 3, 6.4): the HIGH bits of
-  // the product are well mixed, so the table index takes those.
+  // Row-major position of the cell inside its window plus the window's hashed offset (see the header);
+  // Fibonacci hashing takes the HIGH bits of the product, which are the well-mixed ones.
   std::uint32_t bucket_of(std::int32_t cx, std::int32_t cy) const {
-    const std::uint64_t key =
-        (static_cast<std::uint64_t>(static_cast<std::uint32_t>(cx)) << 32) | static_cast<std::uint32_t>(cy);
-    return static_cast<std::uint32_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
+    const unsigned bits = 64 - shift_, wbits = (bits + 1) / 2, hbits = bits / 2;
+    const auto ux = static_cast<std::uint32_t>(cx), uy = static_cast<std::uint32_t>(cy);
+    const std::uint32_t local = ((uy & ((1u << hbits) - 1)) << wbits) | (ux & ((1u << wbits) - 1));
+    const std::uint64_t window = (static_cast<std::uint64_t>(ux >> wbits) << 32) | (uy >> hbits);
+    const auto offset = static_cast<std::uint32_t>((window * 0x9E3779B97F4A7C15ull) >> shift_);
+    return (local + offset) & ((1u << bits) - 1);
   }
 
   double cell_ = 2.0, inv_cell_ = 0.5;
