@@ -144,10 +144,7 @@ DanceResult animate_padded(const BodyShape& shape, const AgentTrajectory& anchor
   limit_pelvis_height(shape, root_h, pelvis_rot, root_xz, {&feet[0], &feet[1]}, 0.985,
                       std::max(1, static_cast<int>(std::lround(0.05 * fps))));
 
-  DanceResult out;
-  out.frames.resize(n);
-  out.contact[0].resize(n);
-  out.contact[1].resize(n);
+  DanceResult out(n);
   for (size_t k = 0; k < n; ++k) {
     const DancePose& p = dp[k];
     Pose pose;
@@ -170,10 +167,7 @@ DanceResult animate_padded(const BodyShape& shape, const AgentTrajectory& anchor
           roll(-s * a.shrug) * shortest_arc(Vec3(s, 0, 0), dir);
       pose.local_rotations[static_cast<size_t>(side == 0 ? kLeftElbow : kRightElbow)] = yaw(-s * a.elbow);
     }
-    out.max_ik_error_m = std::max(out.max_ik_error_m, solve_legs(shape, pose, feet[0][k], feet[1][k]));
-    for (size_t side = 0; side < 2; ++side) out.contact[side][k] = feet[side][k].contact ? 1 : 0;
-    for (Quat& q : pose.local_rotations) q.normalize();
-    out.frames[k] = pose;
+    store_gait_frame(shape, pose, feet, k, k, out);
   }
   return out;
 }

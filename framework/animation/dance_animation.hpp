@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "framework/animation/foot_track.hpp"
 #include "framework/core/body_shape.hpp"
 #include "framework/core/pose.hpp"
 #include "framework/core/trajectories.hpp"
@@ -34,11 +35,7 @@ DanceStyle dance_style_from_seed(std::uint64_t seed, double fit_loops_to_s = 0.0
 /// Loop period of a style in seconds.
 double dance_loop_period_s(const DanceStyle& style);
 
-struct DanceResult {
-  std::vector<Pose> frames;
-  std::array<std::vector<std::uint8_t>, 2> contact;  ///< [left, right] foot planted
-  double max_ik_error_m = 0.0;
-};
+using DanceResult = anim::GaitFrames;
 
 /// Throws InputError for an empty / non-finite trajectory, fps <= 0 or a bad style.
 DanceResult animate_dancing(const BodyShape& shape, const AgentTrajectory& anchor, double fps,

@@ -107,4 +107,12 @@ std::vector<FootState> plan_foot_track(const BodyShape& shape, LegSide side,
   return out;
 }
 
+void store_gait_frame(const BodyShape& shape, Pose pose, const std::array<std::vector<FootState>, 2>& feet,
+                      size_t k, size_t f, GaitFrames& out) {
+  out.max_ik_error_m = std::max(out.max_ik_error_m, solve_legs(shape, pose, feet[0][k], feet[1][k]));
+  for (size_t side = 0; side < 2; ++side) out.contact[side][f] = feet[side][k].contact ? 1 : 0;
+  for (Quat& q : pose.local_rotations) q.normalize();
+  out.frames[f] = pose;
+}
+
 }  // namespace crowdlab::anim

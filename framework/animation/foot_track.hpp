@@ -8,6 +8,7 @@
 // Between two contacts the ankle travels from its lift-off position to its touch-down position on a
 // raised-cosine ease (zero velocity at both ends), lifted by peak_lift * sin(pi s); heading and pitch
 // are interpolated. Frames before the first or after the last contact hold that contact's foot.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -41,5 +42,21 @@ double solve_legs(const BodyShape& shape, Pose& pose, const FootState& left, con
 
 /// World rotation of a foot with heading `yaw_rad` and heel rise `pitch_rad`.
 Quat foot_rotation(double yaw_rad, double pitch_rad);
+
+/// The frames of a walking or dancing gait with its foot contacts (walk_animation.hpp,
+/// dance_animation.hpp, walk_from_clips.hpp).
+struct GaitFrames {
+  GaitFrames() = default;
+  /// n frames and contact flags, all default.
+  explicit GaitFrames(size_t n) : frames(n) { contact[0].resize(n), contact[1].resize(n); }
+  std::vector<Pose> frames;                          ///< one per trajectory frame
+  std::array<std::vector<std::uint8_t>, 2> contact;  ///< [left, right] foot planted on frame f
+  double max_ik_error_m = 0.0;                       ///< largest unreachable-ankle residual (m)
+};
+
+/// Finishes output frame f of a gait from (padded) frame k: solves both legs of `pose` onto the feet,
+/// records the contacts and the IK residual in `out` (sized already) and stores the normalised pose.
+void store_gait_frame(const BodyShape& shape, Pose pose, const std::array<std::vector<FootState>, 2>& feet,
+                      size_t k, size_t f, GaitFrames& out);
 
 }  // namespace crowdlab::anim

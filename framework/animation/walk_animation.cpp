@@ -78,14 +78,6 @@ double frac(double x) {
 
 }  // namespace
 
-void store_gait_frame(const BodyShape& shape, Pose pose, const std::array<std::vector<FootState>, 2>& feet,
-                      size_t k, size_t f, WalkResult& out) {
-  out.max_ik_error_m = std::max(out.max_ik_error_m, solve_legs(shape, pose, feet[0][k], feet[1][k]));
-  for (size_t side = 0; side < 2; ++side) out.contact[side][f] = feet[side][k].contact ? 1 : 0;
-  for (Quat& q : pose.local_rotations) q.normalize();
-  out.frames[f] = pose;
-}
-
 WalkResult animate_walking(const BodyShape& shape, const AgentTrajectory& trajectory, double fps,
                            const WalkStyle& style, const std::vector<double>& reaction) {
   check_gait_inputs(trajectory, fps, reaction, "animate_walking");
@@ -160,10 +152,7 @@ WalkResult animate_walking(const BodyShape& shape, const AgentTrajectory& trajec
                       std::max(1, static_cast<int>(std::lround(0.12 * fps))));
 
   // ---- poses -------------------------------------------------------------------------------------
-  WalkResult out;
-  out.frames.resize(n);
-  out.contact[0].resize(n);
-  out.contact[1].resize(n);
+  WalkResult out(n);
   const int look = static_cast<int>(std::lround(0.4 * fps));
   for (size_t f = 0; f < n; ++f) {
     const size_t k = pad + f;

@@ -39,17 +39,7 @@ struct WalkStyle {
 };
 WalkStyle walk_style_from_seed(std::uint64_t seed);
 
-struct WalkResult {
-  std::vector<Pose> frames;                          ///< one per trajectory frame
-  std::array<std::vector<std::uint8_t>, 2> contact;  ///< [left, right] foot planted on frame f
-  double max_ik_error_m = 0.0;                       ///< largest unreachable-ankle residual
-};
-
-/// Finishes output frame f of a gait from padded frame k: solves both legs of `pose` onto the feet,
-/// records the contacts and the IK residual in `out` (sized already) and stores the normalised pose.
-void store_gait_frame(const BodyShape& shape, Pose pose,
-                      const std::array<std::vector<anim::FootState>, 2>& feet, size_t k, size_t f,
-                      WalkResult& out);
+using WalkResult = anim::GaitFrames;
 
 /// reaction: empty, or one signed weight per frame in [-1, 1] (> 0 presents the torso to the left,
 /// toward +X of the character); see shoulder_reaction.hpp.

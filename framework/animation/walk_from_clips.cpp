@@ -282,10 +282,7 @@ WalkResult animate_walking_from_clips(const BodyShape& shape, const std::vector<
   }
   limit_pelvis_height(shape, root_h, pelvis_rot, root_xz, {&feet[0], &feet[1]}, kReachFraction,
                       std::max(1, static_cast<int>(std::lround(0.12 * fps))));
-  WalkResult out;
-  out.frames.resize(n);
-  out.contact[0].resize(n);
-  out.contact[1].resize(n);
+  WalkResult out(n);
   for (size_t f = 0; f < n; ++f) {
     const size_t k = pad + f;
     Pose pose = poses[k];

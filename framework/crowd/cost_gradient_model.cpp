@@ -122,11 +122,7 @@ void CostGradientModel::compute_velocities(const CrowdWorld& w, std::size_t begi
       vx -= gx / curvature;
       vy -= gy / curvature;
     }
-    const double speed2 = vx * vx + vy * vy, vmax = w.max_speed[i];
-    if (speed2 > vmax * vmax) {
-      const double s = vmax / std::sqrt(speed2);
-      vx *= s, vy *= s;
-    }
+    clamp_speed(vx, vy, w.max_speed[i]);
     new_vx[k_order] = vx;
     new_vy[k_order] = vy;
   }

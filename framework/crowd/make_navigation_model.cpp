@@ -14,11 +14,7 @@ void StraightLineModel::compute_velocities(const CrowdWorld& w, std::size_t begi
   for (std::size_t k = begin; k < end; ++k) {
     const std::uint32_t i = w.grid->order(k);
     double vx = w.pref_vx[i], vy = w.pref_vy[i];
-    const double s2 = vx * vx + vy * vy, vmax = w.max_speed[i];
-    if (s2 > vmax * vmax) {
-      const double s = vmax / std::sqrt(s2);
-      vx *= s, vy *= s;
-    }
+    clamp_speed(vx, vy, w.max_speed[i]);
     new_vx[k] = vx;
     new_vy[k] = vy;
   }

@@ -8,6 +8,7 @@
 // So the result does not depend on agent order or on the number of threads.
 //
 // Frame: the ground plane as 2D (x, y) = world (x, z), metres, seconds.
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <string_view>
@@ -43,6 +44,15 @@ struct CrowdWorld {
   /// that the simulation's overlap projection (resolve_disc_overlaps.hpp) looks there. May be null.
   unsigned char* needs_contact_check = nullptr;
 };
+
+/// Scales (vx, vy) down to length max_speed when it is longer (m/s): every model's speed limit.
+inline void clamp_speed(double& vx, double& vy, double max_speed) {
+  const double speed2 = vx * vx + vy * vy;
+  if (speed2 > max_speed * max_speed) {
+    const double s = max_speed / std::sqrt(speed2);
+    vx *= s, vy *= s;
+  }
+}
 
 class NavigationModel {
  public:

@@ -60,11 +60,7 @@ void SocialForceModel::compute_velocities(const CrowdWorld& w, std::size_t begin
       ay += inv_m * (fn * ny + ft * ty);
     }
     double nvx = vxi + w.dt * ax, nvy = vyi + w.dt * ay;
-    const double speed2 = nvx * nvx + nvy * nvy, vmax = w.max_speed[i];
-    if (speed2 > vmax * vmax) {
-      const double s = vmax / std::sqrt(speed2);
-      nvx *= s, nvy *= s;
-    }
+    clamp_speed(nvx, nvy, w.max_speed[i]);
     new_vx[k] = nvx;
     new_vy[k] = nvy;
   }
