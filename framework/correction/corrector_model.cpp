@@ -26,6 +26,7 @@ void validate_corrector_params(const CorrectorParams& p) {
   check(p.foot_hold_tolerance_m, "foot_hold_tolerance_m", 0.0);
   check(p.joint_stiffness, "joint_stiffness", 0.0);
   check(p.contact_stiffness, "contact_stiffness", 0.0);
+  check(p.intra_body_contact_stiffness, "intra_body_contact_stiffness", 0.0);
   check(p.contact_offset_m, "contact_offset_m", 0.0);
   check(p.ground_stiffness, "ground_stiffness", 0.0);
   check(p.environment_stiffness, "environment_stiffness", 0.0);

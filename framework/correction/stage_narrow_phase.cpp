@@ -78,7 +78,8 @@ void single_body_contacts(const CorrectorModel& model, const CorrectorState& sta
   // Intra-body (self) contacts.
   for (const auto& [i, j] : body.self_pairs) {
     const int ga = base + i, gb = base + j;
-    if (make_capsule_contact(state, ga, gb, model.params.contact_stiffness, 0.0, c)) out.push_back(c);
+    if (make_capsule_contact(state, ga, gb, model.params.intra_body_contact_stiffness, 0.0, c))
+      out.push_back(c);
   }
   counts[0] = static_cast<int>(out.size());
   // Ground: each capsule end sphere against y = 0, normal +Y.
