@@ -8,20 +8,24 @@
 //       it now (the last output), so a hold never pulls a foot back to the input's spot. While either
 //       joint is held, the foot's world rotation is the input's, turned by the offset the output had
 //       from the input when the hold began (heel rise and toe roll follow the input).
-//   hold_feet (stage_integrate)  after the projection to a pose, the analytic two-bone leg IK
-//       (core/leg_ik.hpp) puts the held ankle back on its anchor (or, for a rolling foot held at the
-//       ball, where the ball anchor and the foot rotation put the ankle), bending the knee in the plane
-//       the solved thigh already bends in. The bones are then rebuilt from that pose, so the next step
-//       starts from the held foot.
+//   hold_feet (stage_integrate)  after the projection to a pose, a held foot more than
+//       foot_hold_tolerance_m from its anchor is put back by the least-change two-bone leg IK
+//       (core/leg_ik.hpp, reach_ankle: the knee flexes about its own bend axis and the leg swings about
+//       the hip, so the solved leg's twists stay). Held horizontally only: the height stays the
+//       solve's, so the ground can still lift a foot. For a rolling foot held at the ball only, the
+//       ankle goes where the ball anchor and the foot rotation put it. If the leg cannot reach, the
+//       pelvis is lowered first; if it moved, both held feet are re-planted. The bones are then rebuilt
+//       from that pose, so the next step starts from the held foot.
 //
 // The same criterion (1 mm per frame at 30 fps, 15 cm) defines "planted" in the quality measure
 // (metrics/correction_quality.hpp), the usual foot-contact test on joint speed and height (e.g.
 // Ikemoto, Arikan & Forsyth 2006, "Knowing when to put your foot down"). While a foot is held its
-// world-position spring in the solve pulls it to the anchor; a swinging foot has no world spring and
-// gives way to contacts like any other limb. If the pelvis was pushed beyond the leg's reach, the foot
-// goes as far as the leg allows and the anchor follows (that slide is real skate, and rare).
+// horizontal world spring in the solve pulls it to the anchor; a swinging foot has no world spring
+// and gives way to contacts like any other limb. A foot farther sideways than the leg is long goes as
+// far as the leg allows and the anchor follows (real skate; not seen on the gomez2024 scenarios).
 #include <array>
 #include <cmath>
+
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/leg_ik.hpp"
 #include "framework/correction/corrector_step.hpp"
