@@ -153,6 +153,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--foot-anchor-stiffness", o->params.foot_anchor_stiffness,
                   "World-position spring on planted ankles and feet (1/s^2 per kg, x stiff_joint_gain)")
       ->capture_default_str();
+  cmd->add_option("--swing-foot-stiffness", o->params.swing_foot_stiffness,
+                  "World-position spring pulling swinging ankles and feet to their targets (1/s^2 per kg, x "
+                  "stiff_joint_gain)")
+      ->capture_default_str();
   cmd->add_option("--foot-hold-tolerance", o->params.foot_hold_tolerance_m,
                   "How far (m) a planted foot may be pushed before leg IK puts it back")
       ->check(CLI::Range(0.0, 0.1))

@@ -21,6 +21,7 @@ void validate_corrector_params(const CorrectorParams& p) {
   check(p.stiff_joint_gain, "stiff_joint_gain", 0.0);
   check(p.root_translation_stiffness, "root_translation_stiffness", 0.0);
   check(p.foot_anchor_stiffness, "foot_anchor_stiffness", 0.0);
+  check(p.swing_foot_stiffness, "swing_foot_stiffness", 0.0);
   check(p.foot_plant_speed_mps, "foot_plant_speed_mps", 0.0);
   check(p.foot_plant_height_m, "foot_plant_height_m", 0.0);
   check(p.foot_hold_tolerance_m, "foot_hold_tolerance_m", 0.0);
@@ -146,6 +147,7 @@ CorrectorBody make_body(BodyShape shape, const CorrectorParams& p) {
   body.root_translation_stiffness = root_gain * p.root_translation_stiffness * body.total_mass_kg;
   body.root_translation_damping = p.damping * body.root_translation_stiffness;
   body.foot_anchor_stiffness = root_gain * p.foot_anchor_stiffness * body.total_mass_kg;
+  body.swing_foot_stiffness = root_gain * p.swing_foot_stiffness * body.total_mass_kg;
   // The feet anchors get the root's damper, not d x their own (10x stiffer) spring: Rayleigh damping
   // makes every deviation decay with time constant >= d/h (0.18 s at 30 fps), too slow for a walking
   // foot that plants ~0.1 s after its swing (the corrected foot then slid into place, measured as skate).

@@ -33,6 +33,7 @@ struct CorrectorBody {
   double root_translation_stiffness = 0.0;            ///< N/m
   double root_translation_damping = 0.0;              ///< N s^2/m (d of Eq. 4 on the root position)
   double foot_anchor_stiffness = 0.0;                 ///< N/m, planted ankle and ball joints to anchors
+  double swing_foot_stiffness = 0.0;                  ///< N/m, swinging ankle and ball joints to targets
   double foot_anchor_damping = 0.0;                   ///< N s^2/m
   double total_mass_kg = 0.0;
   /// Capsule pairs tested for self-collision: all i < j not in shape.rest_contact_pairs (seed 000

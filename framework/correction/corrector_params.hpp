@@ -54,8 +54,18 @@ struct CorrectorParams {
   /// (2.8e5 N/m for 70 kg, ~10x a contact): the solve then knows a planted foot will not move and
   /// lets the rest of the body (and the other body) give way. Measured on gomez2024's corridor at
   /// 6.66 /m^2 (4 s): 40 -> 400 raised the overlap removed from 93.1 % to 96.6 % and lowered the mean
-  /// deviation from 10.3 to 9.7 deg (docs/correction.md). Swinging feet have no world spring.
+  /// deviation from 10.3 to 9.7 deg (docs/correction.md).
   double foot_anchor_stiffness = 400.0;
+  /// World-position spring pulling a SWINGING foot's ankle and ball joints toward their targets (1/s^2,
+  /// per kg, x stiff_joint_gain; the root's damper on the deviation velocity). 4 x 10 = 40 1/s^2
+  /// (2,800 N/m for 70 kg, a tenth of a contact): swinging legs still step around neighbours' legs,
+  /// but feet keep landing near where the input puts them. Without it, held feet planted wherever the
+  /// swing ended and the crowd drifted: gomez2024's corridor at 6.66 /m^2 over the paper's 20 s kept
+  /// only 89.9 % of the overlap removed (12.4 deg deviation, 62 mm skate). Measured over 20 s at 2.22 /
+  /// 3.33 / 6.66 /m^2: 4 -> 97.8 / 98.7 / 98.1 % removed (8.0 deg at 6.66); 10 -> 97.2 / 98.1 / 97.6 %;
+  /// and over 4 s, 10 left only 95.3 % at 2.22 /m^2 where 4 leaves 97.1 %. The session-2 rule (every
+  /// foot on its target at 40) removes as much but slides planted feet by ~10 cm.
+  double swing_foot_stiffness = 4.0;
   /// Foot holds (stage_foot_holds.cpp): a foot joint whose input moves slower than this (m/s) while
   /// below foot_plant_height_m is planted, and the corrected foot is held where it landed. 0.03 m/s
   /// is 1 mm per frame at 30 fps, the criterion of the skate measure (correction_quality.hpp).

@@ -129,9 +129,10 @@ void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
 
   // Feet: a planted foot's ankle and ball joints are held horizontally on their anchors by a world
   // spring (seed 000 §3.3, see params and stage_foot_holds.cpp; the anchor is still, so the damper acts
-  // on the joint's own velocity, and the ground and the legs set the height). A swinging foot has no
-  // world spring: measured on the corridor, holding swing feet on their targets too left 84-94 % of
-  // the overlap removed instead of 97-99.7 %, as swing legs could not step around neighbours' legs.
+  // on the joint's own velocity, and the ground and the legs set the height). A swinging foot is pulled
+  // toward its target by a spring 40x weaker (swing_foot_stiffness), with the Eq. 4 damper on its
+  // deviation velocity: weak enough to step around neighbours' legs, strong enough that feet keep
+  // landing where the input puts them.
   if (body.foot_anchor_stiffness > 0.0 || body.foot_anchor_damping > 0.0) {
     const double kt = body.foot_anchor_stiffness, dt = body.foot_anchor_damping * inv_h2;
     const Mat3 horizontal = Vec3(1.0, 0.0, 1.0).asDiagonal();
@@ -149,7 +150,17 @@ void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
         }
         continue;
       }
-      if (!s.foot_holds[static_cast<size_t>(2 * c + side)].held()) continue;
+      if (!s.foot_holds[static_cast<size_t>(2 * c + side)].held()) {
+        const double ks = body.swing_foot_stiffness;
+        for (const size_t j : {ankle, ball}) {
+          const size_t g = static_cast<size_t>(base) + j;
+          const Vec3& goal = s.target_origin_m[g];
+          const auto a = point_jacobian(origin[j] - s.com_m[g]);
+          s.diag[g] += (ks + dt) * a.transpose() * a;
+          s.rhs[g] -= a.transpose() * (ks * (origin[j] - goal) - dt * (goal - s.target_origin_old_m[g]));
+        }
+        continue;
+      }
       const FootGoal goal = foot_goal(model, s, c, side);
       for (const auto& [j, anchor] : {std::pair{ankle, goal.ankle_m}, std::pair{ball, goal.ball_m}}) {
         const size_t g = static_cast<size_t>(base) + j;
