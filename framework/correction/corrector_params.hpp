@@ -98,10 +98,11 @@ struct CorrectorParams {
   /// both terms the same form and no values). The input animations already interpenetrate themselves
   /// (the procedural dance's forearms pass 11-16 mm into their own torso on average), and a forearm
   /// caught between its own torso and a neighbour's is pressed from both sides: with equal stiffness
-  /// the two contacts cancel and it stays inside the neighbour. Measured on gomez2024 (4 s, 1e4 against
-  /// 3e4): corridor overlap removed 96.6-99.9 % -> 97.1-99.8 %, p99 inter-body depth at 4.44 /m^2 51 ->
-  /// 35 mm and at 6.66 /m^2 59 -> 57 mm, mean deviation at 6.66 /m^2 9.7 -> 9.2 deg; the arm-torso
-  /// self-contacts left stay shallow (2 s runs: mean 4-5 mm, against 11-16 mm in the input).
+  /// the two contacts cancel and it stays inside the neighbour. Measured on gomez2024 (4 s, before
+  /// swing_foot_stiffness existed; 1e4 against 3e4): corridor overlap removed 96.6-99.9 % ->
+  /// 97.1-99.8 %, p99 inter-body depth at 4.44 /m^2 51 -> 35 mm and at 6.66 /m^2 59 -> 57 mm, mean
+  /// deviation at 6.66 /m^2 9.7 -> 9.2 deg; the arm-torso self-contacts left stay shallow (2 s runs:
+  /// mean 4-5 mm, against 11-16 mm in the input).
   double intra_body_contact_stiffness = 1.0e4;
   /// Contact offset (m) for inter-body contacts: the penalty acts on depth + offset, as if every
   /// capsule were this much thicker (the "collision margin" of Bullet / PhysX contact offset). With
