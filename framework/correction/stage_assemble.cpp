@@ -139,25 +139,16 @@ void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
     for (int side = 0; side < 2; ++side) {
       const size_t ankle = side == 0 ? size_t{kLeftAnkle} : size_t{kRightAnkle};
       const size_t ball = side == 0 ? size_t{kLeftFoot} : size_t{kRightFoot};
-      if (!s.foot_holds_enabled) {
-        // Holds off (an offline run settling on its first frame): both feet stay on their targets.
+      if (!s.foot_holds_enabled || !s.foot_holds[static_cast<size_t>(2 * c + side)].held()) {
+        // Not held: toward the target, weakly while swinging, at full strength while holds are off
+        // (an offline run settling on its first frame).
+        const double k = s.foot_holds_enabled ? body.swing_foot_stiffness : kt;
         for (const size_t j : {ankle, ball}) {
           const size_t g = static_cast<size_t>(base) + j;
           const Vec3& goal = s.target_origin_m[g];
           const auto a = point_jacobian(origin[j] - s.com_m[g]);
-          s.diag[g] += (kt + dt) * a.transpose() * a;
-          s.rhs[g] -= a.transpose() * (kt * (origin[j] - goal) - dt * (goal - s.target_origin_old_m[g]));
-        }
-        continue;
-      }
-      if (!s.foot_holds[static_cast<size_t>(2 * c + side)].held()) {
-        const double ks = body.swing_foot_stiffness;
-        for (const size_t j : {ankle, ball}) {
-          const size_t g = static_cast<size_t>(base) + j;
-          const Vec3& goal = s.target_origin_m[g];
-          const auto a = point_jacobian(origin[j] - s.com_m[g]);
-          s.diag[g] += (ks + dt) * a.transpose() * a;
-          s.rhs[g] -= a.transpose() * (ks * (origin[j] - goal) - dt * (goal - s.target_origin_old_m[g]));
+          s.diag[g] += (k + dt) * a.transpose() * a;
+          s.rhs[g] -= a.transpose() * (k * (origin[j] - goal) - dt * (goal - s.target_origin_old_m[g]));
         }
         continue;
       }
