@@ -14,6 +14,7 @@
 #include "framework/io/crowd_glb_format.hpp"
 #include "framework/io/gltf_accessor_reader.hpp"
 #include "framework/io/gltf_builder.hpp"
+#include "framework/io/load_gltf_model.hpp"
 #include "framework/io/validate_environment.hpp"
 
 namespace crowdlab {
@@ -358,12 +359,7 @@ void read_metadata(const tinygltf::Scene& scene, CrowdMetadata& meta, const std:
 }  // namespace
 
 CrowdAnimation read_crowd_glb(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": file not found");
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  if (!loader.LoadBinaryFromFile(&model, &err, &warn, path))
-    throw InputError(path + ": not a valid glTF binary file: " + (err.empty() ? warn : err));
+  const tinygltf::Model model = load_gltf_model(path);
   if (model.scenes.empty()) throw InputError(path + ": the file has no scene");
   const size_t scene_index = model.defaultScene >= 0 ? static_cast<size_t>(model.defaultScene) : 0;
   if (scene_index >= model.scenes.size()) throw InputError(path + ": the default scene does not exist");
