@@ -104,14 +104,14 @@ FootGoal foot_goal(const CorrectorModel& model, const CorrectorState& s, int c, 
 
 void hold_feet(const CorrectorModel& model, CorrectorState& s, int c, Pose& pose) {
   const BodyShape& shape = model.bodies[static_cast<size_t>(c)].shape;
-  bool any = false;
-  for (int side = 0; side < 2; ++side) any = any || s.foot_holds[static_cast<size_t>(2 * c + side)].held();
-  if (!any) return;
+  const std::array<bool, 2> held = {s.foot_holds[static_cast<size_t>(2 * c)].held(),
+                                    s.foot_holds[static_cast<size_t>(2 * c + 1)].held()};
+  if (!held[0] && !held[1]) return;
   const BoneTransforms solved = forward_kinematics(shape, pose);
   std::array<FootGoal, 2> goals;
   std::array<bool, 2> fix = {false, false};
   for (int side = 0; side < 2; ++side) {
-    if (!s.foot_holds[static_cast<size_t>(2 * c + side)].held()) continue;
+    if (!held[static_cast<size_t>(side)]) continue;
     FootGoal& g = goals[static_cast<size_t>(side)];
     g = foot_goal(model, s, c, side);
     const LegJoints lj = leg_joints(kSides[side]);
@@ -129,8 +129,6 @@ void hold_feet(const CorrectorModel& model, CorrectorState& s, int c, Pose& pose
   }
   if (!fix[0] && !fix[1]) return;
   // Moving the pelvis for one leg moves the other leg's foot too: every held foot is then re-planted.
-  const std::array<bool, 2> held = {s.foot_holds[static_cast<size_t>(2 * c)].held(),
-                                    s.foot_holds[static_cast<size_t>(2 * c + 1)].held()};
   if (lower_pelvis_to_reach(shape, goals, held, pose)) fix = held;
   for (int side = 0; side < 2; ++side) {
     if (!fix[static_cast<size_t>(side)]) continue;
