@@ -63,6 +63,14 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--cg-tolerance", b.params.cg_tolerance, "CG relative residual tolerance")
       ->capture_default_str();
+  cmd->add_option("--depenetration-passes", b.params.depenetration_passes,
+                  "Position-level depenetration passes per step (0 = off)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--depenetration-tolerance", b.params.depenetration_tolerance_m,
+                  "Depth (m) above which the depenetration pass separates a capsule pair")
+      ->check(CLI::Range(0.0, 0.1))
+      ->capture_default_str();
   cmd->add_option("--active-set-passes", b.params.active_set_passes,
                   "Re-solves per step after removing pulling contacts (0 = off)")
       ->capture_default_str();

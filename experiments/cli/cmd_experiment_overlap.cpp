@@ -145,6 +145,21 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--fps", o->fps, "Frames per second")->check(CLI::Range(5.0, 120.0))->capture_default_str();
   cmd->add_option("--contact-stiffness", o->params.contact_stiffness, "Collision penalty k_delta (N/m)")
       ->capture_default_str();
+  cmd->add_option("--contact-offset", o->params.contact_offset_m,
+                  "Inter-body contact offset (m): the penalty acts on depth + offset")
+      ->check(CLI::Range(0.0, 0.1))
+      ->capture_default_str();
+  cmd->add_option("--depenetration-passes", o->params.depenetration_passes,
+                  "Position-level depenetration passes per step (0 = off)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--depenetration-tolerance", o->params.depenetration_tolerance_m,
+                  "Depth (m) above which the depenetration pass separates a capsule pair")
+      ->check(CLI::Range(0.0, 0.1))
+      ->capture_default_str();
+  cmd->add_option("--cg-tolerance", o->params.cg_tolerance, "CG relative residual tolerance")
+      ->check(CLI::Range(1e-12, 0.5))
+      ->capture_default_str();
   cmd->add_option("--active-set-passes", o->params.active_set_passes,
                   "Re-solves per step after removing pulling contacts (0 = off)")
       ->capture_default_str();

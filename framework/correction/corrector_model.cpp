@@ -37,6 +37,8 @@ void validate_corrector_params(const CorrectorParams& p) {
   check(p.cg_tolerance, "cg_tolerance", 1e-14);
   check(p.max_bone_speed_mps, "max_bone_speed_mps", 1e-3);
   check(p.max_rotation_step_rad, "max_rotation_step_rad", 0.0);
+  check(p.depenetration_tolerance_m, "depenetration_tolerance_m", 0.0);
+  if (p.depenetration_passes < 0) throw InputError("corrector parameter depenetration_passes must be >= 0");
   if (p.settle_steps < 0) throw InputError("corrector parameter settle_steps must be >= 0");
   if (p.active_set_passes < 0) throw InputError("corrector parameter active_set_passes must be >= 0");
   if (p.cg_max_iterations < 1) throw InputError("corrector parameter cg_max_iterations must be >= 1");

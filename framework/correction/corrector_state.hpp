@@ -6,9 +6,11 @@
 // Index conventions: bone arrays have model.bones() = 24 N entries, bone b of character c at c*24+b.
 // Frames/units: world frame (Y up), metres, seconds, radians. Generalised increments per bone are
 // Vec6 = (dx of the COM in m, dtheta in rad as a world-frame rotation vector).
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
+#include "framework/core/forward_kinematics.hpp"
 #include "framework/core/pose.hpp"
 #include "framework/correction/corrector_model.hpp"
 
@@ -57,6 +59,7 @@ struct StepStats {
   double max_penetration_m = 0.0;  ///< deepest inter-body contact (+ offset) at the predicted state
   int pulling_contacts = 0;   ///< contacts whose linearised depth ends negative (then removed, re-solved)
   int active_set_passes = 0;  ///< extra CG solves after removing pulling contacts
+  int deep_contacts = 0;      ///< inter-body capsule pairs the depenetration pass found too deep (first pass)
   int contacts() const {
     return inter_body_contacts + intra_body_contacts + ground_contacts + environment_contacts;
   }
@@ -70,6 +73,48 @@ struct FootHold {
   Vec3 ball_anchor_m = Vec3::Zero();
   Quat rotation_offset = Quat::Identity();  ///< output foot rotation = offset * input foot rotation
   bool held() const { return ankle || ball; }
+};
+
+/// Capsule pairs (local bone indices of the pair's first and second character) near each other.
+using NearCapsulePairs = std::vector<std::pair<std::uint8_t, std::uint8_t>>;
+
+/// Capsule pairs of two characters whose bounding spheres are farther apart than this (m) at the
+/// predicted state are not tested by the depenetration pass (stage_depenetrate.cpp), which only
+/// removes what the step left: the step's contact response moves a bone relative to a neighbour by a
+/// few centimetres.
+inline constexpr double kNearMargin_m = 0.04;
+
+/// How far apart (m) the broad and narrow phases look: the contact offset, or the depenetration margin
+/// when that pass is on.
+inline double detection_reach(const CorrectorParams& p) {
+  return std::max(p.contact_offset_m, p.depenetration_passes > 0 ? kNearMargin_m : 0.0);
+}
+
+/// An inter-body capsule pair the depenetration pass separates (stage_depenetrate.cpp). World frame.
+struct DeepContact {
+  int bone_a = -1, bone_b = -1;                         ///< global bone indices
+  double depth_m = 0.0;                                 ///< penetration depth of the posed capsules (m)
+  double share_a = 0.5;                                 ///< fraction of depth_m that bone_a's character takes
+  Vec3 normal = Vec3::UnitY();                          ///< unit, from b toward a
+  Vec3 point_a = Vec3::Zero(), point_b = Vec3::Zero();  ///< closest points on the two axes (m)
+};
+
+/// Variables of one character's pose change in the depenetration pass: root translation (m), then a
+/// world-frame rotation vector (rad) per joint.
+inline constexpr int kPoseChangeVariables = 3 + 3 * kJointCount;
+using PoseChangeVector = Eigen::Matrix<double, kPoseChangeVariables, 1>;
+
+/// Working memory of the depenetration pass, kept between steps so that a step allocates nothing.
+struct DepenetrationScratch {
+  std::vector<BoneTransforms> bones;                  ///< per character, posed bone frames
+  std::vector<WorldCapsules> capsules;                ///< per character, posed capsules
+  std::vector<std::array<Aabb, kJointCount>> boxes;   ///< per character, the posed capsules' boxes
+  std::vector<PoseChangeVector> inverse_weights;      ///< per character, K^-1 (model constants)
+  std::vector<std::vector<DeepContact>> per_pair;     ///< per body pair, this pass's deep contacts
+  std::vector<std::vector<const DeepContact*>> mine;  ///< per character, the deep contacts touching it
+  std::vector<std::vector<int>> pairs_of;             ///< per character, tested body pairs touching it
+  std::vector<char> in_list, moved, ever_moved;       ///< per character flags
+  std::vector<int> characters, tested, solved, changed;
 };
 
 struct CorrectorState {
@@ -112,6 +157,7 @@ struct CorrectorState {
   std::vector<int> sweep_order;        ///< characters sorted by body_box.lo.x
   std::vector<std::pair<int, int>> body_pairs;          ///< (i < j) candidate character pairs
   std::vector<std::vector<Contact>> per_pair_contacts;  ///< narrow-phase output per body pair
+  std::vector<NearCapsulePairs> per_pair_near;          ///< per body pair: capsule pairs within kNearMargin_m
   std::vector<std::vector<Contact>> per_body_contacts;  ///< intra/ground/env output per character
   std::vector<std::array<int, 3>> per_body_counts;      ///< (intra, ground, env) per character
   std::vector<Contact> contacts;                        ///< all contacts, fixed order
@@ -136,6 +182,8 @@ struct CorrectorState {
   // ---- two-phase commit
   std::vector<Vec3> new_com_m;
   std::vector<Quat> new_rotation;
+
+  DepenetrationScratch depenetration;
 
   StepStats stats;
 };

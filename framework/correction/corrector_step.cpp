@@ -163,6 +163,7 @@ const std::vector<Pose>& corrector_step(const CorrectorModel& model, CorrectorSt
   stage_assemble_contacts(model, state);
   stage_solve(model, state);
   stage_integrate(model, state);
+  stage_depenetrate(model, state);
   ++state.step_index;
   return state.output;
 }

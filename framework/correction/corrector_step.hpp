@@ -15,6 +15,8 @@
 //                           PCG warm-started at dq_free; pulling contacts removed (active set)
 //   stage_integrate         apply the increment, project to joint rotations + root position,
 //                           re-plant held feet by leg IK, commit
+//   stage_depenetrate       push apart the inter-body capsule pairs the step left deeper than a
+//                           tolerance, by least-energy pose changes (stage_depenetrate.cpp)
 //
 // Why contacts are found at the predicted state (ours; the paper does not say where its one Newton
 // iteration finds its contacts): contacts found at the start-of-step state miss every contact that a
@@ -50,6 +52,7 @@ void stage_narrow_phase(const CorrectorModel& model, CorrectorState& state);
 void stage_assemble_contacts(const CorrectorModel& model, CorrectorState& state);
 void stage_solve(const CorrectorModel& model, CorrectorState& state);
 void stage_integrate(const CorrectorModel& model, CorrectorState& state);
+void stage_depenetrate(const CorrectorModel& model, CorrectorState& state);
 
 /// Character c's contact terms: precond = tree diagonal + sum of k w w^T over its contacts, rhs =
 /// rhs_tree - sum of k depth0 w (contacts with stiffness 0 skipped). Used by stage_assemble_contacts

@@ -12,6 +12,7 @@ namespace crowdlab {
 
 void stage_broad_phase(const CorrectorModel& model, CorrectorState& state) {
   const int n = model.characters();
+  const double reach = detection_reach(model.params);
   tbb::parallel_for(0, n, [&](int c) {
     const CorrectorBody& body = model.bodies[static_cast<size_t>(c)];
     Aabb box;
@@ -28,14 +29,15 @@ void stage_broad_phase(const CorrectorModel& model, CorrectorState& state) {
       box.extend(w.a.cwiseMin(w.b) - rad);
       box.extend(w.a.cwiseMax(w.b) + rad);
       // Per-capsule culling data for the narrow phase, computed once per step.
-      const Vec3 grow = Vec3::Constant(local.radius_m + model.params.contact_offset_m);
+      const Vec3 grow = Vec3::Constant(local.radius_m + reach);
       state.capsule_box[g].lo = w.a.cwiseMin(w.b) - grow;
       state.capsule_box[g].hi = w.a.cwiseMax(w.b) + grow;
       state.capsule_sphere[g] << 0.5 * (w.a + w.b), 0.5 * (w.b - w.a).norm() + local.radius_m;
     }
-    // Half the contact offset on each side, so bodies closer than the offset are paired.
-    box.lo -= Vec3::Constant(0.5 * model.params.contact_offset_m);
-    box.hi += Vec3::Constant(0.5 * model.params.contact_offset_m);
+    // Half the reach on each side, so bodies closer than the contact offset (or the depenetration
+    // margin) are paired.
+    box.lo -= Vec3::Constant(0.5 * reach);
+    box.hi += Vec3::Constant(0.5 * reach);
     state.body_box[static_cast<size_t>(c)] = box;
   });
 

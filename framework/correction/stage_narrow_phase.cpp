@@ -27,17 +27,10 @@ Aabb capsule_box(const Capsule& c) {
   return box;
 }
 
-/// offset: contact offset (m) added to the depth (inter-body contacts only; see CorrectorParams).
-bool make_capsule_contact(const CorrectorState& state, int ga, int gb, double k, double offset,
-                          Contact& out) {
-  if (!spheres_overlap(state.capsule_sphere[static_cast<size_t>(ga)],
-                       state.capsule_sphere[static_cast<size_t>(gb)], offset))
-    return false;
-  const Capsule& ca = state.world_capsule[static_cast<size_t>(ga)];
-  const Capsule& cb = state.world_capsule[static_cast<size_t>(gb)];
-  const CapsuleContact cc = capsule_contact(ca, cb);
-  if (!(cc.depth_m + offset > 0.0)) return false;
-  out = Contact{};
+/// The contact of bones ga, gb from their capsule contact; offset: contact offset (m) added to the
+/// depth (inter-body contacts only; see CorrectorParams).
+Contact make_contact(int ga, int gb, double k, double offset, const CapsuleContact& cc) {
+  Contact out;
   out.bone_a = ga;
   out.bone_b = gb;
   out.depth_m = cc.depth_m + offset;
@@ -45,27 +38,49 @@ bool make_capsule_contact(const CorrectorState& state, int ga, int gb, double k,
   out.normal = cc.normal;
   out.point_a = cc.point_a;
   out.point_b = cc.point_b;
+  return out;
+}
+
+bool make_capsule_contact(const CorrectorState& state, int ga, int gb, double k, double offset,
+                          Contact& out) {
+  if (!spheres_overlap(state.capsule_sphere[static_cast<size_t>(ga)],
+                       state.capsule_sphere[static_cast<size_t>(gb)], offset))
+    return false;
+  const CapsuleContact cc = capsule_contact(state.world_capsule[static_cast<size_t>(ga)],
+                                            state.world_capsule[static_cast<size_t>(gb)]);
+  if (!(cc.depth_m + offset > 0.0)) return false;
+  out = make_contact(ga, gb, k, offset, cc);
   return true;
 }
 
 void body_pair_contacts(const CorrectorModel& model, const CorrectorState& state, int ci, int cj,
-                        std::vector<Contact>& out) {
+                        std::vector<Contact>& out, NearCapsulePairs& near) {
   out.clear();
+  near.clear();
   const Aabb& box_i = state.body_box[static_cast<size_t>(ci)];
   const Aabb& box_j = state.body_box[static_cast<size_t>(cj)];
   int list_i[kJointCount], list_j[kJointCount];
   int ni = 0, nj = 0;
   const double offset = model.params.contact_offset_m;
+  // The capsule pairs the depenetration pass tests (stage_depenetrate.cpp) are listed here too: those
+  // whose bounding spheres come within its margin (the boxes were grown by the same reach).
+  const double reach = detection_reach(model.params);
   for (int b = 0; b < kJointCount; ++b) {
     if (state.capsule_box[static_cast<size_t>(ci * kJointCount + b)].overlaps(box_j)) list_i[ni++] = b;
     if (state.capsule_box[static_cast<size_t>(cj * kJointCount + b)].overlaps(box_i)) list_j[nj++] = b;
   }
   const double k = model.params.contact_stiffness;
-  Contact c;
   for (int x = 0; x < ni; ++x)
     for (int y = 0; y < nj; ++y) {
       const int ga = ci * kJointCount + list_i[x], gb = cj * kJointCount + list_j[y];
-      if (make_capsule_contact(state, ga, gb, k, offset, c)) out.push_back(c);
+      const Vec4& sa = state.capsule_sphere[static_cast<size_t>(ga)];
+      const Vec4& sb = state.capsule_sphere[static_cast<size_t>(gb)];
+      if (!spheres_overlap(sa, sb, reach)) continue;
+      near.push_back({static_cast<std::uint8_t>(list_i[x]), static_cast<std::uint8_t>(list_j[y])});
+      if (!spheres_overlap(sa, sb, offset)) continue;
+      const CapsuleContact cc = capsule_contact(state.world_capsule[static_cast<size_t>(ga)],
+                                                state.world_capsule[static_cast<size_t>(gb)]);
+      if (cc.depth_m + offset > 0.0) out.push_back(make_contact(ga, gb, k, offset, cc));
     }
 }
 
@@ -137,9 +152,10 @@ void stage_narrow_phase(const CorrectorModel& model, CorrectorState& state) {
   const int n = model.characters();
   const size_t pairs = state.body_pairs.size();
   if (state.per_pair_contacts.size() < pairs) state.per_pair_contacts.resize(pairs);
+  if (state.per_pair_near.size() < pairs) state.per_pair_near.resize(pairs);
   tbb::parallel_for(size_t{0}, pairs, [&](size_t k) {
     body_pair_contacts(model, state, state.body_pairs[k].first, state.body_pairs[k].second,
-                       state.per_pair_contacts[k]);
+                       state.per_pair_contacts[k], state.per_pair_near[k]);
   });
   tbb::parallel_for(0, n, [&](int c) {
     single_body_contacts(model, state, c, state.per_body_contacts[static_cast<size_t>(c)],

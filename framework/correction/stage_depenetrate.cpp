@@ -1,0 +1,347 @@
+// Position-level depenetration of the projected poses (ours; seed 000 takes one Newton step and keeps
+// what it leaves). After stage_integrate has projected every character to a pose and re-planted its
+// held feet, inter-body capsule pairs still deeper than depenetration_tolerance_m are pushed apart by
+// moving the poses directly: a post-stabilisation pass in the sense of Cline & Pai 2003
+// ("Post-stabilization for rigid body simulation with contact and constraints") and of position-based
+// dynamics' contact projection (Mueller et al. 2007, "Position based dynamics").
+//
+// Why a separate pass: the one Newton step leaves deep residuals where it cannot move a limb far
+// enough in one frame. Measured on gomez2024's corridor at 3.33 /m^2 (docs/correction.md): of the
+// contacts ending > 1 cm deep, 58 % were left > 1 cm deep by the linear solve itself (the limb's
+// inertia and the control's damper resist a 5 cm move within 1/30 s, whatever the contact stiffness),
+// 39 % were separated by the solve but pushed back by the projection and the foot holds, and 3 % by the
+// linearisation. The p99 inter-body depth was 13-59 mm; with the pass it is 0.1-8.6 mm.
+//
+// The pass, repeated up to depenetration_passes times (it stops when nothing is deeper):
+//   1. contacts   the capsule pairs the narrow phase listed as near (bounding spheres within
+//                 kNearMargin_m at the predicted state, corrector_state.hpp) that the current poses
+//                 put deeper than the tolerance: depth delta, normal n (b -> a), axis points p_a, p_b.
+//                 The first pass tests every listed pair, later ones the pairs of the characters the
+//                 last pass moved;
+//   2. split      each contact's separation delta is shared between its two characters in proportion
+//                 to their compliance along n (below), so a body whose feet are held yields less;
+//   3. solve      per character, the pose change of least control-spring energy
+//                     min 1/2 sum_j k_j |w_j|^2 + 1/2 k_root |dr|^2
+//                     s.t. n . J_p [dr; w] = share * delta   for each of its contacts,
+//                          e . J_q [dr; w] = 0               for the x and z of each held foot joint,
+//                 where w_j is a world-frame rotation about joint j, dr the root translation, k_j the
+//                 joint's control spring (CorrectorBody::rot_stiffness, the per-inertia gains of Eq. 4,
+//                 pelvis and feet stiffer; floored at k_root kMinLever_m^2) and k_root the root's
+//                 translation spring. The point Jacobian of p on bone b is I for dr and (p - o_j) x n
+//                 for every joint j from b up to the root (o_j: joint j's world position). The weighted
+//                 least-norm solution is dq = K^-1 J^T (J K^-1 J^T + eps)^-1 r, a dense solve of one
+//                 row per constraint (a handful);
+//   4. apply      root += dr (at most the deepest separation asked for); local_j <- R_parent^T
+//                 exp(w_j) R_parent local_j (R_parent: the parent's world rotation before the pass),
+//                 each w_j limited to kMaxRotation_rad; held feet are then re-planted exactly by
+//                 hold_feet.
+// Compliance of character c along n at p: sum over the chain of |(p - o_j) x n|^2 / k_j + 1 / k_root,
+// the displacement per unit force of the same energy (ignoring the held-foot rows).
+//
+// Velocities are left as the step computed them: the pass moves positions only (post-stabilisation
+// without velocity change), so it removes penetration without adding the energy of the push.
+// Work is split over body pairs and characters (TBB) with per-index outputs and fixed-order gathers:
+// the result does not depend on the number of threads.
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+#include <Eigen/Cholesky>
+
+#include "framework/core/forward_kinematics.hpp"
+#include "framework/core/leg_ik.hpp"
+#include "framework/correction/corrector_step.hpp"
+
+namespace crowdlab {
+namespace {
+
+/// Largest rotation one pass may give a joint (rad). The pass linearises every point as w x (p - o),
+/// whose error grows as |p - o| |w|^2 / 2; 0.2 rad keeps it below 10 % of the move. Measured on the
+/// corridor at 6.66 /m^2 (4 s): 0.1 rad needed more passes for the same depth, 0.4 rad changed nothing.
+constexpr double kMaxRotation_rad = 0.2;
+/// Floor on each joint's rotation weight: k_j >= k_root (kMinLever_m)^2, so a rotation never moves a
+/// point more cheaply than translating the root would at 20 cm from the joint. Without it the least-
+/// energy change turned light leaves (toes, hands: tiny effective inertia) by 1-2 rad to move a contact
+/// point a few centimetres, which the trust region then cut back: measured on the corridor at 6.66 /m^2,
+/// 18 % of the per-character solves were throttled and deep contacts took more passes to clear.
+constexpr double kMinLever_m = 0.2;
+/// Relative Tikhonov term on the constraint system (times its largest diagonal entry): rows that
+/// conflict (a limb pressed from two sides, a contact against a held foot) get a least-squares
+/// compromise instead of an exploding solve. 1e-3 removed more depth than 1e-2 (which leaves ~1 % of
+/// each separation) and than 1e-4 (near-conflicting rows then threw bodies by decimetres).
+constexpr double kRegularisation = 1e-3;
+/// At most this many rows per character and pass (contacts, deepest kept, plus 8 held-foot rows), so
+/// the dense system stays on the stack.
+constexpr int kMaxRows = 40;
+
+constexpr int kVariables = kPoseChangeVariables;  // dr, then w_j per joint
+using Row = Eigen::Matrix<double, 1, kVariables>;
+using Weights = PoseChangeVector;
+using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, kVariables, Eigen::RowMajor, kMaxRows, kVariables>;
+using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxRows>;
+using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxRows, 1>;
+
+/// The row n . J_p of a point p (world) moving with bone `bone` (local index), for a unit direction n.
+Row point_row(const BoneTransforms& bones, int bone, const Vec3& p, const Vec3& n) {
+  Row row = Row::Zero();
+  row.head<3>() = n.transpose();
+  for (int j = bone; j >= 0; j = kJointParent[static_cast<size_t>(j)]) {
+    row.segment<3>(3 + 3 * j) = (p - bones[static_cast<size_t>(j)].translation).cross(n).transpose();
+    if (j == 0) break;
+  }
+  return row;
+}
+
+/// K^-1: the inverse control springs of the root translation and of every joint.
+Weights inverse_weights(const CorrectorBody& body) {
+  Weights w;
+  w.head<3>().setConstant(1.0 / body.root_translation_stiffness);
+  const double floor = body.root_translation_stiffness * kMinLever_m * kMinLever_m;
+  for (int j = 0; j < kJointCount; ++j)
+    w.segment<3>(3 + 3 * j).setConstant(1.0 / std::max(floor, body.rot_stiffness[static_cast<size_t>(j)]));
+  return w;
+}
+
+/// Displacement per unit force (m/N) of the point of `row` along its direction, J K^-1 J^T.
+double compliance(const Row& row, const Weights& inv_w) {
+  return row.cwiseAbs2().dot(inv_w.transpose());
+}
+
+/// The capsule pairs among `candidates` deeper than `tolerance`, with the compliance split.
+void find_deep_contacts(const DepenetrationScratch& w, int ci, int cj, const NearCapsulePairs& candidates,
+                        double tolerance, std::vector<DeepContact>& out) {
+  out.clear();
+  const auto ii = static_cast<size_t>(ci), jj = static_cast<size_t>(cj);
+  for (const auto& [a, b] : candidates) {
+    // Boxes first: most listed pairs are a few centimetres apart, and overlapping capsules overlap
+    // in every axis.
+    if (!w.boxes[ii][a].overlaps(w.boxes[jj][b])) continue;
+    const CapsuleContact cc = capsule_contact(w.capsules[ii][a], w.capsules[jj][b]);
+    if (!(cc.depth_m > tolerance)) continue;
+    DeepContact d;
+    d.bone_a = ci * kJointCount + a;
+    d.bone_b = cj * kJointCount + b;
+    d.depth_m = cc.depth_m;
+    d.normal = cc.normal;
+    d.point_a = cc.point_a;
+    d.point_b = cc.point_b;
+    const double comp_a = compliance(point_row(w.bones[ii], a, cc.point_a, cc.normal), w.inverse_weights[ii]);
+    const double comp_b = compliance(point_row(w.bones[jj], b, cc.point_b, cc.normal), w.inverse_weights[jj]);
+    d.share_a = comp_a / (comp_a + comp_b);
+    out.push_back(d);
+  }
+}
+
+/// Rows of the constraint system of character c: its contacts (the deepest, if more than fit), then
+/// the x and z of its held foot joints. Returns the number of rows.
+int constraint_rows(const CorrectorState& s, int c, const BoneTransforms& bones,
+                    std::vector<const DeepContact*>& contacts, RowBlock& J, SmallVector& r) {
+  int held_rows = 0;
+  for (int f = 2 * c; f < 2 * c + 2; ++f)
+    held_rows += 2 * (int{s.foot_holds[static_cast<size_t>(f)].ankle} +
+                      int{s.foot_holds[static_cast<size_t>(f)].ball});
+  const int room = kMaxRows - held_rows;
+  if (static_cast<int>(contacts.size()) > room) {
+    std::stable_sort(contacts.begin(), contacts.end(),
+                     [](const DeepContact* x, const DeepContact* y) { return x->depth_m > y->depth_m; });
+    contacts.resize(static_cast<size_t>(room));
+  }
+  const int m = static_cast<int>(contacts.size()) + held_rows;
+  J.resize(m, kVariables);
+  r.resize(m);
+  int i = 0;
+  for (const DeepContact* d : contacts) {
+    const bool side_a = d->bone_a / kJointCount == c;
+    const int bone = (side_a ? d->bone_a : d->bone_b) % kJointCount;
+    J.row(i) =
+        point_row(bones, bone, side_a ? d->point_a : d->point_b, side_a ? d->normal : Vec3(-d->normal));
+    r(i++) = d->depth_m * (side_a ? d->share_a : 1.0 - d->share_a);
+  }
+  for (int side = 0; side < 2; ++side) {
+    const FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
+    const LegJoints lj = leg_joints(side == 0 ? LegSide::kLeft : LegSide::kRight);
+    for (const auto& [held, joint] : {std::pair{hold.ankle, lj.ankle}, std::pair{hold.ball, lj.foot}}) {
+      if (!held) continue;
+      // A joint's position moves with its parent's chain, not with its own rotation.
+      const Vec3& q = bones[static_cast<size_t>(joint)].translation;
+      for (const Vec3& axis : {Vec3(Vec3::UnitX()), Vec3(Vec3::UnitZ())}) {
+        J.row(i) = point_row(bones, kJointParent[static_cast<size_t>(joint)], q, axis);
+        r(i++) = 0.0;
+      }
+    }
+  }
+  return m;
+}
+
+/// The least-energy pose change meeting the rows (weighted least norm, regularised), bounded by one
+/// uniform scale: the root moves no farther than the deepest separation asked for, and no joint turns
+/// by more than kMaxRotation_rad. Returns false when the solve is not finite.
+bool least_energy_change(const RowBlock& J, const SmallVector& r, const Weights& inv_w, Weights& dq) {
+  const Eigen::Index m = J.rows();
+  const RowBlock JW = J * inv_w.asDiagonal();
+  // Coefficient-wise products: for a few rows Eigen's blocked GEMM path costs more than the arithmetic.
+  SmallMatrix A = JW.lazyProduct(J.transpose());
+  double largest = 0.0, wanted = 0.0;  // largest diagonal entry, deepest separation asked for
+  for (Eigen::Index i = 0; i < m; ++i) {
+    largest = std::max(largest, A(i, i));
+    wanted = std::max(wanted, std::abs(r(i)));
+  }
+  A.diagonal().array() += kRegularisation * largest;
+  const SmallVector y = A.ldlt().solve(r);
+  dq = JW.transpose().lazyProduct(y);
+  if (!dq.allFinite()) return false;
+  // Trust region: the root moves no farther than the deepest separation asked for, and each joint
+  // turns by at most kMaxRotation_rad (the rest is left to the next pass, re-linearised).
+  const double root_move = dq.head<3>().norm();
+  if (root_move > wanted) dq.head<3>() *= wanted / root_move;
+  for (int j = 0; j < kJointCount; ++j) {
+    const double angle = dq.segment<3>(3 + 3 * j).norm();
+    if (angle > kMaxRotation_rad) dq.segment<3>(3 + 3 * j) *= kMaxRotation_rad / angle;
+  }
+  return true;
+}
+
+/// root += dr; local_j <- R_parent^T exp(w_j) R_parent local_j, R_parent from `bones` (before the change).
+void apply_change(const BoneTransforms& bones, const Weights& dq, Pose& pose) {
+  pose.root_position_m += dq.head<3>();
+  for (int j = 0; j < kJointCount; ++j) {
+    const Vec3 w = dq.segment<3>(3 + 3 * j);
+    if (w.squaredNorm() < 1e-24) continue;
+    const Quat parent =
+        j == 0 ? Quat::Identity() : bones[static_cast<size_t>(kJointParent[static_cast<size_t>(j)])].rotation;
+    Quat& local = pose.local_rotations[static_cast<size_t>(j)];
+    local = (parent.conjugate() * rotation_from_vector(w) * parent * local).normalized();
+  }
+}
+
+/// Below these counts a loop runs on the calling thread: waking the other worker costs more than the
+/// work (about 1 us per pose or pair test, 3 us per solve). Measured at 200 characters: running every
+/// loop serially took 1.5 ms, splitting every loop over 2 threads 0.95 ms, these thresholds 0.9 ms.
+constexpr size_t kSerialPoses = 64, kSerialPairs = 64, kSerialSolves = 16;
+/// Runs f(items[k]) for every k, in parallel when there are enough items to pay for it. Each call
+/// writes only its own item's outputs, so the result does not depend on how the work is split.
+template <class F>
+void for_each_item(const std::vector<int>& items, size_t serial_below, F&& f) {
+  if (items.size() < serial_below) {
+    for (int item : items) f(item);
+    return;
+  }
+  tbb::parallel_for(size_t{0}, items.size(), [&](size_t k) { f(items[k]); });
+}
+
+}  // namespace
+
+void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
+  const CorrectorParams& p = model.params;
+  const size_t pairs = s.body_pairs.size();
+  if (p.depenetration_passes <= 0 || s.stats.rejected || pairs == 0) return;
+  const auto nn = static_cast<size_t>(model.characters());
+  DepenetrationScratch& w = s.depenetration;
+  if (w.bones.size() != nn) {  // first step: size everything once; K^-1 are model constants
+    w = DepenetrationScratch{};
+    w.bones.resize(nn);
+    w.capsules.resize(nn);
+    w.boxes.resize(nn);
+    w.inverse_weights.resize(nn);
+    for (size_t c = 0; c < nn; ++c) w.inverse_weights[c] = inverse_weights(model.bodies[c]);
+    w.mine.resize(nn);
+    w.pairs_of.resize(nn);
+    w.in_list.assign(nn, 0);
+    w.moved.assign(nn, 0);
+    w.ever_moved.assign(nn, 0);
+  }
+  if (w.per_pair.size() < pairs) w.per_pair.resize(pairs);
+  // Work lists: the characters to (re-)pose and the body pairs to (re-)test. At first every pair with a
+  // near capsule pair (narrow phase) and its characters; then the characters the last pass moved and
+  // the pairs touching them (a pair whose bodies did not move had no deep contact, or both would have).
+  for (int c : w.characters) w.pairs_of[static_cast<size_t>(c)].clear();
+  w.characters.clear();
+  w.tested.clear();
+  for (size_t k = 0; k < pairs; ++k) {
+    if (s.per_pair_near[k].empty()) continue;
+    w.tested.push_back(static_cast<int>(k));
+    for (int c : {s.body_pairs[k].first, s.body_pairs[k].second}) {
+      const auto cc = static_cast<size_t>(c);
+      if (!w.in_list[cc]) w.characters.push_back(c);
+      w.in_list[cc] = 1;
+      w.pairs_of[cc].push_back(static_cast<int>(k));
+    }
+  }
+  std::sort(w.characters.begin(), w.characters.end());
+  const std::vector<int> all_characters = w.characters;  // whose pairs_of lists must be cleared next step
+  for (int c : all_characters) w.in_list[static_cast<size_t>(c)] = 0;
+  for (int c : w.solved) w.mine[static_cast<size_t>(c)].clear();  // the last step's lists
+  w.solved.clear();
+  w.changed.clear();
+  std::vector<int> pose_list = w.characters;
+  for (int pass = 0; pass < p.depenetration_passes && !pose_list.empty(); ++pass) {
+    for_each_item(pose_list, kSerialPoses, [&](int c) {
+      const auto cc = static_cast<size_t>(c);
+      w.bones[cc] = forward_kinematics(model.bodies[cc].shape, s.output[cc]);
+      w.capsules[cc] = world_capsules(model.bodies[cc].shape, w.bones[cc]);
+      for (size_t b = 0; b < kJointCount; ++b) {
+        const Capsule& cap = w.capsules[cc][b];
+        w.boxes[cc][b].lo = cap.a.cwiseMin(cap.b) - Vec3::Constant(cap.radius_m);
+        w.boxes[cc][b].hi = cap.a.cwiseMax(cap.b) + Vec3::Constant(cap.radius_m);
+      }
+    });
+    // 1-2. Deep contacts per tested pair, with the compliance split.
+    for_each_item(w.tested, kSerialPairs, [&](int k) {
+      const auto [i, j] = s.body_pairs[static_cast<size_t>(k)];
+      find_deep_contacts(w, i, j, s.per_pair_near[static_cast<size_t>(k)], p.depenetration_tolerance_m,
+                         w.per_pair[static_cast<size_t>(k)]);
+    });
+    // Gather per character, in pair order (deterministic).
+    for (int c : w.solved) w.mine[static_cast<size_t>(c)].clear();
+    w.solved.clear();
+    int found = 0;
+    for (int k : w.tested)
+      for (const DeepContact& d : w.per_pair[static_cast<size_t>(k)]) {
+        for (int bone : {d.bone_a, d.bone_b}) {
+          auto& list = w.mine[static_cast<size_t>(bone / kJointCount)];
+          if (list.empty()) w.solved.push_back(bone / kJointCount);
+          list.push_back(&d);
+        }
+        ++found;
+      }
+    if (pass == 0) s.stats.deep_contacts = found;
+    if (found == 0) break;
+    std::sort(w.solved.begin(), w.solved.end());
+    // 3-4. Per character: the least-energy pose change, then held feet re-planted exactly.
+    for_each_item(w.solved, kSerialSolves, [&](int c) {
+      const auto cc = static_cast<size_t>(c);
+      RowBlock J;
+      SmallVector r;
+      constraint_rows(s, c, w.bones[cc], w.mine[cc], J, r);
+      Weights dq;
+      w.moved[cc] = 0;
+      if (!least_energy_change(J, r, w.inverse_weights[cc], dq)) return;
+      apply_change(w.bones[cc], dq, s.output[cc]);
+      hold_feet(model, s, c, s.output[cc]);
+      w.moved[cc] = 1;
+    });
+    // Next pass: re-pose the moved characters, re-test the pairs touching them.
+    pose_list.clear();
+    w.tested.clear();
+    for (int c : w.solved) {
+      const auto cc = static_cast<size_t>(c);
+      if (!w.moved[cc]) continue;
+      pose_list.push_back(c);
+      if (!w.ever_moved[cc]) w.changed.push_back(c);
+      w.ever_moved[cc] = 1;
+      for (int k : w.pairs_of[cc]) w.tested.push_back(k);
+    }
+    std::sort(w.tested.begin(), w.tested.end());
+    w.tested.erase(std::unique(w.tested.begin(), w.tested.end()), w.tested.end());
+    for (int c : w.solved) w.moved[static_cast<size_t>(c)] = 0;
+  }
+  // Commit: the next step starts from the depenetrated poses (velocities unchanged, see the header).
+  std::sort(w.changed.begin(), w.changed.end());
+  for_each_item(w.changed, kSerialPoses, [&](int c) {
+    set_bones_from_pose(model, c, s.output[static_cast<size_t>(c)], s.com_m, s.rotation);
+  });
+  for (int c : w.changed) w.ever_moved[static_cast<size_t>(c)] = 0;
+  w.characters = all_characters;
+}
+
+}  // namespace crowdlab
