@@ -81,7 +81,9 @@ using NearCapsulePairs = std::vector<std::pair<std::uint8_t, std::uint8_t>>;
 /// Capsule pairs of two characters whose bounding spheres are farther apart than this (m) at the
 /// predicted state are not tested by the depenetration pass (stage_depenetrate.cpp), which only
 /// removes what the step left: the step's contact response moves a bone relative to a neighbour by a
-/// few centimetres.
+/// few centimetres. Measured on gomez2024 (corridor 6.66 and stationary 4.44 /m^2, 4 s): of the contacts
+/// deeper than 1 cm after a step, 5 of ~300 were outside a 4 cm list (6 cm: 2 of ~270; pairs closer
+/// than 3 cm by capsule distance, within the 1 cm body boxes: 196 of 421).
 inline constexpr double kNearMargin_m = 0.04;
 
 /// How far apart (m) the broad and narrow phases look: the contact offset, or the depenetration margin

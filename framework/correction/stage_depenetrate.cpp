@@ -56,8 +56,9 @@ namespace crowdlab {
 namespace {
 
 /// Largest rotation one pass may give a joint (rad). The pass linearises every point as w x (p - o),
-/// whose error grows as |p - o| |w|^2 / 2; 0.2 rad keeps it below 10 % of the move. Measured on the
-/// corridor at 6.66 /m^2 (4 s): 0.1 rad needed more passes for the same depth, 0.4 rad changed nothing.
+/// whose error grows as |p - o| |w|^2 / 2; 0.2 rad keeps it below 10 % of the move. Measured in an
+/// earlier variant (every pair re-tested, corridor at 6.66 /m^2, 4 s, 6 passes): 0.1 rad left more
+/// depth, 0.4 rad the same as 0.2 (p99 13.2 vs 13.4 mm).
 constexpr double kMaxRotation_rad = 0.2;
 /// Floor on each joint's rotation weight: k_j >= k_root (kMinLever_m)^2, so a rotation never moves a
 /// point more cheaply than translating the root would at 20 cm from the joint. Without it the least-
@@ -67,8 +68,9 @@ constexpr double kMaxRotation_rad = 0.2;
 constexpr double kMinLever_m = 0.2;
 /// Relative Tikhonov term on the constraint system (times its largest diagonal entry): rows that
 /// conflict (a limb pressed from two sides, a contact against a held foot) get a least-squares
-/// compromise instead of an exploding solve. 1e-3 removed more depth than 1e-2 (which leaves ~1 % of
-/// each separation) and than 1e-4 (near-conflicting rows then threw bodies by decimetres).
+/// compromise instead of an exploding solve. At 1e-6 nearly dependent rows threw a pelvis 40 cm in one
+/// step; 1e-4 left p99 56 mm where 1e-2 left 16 mm (stationary 5.55 /m^2, 3 passes of 0.1 rad); 1e-3
+/// with 6 passes of 0.2 rad left 7.4 mm there and 7.5 mm in the corridor at 3.33 /m^2.
 constexpr double kRegularisation = 1e-3;
 /// At most this many rows per character and pass (contacts, deepest kept, plus 8 held-foot rows), so
 /// the dense system stays on the stack.
@@ -133,9 +135,9 @@ void find_deep_contacts(const DepenetrationScratch& w, int ci, int cj, const Nea
 }
 
 /// Rows of the constraint system of character c: its contacts (the deepest, if more than fit), then
-/// the x and z of its held foot joints. Returns the number of rows.
-int constraint_rows(const CorrectorState& s, int c, const BoneTransforms& bones,
-                    std::vector<const DeepContact*>& contacts, RowBlock& J, SmallVector& r) {
+/// the x and z of its held foot joints.
+void constraint_rows(const CorrectorState& s, int c, const BoneTransforms& bones,
+                     std::vector<const DeepContact*>& contacts, RowBlock& J, SmallVector& r) {
   int held_rows = 0;
   for (int f = 2 * c; f < 2 * c + 2; ++f)
     held_rows += 2 * (int{s.foot_holds[static_cast<size_t>(f)].ankle} +
@@ -170,12 +172,11 @@ int constraint_rows(const CorrectorState& s, int c, const BoneTransforms& bones,
       }
     }
   }
-  return m;
 }
 
-/// The least-energy pose change meeting the rows (weighted least norm, regularised), bounded by one
-/// uniform scale: the root moves no farther than the deepest separation asked for, and no joint turns
-/// by more than kMaxRotation_rad. Returns false when the solve is not finite.
+/// The least-energy pose change meeting the rows (weighted least norm, regularised), then limited: the
+/// root moves no farther than the deepest separation asked for, and no joint turns by more than
+/// kMaxRotation_rad. Returns false when the solve is not finite.
 bool least_energy_change(const RowBlock& J, const SmallVector& r, const Weights& inv_w, Weights& dq) {
   const Eigen::Index m = J.rows();
   const RowBlock JW = J * inv_w.asDiagonal();
