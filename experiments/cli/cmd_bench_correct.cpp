@@ -7,6 +7,7 @@
 #include "experiments/cli/bench_correct_run.hpp"
 #include "experiments/cli/bench_group.hpp"
 #include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/corrector_tuning_options.hpp"
 
 namespace crowdlab::cli {
 namespace {
@@ -59,21 +60,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--stiffness", b.params.stiffness, "Control spring k (Eq. 4, per unit inertia, 1/s^2)")
       ->capture_default_str();
   cmd->add_option("--damping", b.params.damping, "Control damping d (Eq. 4)")->capture_default_str();
-  cmd->add_option("--contact-stiffness", b.params.contact_stiffness, "Collision penalty k_delta (N/m)")
-      ->capture_default_str();
-  cmd->add_option("--cg-tolerance", b.params.cg_tolerance, "CG relative residual tolerance")
-      ->capture_default_str();
-  cmd->add_option("--depenetration-passes", b.params.depenetration_passes,
-                  "Position-level depenetration passes per step (0 = off)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  cmd->add_option("--depenetration-tolerance", b.params.depenetration_tolerance_m,
-                  "Depth (m) above which the depenetration pass separates a capsule pair")
-      ->check(CLI::Range(0.0, 0.1))
-      ->capture_default_str();
-  cmd->add_option("--active-set-passes", b.params.active_set_passes,
-                  "Re-solves per step after removing pulling contacts (0 = off)")
-      ->capture_default_str();
+  add_corrector_tuning_options(cmd, b.params);
   cmd->add_flag_callback(
       "--inertial-prediction", [&b] { b.params.exact_prediction = false; },
       "Detect contacts at the inertial prediction instead of the exact contact-free step");

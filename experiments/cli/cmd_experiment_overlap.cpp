@@ -15,6 +15,7 @@
 #include <set>
 
 #include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/corrector_tuning_options.hpp"
 #include "experiments/cli/experiment_group.hpp"
 #include "experiments/cli/figures/overlap_vs_density.hpp"
 #include "experiments/cli/pipeline/body_model.hpp"
@@ -143,25 +144,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->check(CLI::Range(0.2, 60.0))
       ->capture_default_str();
   cmd->add_option("--fps", o->fps, "Frames per second")->check(CLI::Range(5.0, 120.0))->capture_default_str();
-  cmd->add_option("--contact-stiffness", o->params.contact_stiffness, "Collision penalty k_delta (N/m)")
-      ->capture_default_str();
+  add_corrector_tuning_options(cmd, o->params);
   cmd->add_option("--contact-offset", o->params.contact_offset_m,
                   "Inter-body contact offset (m): the penalty acts on depth + offset")
       ->check(CLI::Range(0.0, 0.1))
-      ->capture_default_str();
-  cmd->add_option("--depenetration-passes", o->params.depenetration_passes,
-                  "Position-level depenetration passes per step (0 = off)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  cmd->add_option("--depenetration-tolerance", o->params.depenetration_tolerance_m,
-                  "Depth (m) above which the depenetration pass separates a capsule pair")
-      ->check(CLI::Range(0.0, 0.1))
-      ->capture_default_str();
-  cmd->add_option("--cg-tolerance", o->params.cg_tolerance, "CG relative residual tolerance")
-      ->check(CLI::Range(1e-12, 0.5))
-      ->capture_default_str();
-  cmd->add_option("--active-set-passes", o->params.active_set_passes,
-                  "Re-solves per step after removing pulling contacts (0 = off)")
       ->capture_default_str();
   cmd->add_flag("--inertial-prediction", o->inertial_prediction,
                 "Detect contacts at the inertial prediction instead of the exact contact-free step");

@@ -1,0 +1,31 @@
+#pragma once
+// The corrector's tuning options shared by `crowdlab bench correct` and `crowdlab experiment
+// overlap-vs-density` (defaults = CorrectorParams; units and sources in corrector_params.hpp).
+#include <CLI/CLI.hpp>
+
+#include "framework/correction/corrector_params.hpp"
+
+namespace crowdlab::cli {
+
+/// Adds --contact-stiffness, --cg-tolerance, --active-set-passes, --depenetration-passes and
+/// --depenetration-tolerance to `cmd`, writing into `params` (which must outlive the parse).
+inline void add_corrector_tuning_options(CLI::App* cmd, CorrectorParams& params) {
+  cmd->add_option("--contact-stiffness", params.contact_stiffness, "Collision penalty k_delta (N/m)")
+      ->capture_default_str();
+  cmd->add_option("--cg-tolerance", params.cg_tolerance, "CG relative residual tolerance")
+      ->check(CLI::Range(1e-12, 0.5))
+      ->capture_default_str();
+  cmd->add_option("--active-set-passes", params.active_set_passes,
+                  "Re-solves per step after removing pulling contacts (0 = off)")
+      ->capture_default_str();
+  cmd->add_option("--depenetration-passes", params.depenetration_passes,
+                  "Position-level depenetration passes per step (0 = off)")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  cmd->add_option("--depenetration-tolerance", params.depenetration_tolerance_m,
+                  "Depth (m) above which the depenetration pass separates a capsule pair")
+      ->check(CLI::Range(0.0, 0.1))
+      ->capture_default_str();
+}
+
+}  // namespace crowdlab::cli
