@@ -106,7 +106,7 @@ struct DeepContact {
 inline constexpr int kPoseChangeVariables = 3 + 3 * kJointCount;
 using PoseChangeVector = Eigen::Matrix<double, kPoseChangeVariables, 1>;
 
-/// Working memory of the depenetration pass, kept between steps so that a step allocates nothing.
+/// Working memory of the depenetration pass, kept between steps so that its buffers are reused.
 struct DepenetrationScratch {
   std::vector<BoneTransforms> bones;                  ///< per character, posed bone frames
   std::vector<WorldCapsules> capsules;                ///< per character, posed capsules
