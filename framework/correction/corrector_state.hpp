@@ -153,7 +153,7 @@ struct CorrectorState {
 
   // ---- broad/narrow phase scratch
   std::vector<Capsule> world_capsule;  ///< per bone, world frame, predicted state
-  std::vector<Aabb> capsule_box;       ///< per bone: AABB of the world capsule grown by the contact offset
+  std::vector<Aabb> capsule_box;       ///< per bone: AABB of the world capsule grown by detection_reach
   std::vector<Vec4> capsule_sphere;    ///< per bone: bounding sphere (centre xyz, radius) of the capsule
   std::vector<Aabb> body_box;          ///< per character, capsule AABB
   std::vector<int> sweep_order;        ///< characters sorted by body_box.lo.x

@@ -35,6 +35,12 @@ struct Aabb {
   }
 };
 
+/// The axis-aligned box of a capsule (world frame, m), grown by `grow_m` on every side.
+inline Aabb capsule_box(const Capsule& c, double grow_m = 0.0) {
+  const Vec3 r = Vec3::Constant(c.radius_m + grow_m);
+  return {c.a.cwiseMin(c.b) - r, c.a.cwiseMax(c.b) + r};
+}
+
 class EnvironmentPointTree {
  public:
   static constexpr int kLeafSize = 8;

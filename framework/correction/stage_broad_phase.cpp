@@ -25,13 +25,9 @@ void stage_broad_phase(const CorrectorModel& model, CorrectorState& state) {
       w.a = r * local.a + origin;
       w.b = r * local.b + origin;
       w.radius_m = local.radius_m;
-      const Vec3 rad = Vec3::Constant(local.radius_m);
-      box.extend(w.a.cwiseMin(w.b) - rad);
-      box.extend(w.a.cwiseMax(w.b) + rad);
+      box.extend(capsule_box(w));
       // Per-capsule culling data for the narrow phase, computed once per step.
-      const Vec3 grow = Vec3::Constant(local.radius_m + reach);
-      state.capsule_box[g].lo = w.a.cwiseMin(w.b) - grow;
-      state.capsule_box[g].hi = w.a.cwiseMax(w.b) + grow;
+      state.capsule_box[g] = capsule_box(w, reach);
       state.capsule_sphere[g] << 0.5 * (w.a + w.b), 0.5 * (w.b - w.a).norm() + local.radius_m;
     }
     // Half the reach on each side, so bodies closer than the contact offset (or the depenetration

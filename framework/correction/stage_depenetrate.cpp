@@ -280,11 +280,7 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
       const auto cc = static_cast<size_t>(c);
       w.bones[cc] = forward_kinematics(model.bodies[cc].shape, s.output[cc]);
       w.capsules[cc] = world_capsules(model.bodies[cc].shape, w.bones[cc]);
-      for (size_t b = 0; b < kJointCount; ++b) {
-        const Capsule& cap = w.capsules[cc][b];
-        w.boxes[cc][b].lo = cap.a.cwiseMin(cap.b) - Vec3::Constant(cap.radius_m);
-        w.boxes[cc][b].hi = cap.a.cwiseMax(cap.b) + Vec3::Constant(cap.radius_m);
-      }
+      for (size_t b = 0; b < kJointCount; ++b) w.boxes[cc][b] = capsule_box(w.capsules[cc][b]);
     });
     // 1-2. Deep contacts per tested pair, with the compliance split.
     for_each_item(w.tested, kSerialPairs, [&](int k) {

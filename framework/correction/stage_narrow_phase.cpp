@@ -20,13 +20,6 @@ bool spheres_overlap(const Vec4& a, const Vec4& b, double offset) {
   return (a.head<3>() - b.head<3>()).squaredNorm() < reach * reach;
 }
 
-Aabb capsule_box(const Capsule& c) {
-  Aabb box;
-  box.lo = c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m);
-  box.hi = c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m);
-  return box;
-}
-
 /// The contact of bones ga, gb from their capsule contact; offset: contact offset (m) added to the
 /// depth (inter-body contacts only; see CorrectorParams).
 Contact make_contact(int ga, int gb, double k, double offset, const CapsuleContact& cc) {
