@@ -106,7 +106,8 @@ struct DeepContact {
 inline constexpr int kPoseChangeVariables = 3 + 3 * kJointCount;
 using PoseChangeVector = Eigen::Matrix<double, kPoseChangeVariables, 1>;
 
-/// Working memory of the depenetration pass, kept between steps so that its buffers are reused.
+/// Working memory of the depenetration pass, kept between steps: once its buffers have grown, the pass
+/// makes no heap allocation of its own (its dense solves use fixed-capacity Eigen matrices).
 struct DepenetrationScratch {
   std::vector<BoneTransforms> bones;                  ///< per character, posed bone frames
   std::vector<WorldCapsules> capsules;                ///< per character, posed capsules
@@ -116,7 +117,11 @@ struct DepenetrationScratch {
   std::vector<std::vector<const DeepContact*>> mine;  ///< per character, the deep contacts touching it
   std::vector<std::vector<int>> pairs_of;             ///< per character, tested body pairs touching it
   std::vector<char> in_list, moved, ever_moved;       ///< per character flags
-  std::vector<int> characters, tested, solved, changed;
+  std::vector<int> characters;                        ///< characters with a near capsule pair this step
+  std::vector<int> posing;                            ///< characters (re-)posed by the current pass
+  std::vector<int> tested;                            ///< body pairs (re-)tested by the current pass
+  std::vector<int> solved;                            ///< characters with a deep contact in the current pass
+  std::vector<int> changed;                           ///< characters the pass moved this step
 };
 
 struct CorrectorState {

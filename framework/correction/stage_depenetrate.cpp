@@ -268,15 +268,15 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
       w.pairs_of[cc].push_back(static_cast<int>(k));
     }
   }
+  // w.characters stays as built until the next step, which clears their pairs_of lists.
   std::sort(w.characters.begin(), w.characters.end());
-  const std::vector<int> all_characters = w.characters;  // whose pairs_of lists must be cleared next step
-  for (int c : all_characters) w.in_list[static_cast<size_t>(c)] = 0;
+  for (int c : w.characters) w.in_list[static_cast<size_t>(c)] = 0;
   for (int c : w.solved) w.mine[static_cast<size_t>(c)].clear();  // the last step's lists
   w.solved.clear();
   w.changed.clear();
-  std::vector<int> pose_list = w.characters;
-  for (int pass = 0; pass < p.depenetration_passes && !pose_list.empty(); ++pass) {
-    for_each_item(pose_list, kSerialPoses, [&](int c) {
+  w.posing = w.characters;
+  for (int pass = 0; pass < p.depenetration_passes && !w.posing.empty(); ++pass) {
+    for_each_item(w.posing, kSerialPoses, [&](int c) {
       const auto cc = static_cast<size_t>(c);
       w.bones[cc] = forward_kinematics(model.bodies[cc].shape, s.output[cc]);
       w.capsules[cc] = world_capsules(model.bodies[cc].shape, w.bones[cc]);
@@ -318,12 +318,12 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
       w.moved[cc] = 1;
     });
     // Next pass: re-pose the moved characters, re-test the pairs touching them.
-    pose_list.clear();
+    w.posing.clear();
     w.tested.clear();
     for (int c : w.solved) {
       const auto cc = static_cast<size_t>(c);
       if (!w.moved[cc]) continue;
-      pose_list.push_back(c);
+      w.posing.push_back(c);
       if (!w.ever_moved[cc]) w.changed.push_back(c);
       w.ever_moved[cc] = 1;
       for (int k : w.pairs_of[cc]) w.tested.push_back(k);
@@ -338,7 +338,6 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
     set_bones_from_pose(model, c, s.output[static_cast<size_t>(c)], s.com_m, s.rotation);
   });
   for (int c : w.changed) w.ever_moved[static_cast<size_t>(c)] = 0;
-  w.characters = all_characters;
 }
 
 }  // namespace crowdlab
