@@ -69,6 +69,8 @@ CorrectBenchResult run_correct_bench(const CorrectBenchOptions& o) {
     r.body_pairs_mean += st.body_pairs;
     r.pulling_contacts_mean += st.pulling_contacts;
     r.active_set_passes_mean += st.active_set_passes;
+    r.deep_contacts_mean += st.deep_contacts;
+    r.depenetration_passes_mean += st.depenetration_passes;
     r.rejected_steps += st.rejected ? 1 : 0;
     r.unconverged_steps += st.converged ? 0 : 1;
   }
@@ -78,6 +80,8 @@ CorrectBenchResult run_correct_bench(const CorrectBenchOptions& o) {
   r.cpu_ms_median = median_of(cpu_ms);
   r.pulling_contacts_mean /= n;
   r.active_set_passes_mean /= n;
+  r.deep_contacts_mean /= n;
+  r.depenetration_passes_mean /= n;
   r.contacts_mean /= n;
   r.inter_body_contacts_mean /= n;
   r.cg_iterations_mean /= n;
@@ -114,6 +118,8 @@ nlohmann::json correct_bench_json(const CorrectBenchResult& r) {
   j["threads"] = r.threads;
   j["cpu_ms_per_step_median"] = r.cpu_ms_median;
   j["pulling_contacts_mean"] = r.pulling_contacts_mean;
+  j["deep_contacts_mean"] = r.deep_contacts_mean;
+  j["depenetration_passes_mean"] = r.depenetration_passes_mean;
   j["active_set_passes_mean"] = r.active_set_passes_mean;
   if (r.options.quality) {
     const CorrectionQuality& q = r.quality;

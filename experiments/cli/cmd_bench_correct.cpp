@@ -33,6 +33,8 @@ void run(const Options& o) {
               r.unconverged_steps, r.rejected_steps);
   std::printf("  active set: mean %.2f pulling contacts removed, %.2f extra passes per step\n",
               r.pulling_contacts_mean, r.active_set_passes_mean);
+  std::printf("  depenetration: mean %.1f capsule pairs deeper than the tolerance, %.2f passes per step\n",
+              r.deep_contacts_mean, r.depenetration_passes_mean);
   if (o.bench.quality) {
     const CorrectionQuality& q = r.quality;
     const double in = r.overlap_baseline_l, out = r.overlap_corrected_l;

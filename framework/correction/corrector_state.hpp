@@ -60,6 +60,7 @@ struct StepStats {
   int pulling_contacts = 0;   ///< contacts whose linearised depth ends negative (then removed, re-solved)
   int active_set_passes = 0;  ///< extra CG solves after removing pulling contacts
   int deep_contacts = 0;      ///< inter-body capsule pairs the depenetration pass found too deep (first pass)
+  int depenetration_passes = 0;  ///< passes that found deep contacts (and moved poses) this step
   int contacts() const {
     return inter_body_contacts + intra_body_contacts + ground_contacts + environment_contacts;
   }

@@ -303,6 +303,7 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
       }
     if (pass == 0) s.stats.deep_contacts = found;
     if (found == 0) break;
+    ++s.stats.depenetration_passes;
     std::sort(w.solved.begin(), w.solved.end());
     // 3-4. Per character: the least-energy pose change, then held feet re-planted exactly.
     for_each_item(w.solved, kSerialSolves, [&](int c) {

@@ -47,10 +47,11 @@ TEST_CASE("correction cli: bench correct --json prints the documented fields", "
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
-  for (const char* key :
-       {"ms_per_step_median", "characters", "contacts_mean", "cg_iterations_mean", "peak_rss_mb", "threads"})
+  for (const char* key : {"ms_per_step_median", "characters", "contacts_mean", "cg_iterations_mean",
+                          "peak_rss_mb", "threads", "deep_contacts_mean", "depenetration_passes_mean"})
     CHECK(j.contains(key));
   CHECK(j["characters"] == 4);
+  CHECK(j["depenetration_passes_mean"].get<double>() <= 8.0);  // at most the default pass count
 }
 
 TEST_CASE("correction cli: experiment damping writes the Fig. 4 series", "[correction][cli]") {
