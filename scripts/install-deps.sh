@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 build_pkgs=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libyaml-cpp-dev libtinygltf-dev nlohmann-json3-dev
-  libopencv-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
+  libopencv-dev libopencv-contrib-dev libmeshoptimizer-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   libboost-dev libboost-math-dev libcli11-dev libspdlog-dev libfmt-dev libtbb-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
   libplplot-dev plplot-driver-cairo libfreetype-dev fonts-dejavu-core

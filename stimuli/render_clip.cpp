@@ -24,15 +24,6 @@ double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-void prepare(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options) {
-  // Always (re)load: cheap with the mesh cache, and a crowd's address says nothing about its content.
-  renderer.set_character_files(options.character_files);
-  renderer.load_crowd(crowd);
-  if (renderer.width() != options.width || renderer.height() != options.height)
-    renderer.set_size(options.width, options.height, options.scene.msaa_samples,
-                      options.scene.shadow_map_size);
-}
-
 cv::Mat bottom_up_rgba_to_bgr(const std::vector<std::uint8_t>& rgba, int width, int height) {
   const cv::Mat view(height, width, CV_8UC4, const_cast<std::uint8_t*>(rgba.data()));
   cv::Mat flipped, bgr;
@@ -53,6 +44,17 @@ struct FrameQueue {
 
 }  // namespace
 
+void prepare_renderer(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options) {
+  // Always (re)load: cheap with the mesh cache, and a crowd's address says nothing about its content.
+  renderer.set_character_files(options.character_files);
+  renderer.load_crowd(crowd);
+  if (renderer.width() != options.width || renderer.height() != options.height ||
+      renderer.requested_samples() != options.scene.msaa_samples ||
+      renderer.shadow_map_size() != options.scene.shadow_map_size)
+    renderer.set_size(options.width, options.height, options.scene.msaa_samples,
+                      options.scene.shadow_map_size);
+}
+
 RenderResult render_clip(const CrowdAnimation& crowd, const RenderOptions& options,
                          const std::string& viewpoint, const std::string& out_mp4) {
   validate_video_settings({options.width, options.height, crowd.meta.fps, options.crf, options.x264_preset});
@@ -71,7 +73,7 @@ RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const 
   result.fps = crowd.meta.fps;
   result.device = renderer.device();
   const auto setup_start = Clock::now();
-  prepare(renderer, crowd, options);
+  prepare_renderer(renderer, crowd, options);
   result.setup_s = ms_since(setup_start) / 1000.0;
   const Viewpoint view(viewpoint, crowd, options.width, options.height, options.viewpoint_overrides);
   if (!options.frames_png_dir.empty()) std::filesystem::create_directories(options.frames_png_dir);
@@ -84,6 +86,8 @@ RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const 
   FrameQueue queue;
   std::exception_ptr worker_error;
   result.encode_ms.assign(static_cast<size_t>(n), 0.0);
+  result.convert_ms.assign(static_cast<size_t>(n), 0.0);
+  result.readback_ms.assign(static_cast<size_t>(n), 0.0);
   result.done_ms.assign(static_cast<size_t>(n), 0.0);
   std::thread worker([&] {
     try {
@@ -97,9 +101,9 @@ RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const 
           queue.items.pop_front();
         }
         queue.changed.notify_all();
-        const auto t = Clock::now();
-        encoder.add_frame(item.second.data(), true);
-        result.encode_ms[static_cast<size_t>(item.first)] = ms_since(t);
+        const EncodeTimes times = encoder.add_frame(item.second.data(), true);
+        result.convert_ms[static_cast<size_t>(item.first)] = times.convert_ms;
+        result.encode_ms[static_cast<size_t>(item.first)] = times.encode_ms;
         result.done_ms[static_cast<size_t>(item.first)] = ms_since(start);
         if (!options.frames_png_dir.empty()) {
           char name[32];
@@ -129,7 +133,9 @@ RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const 
         queue.free_buffers.pop_back();
       }
     }
+    const auto read_start = Clock::now();
     renderer.finish_read_rgba(slot, buffer);
+    result.readback_ms[static_cast<size_t>(frame)] = ms_since(read_start);
     {
       std::lock_guard lock(queue.mutex);
       queue.items.emplace_back(frame, std::move(buffer));
@@ -145,6 +151,7 @@ RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const 
     for (int f = 0; f < n && ok; ++f) {
       const auto t = Clock::now();
       renderer.draw(f, view.at(f), options.scene);
+      result.passes.push_back(renderer.pass_times());
       if (options.scene.overlap) result.red_fraction.push_back(renderer.overlap_fraction());
       renderer.begin_read_rgba(f % 2);
       if (f > 0) ok = push(f - 1, (f - 1) % 2);
@@ -179,7 +186,7 @@ RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const 
 
 BgrImage render_frame(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options,
                       const Camera& camera, int frame, double* red_fraction) {
-  prepare(renderer, crowd, options);
+  prepare_renderer(renderer, crowd, options);
   renderer.draw(frame, camera, options.scene);
   if (red_fraction) *red_fraction = renderer.overlap_fraction();
   std::vector<std::uint8_t> rgba;

@@ -32,12 +32,18 @@ struct RenderResult {
   int width = 0, height = 0;
   std::vector<double> red_fraction;  ///< overlap mode: fraction of red pixels per frame (else empty)
   std::vector<double> render_ms;     ///< per frame: CPU skinning + GL draw + resolve + readback
-  std::vector<double> encode_ms;     ///< per frame: RGBA -> yuv420p + H.264 encode (worker thread)
+  std::vector<PassTimes> passes;     ///< per frame: the renderer's stages (renderer.hpp)
+  std::vector<double> readback_ms;   ///< per frame: waiting for and copying the pixels (PBO)
+  std::vector<double> convert_ms;    ///< per frame: RGBA -> yuv420p (worker thread)
+  std::vector<double> encode_ms;     ///< per frame: H.264 encode and mux (worker thread)
   std::vector<double> done_ms;       ///< per frame: time its encoding finished, from the clip's start
   double wall_s = 0.0;               ///< whole clip, excluding mesh building
   double setup_s = 0.0;              ///< mesh building and upload (load_crowd)
   std::string device;                ///< GL renderer / version
 };
+
+/// Loads `crowd` into `renderer` (meshes come from its cache) and sizes its frame buffers for `options`.
+void prepare_renderer(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options);
 
 /// Renders with a Renderer created for this call (an EGL context per call; prefer the overload
 /// below for many clips).

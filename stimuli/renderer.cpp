@@ -2,13 +2,17 @@
 
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/glcorearb.h>
+#include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <functional>
 #include <numbers>
+#include <set>
 
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
@@ -18,6 +22,7 @@
 #include "stimuli/gl_program.hpp"
 #include "stimuli/gltf_character.hpp"
 #include "stimuli/gpu_geometry.hpp"
+#include "stimuli/level_of_detail.hpp"
 #include "stimuli/shaders.hpp"
 
 namespace crowdlab::stimuli {
@@ -26,16 +31,6 @@ namespace {
 // Grid spacing of the coarse mannequin meshes drawn into the shadow map: shadows are soft-edged and
 // seen from afar, so a 4.5 cm mesh casts the same shadow at a fraction of the vertex work.
 constexpr double kShadowVoxelM = 0.045;
-// Level of detail: llvmpipe shades every triangle in blocks of 4x4 pixels, so a 12k-triangle body whose
-// triangles cover 2-3 pixels each costs several times its pixel count. Each body shape therefore has
-// four meshes (the 2 cm grid ~12k triangles, 2.6 cm ~7k, 3.5 cm ~4k, 5 cm ~2k), and a character is drawn
-// with the coarsest whose grid spacing spans at most SceneOptions::lod_pixels pixels at its distance
-// (screen-space error bound, the classic discrete-LOD criterion: Luebke et al., "Level of Detail for 3D
-// Graphics", 2003, ch. 4). Normals come from the implicit surface, so shading is smooth at every level; only
-// the silhouette's polygon edges grow, to at most lod_pixels.
-constexpr std::array<double, 3> kLodVoxelM = {0.026, 0.035, 0.05};  // coarser levels after the full mesh
-constexpr size_t kLodLevels = 1 + kLodVoxelM.size();
-
 using Mat4f = Eigen::Matrix4f;
 
 Mat4 to_matrix(const RigidTransform& t) {
@@ -82,6 +77,11 @@ Vec3 light_direction(const Vec3& horizontal_dir, double deg, double elevation_de
   return (std::cos(e) * h + std::sin(e) * Vec3::UnitY()).normalized();
 }
 
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
 void set_mat4(GLuint program, int location, const Mat4& m) {
   const Mat4f f = m.cast<float>();
   glProgramUniformMatrix4fv(program, location, 1, GL_FALSE, f.data());
@@ -109,16 +109,20 @@ Rgb parse_hex_colour(const std::string& text, const std::string& context) {
 
 struct Renderer::Gl {
   EglContext context;
-  GlProgram skinned_lit{glsl::kSkinnedVertex,
+  GlProgram skinned_lit{glsl::specialise(glsl::kSkinnedVertex, "").c_str(),
                         glsl::specialise(glsl::kLitFragment, "MATERIAL_CHARACTER").c_str(), "skinned_lit"};
-  GlProgram skinned_lit_overlap{glsl::kSkinnedVertex,
+  GlProgram skinned_lit_overlap{glsl::specialise(glsl::kSkinnedVertex, "").c_str(),
                                 glsl::specialise(glsl::kLitFragment, "MATERIAL_CHARACTER OVERLAP").c_str(),
                                 "skinned_lit_overlap"};
   GlProgram ground_lit{glsl::kStaticVertex, glsl::specialise(glsl::kLitFragment, "MATERIAL_GROUND").c_str(),
                        "ground_lit"};
   GlProgram flat_lit{glsl::kStaticVertex, glsl::specialise(glsl::kLitFragment, "MATERIAL_FLAT").c_str(),
                      "flat_lit"};
-  GlProgram skinned_depth{glsl::kSkinnedVertex, glsl::kDepthFragment, "skinned_depth"};
+  GlProgram skinned_depth{glsl::specialise(glsl::kSkinnedVertex, "").c_str(), glsl::kDepthFragment,
+                          "skinned_depth"};
+  GlProgram planar_shadow{glsl::specialise(glsl::kSkinnedVertex, "PLANAR_SHADOW").c_str(),
+                          glsl::specialise(glsl::kLitFragment, "MATERIAL_PLANAR_SHADOW").c_str(),
+                          "planar_shadow"};
   GlProgram static_depth{glsl::kStaticVertex, glsl::kDepthFragment, "static_depth"};
   std::map<std::uint64_t, GpuMesh> mesh_cache;
   GpuMesh cube = make_unit_cube();
@@ -127,8 +131,9 @@ struct Renderer::Gl {
   std::vector<Mat4> box_models;
   std::vector<Box> boxes;
   std::vector<char> box_hidden;
-  std::vector<std::array<std::uint64_t, kLodLevels>> character_lod_mesh;  ///< finest first
-  std::vector<std::uint64_t> character_shadow_mesh;
+  std::map<std::uint64_t, std::vector<LodLevel>> lod_sets;  ///< mesh-set key -> its levels, finest first
+  std::vector<std::uint64_t> character_lods;                ///< per character: its mesh-set key
+  std::vector<std::uint64_t> character_shadow_mesh;         ///< per character: a one-level set
   GLuint noise_tex = 0;
   std::vector<std::array<Mat4, kJointCount>> inverse_rest;
   Vec3 bounds_lo = Vec3::Zero(), bounds_hi = Vec3::Zero();
@@ -136,12 +141,19 @@ struct Renderer::Gl {
   GLsizeiptr skin_capacity = 0, caps_capacity = 0;
   GLuint msaa_fbo = 0, msaa_color = 0, msaa_mask = 0, msaa_depth = 0;
   GLuint resolve_fbo = 0, resolve_color = 0, resolve_mask = 0;
+  bool multisampled = true;  ///< false: the "msaa" targets have one sample and are read directly
+  // The ground drawn once (with the environment's shadows) and copied into every frame (cache_ground).
+  GLuint ground_fbo = 0, ground_color = 0, ground_depth = 0;
+  std::uint64_t ground_key = 0;  ///< what ground_fbo holds (camera, colours, light); 0 = nothing
   GLuint shadow_fbo = 0, shadow_tex = 0;
   int shadow_size = 0;
   GLuint pbo[2] = {0, 0};
   std::vector<float> skin_data, caps_data;
   std::vector<int> cap_offset, cap_count, own_offset;
   std::vector<std::uint8_t> mask_pixels;
+
+  /// The framebuffer whose colour attachment 0 holds the finished frame (1: the overlap mask).
+  GLuint output_fbo() const { return multisampled ? resolve_fbo : msaa_fbo; }
 
   Gl() {
     glCreateBuffers(1, &skin_ssbo);
@@ -161,6 +173,11 @@ struct Renderer::Gl {
   void free_targets() {
     glDeleteFramebuffers(1, &msaa_fbo);
     glDeleteFramebuffers(1, &resolve_fbo);
+    glDeleteFramebuffers(1, &ground_fbo);
+    const GLuint ground_rbs[] = {ground_color, ground_depth};
+    glDeleteRenderbuffers(2, ground_rbs);
+    ground_fbo = ground_color = ground_depth = 0;
+    ground_key = 0;
     glDeleteFramebuffers(1, &shadow_fbo);
     const GLuint rbs[] = {msaa_color, msaa_mask, msaa_depth, resolve_color, resolve_mask};
     glDeleteRenderbuffers(5, rbs);
@@ -211,6 +228,8 @@ void Renderer::set_size(int width, int height, int samples, int shadow_map_size)
     throw InputError("render size must be in 1..16384 pixels, got " + std::to_string(width) + "x" +
                      std::to_string(height));
   Gl& g = *gl_;
+  requested_samples_ = samples;
+  shadow_map_size_ = shadow_map_size;
   GLint max_samples = 1;
   glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
   samples = std::clamp(samples, 1, static_cast<int>(max_samples));
@@ -225,14 +244,31 @@ void Renderer::set_size(int width, int height, int samples, int shadow_map_size)
   g.msaa_depth = rbs[2];
   g.resolve_color = rbs[3];
   g.resolve_mask = rbs[4];
-  glNamedRenderbufferStorageMultisample(g.msaa_color, samples, GL_RGBA8, width, height);
-  glNamedRenderbufferStorageMultisample(g.msaa_mask, samples, GL_R8, width, height);
-  glNamedRenderbufferStorageMultisample(g.msaa_depth, samples, GL_DEPTH_COMPONENT24, width, height);
+  g.multisampled = samples > 1;
+  // One sample: plain renderbuffers, read directly (no resolve copy).
+  const auto storage = [&](GLuint rb, GLenum format) {
+    if (g.multisampled)
+      glNamedRenderbufferStorageMultisample(rb, samples, format, width, height);
+    else
+      glNamedRenderbufferStorage(rb, format, width, height);
+  };
+  storage(g.msaa_color, GL_RGBA8);
+  storage(g.msaa_mask, GL_R8);
+  storage(g.msaa_depth, GL_DEPTH24_STENCIL8);  // stencil: each planar shadow darkens a pixel once
   glNamedFramebufferRenderbuffer(g.msaa_fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, g.msaa_color);
   glNamedFramebufferRenderbuffer(g.msaa_fbo, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, g.msaa_mask);
-  glNamedFramebufferRenderbuffer(g.msaa_fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, g.msaa_depth);
+  glNamedFramebufferRenderbuffer(g.msaa_fbo, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, g.msaa_depth);
   const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   glNamedFramebufferDrawBuffers(g.msaa_fbo, 2, both);
+  glCreateFramebuffers(1, &g.ground_fbo);
+  GLuint ground_rbs[2];
+  glCreateRenderbuffers(2, ground_rbs);
+  g.ground_color = ground_rbs[0];
+  g.ground_depth = ground_rbs[1];
+  storage(g.ground_color, GL_RGBA8);
+  storage(g.ground_depth, GL_DEPTH24_STENCIL8);
+  glNamedFramebufferRenderbuffer(g.ground_fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, g.ground_color);
+  glNamedFramebufferRenderbuffer(g.ground_fbo, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, g.ground_depth);
   glCreateFramebuffers(1, &g.resolve_fbo);
   glNamedRenderbufferStorage(g.resolve_color, GL_RGBA8, width, height);
   glNamedRenderbufferStorage(g.resolve_mask, GL_R8, width, height);
@@ -251,7 +287,7 @@ void Renderer::set_size(int width, int height, int samples, int shadow_map_size)
   glNamedFramebufferTexture(g.shadow_fbo, GL_DEPTH_ATTACHMENT, g.shadow_tex, 0);
   glNamedFramebufferDrawBuffer(g.shadow_fbo, GL_NONE);
   glNamedFramebufferReadBuffer(g.shadow_fbo, GL_NONE);
-  for (GLuint fbo : {g.msaa_fbo, g.resolve_fbo, g.shadow_fbo})
+  for (GLuint fbo : {g.msaa_fbo, g.resolve_fbo, g.shadow_fbo, g.ground_fbo})
     if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw RuntimeError("OpenGL: a framebuffer is incomplete (" + device() + ")");
   glCreateBuffers(2, g.pbo);
@@ -264,6 +300,7 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   validate_crowd(crowd, "render");
   Gl& g = *gl_;
   crowd_ = &crowd;
+  ++crowd_generation_;
   const size_t n = crowd.characters.size();
   // Build the meshes of shapes not yet cached, in parallel (one result slot per job), then upload
   // them in job order. Each shape gets its level-of-detail meshes and a coarse one for the shadow pass.
@@ -271,50 +308,54 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   shadow_options.voxel_m = std::max(mesh_options_.voxel_m, kShadowVoxelM);
   shadow_options.inset_m =
       0.4 * shadow_options.voxel_m;  // keep the coarse caster inside the visible skin (no acne bands)
-  std::array<MannequinOptions, kLodLevels> lod_options;
-  lod_options.fill(mesh_options_);
-  for (size_t l = 1; l < kLodLevels; ++l)
-    lod_options[l].voxel_m = std::max(mesh_options_.voxel_m, kLodVoxelM[l - 1]);
-  g.character_lod_mesh.resize(n);
+  g.character_lods.resize(n);
   g.character_shadow_mesh.resize(n);
+  // A job builds every level of one character's mesh set (or the shadow caster) and says each level's
+  // geometric error; sets already built are reused from the caches.
   struct Job {
     size_t character;
-    std::uint64_t key;
-    MannequinOptions options;
-    const GltfCharacter* file = nullptr;  ///< a character from a file instead of the mannequin
+    std::uint64_t set_key;
+    std::function<std::vector<CharacterLod>()> build;
   };
   std::vector<Job> jobs;
-  std::map<std::uint64_t, bool> queued;
+  std::set<std::uint64_t> queued;
+  auto want = [&](size_t character, std::uint64_t set_key, std::function<std::vector<CharacterLod>()> build) {
+    if (!g.lod_sets.count(set_key) && queued.insert(set_key).second)
+      jobs.push_back({character, set_key, std::move(build)});
+  };
   for (size_t i = 0; i < n; ++i) {
     const CharacterAnimation& ch = crowd.characters[i];
     if (!file_characters_.empty()) {  // one fitted mesh serves every pass (no LOD for file meshes)
       const GltfCharacter& file = *file_characters_[i % file_characters_.size()];
       const std::uint64_t key = stable_hash("gltf:" + file.source + ":" +
                                             std::to_string(mannequin_cache_key(ch.shape, mesh_options_)));
-      g.character_lod_mesh[i].fill(key);
+      g.character_lods[i] = key;
       g.character_shadow_mesh[i] = key;
-      if (!g.mesh_cache.count(key) && queued.emplace(key, true).second)
-        jobs.push_back({i, key, mesh_options_, &file});
+      want(i, key, [&file, &ch] {
+        return std::vector<CharacterLod>{{fit_gltf_character(file, ch.shape), 0.0}};
+      });
       continue;
     }
-    // A character's own skinned surface (MPFB2) has one level of detail: its LOD keys coincide.
-    std::vector<std::pair<std::uint64_t, MannequinOptions>> wanted;
-    for (size_t l = 0; l < kLodLevels; ++l) {
-      g.character_lod_mesh[i][l] = character_mesh_key(ch, lod_options[l]);
-      wanted.emplace_back(g.character_lod_mesh[i][l], lod_options[l]);
-    }
+    const MannequinOptions options = mesh_options_;
+    g.character_lods[i] = character_lod_set_key(ch, options);
+    want(i, g.character_lods[i], [&ch, options] { return build_character_lods(ch, options); });
     g.character_shadow_mesh[i] = character_mesh_key(ch, shadow_options);
-    wanted.emplace_back(g.character_shadow_mesh[i], shadow_options);
-    for (const auto& [key, opts] : wanted)
-      if (!g.mesh_cache.count(key) && queued.emplace(key, true).second) jobs.push_back({i, key, opts});
+    want(i, g.character_shadow_mesh[i], [&ch, shadow_options] {
+      return std::vector<CharacterLod>{{build_character_mesh(ch, shadow_options), 0.0}};
+    });
   }
-  std::vector<MannequinMesh> built(jobs.size());
-  tbb::parallel_for(size_t{0}, jobs.size(), [&](size_t k) {
-    const CharacterAnimation& ch = crowd.characters[jobs[k].character];
-    built[k] = jobs[k].file ? fit_gltf_character(*jobs[k].file, ch.shape)
-                            : build_character_mesh(ch, jobs[k].options);
-  });
-  for (size_t k = 0; k < jobs.size(); ++k) g.mesh_cache.emplace(jobs[k].key, upload_mannequin(built[k]));
+  std::vector<std::vector<CharacterLod>> built(jobs.size());
+  tbb::parallel_for(size_t{0}, jobs.size(), [&](size_t k) { built[k] = jobs[k].build(); });
+  for (size_t k = 0; k < jobs.size(); ++k) {
+    std::vector<LodLevel>& levels = g.lod_sets[jobs[k].set_key];
+    for (size_t l = 0; l < built[k].size(); ++l) {
+      const std::uint64_t key = stable_hash(std::to_string(jobs[k].set_key) + "/lod" + std::to_string(l));
+      g.mesh_cache.emplace(key, upload_mannequin(built[k][l].mesh));
+      levels.push_back({key, built[k][l].error_m, static_cast<int>(built[k][l].mesh.indices.size())});
+      spdlog::debug("mesh set {:016x} level {}: {} triangles, error {:.4f} m", jobs[k].set_key, l,
+                    built[k][l].mesh.indices.size() / 3, built[k][l].error_m);
+    }
+  }
   // Inverse bind matrices.
   g.inverse_rest.resize(n);
   for (size_t i = 0; i < n; ++i) {
@@ -365,21 +406,15 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
     throw InputError("frame " + std::to_string(frame) + " out of range [0, " +
                      std::to_string(crowd_->frame_count()) + ")");
   Gl& g = *gl_;
-  // The static environment (visible boxes, then meshes in world coordinates), drawn the same way by
-  // the shadow pass and the colour pass; only the program and its model-matrix uniform differ.
-  const auto draw_environment = [&g](GLuint program, int model_location) {
-    for (size_t b = 0; b < g.box_models.size(); ++b) {
-      if (g.box_hidden[b]) continue;
-      set_mat4(program, model_location, g.box_models[b]);
-      glBindVertexArray(g.cube.vao);
-      glDrawElements(GL_TRIANGLES, g.cube.count, GL_UNSIGNED_INT, nullptr);
-    }
-    set_mat4(program, model_location, Mat4::Identity());
-    for (const GpuMesh& m : g.environment_meshes) {
-      glBindVertexArray(m.vao);
-      glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
-    }
+  auto stage_start = Clock::now();
+  // Ends a timed stage: with options.time_passes the rasteriser finishes it first (llvmpipe rasterises at
+  // flush time), so each pass's time is its own.
+  const auto end_stage = [&](double& ms, bool gpu) {
+    if (gpu && options.time_passes) glFinish();
+    ms = gpu && !options.time_passes ? 0.0 : ms_since(stage_start);
+    stage_start = Clock::now();
   };
+  pass_times_ = {};
   const auto& chars = crowd_->characters;
   const size_t n = chars.size();
 
@@ -455,6 +490,36 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
       if (segment_hits_box(camera.eye, chest, g.boxes[b])) g.box_hidden[b] = 1;
     }
 
+  end_stage(pass_times_.prepare_ms, false);
+
+  glBindTextureUnit(0, g.shadow_tex);
+  glBindTextureUnit(1, g.noise_tex);
+  const Mat4& shadow_matrix = light_vp;
+  GlProgram& character_lit = options.overlap ? g.skinned_lit_overlap : g.skinned_lit;
+  for (GlProgram* prog : {&g.ground_lit, &g.flat_lit, &character_lit, &g.planar_shadow}) {
+    const GLuint id = prog->id();
+    set_mat4(id, prog->uniform("u_view_proj"), view_proj);
+    set_mat4(id, prog->uniform("u_light_view_proj"), shadow_matrix);
+    set_vec3(id, prog->uniform("u_eye"), camera.eye);
+    set_vec3(id, prog->uniform("u_key_dir"), key);
+    set_vec3(id, prog->uniform("u_fill_dir"), fill);
+    set_vec3(id, prog->uniform("u_rim_dir"), rim);
+    glProgramUniform1i(id, prog->uniform("u_shadow_map"), 0);
+    glProgramUniform1i(id, prog->uniform("u_ground_noise"), 1);
+    glProgramUniform1f(id, prog->uniform("u_shadow_texel"), 1.0f / static_cast<float>(g.shadow_size));
+    set_rgb(id, prog->uniform("u_background"), options.background);
+    glProgramUniform1f(id, prog->uniform("u_fog_density"), static_cast<float>(options.fog_density));
+  }
+  const bool cached_ground =
+      options.cache_ground && crowd_->environment.ground_plane && options.fog_density <= 0.0;
+  if (cached_ground) {
+    const std::uint64_t wanted = ground_cache_key(camera, options, light_vp);
+    if (wanted != g.ground_key) {
+      draw_ground_cache(options, light_vp);
+      g.ground_key = wanted;
+    }
+  }
+
   // 2. Shadow pass.
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -470,7 +535,7 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   set_mat4(p, g.skinned_depth.uniform("u_view_proj"), light_vp);
   const int depth_base = g.skinned_depth.uniform("u_skin_base");
   for (size_t i = 0; i < (options.characters ? n : 0); ++i) {
-    const GpuMesh& m = g.mesh_cache.at(g.character_shadow_mesh[i]);
+    const GpuMesh& m = g.mesh_cache.at(g.lod_sets.at(g.character_shadow_mesh[i]).front().key);
     glProgramUniform1i(p, depth_base, static_cast<int>(i * kJointCount));
     glBindVertexArray(m.vao);
     glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
@@ -479,8 +544,10 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   glUseProgram(p);
   set_mat4(p, g.static_depth.uniform("u_view_proj"), light_vp);
   glDisable(GL_CULL_FACE);
-  draw_environment(p, g.static_depth.uniform("u_model"));
+  draw_environment(g, p, g.static_depth.uniform("u_model"));
   glDisable(GL_POLYGON_OFFSET_FILL);
+
+  end_stage(pass_times_.shadow_ms, true);
 
   // 3. Colour pass.
   glBindFramebuffer(GL_FRAMEBUFFER, g.msaa_fbo);
@@ -491,28 +558,17 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   // The overlap mask is drawn, cleared and resolved only in overlap mode (a full-screen multisampled
   // target less to write and resolve otherwise).
   const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  glNamedFramebufferDrawBuffers(g.msaa_fbo, options.overlap ? 2 : 1, attachments);
-  glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 0, bg);
-  if (options.overlap) glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 1, zero);
-  glClearNamedFramebufferfv(g.msaa_fbo, GL_DEPTH, 0, &one);
-  glBindTextureUnit(0, g.shadow_tex);
-  glBindTextureUnit(1, g.noise_tex);
-  const Mat4 shadow_matrix = light_vp;
-  GlProgram& character_lit = options.overlap ? g.skinned_lit_overlap : g.skinned_lit;
-  for (GlProgram* prog : {&g.ground_lit, &g.flat_lit, &character_lit}) {
-    const GLuint id = prog->id();
-    set_mat4(id, prog->uniform("u_view_proj"), view_proj);
-    set_mat4(id, prog->uniform("u_light_view_proj"), shadow_matrix);
-    set_vec3(id, prog->uniform("u_eye"), camera.eye);
-    set_vec3(id, prog->uniform("u_key_dir"), key);
-    set_vec3(id, prog->uniform("u_fill_dir"), fill);
-    set_vec3(id, prog->uniform("u_rim_dir"), rim);
-    glProgramUniform1i(id, prog->uniform("u_shadow_map"), 0);
-    glProgramUniform1i(id, prog->uniform("u_ground_noise"), 1);
-    glProgramUniform1f(id, prog->uniform("u_shadow_texel"), 1.0f / static_cast<float>(g.shadow_size));
-    set_rgb(id, prog->uniform("u_background"), options.background);
-    glProgramUniform1f(id, prog->uniform("u_fog_density"), static_cast<float>(options.fog_density));
+  if (cached_ground) {  // the ground as drawn once, with its depth (and a clear stencil)
+    glNamedFramebufferReadBuffer(g.ground_fbo, GL_COLOR_ATTACHMENT0);
+    glNamedFramebufferDrawBuffers(g.msaa_fbo, 1, attachments);
+    glBlitNamedFramebuffer(g.ground_fbo, g.msaa_fbo, 0, 0, width_, height_, 0, 0, width_, height_,
+                           GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, GL_NEAREST);
+  } else {
+    glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 0, bg);
+    glClearNamedFramebufferfi(g.msaa_fbo, GL_DEPTH_STENCIL, 0, one, 0);
   }
+  glNamedFramebufferDrawBuffers(g.msaa_fbo, options.overlap ? 2 : 1, attachments);
+  if (options.overlap) glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 1, zero);
   // Characters first, ground last: early depth rejection then skips ground pixels behind people.
   p = character_lit.id();
   glUseProgram(p);
@@ -535,11 +591,8 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   for (const size_t i : order) {
     const double distance = (chars[i].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).norm();
     const double metres_per_pixel = distance * pixel_angle;
-    size_t level = 0;  // the coarsest level whose grid spans at most lod_pixels pixels
-    for (size_t l = 1; l < kLodLevels; ++l)
-      if (std::max(mesh_options_.voxel_m, kLodVoxelM[l - 1]) <= options.lod_pixels * metres_per_pixel)
-        level = l;
-    const GpuMesh& m = g.mesh_cache.at(g.character_lod_mesh[i][level]);
+    const GpuMesh& m = g.mesh_cache.at(
+        select_lod(g.lod_sets.at(g.character_lods[i]), options.lod_pixels * metres_per_pixel).key);
     const Palette& pal = palette(chars[i].palette);
     float colours[8 * 3];
     for (int r = 0; r < 8; ++r) {
@@ -561,20 +614,19 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   p = g.flat_lit.id();
   glUseProgram(p);
   set_rgb(p, g.flat_lit.uniform("u_base_color"), options.environment);
-  draw_environment(p, g.flat_lit.uniform("u_model"));
-  if (crowd_->environment.ground_plane) {
-    p = g.ground_lit.id();
-    glUseProgram(p);
-    set_rgb(p, g.ground_lit.uniform("u_base_color"), options.ground);
-    set_mat4(p, g.ground_lit.uniform("u_model"), Mat4::Identity());
-    glBindVertexArray(g.ground.vao);
-    glDrawElements(GL_TRIANGLES, g.ground.count, GL_UNSIGNED_INT, nullptr);
+  draw_environment(g, p, g.flat_lit.uniform("u_model"));
+  if (cached_ground && options.characters) {
+    draw_planar_shadows(order, options.ground);
+  } else if (crowd_->environment.ground_plane && !cached_ground) {
+    draw_ground(g, options.ground);
   }
   glBindVertexArray(0);
 
+  end_stage(pass_times_.colour_ms, true);
+
   // 4. Resolve the colour attachment (and the overlap mask in overlap mode).
   overlap_drawn_ = options.overlap;
-  for (int k = 0; k < (options.overlap ? 2 : 1); ++k) {
+  for (int k = 0; k < (!g.multisampled ? 0 : options.overlap ? 2 : 1); ++k) {
     const GLenum attachment = attachments[k];
     glNamedFramebufferReadBuffer(g.msaa_fbo, attachment);
     glNamedFramebufferDrawBuffer(g.resolve_fbo, attachment);
@@ -582,13 +634,127 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
                            GL_COLOR_BUFFER_BIT, GL_NEAREST);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  end_stage(pass_times_.resolve_ms, true);
+}
+
+// The static environment (visible boxes, then meshes in world coordinates), drawn the same way by the
+// shadow pass and the colour pass; only the program and its model-matrix uniform differ.
+void Renderer::draw_environment(Gl& g, unsigned program, int model_location) {
+  for (size_t b = 0; b < g.box_models.size(); ++b) {
+    if (g.box_hidden[b]) continue;
+    set_mat4(program, model_location, g.box_models[b]);
+    glBindVertexArray(g.cube.vao);
+    glDrawElements(GL_TRIANGLES, g.cube.count, GL_UNSIGNED_INT, nullptr);
+  }
+  set_mat4(program, model_location, Mat4::Identity());
+  for (const GpuMesh& m : g.environment_meshes) {
+    glBindVertexArray(m.vao);
+    glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
+  }
+}
+
+// The ground plane, fully shaded (checker, noise, shadow map) with the current frame's uniforms.
+void Renderer::draw_ground(Gl& g, const Rgb& colour) {
+  const GLuint p = g.ground_lit.id();
+  glUseProgram(p);
+  set_rgb(p, g.ground_lit.uniform("u_base_color"), colour);
+  set_mat4(p, g.ground_lit.uniform("u_model"), Mat4::Identity());
+  glBindVertexArray(g.ground.vao);
+  glDrawElements(GL_TRIANGLES, g.ground.count, GL_UNSIGNED_INT, nullptr);
+}
+
+std::uint64_t Renderer::ground_cache_key(const Camera& camera, const SceneOptions& options,
+                                         const Mat4& light_view_proj) const {
+  std::vector<double> data = {camera.eye.x(),
+                              camera.eye.y(),
+                              camera.eye.z(),
+                              camera.target.x(),
+                              camera.target.y(),
+                              camera.target.z(),
+                              camera.fov_y_deg,
+                              camera.near_m,
+                              camera.far_m,
+                              static_cast<double>(width_),
+                              static_cast<double>(height_)};
+  for (const Rgb& c : {options.background, options.ground, options.environment})
+    data.insert(data.end(), c.begin(), c.end());
+  data.insert(data.end(), light_view_proj.data(), light_view_proj.data() + 16);
+  for (char hidden : gl_->box_hidden) data.push_back(hidden);
+  data.push_back(static_cast<double>(crowd_generation_));
+  return stable_hash(
+      std::string_view(reinterpret_cast<const char*>(data.data()), data.size() * sizeof(double)));
+}
+
+// The ground as a frame without characters shows it: shaded, with the shadows of the environment, then
+// copied (colour, depth, clear stencil) into ground_fbo. Uniforms are those of the current frame.
+void Renderer::draw_ground_cache(const SceneOptions& options, const Mat4& light_view_proj) {
+  Gl& g = *gl_;
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glBindFramebuffer(GL_FRAMEBUFFER, g.shadow_fbo);
+  glViewport(0, 0, g.shadow_size, g.shadow_size);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.5f, 2.0f);
+  GLuint p = g.static_depth.id();
+  glUseProgram(p);
+  set_mat4(p, g.static_depth.uniform("u_view_proj"), light_view_proj);
+  draw_environment(g, p, g.static_depth.uniform("u_model"));
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glBindFramebuffer(GL_FRAMEBUFFER, g.msaa_fbo);
+  glViewport(0, 0, width_, height_);
+  const GLenum colour = GL_COLOR_ATTACHMENT0;
+  glNamedFramebufferDrawBuffers(g.msaa_fbo, 1, &colour);
+  const float bg[4] = {options.background[0], options.background[1], options.background[2], 1.0f};
+  glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 0, bg);
+  glClearNamedFramebufferfi(g.msaa_fbo, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+  draw_ground(g, options.ground);
+  glBindVertexArray(0);
+  glNamedFramebufferReadBuffer(g.msaa_fbo, GL_COLOR_ATTACHMENT0);
+  glBlitNamedFramebuffer(g.msaa_fbo, g.ground_fbo, 0, 0, width_, height_, 0, 0, width_, height_,
+                         GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, GL_NEAREST);
+}
+
+// Characters' shadows on the cached ground (shaders.cpp, "Planar ground shadows"): drawn after the
+// characters and the environment, so the depth test keeps them on visible ground; the stencil lets each
+// pixel darken once where shadows overlap.
+void Renderer::draw_planar_shadows(const std::vector<size_t>& characters, const Rgb& ground) {
+  Gl& g = *gl_;
+  const GLenum colour = GL_COLOR_ATTACHMENT0;
+  glNamedFramebufferDrawBuffers(g.msaa_fbo, 1, &colour);
+  glDisable(GL_CULL_FACE);
+  glDepthMask(GL_FALSE);
+  glDepthFunc(GL_LEQUAL);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(-1.0f, -4.0f);  // on the ground plane, a hair nearer than the ground itself
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_EQUAL, 0, 0xff);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_DST_COLOR, GL_ZERO);  // multiply
+  const GLuint p = g.planar_shadow.id();
+  glUseProgram(p);
+  set_rgb(p, g.planar_shadow.uniform("u_base_color"), ground);
+  const int base = g.planar_shadow.uniform("u_skin_base");
+  for (const size_t i : characters) {
+    const GpuMesh& m = g.mesh_cache.at(g.lod_sets.at(g.character_shadow_mesh[i]).front().key);
+    glProgramUniform1i(p, base, static_cast<int>(i * kJointCount));
+    glBindVertexArray(m.vao);
+    glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
+  }
+  glBindVertexArray(0);
+  glDisable(GL_BLEND);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
 }
 
 void Renderer::read_rgba(std::vector<std::uint8_t>& rgba) {
   gl_->context.make_current();
   rgba.resize(static_cast<size_t>(width_) * height_ * 4);
-  glNamedFramebufferReadBuffer(gl_->resolve_fbo, GL_COLOR_ATTACHMENT0);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, gl_->resolve_fbo);
+  glNamedFramebufferReadBuffer(gl_->output_fbo(), GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, gl_->output_fbo());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
@@ -596,8 +762,8 @@ void Renderer::read_rgba(std::vector<std::uint8_t>& rgba) {
 
 void Renderer::begin_read_rgba(int slot) {
   gl_->context.make_current();
-  glNamedFramebufferReadBuffer(gl_->resolve_fbo, GL_COLOR_ATTACHMENT0);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, gl_->resolve_fbo);
+  glNamedFramebufferReadBuffer(gl_->output_fbo(), GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, gl_->output_fbo());
   glBindBuffer(GL_PIXEL_PACK_BUFFER, gl_->pbo[slot & 1]);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
@@ -621,8 +787,8 @@ double Renderer::overlap_fraction() {
   gl_->context.make_current();
   Gl& g = *gl_;
   g.mask_pixels.resize(static_cast<size_t>(width_) * height_);
-  glNamedFramebufferReadBuffer(g.resolve_fbo, GL_COLOR_ATTACHMENT1);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, g.resolve_fbo);
+  glNamedFramebufferReadBuffer(g.output_fbo(), GL_COLOR_ATTACHMENT1);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, g.output_fbo());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width_, height_, GL_RED, GL_UNSIGNED_BYTE, g.mask_pixels.data());
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);

@@ -41,6 +41,21 @@ struct SceneOptions {
   double lod_pixels = 6.0;  ///< screen-space error bound of the level of detail (pixels; see renderer.cpp)
   bool characters =
       true;  ///< false: the scene without its characters (the fixed per-frame cost, for benchmarks)
+  bool time_passes = false;  ///< finish each pass before the next to time it (benchmarks; slower)
+  /// Draw the ground once per camera and copy it into each frame, with the characters' shadows on it
+  /// projected onto the plane (shaders.cpp); false: shade the ground with the shadow map every frame (the
+  /// reference path). Only used without fog and with a ground plane.
+  bool cache_ground = true;
+};
+
+/// Wall time of each stage of the last draw(), milliseconds. The GPU passes (shadow, colour, resolve) are
+/// only separated when SceneOptions::time_passes is set: otherwise the rasteriser works on them later, in
+/// whichever call waits for the pixels, and they read 0 here.
+struct PassTimes {
+  double prepare_ms = 0.0;  ///< CPU: forward kinematics, skin matrices, overlap candidates, LOD choice
+  double shadow_ms = 0.0;   ///< shadow-map pass
+  double colour_ms = 0.0;   ///< colour pass (characters, environment, ground)
+  double resolve_ms = 0.0;  ///< MSAA resolve
 };
 
 /// Parses "#rrggbb" (or "rrggbb"); throws InputError otherwise.
@@ -71,6 +86,8 @@ class Renderer {
 
   /// Renders frame `frame` of the loaded crowd from `camera` into the resolved buffers.
   void draw(int frame, const Camera& camera, const SceneOptions& options);
+  /// The stage times of the last draw().
+  const PassTimes& pass_times() const { return pass_times_; }
 
   /// Reads the resolved colour buffer as width*height RGBA, bottom row first (synchronous).
   void read_rgba(std::vector<std::uint8_t>& rgba);
@@ -87,18 +104,28 @@ class Renderer {
   const CrowdAnimation* loaded_crowd() const { return crowd_; }
   int width() const { return width_; }
   int height() const { return height_; }
+  int requested_samples() const { return requested_samples_; }  ///< as passed to set_size()
+  int shadow_map_size() const { return shadow_map_size_; }
   /// Number of distinct meshes in the cache and triangles drawn per character pass in the last draw.
   std::size_t cached_meshes() const;
   std::size_t triangles_per_frame() const { return triangles_; }
 
  private:
   struct Gl;
+  void draw_environment(Gl& g, unsigned program, int model_location);
+  void draw_ground(Gl& g, const Rgb& colour);
+  std::uint64_t ground_cache_key(const Camera& camera, const SceneOptions& options,
+                                 const Mat4& light_view_proj) const;
+  void draw_ground_cache(const SceneOptions& options, const Mat4& light_view_proj);
+  void draw_planar_shadows(const std::vector<size_t>& characters, const Rgb& ground);
   std::unique_ptr<Gl> gl_;
   MannequinOptions mesh_options_;
   const CrowdAnimation* crowd_ = nullptr;
-  int width_ = 0, height_ = 0;
+  int width_ = 0, height_ = 0, requested_samples_ = 0, shadow_map_size_ = 0;
   std::size_t triangles_ = 0;
   bool overlap_drawn_ = false;
+  PassTimes pass_times_;
+  std::uint64_t crowd_generation_ = 0;  ///< counts load_crowd() calls (invalidates the ground cache)
   std::map<std::string, std::shared_ptr<const GltfCharacter>> file_cache_;
   std::vector<std::shared_ptr<const GltfCharacter>> file_characters_;
 };

@@ -13,6 +13,13 @@
 // behind the visible surface, passes through a point inside both this character's capsules and
 // another's. The second test is needed because an interpenetration volume is enclosed by the two
 // bodies' surfaces and is never itself the visible surface.
+// Planar ground shadows (Blinn, "Me and my (fake) shadow", IEEE CG&A 8(1), 1988): when the ground is drawn
+// once per clip and cached (renderer.cpp), a character's shadow on the ground is its shadow-caster mesh
+// squashed onto the plane y = 0 along the key light (PLANAR_SHADOW vertex variant), drawn once per pixel
+// (stencil) with a multiplicative blend. Its colour is the ratio of the ground's shaded colour without and
+// with the key light, from the same light() as the lit shader, square-rooted because the framebuffer holds
+// gamma-2.0-encoded colour: sqrt(a * r) = sqrt(a) * sqrt(r). The ground's albedo cancels out of that ratio
+// except in the (2 %) specular term.
 // Specialisation: the lit fragment shader is compiled once per material (MATERIAL_CHARACTER,
 // MATERIAL_GROUND, MATERIAL_FLAT) and, for characters, with or without OVERLAP. A CPU rasteriser
 // (llvmpipe) runs both sides of a non-uniform branch under a mask, so one shader with runtime material
@@ -23,7 +30,7 @@
 
 namespace crowdlab::stimuli::glsl {
 
-const char* const kSkinnedVertex = R"(#version 450 core
+const char* const kSkinnedVertex = R"(
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in uvec4 a_bones;
@@ -33,6 +40,9 @@ layout(location = 5) in vec4 a_colour;  // sRGB vertex colour; alpha 1 replaces 
 layout(std430, binding = 0) readonly buffer SkinMatrices { mat4 skin[]; };
 uniform mat4 u_view_proj;
 uniform int u_skin_base;
+#ifdef PLANAR_SHADOW
+uniform vec3 u_key_dir;  // unit, toward the key light
+#endif
 out vec3 v_world;
 out vec3 v_normal;
 flat out uint v_region;
@@ -45,6 +55,11 @@ void main() {
   v_normal = mat3(m) * a_normal;
   v_region = a_region;
   v_colour = a_colour;
+#ifdef PLANAR_SHADOW
+  world.xyz -= u_key_dir * (world.y / max(u_key_dir.y, 0.05));  // along the key light onto y = 0
+  world.y = 0.0;
+  v_world = world.xyz;
+#endif
   gl_Position = u_view_proj * world;
 }
 )";
@@ -131,7 +146,27 @@ bool ray_hits_overlap(vec3 p) {
 }
 #endif
 
+// The three-point lighting of one surface point in linear RGB: albedo times ambient, key (scaled by the
+// shadow factor sh) and fill, plus the key light's Blinn-Phong highlight.
+vec3 light(vec3 albedo, vec3 n, vec3 v, float sh, float specular) {
+  float key = max(dot(n, u_key_dir), 0.0) * sh;
+  float fill = max(dot(n, u_fill_dir), 0.0);
+  vec3 sky = vec3(0.62, 0.68, 0.78), bounce = vec3(0.42, 0.39, 0.35);
+  vec3 ambient = mix(bounce, sky, 0.5 + 0.5 * n.y) * 0.42;
+  vec3 h = normalize(u_key_dir + v);
+  float nh = max(dot(n, h), 0.0);
+  nh *= nh; nh *= nh; nh *= nh; nh *= nh; nh *= nh;  // ^32 by squaring (cheaper than pow on CPU rasterisers)
+  return albedo * (ambient + vec3(1.0, 0.97, 0.92) * 1.05 * key + vec3(0.75, 0.82, 1.0) * 0.32 * fill) +
+         vec3(nh * specular * sh);
+}
+
 void main() {
+#ifdef MATERIAL_PLANAR_SHADOW
+  vec3 up = vec3(0.0, 1.0, 0.0), to_eye = normalize(u_eye - v_world), base = to_linear(u_base_color);
+  vec3 ratio = light(base, up, to_eye, 0.0, 0.02) / max(light(base, up, to_eye, 1.0, 0.02), vec3(1e-4));
+  o_color = vec4(sqrt(clamp(ratio, 0.0, 1.0)), 1.0);
+  o_overlap = 0.0;
+#else
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
   vec3 albedo;
@@ -153,22 +188,14 @@ void main() {
 #endif
   vec3 v = normalize(u_eye - v_world);
   float sh = shadow(v_world, n);
-  float key = max(dot(n, u_key_dir), 0.0) * sh;
-  float fill = max(dot(n, u_fill_dir), 0.0);
+  vec3 color = light(albedo, n, v, sh, specular);
+#if defined(MATERIAL_CHARACTER)
   float grazing = 1.0 - max(dot(n, v), 0.0);
   float rim = grazing * grazing * grazing * max(dot(n, u_rim_dir) + 0.3, 0.0);
-  vec3 sky = vec3(0.62, 0.68, 0.78), bounce = vec3(0.42, 0.39, 0.35);
-  vec3 ambient = mix(bounce, sky, 0.5 + 0.5 * n.y) * 0.42;
-  vec3 h = normalize(u_key_dir + v);
-  float nh = max(dot(n, h), 0.0);
-  nh *= nh; nh *= nh; nh *= nh; nh *= nh; nh *= nh;  // ^32 by squaring (cheaper than pow on CPU rasterisers)
-  float spec = nh * specular * sh;
-  vec3 color = albedo * (ambient + vec3(1.0, 0.97, 0.92) * 1.05 * key + vec3(0.75, 0.82, 1.0) * 0.32 * fill) +
-               vec3(spec);
-#if defined(MATERIAL_CHARACTER)
   color += vec3(0.22) * rim * albedo + vec3(0.05) * rim;
 #endif
 #ifdef OVERLAP
+  float fill = max(dot(n, u_fill_dir), 0.0);
   if (overlap) color = vec3(0.9, 0.02, 0.02) * (0.45 + 0.55 * max(dot(n, u_key_dir), 0.0) * sh + 0.3 * fill);
 #endif
   if (u_fog_density > 0.0) {
@@ -177,6 +204,7 @@ void main() {
   }
   o_color = vec4(sqrt(clamp(color, 0.0, 1.0)), 1.0);  // gamma 2.0 encode (sqrt: far cheaper than pow on llvmpipe)
   o_overlap = overlap ? 1.0 : 0.0;
+#endif
 }
 )";
 

@@ -7,6 +7,7 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
+#include <chrono>
 #include <cmath>
 
 #include "framework/core/error.hpp"
@@ -132,7 +133,13 @@ VideoEncoder::~VideoEncoder() {
   }
 }
 
-void VideoEncoder::add_frame(const std::uint8_t* rgba, bool bottom_up) {
+EncodeTimes VideoEncoder::add_frame(const std::uint8_t* rgba, bool bottom_up) {
+  using Clock = std::chrono::steady_clock;
+  const auto ms_since = [](Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+  };
+  EncodeTimes times;
+  auto t = Clock::now();
   Impl& m = *impl_;
   if (!m.open) throw RuntimeError("VideoEncoder: add_frame after close");
   if (av_frame_make_writable(m.frame) < 0) throw RuntimeError("libav: frame not writable");
@@ -141,10 +148,14 @@ void VideoEncoder::add_frame(const std::uint8_t* rgba, bool bottom_up) {
       bottom_up ? rgba + static_cast<std::ptrdiff_t>(stride) * (m.codec->height - 1) : rgba;
   const int src_stride[1] = {bottom_up ? -stride : stride};
   sws_scale(m.sws, &src, src_stride, 0, m.codec->height, m.frame->data, m.frame->linesize);
+  times.convert_ms = ms_since(t);
+  t = Clock::now();
   m.frame->pts = frames_++;
   const int r = avcodec_send_frame(m.codec, m.frame);
   if (r < 0) throw RuntimeError("H.264 encoding failed: " + av_error(r));
   m.drain(false);
+  times.encode_ms = ms_since(t);
+  return times;
 }
 
 void VideoEncoder::close() {

@@ -20,6 +20,12 @@ struct VideoSettings {
 /// Throws InputError when the size is odd or too small, fps not in (0, 240], crf outside 0..51.
 void validate_video_settings(const VideoSettings& settings);
 
+/// Wall time of one add_frame(), milliseconds.
+struct EncodeTimes {
+  double convert_ms = 0.0;  ///< RGBA -> BT.709 yuv420p (libswscale)
+  double encode_ms = 0.0;   ///< x264 and muxing
+};
+
 class VideoEncoder {
  public:
   /// Opens `path` for writing. Throws InputError for bad settings, RuntimeError when libav fails
@@ -31,7 +37,7 @@ class VideoEncoder {
 
   /// Encodes one frame of width*height RGBA pixels; `bottom_up` when row 0 is the bottom image row
   /// (glReadPixels order).
-  void add_frame(const std::uint8_t* rgba, bool bottom_up);
+  EncodeTimes add_frame(const std::uint8_t* rgba, bool bottom_up);
   /// Flushes the encoder and finalises the file. Called by the destructor if not called.
   void close();
   int frames_written() const { return frames_; }

@@ -136,8 +136,7 @@ class Runner {
     g.key = key;
     g.dir = opt_.out_dir / "crowds" / key;
     fs::create_directories(g.dir);
-    g.crowd_condition = first;
-    g.crowd_condition.seed = derive_seed(spec_.seed, "crowd/" + key);
+    g.crowd_condition = crowd_condition(spec_, first);
     // Stage input hashes: each stage's own parameters plus its upstream hash.
     json crowd_params;
     crowd_params["levels"] = level_json(g.crowd_condition);
@@ -194,17 +193,6 @@ class Runner {
     }
   }
 
-  AnimationContext animation_context(const CrowdGroup& g) const {
-    AnimationContext ctx;
-    ctx.scenario_type = scenario_type_;
-    ctx.seed = g.crowd_condition.seed;
-    ctx.condition_id = g.key;
-    const Condition& c = g.crowd_condition;
-    if (c.level("shoulder")) ctx.shoulder_count = static_cast<int>(c.number("shoulder", 0));
-    ctx.trigger_probability = c.number("trigger", 0.0) / 100.0;
-    return ctx;
-  }
-
   const CrowdAnimation& baseline(CrowdGroup& g) {
     const fs::path out = g.dir / "baseline.glb";
     if (g.baseline) return *g.baseline;
@@ -213,16 +201,7 @@ class Runner {
       g.baseline = read_crowd_glb(out.string());
       return *g.baseline;
     }
-    scenario_type_ = is_manifold(g) ? "manifold" : resolve_scenario_type(spec_, g.crowd_condition);
-    const ScenarioResult& s = scenario(g);
-    AnimationContext ctx = animation_context(g);
-    apply_body_model(spec_.animation, s.trajectories.agents.size(), ctx);
-    CrowdAnimation crowd = animate_crowd(s.trajectories, s.environment, spec_.animation, ctx);
-    // Surface crowds walk on the developed plane; stand each frame on the surface.
-    if (!g.surface.empty()) orient_to_surface(crowd, s.trajectories, g.surface);
-    crowd.meta.seed = g.crowd_condition.seed;
-    crowd.meta.condition_id = g.key;
-    crowd.meta.scenario = s.scenario;
+    CrowdAnimation crowd = animate_scenario(spec_, g.crowd_condition, g.key, scenario(g), g.surface);
     write_crowd_glb(crowd, out.string());
     record_provenance(out, "animation", g.baseline_hash, context_);
     g.baseline = std::move(crowd);
@@ -366,11 +345,38 @@ class Runner {
   RunOptions opt_;
   ProvenanceContext context_;
   RunSummary summary_;
-  std::string scenario_type_ = "stationary";
   std::unique_ptr<Renderer> renderer_;
 };
 
 }  // namespace
+
+CrowdAnimation animate_scenario(const ExperimentSpec& spec, const Condition& crowd_condition,
+                                const std::string& key, const ScenarioResult& scenario,
+                                const SurfaceTrajectories& surface) {
+  AnimationContext ctx;
+  ctx.scenario_type = effective_scenario_type(spec, crowd_condition) == "manifold"
+                          ? "manifold"
+                          : resolve_scenario_type(spec, crowd_condition);
+  ctx.seed = crowd_condition.seed;
+  ctx.condition_id = key;
+  if (crowd_condition.level("shoulder"))
+    ctx.shoulder_count = static_cast<int>(crowd_condition.number("shoulder", 0));
+  ctx.trigger_probability = crowd_condition.number("trigger", 0.0) / 100.0;
+  apply_body_model(spec.animation, scenario.trajectories.agents.size(), ctx);
+  CrowdAnimation crowd = animate_crowd(scenario.trajectories, scenario.environment, spec.animation, ctx);
+  // Surface crowds walk on the developed plane; stand each frame on the surface.
+  if (!surface.empty()) orient_to_surface(crowd, scenario.trajectories, surface);
+  crowd.meta.seed = crowd_condition.seed;
+  crowd.meta.condition_id = key;
+  crowd.meta.scenario = scenario.scenario;
+  return crowd;
+}
+
+Condition crowd_condition(const ExperimentSpec& spec, const Condition& condition) {
+  Condition c = condition;
+  c.seed = derive_seed(spec.seed, "crowd/" + crowd_key(condition));
+  return c;
+}
 
 std::string crowd_key(const Condition& condition) {
   std::string key;

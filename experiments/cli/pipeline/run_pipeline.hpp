@@ -23,6 +23,9 @@
 #include <string>
 
 #include "experiments/cli/pipeline/shard.hpp"
+#include "framework/core/crowd_animation.hpp"
+#include "framework/core/surface_trajectories.hpp"
+#include "framework/crowd/generate_scenario.hpp"
 #include "framework/spec/experiment_spec.hpp"
 
 namespace crowdlab::cli {
@@ -43,6 +46,17 @@ struct RunSummary {
 
 /// The crowd key of a condition (see header).
 std::string crowd_key(const Condition& condition);
+
+/// `condition` with the seed of its crowd group: derive_seed(spec.seed, "crowd/" + crowd_key(condition)).
+Condition crowd_condition(const ExperimentSpec& spec, const Condition& condition);
+
+/// The animation stage of `run` (baseline.glb) for one crowd group: the body model (procedural or
+/// MPFB2), the motion (dancing for stationary scenarios, walking otherwise) and, for surface crowds,
+/// the frames stood on the surface. `crowd_condition` carries the group's seed (crowd_condition()),
+/// `scenario` is the crowd stage's result for it and `surface` is empty unless the scenario is a manifold.
+CrowdAnimation animate_scenario(const ExperimentSpec& spec, const Condition& crowd_condition,
+                                const std::string& key, const ScenarioResult& scenario,
+                                const SurfaceTrajectories& surface);
 
 RunSummary run_experiment(const ExperimentSpec& spec, const RunOptions& options);
 

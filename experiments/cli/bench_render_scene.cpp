@@ -1,0 +1,48 @@
+#include "experiments/cli/bench_render_scene.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+#include "crowdlab_embedded_paper_specs.hpp"
+#include "experiments/cli/pipeline/run_pipeline.hpp"
+#include "framework/body/mpfb2_model.hpp"
+#include "framework/core/error.hpp"
+#include "framework/spec/load_experiment_spec.hpp"
+
+namespace crowdlab::cli {
+namespace {
+
+ExperimentSpec load_scene_spec(const BenchRenderScene& scene) {
+  if (!scene.spec_path.empty()) return load_experiment_spec(scene.spec_path);
+  return load_experiment_spec_text(kSpecGomez2024Stationary, "gomez2024_stationary.yaml (embedded)",
+                                   std::filesystem::current_path().string());
+}
+
+Condition pick_condition(const ExperimentSpec& spec, const BenchRenderScene& scene) {
+  for (const Condition& c : enumerate_conditions(spec)) {
+    if (!scene.condition_id.empty()) {
+      if (c.id == scene.condition_id) return c;
+      continue;
+    }
+    if (std::abs(c.number("density", -1.0) - scene.density) < 1e-9) return c;
+  }
+  throw InputError(SourceLocation{spec.source_path, 0, 0, "--condition"},
+                   scene.condition_id.empty() ? "no condition with density " + std::to_string(scene.density)
+                                              : "no condition with id '" + scene.condition_id + "'");
+}
+
+}  // namespace
+
+CrowdAnimation make_bench_render_crowd(const BenchRenderScene& scene) {
+  ExperimentSpec spec = load_scene_spec(scene);
+  if (!scene.body_model.empty()) spec.animation.body_model = scene.body_model;
+  if (spec.animation.body_model == "mpfb2" && spec.animation.body_model_path.empty())
+    spec.animation.body_model_path = mpfb2_default_path().string();
+  if (scene.duration_s > 0.0) spec.duration_s = std::min(spec.duration_s, scene.duration_s);
+  const Condition condition = crowd_condition(spec, pick_condition(spec, scene));
+  const std::string key = crowd_key(condition);
+  const ScenarioResult scenario = generate_scenario(spec, condition);
+  return animate_scenario(spec, condition, key, scenario, {});
+}
+
+}  // namespace crowdlab::cli

@@ -1,0 +1,25 @@
+#pragma once
+// Discrete level-of-detail selection by a screen-space error bound (Luebke et al., "Level of Detail for 3D
+// Graphics", 2003, ch. 4): a character is drawn with the coarsest of its meshes whose geometric error
+// spans at most SceneOptions::lod_pixels pixels at the character's distance.
+//
+// Why it matters here: llvmpipe shades every triangle in blocks of 4x4 pixels, so a dense body whose
+// triangles cover 2-3 pixels each costs several times its pixel count, and the vertex stage runs on one
+// thread. The error of a level is its mannequin grid spacing (procedural bodies) or meshoptimizer's
+// deviation from the full mesh (skinned surfaces, simplify_character_mesh.hpp).
+#include <cstdint>
+#include <vector>
+
+namespace crowdlab::stimuli {
+
+struct LodLevel {
+  std::uint64_t key = 0;  ///< the renderer's mesh-cache key
+  double error_m = 0.0;   ///< geometric error of this level (metres)
+  int index_count = 0;    ///< 3 x triangles
+};
+
+/// The coarsest level of `levels` (finest first, errors increasing) whose error is at most
+/// `max_error_m`; the finest level when none is. `levels` must not be empty.
+const LodLevel& select_lod(const std::vector<LodLevel>& levels, double max_error_m);
+
+}  // namespace crowdlab::stimuli
