@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include "framework/core/control_characters.hpp"
 #include "framework/core/sha256.hpp"
@@ -294,6 +295,24 @@ YAML::Mark mark_at(const std::string& text, size_t offset) {
   return m;
 }
 
+// Byte offset of a `---` line that starts a second YAML document, or npos. At column 0 `---` is always a
+// document marker (top-level block scalars are indented); a first marker before any content is allowed.
+// (A text scan: yaml-cpp's LoadAll misbehaved on the loader's mangled-spec test input.)
+size_t second_document_start(const std::string& text) {
+  bool content = false;
+  for (size_t line = 0; line < text.size();) {
+    const size_t end = std::min(text.find('\n', line), text.size());
+    const std::string_view l(text.data() + line, end - line);
+    const bool marker =
+        l.substr(0, 3) == "---" && (l.size() == 3 || l[3] == ' ' || l[3] == '\t' || l[3] == '\r');
+    if (marker && content) return line;
+    const size_t first = l.find_first_not_of(" \t\r");
+    if (!marker && first != std::string_view::npos && l[first] != '#' && l[first] != '%') content = true;
+    line = end + 1;
+  }
+  return std::string::npos;
+}
+
 // A spec is UTF-8 text (a UTF-8 byte-order mark is allowed). UTF-16 and Latin-1 files would otherwise be
 // misread or accepted with garbled names.
 void check_encoding(SpecDiagnostics& diag, const std::string& text) {
@@ -392,12 +411,11 @@ ExperimentSpec load_experiment_spec_text(const std::string& yaml_text, const std
   try {
     // A UTF-8 byte-order mark (some Windows editors write one) is not part of the first key.
     const bool bom = yaml_text.rfind("\xEF\xBB\xBF", 0) == 0;
-    const std::vector<YAML::Node> documents = YAML::LoadAll(bom ? yaml_text.substr(3) : yaml_text);
-    if (documents.size() > 1)
-      diag.error(documents[1], "",
-                 "the file holds " + std::to_string(documents.size()) +
-                     " YAML documents; a spec is one (remove the '---' separators)");
-    if (!documents.empty()) root = documents.front();
+    root = YAML::Load(bom ? yaml_text.substr(3) : yaml_text);
+    if (const size_t second = second_document_start(yaml_text); second != std::string::npos)
+      diag.error(
+          mark_at(yaml_text, second), "",
+          "a second YAML document starts here; a spec is one document (only the first was read before)");
   } catch (const YAML::Exception& e) {
     diag.error(e.mark, "", "YAML syntax error: " + e.msg);
   }

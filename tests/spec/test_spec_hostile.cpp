@@ -93,7 +93,8 @@ TEST_CASE("spec: UTF-16, invalid UTF-8, several documents and control characters
   CHECK(errors_of("\xEF\xBB\xBF" + valid).empty());
   // Only the first of several documents was used, silently.
   CHECK_THAT(errors_of(valid + "---\nname: second\n"),
-             Catch::Contains("t.yaml:") && Catch::Contains("2 YAML documents"));
+             Catch::Contains("t.yaml:11:1:") && Catch::Contains("second YAML document"));
+  CHECK(errors_of("---\n" + valid).empty());  // a leading marker is one document
   // ESC (ANSI colour codes) or a newline in the name.
   std::string ansi = valid;
   ansi.replace(ansi.find("name: t"), 7, "name: \"a\\e[2Jb\"");
