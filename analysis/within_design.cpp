@@ -41,6 +41,11 @@ WithinDesign build_within_design(const CsvTable& table, const std::string& dv, c
   const size_t dv_col = table.column(dv);
   const size_t subject_col = table.column(subject);
   std::vector<size_t> factor_cols;
+  for (size_t f = 0; f < within.size(); ++f)
+    for (size_t g = 0; g < f; ++g)
+      if (within[f] == within[g])
+        throw InputError(SourceLocation{table.source, 0, 0, "--within"},
+                         "factor '" + within[f] + "' is named twice");
   for (const auto& w : within) {
     if (w == subject || w == dv)
       throw InputError(table.source + ": factor '" + w + "' is also the subject/dv");

@@ -30,6 +30,16 @@ void validate_video_settings(const VideoSettings& s) {
   if (!(s.fps > 0.0 && s.fps <= 240.0))
     throw InputError("video fps must be in (0, 240], got " + std::to_string(s.fps));
   if (s.crf < 0 || s.crf > 51) throw InputError("video crf must be in 0..51, got " + std::to_string(s.crf));
+  // x264's presets (x264 --fullhelp); anything else made the encoder fail at open, as a runtime error.
+  static const char* const kPresets[] = {"ultrafast", "superfast", "veryfast", "faster",   "fast",
+                                         "medium",    "slow",      "slower",   "veryslow", "placebo"};
+  bool known = false;
+  for (const char* p : kPresets) known = known || s.preset == p;
+  if (!known)
+    throw InputError(
+        SourceLocation{"", 0, 0, "preset"},
+        "unknown x264 preset '" + s.preset +
+            "' (ultrafast, superfast, veryfast, faster, fast, medium, slow, slower, veryslow, placebo)");
 }
 
 struct VideoEncoder::Impl {

@@ -69,9 +69,18 @@ bool all_arrived(const CrowdSimulation& sim, const std::vector<AgentInit>& agent
   return true;
 }
 
+// Beyond these a benchmark runs for hours or exhausts memory before printing anything (issue 21:
+// --agents 1000000000); they are ten times the largest crowds and runs the project measures.
+constexpr int kMaxAgents = 100000;
+constexpr int kMaxSteps = 100000;
+
 void run(const Args& a) {
-  if (a.agents < 2) throw InputError("bench crowd: --agents must be >= 2");
-  if (a.steps < 1) throw InputError("bench crowd: --steps must be >= 1");
+  if (a.agents < 2 || a.agents > kMaxAgents)
+    throw InputError(SourceLocation{"", 0, 0, "--agents"},
+                     "must be 2 to " + std::to_string(kMaxAgents) + ", got " + std::to_string(a.agents));
+  if (a.steps < 1 || a.steps > kMaxSteps)
+    throw InputError(SourceLocation{"", 0, 0, "--steps"},
+                     "must be 1 to " + std::to_string(kMaxSteps) + ", got " + std::to_string(a.steps));
   if (a.threads < 1) throw InputError("bench crowd: --threads must be >= 1");
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<std::size_t>(a.threads));
@@ -142,9 +151,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--model", args->model, "Navigation model")
       ->check(CLI::IsMember({"orca", "social", "cost", "none"}))
       ->capture_default_str();
-  cmd->add_option("--agents", args->agents, "Number of agents N (circle radius N*0.6/2pi m)")
+  cmd->add_option("--agents", args->agents, "Number of agents N (circle radius N*0.6/2pi m), at most 100000")
       ->capture_default_str();
-  cmd->add_option("--steps", args->steps, "Timed steps of 0.1 s (the cap with --until-arrived)")
+  cmd->add_option("--steps", args->steps,
+                  "Timed steps of 0.1 s (the cap with --until-arrived), at most 100000")
       ->capture_default_str();
   cmd->add_option("--threads", args->threads, "TBB worker threads")->capture_default_str();
   cmd->add_flag("--until-arrived", args->until_arrived, "Stop once every agent has reached its antipode");

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/pipeline/job_script_text.hpp"
 #include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/core/error.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
@@ -28,10 +29,10 @@ struct Options {
 constexpr double kCorrectSecondsPerFrame = 0.002;
 constexpr double kRenderSecondsPerFrame = 0.07;
 
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
+/// The job command `crowdlab run SPEC --out RESULTS`, each word quoted by `quote` for the target language.
+std::string run_command(const Options& o, const std::string& spec_abs,
+                        std::string (*quote)(const std::string&)) {
+  return quote(o.exe) + " run " + quote(spec_abs) + " --out " + quote(o.results);
 }
 
 void emit(const Options& o) {
@@ -44,18 +45,22 @@ void emit(const Options& o) {
   const int minutes = std::max(10, static_cast<int>(std::ceil(per_shard_s / 60.0)) + 5);
   fs::create_directories(o.out);
   const std::string spec_abs = fs::absolute(o.spec).string();
-  const std::string run =
-      shell_quote(o.exe) + " run " + shell_quote(spec_abs) + " --out " + shell_quote(o.results);
+  // Every value below ends up in a script that a shell, make or sbatch reads (job_script_text.hpp).
+  require_script_safe(spec_abs, "spec path");
+  require_script_safe(o.results, "--results");
+  require_script_safe(o.exe, "--crowdlab");
+  const std::string run = run_command(o, spec_abs, o.emit == "make" ? make_recipe_quote : shell_quote);
   const std::string collect = run + " --collect";
   fs::path file;
   std::string text;
   if (o.emit == "slurm") {
     file = fs::path(o.out) / "crowdlab.sbatch";
-    text = "#!/bin/bash\n# crowdlab: " + std::to_string(conditions) + " conditions of '" + spec.name +
-           "' in " + std::to_string(n) + " array tasks. Submit with: sbatch " + file.filename().string() +
+    text = "#!/bin/bash\n# crowdlab: " + std::to_string(conditions) + " conditions of '" +
+           comment_text(spec.name) + "' in " + std::to_string(n) + " array tasks. Submit with: sbatch " +
+           file.filename().string() +
            "\n# then, after all tasks: sbatch --dependency=afterok:<jobid> --wrap " + shell_quote(collect) +
-           "\n" + "#SBATCH --job-name=crowdlab-" + spec.name + "\n#SBATCH --array=1-" + std::to_string(n) +
-           "\n#SBATCH --cpus-per-task=" + std::to_string(o.cpus) +
+           "\n" + "#SBATCH --job-name=crowdlab-" + slurm_directive_word(spec.name) + "\n#SBATCH --array=1-" +
+           std::to_string(n) + "\n#SBATCH --cpus-per-task=" + std::to_string(o.cpus) +
            "\n#SBATCH --mem=4G\n#SBATCH --time=" + std::to_string(minutes) +
            "\n#SBATCH --output=crowdlab-%A_%a.log\nset -euo pipefail\n" + run +
            " --shard \"${SLURM_ARRAY_TASK_ID}/" + std::to_string(n) + "\"\n";
@@ -66,7 +71,7 @@ void emit(const Options& o) {
       text += run + " --shard " + std::to_string(k) + "/" + std::to_string(n) + "\n";
   } else if (o.emit == "make") {
     file = fs::path(o.out) / "Makefile";
-    text = "# crowdlab: run with make -j<jobs> -f " + file.string() + "\nSHARDS :=";
+    text = "# crowdlab: run with make -j<jobs> -f " + comment_text(file.string()) + "\nSHARDS :=";
     for (int k = 1; k <= n; ++k) text += " shard-" + std::to_string(k);
     text += "\n.PHONY: all $(SHARDS)\nall: $(SHARDS)\n\t" + collect + "\n";
     for (int k = 1; k <= n; ++k)

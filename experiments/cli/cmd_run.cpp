@@ -6,6 +6,7 @@
 
 #include "experiments/cli/command_registry.hpp"
 #include "experiments/cli/pipeline/collect.hpp"
+#include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "experiments/cli/pipeline/run_pipeline.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
@@ -40,6 +41,9 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       "Merge the shard manifests and provenance records of DIR, verifying every condition is present once");
   cmd->callback([o] {
     const ExperimentSpec spec = load_experiment_spec(o->spec);
+    const Shard shard = parse_shard(o->shard);
+    // One run (or one shard of a sharded run) per output folder at a time (output_folder_lock.hpp).
+    const OutputFolderLock lock(o->out, o->collect ? 1 : shard.index, o->collect ? 1 : shard.count);
     if (o->collect) {
       const CollectSummary c = collect_shards(spec, o->out);
       std::printf(
@@ -50,7 +54,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     RunOptions ro;
     ro.out_dir = o->out;
     ro.force = o->force;
-    ro.shard = parse_shard(o->shard);
+    ro.shard = shard;
     ro.only = o->condition;
     const RunSummary s = run_experiment(spec, ro);
     std::printf("%d conditions: %d stage outputs made, %d up to date\nmanifest: %s\n", s.conditions,

@@ -1,5 +1,6 @@
 #include "framework/animation/bvh.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -11,6 +12,12 @@
 namespace crowdlab {
 
 namespace {
+
+std::string format_number(double v) {
+  std::ostringstream ss;
+  ss << v;
+  return ss.str();
+}
 
 struct Token {
   std::string text;
@@ -54,7 +61,7 @@ class Parser {
     m.source = source_;
     expect("HIERARCHY");
     expect("ROOT");
-    parse_joint(m, -1);
+    parse_joint(m, -1, 1);
     if (peek_is("ROOT")) fail(peek(), "multiple ROOT hierarchies are not supported");
     expect("MOTION");
     expect("Frames:");
@@ -67,9 +74,12 @@ class Parser {
     expect("Time:");
     const Token& time_tok = peek();
     m.frame_time_s = number("frame time");
-    if (!(m.frame_time_s > 0)) fail(time_tok, "Frame Time: must be > 0 seconds");
+    if (!(m.frame_time_s >= kMinBvhFrameTime_s && m.frame_time_s <= kMaxBvhFrameTime_s))
+      fail(time_tok, "Frame Time: must be between " + format_number(kMinBvhFrameTime_s) + " and " +
+                         format_number(kMaxBvhFrameTime_s) + " seconds, got '" + time_tok.text + "'");
     const size_t expected = static_cast<size_t>(m.frame_count) * static_cast<size_t>(m.channel_count);
-    m.values.reserve(expected);
+    // Never allocate from the header alone: the file holds at most one value per remaining token.
+    m.values.reserve(std::min(expected, tokens_.size() - pos_));
     while (pos_ < tokens_.size()) {
       if (m.values.size() == expected)
         fail(peek(), "more motion values than Frames: " + std::to_string(m.frame_count) + " x " +
@@ -133,8 +143,11 @@ class Parser {
     fail(t, "unknown channel '" + t.text + "'");
   }
 
-  void parse_joint(BvhMotion& m, int parent) {
+  void parse_joint(BvhMotion& m, int parent, int depth) {
     const Token& name_tok = next();
+    if (depth > kMaxBvhJointDepth)
+      fail(name_tok, "joints nest more than " + std::to_string(kMaxBvhJointDepth) +
+                         " levels deep (a human skeleton needs fewer than 30)");
     if (name_tok.text == "{") fail(name_tok, "joint name missing");
     BvhJoint j;
     j.name = name_tok.text;
@@ -158,7 +171,7 @@ class Parser {
       const Token& t = next();
       if (t.text == "}") return;
       if (t.text == "JOINT") {
-        parse_joint(m, index);
+        parse_joint(m, index, depth + 1);
       } else if (t.text == "End") {
         expect("Site");
         expect("{");

@@ -11,7 +11,9 @@
 //     axes): "Zrotation Xrotation Yrotation" -> Rz * Rx * Ry; angles in degrees.
 // Every malformed input (unknown keyword or channel, missing braces, non-numeric or non-finite
 // values, a missing or inconsistent "Frames:" / "Frame Time:", a truncated or overlong MOTION
-// section) throws InputError whose message starts "file:line:column:".
+// section, joints nested deeper than kMaxBvhJointDepth, a Frame Time outside [kMinBvhFrameTime_s,
+// kMaxBvhFrameTime_s]) throws InputError whose message starts "file:line:column:". Memory is bounded by
+// the file's size: a header's `Frames:` count never drives an allocation beyond what the file holds.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -19,6 +21,14 @@
 #include "framework/core/math_types.hpp"
 
 namespace crowdlab {
+
+/// Deepest joint nesting accepted (the root is depth 1). The parser recurses per level; a bound keeps a
+/// hostile file (30,000 nested JOINTs) from overflowing the stack. Human skeletons need fewer than 30.
+inline constexpr int kMaxBvhJointDepth = 256;
+/// Accepted Frame Time range: 10 kHz to 0.1 Hz. Outside it a clip's playback (loops per second, frames
+/// per output frame) explodes: `Frame Time: 1e-9` is a billion frames per second.
+inline constexpr double kMinBvhFrameTime_s = 1e-4;
+inline constexpr double kMaxBvhFrameTime_s = 10.0;
 
 enum class BvhChannel { kXposition, kYposition, kZposition, kXrotation, kYrotation, kZrotation };
 

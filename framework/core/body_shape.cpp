@@ -116,6 +116,14 @@ void compute_rest_contact_pairs(BodyShape& shape) {
         shape.rest_contact_pairs.emplace_back(i, j);
 }
 
+namespace {
+// Plausible magnitudes for a human body read from a file (issue 21: a joint offset of 1e300 m or a capsule
+// radius of 1e6 m stalled the corrector, which samples the rest-pose body on a 2.5 cm grid). The tallest
+// recorded human was 2.72 m: the limits admit any real body and stop absurd ones.
+constexpr double kMaxCapsuleRadius_m = 1.0;
+constexpr double kMaxBodyExtent_m = 4.0;  // rest-pose bounding box, capsules included, per axis
+}  // namespace
+
 void validate_body_shape(const BodyShape& shape, const std::string& context) {
   for (int j = 0; j < kJointCount; ++j) {
     const std::string where = context + ": joint '" + std::string(joint_name(j)) + "'";
@@ -124,8 +132,22 @@ void validate_body_shape(const BodyShape& shape, const std::string& context) {
     if (!off.allFinite() || !cap.a.allFinite() || !cap.b.allFinite() || !std::isfinite(cap.radius_m))
       throw InputError(where + " has a non-finite offset or capsule");
     if (!(cap.radius_m > 0.0)) throw InputError(where + " has a capsule radius <= 0");
+    if (cap.radius_m > kMaxCapsuleRadius_m)
+      throw InputError(where + " has a capsule radius of " + std::to_string(cap.radius_m) +
+                       " m, more than the limit of 1 m (kMaxCapsuleRadius_m)");
     if (j != kPelvis && off.norm() < 1e-6) throw InputError(where + " has a zero-length bone to its parent");
   }
+  // The whole rest-pose body, relative to its pelvis (the root offset places it, not its size).
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (const Capsule& c : world_capsules(shape, Pose::rest(shape))) {
+    lo = lo.cwiseMin(c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m));
+    hi = hi.cwiseMax(c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m));
+  }
+  const double extent_m = (hi - lo).maxCoeff();
+  if (!(extent_m <= kMaxBodyExtent_m))
+    throw InputError(context + ": the rest-pose body spans " + std::to_string(extent_m) +
+                     " m, more than the limit of 4 m (kMaxBodyExtent_m; joint offsets or capsules are not in "
+                     "metres, or are corrupt)");
 }
 
 }  // namespace crowdlab

@@ -55,8 +55,8 @@ BodyShape make_procedural_body(const BodyParams& params);
 /// Recomputes shape.rest_contact_pairs from the rest pose (capsule pairs that overlap there).
 void compute_rest_contact_pairs(BodyShape& shape);
 
-/// Checks a shape loaded from a file: finite offsets, positive radii, no zero-length bone between a
-/// joint and its parent except the root. Throws InputError naming the joint.
+/// Checks a shape loaded from a file: finite offsets, radii in (0, 1] m, no zero-length bone but the root's,
+/// a rest-pose body within 4 m on each axis (limits in body_shape.cpp). Throws InputError naming the joint.
 void validate_body_shape(const BodyShape& shape, const std::string& context);
 
 }  // namespace crowdlab

@@ -42,6 +42,8 @@ CsvTable parse_csv(const std::string& text, const std::string& source) {
   std::string field;
   bool in_quotes = false, field_started = false;
   int line = 1, record_line = 1;
+  // A UTF-8 byte-order mark (Excel's "CSV UTF-8") is not part of the first column's name.
+  const size_t start = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
   auto end_record = [&] {
     record.push_back(field);
     field.clear();
@@ -61,7 +63,7 @@ CsvTable parse_csv(const std::string& text, const std::string& source) {
     }
     record.clear();
   };
-  for (size_t i = 0; i < text.size(); ++i) {
+  for (size_t i = start; i < text.size(); ++i) {
     const char c = text[i];
     if (in_quotes) {
       if (c == '"') {

@@ -25,8 +25,8 @@ struct Pose {
   double heading_rad() const;
 };
 
-/// Throws InputError("<context>: joint '<name>' ...") if any value is NaN/Inf or a rotation is not
-/// unit length within 1e-3. Use at every boundary where poses enter (files, library API).
+/// Throws InputError("<context>: ...") if any value is NaN/Inf, a rotation is not unit within 1e-3, or the
+/// root is over 100 km from the origin (pose.cpp). Use at every boundary where poses enter (files, API).
 void validate_pose(const Pose& pose, const std::string& context);
 
 }  // namespace crowdlab

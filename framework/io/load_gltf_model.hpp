@@ -8,9 +8,13 @@
 
 namespace crowdlab {
 
+/// Deepest JSON nesting of arrays/objects accepted (glTF itself needs fewer than 10 levels; deeper
+/// `extras` are refused before parsing, since the parser recurses per level and would overflow the stack).
+inline constexpr std::size_t kMaxGltfJsonDepth = 256;
+
 /// Throws InputError "<path>: no such file" for a missing file and
 /// "<path>: cannot read glTF: <parser message>" for a file tinygltf cannot parse (truncated JSON, a
-/// missing .bin, a bad header).
+/// missing .bin, a bad header), and for JSON nested deeper than kMaxGltfJsonDepth.
 tinygltf::Model load_gltf_model(const std::filesystem::path& path);
 
 }  // namespace crowdlab

@@ -6,12 +6,16 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
+#include "framework/core/control_characters.hpp"
 #include "framework/core/sha256.hpp"
+#include "framework/core/utf8_validity.hpp"
 #include "framework/spec/parse_factor.hpp"
 #include "framework/spec/parse_protocol.hpp"
 #include "framework/spec/yaml_section.hpp"
@@ -20,6 +24,15 @@ namespace crowdlab {
 namespace {
 
 constexpr int kFormatVersion = 1;
+
+// Work limits checked at load, before anything is enumerated or allocated (issue 21: specs whose factor
+// levels multiplied out, or whose clips were an hour at 240 fps, ran the machine out of memory). A spec
+// beyond one is refused with the estimate (docs/spec-reference.md); such a study is split into specs.
+constexpr double kMaxConditions = 10000;          // factor levels x repetitions
+constexpr double kMaxCharactersPerCrowd = 10000;  // density x area, the characters factor or agents
+// Characters x frames of one crowd (duration_s x fps): every pose of every frame is kept in memory and
+// corrected, measured and rendered, so the work and memory of a crowd grow with this product.
+constexpr double kMaxCharacterFrames = 2e6;
 
 std::string join_lines(const std::vector<std::string>& lines) {
   std::string out;
@@ -267,6 +280,60 @@ void parse_factors(YamlSection& top, ExperimentSpec& spec) {
   }
 }
 
+// The mark (0-based line and column, in bytes) of byte `offset` of `text`.
+YAML::Mark mark_at(const std::string& text, size_t offset) {
+  YAML::Mark m;
+  m.pos = static_cast<int>(offset);
+  for (size_t i = 0; i < offset; ++i) {
+    if (text[i] == '\n') {
+      ++m.line;
+      m.column = 0;
+    } else {
+      ++m.column;
+    }
+  }
+  return m;
+}
+
+// Byte offset of a `---` line that starts a second YAML document, or npos. At column 0 `---` is always a
+// document marker (top-level block scalars are indented); a first marker before any content is allowed.
+// (A text scan: yaml-cpp's LoadAll misbehaved on the loader's mangled-spec test input.)
+size_t second_document_start(const std::string& text) {
+  bool content = false;
+  for (size_t line = 0; line < text.size();) {
+    const size_t end = std::min(text.find('\n', line), text.size());
+    const std::string_view l(text.data() + line, end - line);
+    const bool marker =
+        l.substr(0, 3) == "---" && (l.size() == 3 || l[3] == ' ' || l[3] == '\t' || l[3] == '\r');
+    if (marker && content) return line;
+    const size_t first = l.find_first_not_of(" \t\r");
+    if (!marker && first != std::string_view::npos && l[first] != '#' && l[first] != '%') content = true;
+    line = end + 1;
+  }
+  return std::string::npos;
+}
+
+// A spec is UTF-8 text (a UTF-8 byte-order mark is allowed). UTF-16 and Latin-1 files would otherwise be
+// misread or accepted with garbled names.
+void check_encoding(SpecDiagnostics& diag, const std::string& text) {
+  const auto starts_with = [&](const char* bom) { return text.rfind(bom, 0) == 0; };
+  if (starts_with("\xFF\xFE") || starts_with("\xFE\xFF")) {
+    diag.error(mark_at(text, 0), "",
+               "the file is UTF-16 (it starts with a UTF-16 byte-order mark); save it as UTF-8");
+    return;
+  }
+  if (const size_t nul = text.find('\0'); nul != std::string::npos) {
+    diag.error(mark_at(text, nul), "", "a NUL byte: the file is binary or UTF-16, not UTF-8 text");
+    return;
+  }
+  if (const size_t bad = first_invalid_utf8_byte(text); bad != std::string::npos) {
+    char code[8];
+    std::snprintf(code, sizeof code, "0x%02X", static_cast<unsigned>(static_cast<unsigned char>(text[bad])));
+    diag.error(mark_at(text, bad), "",
+               std::string("byte ") + code + " is not valid UTF-8; save the file as UTF-8");
+  }
+}
+
 // Checks that need several sections at once.
 void check_consistency(YamlSection& top, ExperimentSpec& spec) {
   SpecDiagnostics& diag = top.diagnostics();
@@ -291,6 +358,45 @@ void check_consistency(YamlSection& top, ExperimentSpec& spec) {
   }
 }
 
+// The largest crowd any condition shows: the characters factor, else density x area (area scenarios),
+// else scenario.agents. 0 when the spec does not say (pair crossings, derived flows).
+double largest_crowd(const ExperimentSpec& spec) {
+  double most = spec.scenario.agents;
+  if (const Factor* characters = spec.factor("characters"))
+    for (const FactorLevel& l : characters->levels) most = std::max(most, l.number.value_or(0.0));
+  const bool area_scenario = spec.scenario.type == "stationary" || spec.scenario.type == "corridor";
+  if (const Factor* density = spec.factor("density"); density && area_scenario && !spec.factor("characters"))
+    for (const FactorLevel& l : density->levels)
+      most =
+          std::max(most, std::round(l.number.value_or(0.0) * spec.scenario.width_m * spec.scenario.depth_m));
+  return most;
+}
+
+// Estimates of the work a spec asks for, refused beyond the documented limits (load_experiment_spec.hpp).
+void check_work_limits(YamlSection& top, const ExperimentSpec& spec) {
+  SpecDiagnostics& diag = top.diagnostics();
+  const auto at = [&](const std::string& key) { return top.has(key) ? top.get(key) : top.node(); };
+  double conditions = spec.repetitions;
+  for (const Factor& f : spec.factors) conditions *= static_cast<double>(f.levels.size());
+  if (conditions > kMaxConditions)
+    diag.error(at("factors"), "factors",
+               "the factor levels x " + std::to_string(spec.repetitions) + " repetitions make " +
+                   format_number(conditions) + " conditions, more than the limit of " +
+                   format_number(kMaxConditions) + "; split the study into several specs");
+  const double characters = largest_crowd(spec);
+  if (characters > kMaxCharactersPerCrowd)
+    diag.error(at("factors"), "factors",
+               "the largest crowd has " + format_number(characters) + " characters, more than the limit of " +
+                   format_number(kMaxCharactersPerCrowd) + " (density x area, or the characters factor)");
+  const double frames = std::ceil(spec.duration_s * spec.fps);
+  if (characters <= kMaxCharactersPerCrowd && characters * frames > kMaxCharacterFrames)
+    diag.error(at("duration_s"), "duration_s",
+               format_number(characters) + " characters x " + format_number(frames) +
+                   " frames (duration_s x fps) = " + format_number(characters * frames) +
+                   " character-frames, more than the limit of " + format_number(kMaxCharacterFrames) +
+                   "; shorten the clip or lower fps");
+}
+
 }  // namespace
 
 SpecError::SpecError(std::vector<std::string> messages)
@@ -299,13 +405,21 @@ SpecError::SpecError(std::vector<std::string> messages)
 ExperimentSpec load_experiment_spec_text(const std::string& yaml_text, const std::string& source_name,
                                          const std::string& base_dir) {
   SpecDiagnostics diag{source_name, base_dir, {}, {}};
+  check_encoding(diag, yaml_text);
+  if (!diag.messages.empty()) throw SpecError(diag.sorted_messages());
   YAML::Node root;
   try {
-    root = YAML::Load(yaml_text);
+    // A UTF-8 byte-order mark (some Windows editors write one) is not part of the first key.
+    const bool bom = yaml_text.rfind("\xEF\xBB\xBF", 0) == 0;
+    root = YAML::Load(bom ? yaml_text.substr(3) : yaml_text);
+    if (const size_t second = second_document_start(yaml_text); second != std::string::npos)
+      diag.error(
+          mark_at(yaml_text, second), "",
+          "a second YAML document starts here; a spec is one document (only the first was read before)");
   } catch (const YAML::Exception& e) {
     diag.error(e.mark, "", "YAML syntax error: " + e.msg);
-    throw SpecError(diag.sorted_messages());
   }
+  if (!diag.messages.empty()) throw SpecError(diag.sorted_messages());
   ExperimentSpec spec;
   spec.source_path = source_name;
   spec.source_hash = sha256_hex(yaml_text);
@@ -322,6 +436,9 @@ ExperimentSpec load_experiment_spec_text(const std::string& yaml_text, const std
   top.integer("crowdlab", spec.format_version, kFormatVersion, kFormatVersion);
   if (top.require("name")) top.string("name", spec.name);
   if (top.has("name") && spec.name.empty()) diag.error(top.get("name"), "name", "must not be empty");
+  if (const std::string bad = describe_control_character(spec.name); !bad.empty())
+    diag.error(top.get("name"), "name",
+               "holds " + bad + "; a name is printed in terminals and written into job scripts");
   top.string("description", spec.description);
   top.seed("seed", spec.seed);
   parse_scenario(top.section("scenario"), spec);
@@ -337,6 +454,7 @@ ExperimentSpec load_experiment_spec_text(const std::string& yaml_text, const std
   parse_protocol(top.section("protocol"), spec);
   parse_outputs(top.section("outputs"), spec);
   check_consistency(top, spec);
+  check_work_limits(top, spec);
   if (!diag.messages.empty()) throw SpecError(diag.sorted_messages());
   return spec;
 }

@@ -22,7 +22,7 @@ class SpecError : public InputError {
 
 /// Parses and validates the YAML file at `path`: every key known, every type and range checked,
 /// referenced files (clips, meshes, body model) resolved relative to the spec's folder and checked to
-/// exist. Throws SpecError listing all problems.
+/// exist, and work within the limits of docs/spec-reference.md. Throws SpecError listing all problems.
 ExperimentSpec load_experiment_spec(const std::string& path);
 
 /// The same from YAML text; `source_name` is used in messages, `base_dir` resolves relative files.

@@ -3,7 +3,8 @@
 #include <tiny_gltf.h>
 
 #include <cmath>
-#include <functional>
+#include <utility>
+#include <vector>
 
 #include "framework/core/error.hpp"
 #include "framework/io/gltf_accessor_reader.hpp"
@@ -95,17 +96,24 @@ SurfaceMesh load_gltf_surface(const std::string& path, double scale) {
       }
     }
   };
-  std::vector<int> depth_guard(model.nodes.size(), 0);
-  const std::function<void(int, const Eigen::Matrix4d&)> visit = [&](int node,
-                                                                     const Eigen::Matrix4d& parent) {
-    if (node < 0 || node >= static_cast<int>(model.nodes.size()))
-      reader.fail("nodes", "node index " + std::to_string(node) + " out of range");
-    if (depth_guard[static_cast<size_t>(node)]++)
-      reader.fail("nodes", "node " + std::to_string(node) + " is visited twice (cycle or shared child)");
-    const tinygltf::Node& n = model.nodes[static_cast<size_t>(node)];
-    const Eigen::Matrix4d world = parent * gltf_node_matrix(n);
-    if (n.mesh >= 0) add_mesh(n.mesh, world);
-    for (int child : n.children) visit(child, world);
+  // Depth-first, children in file order, with an explicit stack: a parent->child chain of any length
+  // (100,000 nodes in a fuzzed file) must not recurse on the call stack.
+  std::vector<int> visits(model.nodes.size(), 0);
+  const auto visit = [&](int root, const Eigen::Matrix4d& root_parent) {
+    std::vector<std::pair<int, Eigen::Matrix4d>> pending{{root, root_parent}};
+    while (!pending.empty()) {
+      const auto [node, parent] = pending.back();
+      pending.pop_back();
+      if (node < 0 || node >= static_cast<int>(model.nodes.size()))
+        reader.fail("nodes", "node index " + std::to_string(node) + " out of range");
+      if (visits[static_cast<size_t>(node)]++)
+        reader.fail("nodes", "node " + std::to_string(node) + " is visited twice (cycle or shared child)");
+      const tinygltf::Node& n = model.nodes[static_cast<size_t>(node)];
+      const Eigen::Matrix4d world = parent * gltf_node_matrix(n);
+      if (n.mesh >= 0) add_mesh(n.mesh, world);
+      for (auto child = n.children.rbegin(); child != n.children.rend(); ++child)
+        pending.emplace_back(*child, world);
+    }
   };
   if (!model.scenes.empty()) {
     const int scene = model.defaultScene >= 0 && model.defaultScene < static_cast<int>(model.scenes.size())

@@ -94,6 +94,12 @@ TEST_CASE("analysis: bad CSVs give exit code 2 and name the row and column", "[a
   CHECK(unbalanced.exit_code == 2);
   CHECK(unbalanced.err.find("subject '2'") != std::string::npos);
   CHECK(unbalanced.err.find("A=b") != std::string::npos);
+  // A factor named twice is said to be so, not reported as an unbalanced design (issue 21).
+  const auto twice =
+      run_cli({"analyze", "anova", "--csv", write("e.csv", header + "1,a,1\n1,b,2\n2,a,3\n2,b,1\n"), "--dv",
+               "y", "--subject", "subj", "--within", "A,A"});
+  CHECK(twice.exit_code == 2);
+  CHECK(twice.err.find("'A' is named twice") != std::string::npos);
   const auto bad_response =
       run_cli({"analyze", "psychometric", "--csv", write("d.csv", "s,x,r\n1,0.2,1\n1,0.3,2\n"), "--subject",
                "s", "--x", "x", "--response", "r"});

@@ -336,3 +336,43 @@ TEST_CASE("stationary crowd dancing from a BVH clip: in place, varied start time
   ctx.scenario_type = "corridor";
   CHECK_THROWS_AS(animate_crowd(t, Environment{}, spec, ctx), InputError);
 }
+
+TEST_CASE("BVH: hostile headers are refused before any work (issue 21)") {
+  // 30,000 nested JOINTs overflowed the recursive parser's stack (SIGSEGV): the depth is bounded.
+  std::string deep = "HIERARCHY\nROOT j0\n{\nOFFSET 0 0 0\nCHANNELS 0\n";
+  for (int i = 1; i < 30000; ++i) deep += "JOINT j" + std::to_string(i) + "\n{\nOFFSET 0 1 0\nCHANNELS 0\n";
+  for (int i = 0; i < 30000; ++i) deep += "}\n";
+  deep += "MOTION\nFrames: 1\nFrame Time: 0.1\n";
+  const std::string message = expect_error(deep);
+  CHECK_THAT(message, Catch::Contains("bad.bvh:") && Catch::Contains("nest more than 256 levels"));
+  // The bound itself is accepted.
+  std::string ok = "HIERARCHY\nROOT j0\n{\nOFFSET 0 0 0\nCHANNELS 0\n";
+  for (int i = 1; i < kMaxBvhJointDepth; ++i)
+    ok += "JOINT j" + std::to_string(i) + "\n{\nOFFSET 0 1 0\nCHANNELS 0\n";
+  for (int i = 0; i < kMaxBvhJointDepth; ++i) ok += "}\n";
+  CHECK(parse_bvh(ok + "MOTION\nFrames: 0\nFrame Time: 0.1\n", "ok.bvh").joints.size() ==
+        static_cast<size_t>(kMaxBvhJointDepth));
+
+  const std::string good = kTwoJoint;
+  auto replace = [&](const std::string& from, const std::string& to) {
+    std::string s = good;
+    s.replace(s.find(from), from.size(), to);
+    return s;
+  };
+  // A header claiming 1e8 frames on a 2-frame file: the truncation is reported, and nothing near
+  // 1e8 x 9 doubles (7.2 GB) is allocated on the way (an ASan/UBSan run would abort on that).
+  CHECK_THAT(expect_error(replace("Frames: 2", "Frames: 100000000")),
+             Catch::Contains("bad.bvh:") && Catch::Contains("truncated MOTION section"));
+  // 1000 six-channel joints x 1e8 frames would be 4.8 TB: allocating from the header threw bad_alloc.
+  std::string wide =
+      "HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition "
+      "Zrotation Xrotation Yrotation\n";
+  for (int i = 1; i < 1000; ++i)
+    wide += "JOINT j" + std::to_string(i) +
+            "\n{\nOFFSET 0 1 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n}\n";
+  CHECK_THAT(expect_error(wide + "}\nMOTION\nFrames: 100000000\nFrame Time: 0.1\n0 0 0\n"),
+             Catch::Contains("bad.bvh:") && Catch::Contains("truncated MOTION section"));
+  CHECK_THAT(expect_error(replace("Frame Time: 0.04", "Frame Time: 1e-9")),
+             Catch::Contains("bad.bvh:18:") && Catch::Contains("Frame Time: must be between 0.0001 and 10"));
+  CHECK_THAT(expect_error(replace("Frame Time: 0.04", "Frame Time: 3600")), Catch::Contains("bad.bvh:18:"));
+}

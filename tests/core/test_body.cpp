@@ -89,11 +89,13 @@ TEST_CASE("forward kinematics: rotations compose and round-trip through bone tra
     Pose p;
     p.root_position_m = Vec3(standard_normal(rng), 1.0, standard_normal(rng));
     for (auto& q : p.local_rotations)
-      q = Quat(standard_normal(rng), standard_normal(rng), standard_normal(rng), standard_normal(rng)).normalized();
+      q = Quat(standard_normal(rng), standard_normal(rng), standard_normal(rng), standard_normal(rng))
+              .normalized();
     const Pose back = pose_from_bone_transforms(forward_kinematics(s, p));
     CHECK((back.root_position_m - p.root_position_m).norm() < 1e-12);
     for (int j = 0; j < kJointCount; ++j)
-      CHECK(back.local_rotations[static_cast<size_t>(j)].angularDistance(p.local_rotations[static_cast<size_t>(j)]) < 1e-9);
+      CHECK(back.local_rotations[static_cast<size_t>(j)].angularDistance(
+                p.local_rotations[static_cast<size_t>(j)]) < 1e-9);
   }
   // Bending the left elbow by 90 degrees about -Y moves the wrist forward (+Z) by the forearm length.
   Pose bent = Pose::rest(s);
@@ -114,6 +116,27 @@ TEST_CASE("bad bodies and poses are rejected with the joint named") {
   CHECK_THROWS_WITH(validate_pose(p, "test"), Catch::Contains("left_knee"));
   s.joint_offsets_m[kRightElbow].setZero();
   CHECK_THROWS_WITH(validate_body_shape(s, "test"), Catch::Contains("right_elbow"));
+}
+
+TEST_CASE("implausible bodies from files are refused before the corrector samples them (issue 21)") {
+  // Joint offsets of 1e300 or 65535 m, or a capsule radius of 1e6 m, kept `correct` voxelising the body
+  // for minutes (at 1e300 its x += 0.025 never advanced).
+  const BodyShape good = make_procedural_body({Sex::kFemale, 1.9, 1.3});
+  CHECK_NOTHROW(validate_body_shape(good, "test"));
+  BodyShape s = good;
+  s.joint_offsets_m[kLeftWrist] = Vec3(1e300, 0, 0);
+  CHECK_THROWS_WITH(validate_body_shape(s, "crowd.glb"),
+                    Catch::Contains("crowd.glb") && Catch::Contains("rest-pose body spans"));
+  s = good;
+  s.joint_offsets_m[kRightElbow] = Vec3(0, 65535, 0);
+  CHECK_THROWS_WITH(validate_body_shape(s, "crowd.glb"), Catch::Contains("limit of 4 m"));
+  s = good;
+  s.capsules[kPelvis].radius_m = 1e6;
+  CHECK_THROWS_WITH(validate_body_shape(s, "crowd.glb"),
+                    Catch::Contains("pelvis") && Catch::Contains("capsule radius"));
+  Pose far = Pose::rest(good);
+  far.root_position_m = Vec3(1e300, 0, 0);
+  CHECK_THROWS_WITH(validate_pose(far, "frame 3"), Catch::Contains("frame 3") && Catch::Contains("100 km"));
 }
 
 TEST_CASE("derived seeds are stable and independent of derivation order") {

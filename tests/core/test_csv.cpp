@@ -26,10 +26,18 @@ TEST_CASE("csv errors name file, line and column") {
   CHECK_THROWS_AS(parse_csv("a\n\"open\n", "z.csv"), InputError);
 }
 
+TEST_CASE("csv: a UTF-8 byte-order mark is not part of the first column's name (issue 21)") {
+  // Excel's "CSV UTF-8" starts with EF BB BF; the first column was then "\xEF\xBB\xBFsubject".
+  const CsvTable t = parse_csv("\xEF\xBB\xBFsubject,y\n1,2\n", "bom.csv");
+  CHECK(t.column("subject") == 0);
+  CHECK(t.number(0, 1) == 2.0);
+}
+
 TEST_CASE("sha256 known answers") {
   CHECK(sha256_hex("") == "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
   CHECK(sha256_hex("abc") == "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
-  CHECK(sha256_hex(std::string(1000, 'a')) == "41edece42d63e8d9bf515a9ba6932e1c20cbc9f5a5d134645adb5db1b9737ea3");
+  CHECK(sha256_hex(std::string(1000, 'a')) ==
+        "41edece42d63e8d9bf515a9ba6932e1c20cbc9f5a5d134645adb5db1b9737ea3");
 }
 
 TEST_CASE("stimulus manifest round-trips") {

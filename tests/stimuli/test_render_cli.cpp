@@ -45,4 +45,9 @@ TEST_CASE(
   const auto missing =
       test::run_cli({"-q", "render", (dir / "nope.glb").string(), "--out", (dir / "m.mp4").string()});
   CHECK(missing.exit_code == 2);
+  // An unknown x264 preset is bad input (exit 2, named), not an encoder failure (exit 1; issue 21).
+  const auto preset = test::run_cli({"-q", "render", glb, "--out", (dir / "p.mp4").string(), "--width", "160",
+                                     "--height", "96", "--preset", "bogus"});
+  CHECK(preset.exit_code == 2);
+  CHECK(preset.err.find("unknown x264 preset 'bogus'") != std::string::npos);
 }

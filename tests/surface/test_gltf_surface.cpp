@@ -176,3 +176,19 @@ TEST_CASE("bad glTF meshes give clear errors naming the file") {
   fails_with(orphan, "cannot read glTF");
   fails_with(dir / "does_not_exist.gltf", "no such file");
 }
+
+TEST_CASE("glTF surface: a 100,000-node parent->child chain loads without recursing (issue 21)") {
+  // The fuzzer's file: every node the only child of the one before, the mesh on the last. A recursive
+  // node visit overflowed the stack (SIGSEGV); the visit now keeps its own stack.
+  const fs::path file = write_gltf("chain", kSquare, kSquareTris);
+  std::string json = test::slurp(file);
+  constexpr int kNodes = 100000;
+  std::string nodes = R"("nodes":[)";
+  for (int i = 0; i + 1 < kNodes; ++i) nodes += R"({"children":[)" + std::to_string(i + 1) + "]},";
+  nodes += R"({"mesh":0,"translation":[2,0,3]}],)";
+  const std::string from = R"("nodes":[{"mesh":0}],)";
+  REQUIRE(json.find(from) != std::string::npos);
+  json.replace(json.find(from), from.size(), nodes);
+  std::ofstream(file) << json;
+  check_square(load_gltf_surface(file.string()), Vec3(2, 0, 3), 1);
+}

@@ -4,8 +4,10 @@
 #include <unistd.h>
 
 #include <Eigen/Core>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <opencv2/core/version.hpp>
@@ -37,19 +39,27 @@ static fs::path sidecar(const fs::path& output) {
   return fs::path(output.string() + ".prov.json");
 }
 
-std::string recorded_hash(const fs::path& output) {
+/// The sidecar of `output` as JSON (null when missing or torn: killed mid-write means "not up to date").
+static nlohmann::json read_sidecar(const fs::path& output) {
   std::ifstream in(sidecar(output));
-  if (!in) return "";
+  if (!in) return nullptr;
   try {
-    const nlohmann::json j = nlohmann::json::parse(in);
-    return j.value("input_hash", "");
+    return nlohmann::json::parse(in);
   } catch (const nlohmann::json::exception&) {
-    return "";  // a torn sidecar (killed mid-write) means "not up to date": the stage re-runs
+    return nullptr;
   }
 }
 
+std::string recorded_hash(const fs::path& output) {
+  const nlohmann::json j = read_sidecar(output);
+  return j.is_object() ? j.value("input_hash", "") : "";
+}
+
 bool output_up_to_date(const fs::path& output, const std::string& input_hash) {
-  return fs::exists(output) && recorded_hash(output) == input_hash;
+  if (!fs::exists(output)) return false;
+  const nlohmann::json j = read_sidecar(output);
+  return j.is_object() && j.value("input_hash", "") == input_hash &&
+         j.value("output_sha256", "") == sha256_file_hex(output.string());
 }
 
 nlohmann::json library_versions() {
@@ -63,27 +73,49 @@ nlohmann::json library_versions() {
   return j;
 }
 
-void write_file_atomic(const fs::path& path, const std::string& contents) {
+/// fsync(2) on an existing file, so that the rename that follows never publishes unwritten data.
+static void sync_file(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw RuntimeError(path.string() + ": cannot open to sync: " + std::strerror(errno));
+  const int rc = ::fsync(fd);
+  const int error = errno;
+  ::close(fd);
+  if (rc != 0) throw RuntimeError(path.string() + ": fsync failed: " + std::strerror(error));
+}
+
+void write_output_via_temporary(const fs::path& output, const std::function<void(const fs::path&)>& write) {
   // Per-process temporary name: shards running at once may write the same file (e.g. spec.yaml).
-  const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
-  {
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd < 0) throw RuntimeError(tmp.string() + ": cannot write");
+  const fs::path tmp = output.parent_path() / (output.stem().string() + ".tmp." + std::to_string(::getpid()) +
+                                               output.extension().string());
+  try {
+    write(tmp);
+    sync_file(tmp);
+    fs::rename(tmp, output);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw;
+  }
+}
+
+void write_file_atomic(const fs::path& path, const std::string& contents) {
+  write_output_via_temporary(path, [&](const fs::path& tmp) {
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) throw RuntimeError(tmp.string() + ": cannot write: " + std::strerror(errno));
     const char* p = contents.data();
     size_t left = contents.size();
     while (left > 0) {
       const ssize_t n = ::write(fd, p, left);
       if (n <= 0) {
+        const int error = n < 0 ? errno : ENOSPC;
         ::close(fd);
-        throw RuntimeError(tmp.string() + ": write failed");
+        throw RuntimeError(tmp.string() + ": write failed: " + std::strerror(error));
       }
       p += n;
       left -= static_cast<size_t>(n);
     }
-    ::fsync(fd);
     ::close(fd);
-  }
-  fs::rename(tmp, path);
+  });
 }
 
 void record_provenance(const fs::path& output, const std::string& stage, const std::string& input_hash,
@@ -92,6 +124,7 @@ void record_provenance(const fs::path& output, const std::string& stage, const s
   j["stage"] = stage;
   j["output"] = output.filename().string();
   j["input_hash"] = input_hash;
+  j["output_sha256"] = sha256_file_hex(output.string());
   j["crowdlab_version"] = CROWDLAB_VERSION;
   j["spec_hash"] = context.spec_hash;
   j["seed"] = context.seed;

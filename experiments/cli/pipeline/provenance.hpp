@@ -2,13 +2,20 @@
 // Provenance and incremental re-runs for `crowdlab run`.
 //
 // Every output file OUT gets a sidecar OUT.prov.json recording what made it:
-//   {"stage", "input_hash", "crowdlab_version", "spec_hash", "seed", "libraries", "created_utc"}
+//   {"stage", "input_hash", "output_sha256", "crowdlab_version", "spec_hash", "seed", "libraries",
+//    "created_utc"}
 // A stage's input_hash is the SHA-256 of its parameters (canonical JSON), the hashes of its upstream
-// outputs and the crowdlab version. A stage re-runs only when its output is missing or its recorded
-// input_hash differs, like a build system. Sidecars are per file, so shards running in parallel never
-// write the same file; `run --collect` merges them into DIR/provenance.json.
+// outputs and the crowdlab version. A stage re-runs only when its output is missing, its recorded
+// input_hash differs (like a build system), or the output's SHA-256 differs from the recorded
+// output_sha256 (a truncated or altered file, issue 21; sidecars without the field are redone once).
+// Integrity: every output is written to a temporary name in its folder and renamed into place only when
+// complete (write_output_via_temporary), and its sidecar is written after it, so a run killed at any
+// point leaves either the old output with its old sidecar, or a new output whose hash no sidecar
+// vouches for: both are redone or kept correctly by the next run. Sidecars are per file, so shards running in
+// parallel never write the same file; `run --collect` merges them into DIR/provenance.json.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -23,10 +30,11 @@ struct ProvenanceContext {
 std::string stage_input_hash(const std::string& stage, const nlohmann::json& params,
                              const std::vector<std::string>& upstream_hashes);
 
-/// True when `output` exists and its sidecar records exactly `input_hash`.
+/// True when `output` exists, its sidecar records exactly `input_hash`, and the file's SHA-256 is the
+/// sidecar's output_sha256.
 bool output_up_to_date(const std::filesystem::path& output, const std::string& input_hash);
 
-/// Writes `output`.prov.json after `output` has been written completely.
+/// Writes `output`.prov.json (with the SHA-256 of `output`) after `output` has been written completely.
 void record_provenance(const std::filesystem::path& output, const std::string& stage,
                        const std::string& input_hash, const ProvenanceContext& context);
 
@@ -36,7 +44,14 @@ std::string recorded_hash(const std::filesystem::path& output);
 /// Versions of the libraries crowdlab was built against (Eigen, yaml-cpp, libav*, OpenCV, ...).
 nlohmann::json library_versions();
 
-/// Writes a file atomically: to a temporary name in the same folder, fsync, then rename.
+/// Makes `output` atomically: `write(tmp)` writes the complete file at `tmp` (same folder, name
+/// "<stem>.tmp.<pid><extension>", so writers that choose a format by extension still work); it is then
+/// fsync'd and renamed over `output`. When `write` throws, the temporary is removed and the exception
+/// passes on; `output` is never seen half-written.
+void write_output_via_temporary(const std::filesystem::path& output,
+                                const std::function<void(const std::filesystem::path& tmp)>& write);
+
+/// Writes a file atomically (write_output_via_temporary); errors name the file and the system's reason.
 void write_file_atomic(const std::filesystem::path& path, const std::string& contents);
 
 }  // namespace crowdlab::cli

@@ -202,7 +202,7 @@ class Runner {
       return *g.baseline;
     }
     CrowdAnimation crowd = animate_scenario(spec_, g.crowd_condition, g.key, scenario(g), g.surface);
-    write_crowd_glb(crowd, out.string());
+    write_output_via_temporary(out, [&](const fs::path& tmp) { write_crowd_glb(crowd, tmp.string()); });
     record_provenance(out, "animation", g.baseline_hash, context_);
     g.baseline = std::move(crowd);
     return *g.baseline;
@@ -227,7 +227,7 @@ class Runner {
     if (report.rejected_steps > 0)
       spdlog::warn("{}: the corrector rejected {} of {} steps and kept the last stable state", g.key,
                    report.rejected_steps, report.frames);
-    write_crowd_glb(out_crowd, out.string());
+    write_output_via_temporary(out, [&](const fs::path& tmp) { write_crowd_glb(out_crowd, tmp.string()); });
     record_provenance(out, "correction", g.ours_hash, context_);
     g.ours = std::move(out_crowd);
     return *g.ours;
@@ -315,7 +315,8 @@ class Runner {
                                                           {"spec", spec_.source_hash}},
                                                      {anim_hash});
     if (!up_to_date(clip, render_hash)) {
-      render_clip(renderer(), crowd, ro, viewpoint, clip.string());
+      write_output_via_temporary(
+          clip, [&](const fs::path& tmp) { render_clip(renderer(), crowd, ro, viewpoint, tmp.string()); });
       record_provenance(clip, "render", render_hash, context_);
     }
     if (spec_.outputs.contact_sheet) {
@@ -323,7 +324,9 @@ class Runner {
       const std::string sheet_hash =
           stage_input_hash("contact_sheet", json{{"w", ro.width}, {"h", ro.height}}, {anim_hash});
       if (!up_to_date(sheet, sheet_hash)) {
-        write_contact_sheet(renderer(), crowd, ro, crowd.frame_count() / 2, sheet.string());
+        write_output_via_temporary(sheet, [&](const fs::path& tmp) {
+          write_contact_sheet(renderer(), crowd, ro, crowd.frame_count() / 2, tmp.string());
+        });
         record_provenance(sheet, "contact_sheet", sheet_hash, context_);
       }
     }

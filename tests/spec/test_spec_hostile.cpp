@@ -1,0 +1,103 @@
+// Bad specs found by fuzzing (issue 21): work estimated and refused before anything is enumerated,
+// control characters in `name`, and text that is not one UTF-8 YAML document.
+#include <catch2/catch.hpp>
+#include <chrono>
+
+#include "framework/spec/load_experiment_spec.hpp"
+#include "tests/support/run_cli.hpp"
+
+using namespace crowdlab;
+
+namespace {
+
+std::string errors_of(const std::string& text) {
+  try {
+    load_experiment_spec_text(text, "t.yaml", ".");
+  } catch (const SpecError& e) {
+    std::string all;
+    for (const std::string& m : e.messages()) all += m + "\n";
+    return all;
+  }
+  return "";
+}
+
+const std::string kHeader = "crowdlab: 1\nname: t\nseed: 5\n";
+const std::string kLikert =
+    "protocol:\n  type: likert\n  scale: {points: 6, labels: [a, b]}\n  questions: [{id: Q1, text: x}]\n"
+    "outputs: {video: false, contact_sheet: false}\n";
+
+std::string levels(int n, double first) {
+  std::string s = "[";
+  for (int i = 0; i < n; ++i) s += (i ? ", " : "") + std::to_string(first + 0.01 * i);
+  return s + "]";
+}
+
+}  // namespace
+
+TEST_CASE("spec: factor levels that multiply out to millions of conditions are refused at once") {
+  // 40 x 40 x 3 x 2 x 1000 repetitions = 9.6 million conditions (validate used 7 GB and 20 s on this).
+  const std::string text = kHeader + "scenario: {type: stationary, area: {width_m: 3, depth_m: 3}}\n" +
+                           "factors:\n  density: " + levels(40, 1.0) + "\n  distance: " + levels(40, 0.2) +
+                           "\n  trigger: [0, 50, 100]\n  method: [baseline, ours]\nrepetitions: 1000\n" +
+                           kLikert;
+  const auto start = std::chrono::steady_clock::now();
+  const std::string errors = errors_of(text);
+  CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(2));
+  CHECK_THAT(errors, Catch::Contains("t.yaml:") && Catch::Contains("factors") &&
+                         Catch::Contains("9600000 conditions") && Catch::Contains("limit of 10000"));
+}
+
+TEST_CASE("spec: a crowd or a clip beyond the work limits is refused with the estimate") {
+  // density 10 on 1000 x 1000 m: ten million characters (the crowd stage hung on this).
+  std::string errors =
+      errors_of(kHeader + "scenario: {type: stationary, area: {width_m: 1000, depth_m: 1000}}\n" +
+                "factors:\n  density: [9.9]\n" + kLikert);
+  CHECK_THAT(errors, Catch::Contains("t.yaml:") && Catch::Contains("9900000 characters") &&
+                         Catch::Contains("limit of 10000"));
+  // 3600 s at 240 fps with 20 characters: 17 million character-frames (7.2 GB when run).
+  errors = errors_of(kHeader + "scenario: {type: stationary, area: {width_m: 2, depth_m: 2}}\n" +
+                     "factors:\n  density: [5]\nduration_s: 3600\nfps: 240\n" + kLikert);
+  CHECK_THAT(errors, Catch::Contains("t.yaml:") && Catch::Contains("duration_s") &&
+                         Catch::Contains("17280000 character-frames") && Catch::Contains("limit of 2000000"));
+  // The papers' specs stay well inside the limits.
+  for (const char* spec : {"gomez2024_stationary", "gomez2024_nonstationary", "hoyet2016_crowds",
+                           "hoyet2016_pairs", "demo", "manifold_demo"}) {
+    INFO(spec);
+    CHECK_NOTHROW(
+        load_experiment_spec((test::source_dir() / "experiments" / (std::string(spec) + ".yaml")).string()));
+  }
+}
+
+TEST_CASE("bench crowd refuses an agent count beyond its limit with exit 2") {
+  const test::CliResult r = test::run_cli({"bench", "crowd", "--agents", "1000000000", "--steps", "1"});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("--agents") && Catch::Contains("100000"));
+}
+
+TEST_CASE("spec: UTF-16, invalid UTF-8, several documents and control characters are refused") {
+  const std::string valid = kHeader + "factors:\n  density: [2]\n" + kLikert;
+  CHECK(errors_of(valid).empty());
+  // UTF-16 LE with its byte-order mark, as some Windows editors save.
+  std::string utf16 = "\xFF\xFE";
+  for (char c : valid) utf16 += std::string(1, c) + '\0';
+  CHECK_THAT(errors_of(utf16), Catch::Contains("t.yaml:1:1:") && Catch::Contains("UTF-16"));
+  CHECK_THAT(errors_of(utf16.substr(2)), Catch::Contains("t.yaml:1:2:") && Catch::Contains("NUL byte"));
+  // Latin-1 "é" in the name (line 2, column 8).
+  std::string latin1 = valid;
+  latin1.replace(latin1.find("name: t"), 7, "name: t\xE9");
+  CHECK_THAT(errors_of(latin1), Catch::Contains("t.yaml:2:8:") && Catch::Contains("0xE9 is not valid UTF-8"));
+  // Well-formed UTF-8 (and a UTF-8 byte-order mark) is fine.
+  std::string utf8 = valid;
+  utf8.replace(utf8.find("name: t"), 7, "name: t\xC3\xA9\xE2\x82\xAC");
+  CHECK(errors_of(utf8).empty());
+  CHECK(errors_of("\xEF\xBB\xBF" + valid).empty());
+  // Only the first of several documents was used, silently.
+  CHECK_THAT(errors_of(valid + "---\nname: second\n"),
+             Catch::Contains("t.yaml:11:1:") && Catch::Contains("second YAML document"));
+  CHECK(errors_of("---\n" + valid).empty());  // a leading marker is one document
+  // ESC (ANSI colour codes) or a newline in the name.
+  std::string ansi = valid;
+  ansi.replace(ansi.find("name: t"), 7, "name: \"a\\e[2Jb\"");
+  CHECK_THAT(errors_of(ansi),
+             Catch::Contains("name") && Catch::Contains("control character (0x1b at byte 1)"));
+}
