@@ -102,7 +102,8 @@ TEST_CASE("framing rule: at V1-V4 the crowd's box is centred and fills 92 % of t
       CHECK(0.5 * (box.x0 + box.x1) == Approx(0.5 * w).margin(0.5));
       CHECK(0.5 * (box.y0 + box.y1) == Approx(0.5 * h).margin(0.5));
     }
-  // The bodies themselves (not only their box) fill most of the frame: >= 80 % of the width or height.
+  // The bodies themselves (not only their box, which adds 0.4 m around each body axis) fill most of the
+  // frame of a small 3 x 3 m crowd: >= 70 % of the width or height.
   const CrowdAnimation crowd = synthetic(16, 0.8, 2);
   const CrowdExtent extent = crowd_extent(character_tracks(crowd), 30.0);
   for (const char* name : {"V1", "V2", "V3", "V4"}) {
@@ -114,7 +115,7 @@ TEST_CASE("framing rule: at V1-V4 the crowd's box is centred and fills 92 % of t
       bodies.add({b.x0, b.y0});
       bodies.add({b.x1, b.y1});
     }
-    CHECK(std::max((bodies.x1 - bodies.x0) / w, (bodies.y1 - bodies.y0) / h) >= 0.8);
+    CHECK(std::max((bodies.x1 - bodies.x0) / w, (bodies.y1 - bodies.y0) / h) >= 0.7);
   }
 }
 
