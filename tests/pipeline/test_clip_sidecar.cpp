@@ -30,7 +30,7 @@ TEST_CASE("baseline and ours of a condition are rendered with the identical came
   INFO(r.out << r.err);
   REQUIRE(r.exit_code == 0);
   // The correction moved the bodies, so framing each crowd file on its own would differ.
-  const fs::path crowds = out / "crowds" / "density-3.5_rep-0";
+  const fs::path crowds = out / "crowds" / "density-3.5_rep-1";
   REQUIRE(sha256_file_hex((crowds / "baseline.glb").string()) !=
           sha256_file_hex((crowds / "ours.glb").string()));
 
