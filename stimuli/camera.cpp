@@ -20,6 +20,10 @@ Mat4 Camera::view() const {
   return m;
 }
 
+Vec3 Camera::up() const {
+  return view().block<1, 3>(1, 0).transpose();
+}
+
 Mat4 Camera::projection() const {
   const double t = 1.0 / std::tan(0.5 * fov_y_deg * std::numbers::pi / 180.0);
   const double aspect = static_cast<double>(width) / height;

@@ -17,6 +17,8 @@ struct Camera {
 
   /// World -> view (gluLookAt with +Y up; an up vector is chosen automatically for straight-down views).
   Mat4 view() const;
+  /// The image's up direction in the world (unit; the second row of view()).
+  Vec3 up() const;
   /// View -> clip (gluPerspective).
   Mat4 projection() const;
   /// Pixel coordinates (x right, y DOWN from the top-left corner, pixel centres at +0.5) of a world

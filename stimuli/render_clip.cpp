@@ -64,6 +64,15 @@ RenderResult render_clip(const CrowdAnimation& crowd, const RenderOptions& optio
 
 RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options,
                          const std::string& viewpoint, const std::string& out_mp4) {
+  const Viewpoint view(viewpoint, crowd, options.width, options.height, options.viewpoint_overrides);
+  return render_clip(renderer, crowd, options, view, out_mp4);
+}
+
+RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options,
+                         const Viewpoint& view, const std::string& out_mp4) {
+  const std::string& viewpoint = view.name();
+  if (view.at(0).width != options.width || view.at(0).height != options.height)
+    throw InputError("render: the viewpoint's image size differs from the render options'");
   const VideoSettings settings{options.width, options.height, crowd.meta.fps, options.crf,
                                options.x264_preset};
   validate_video_settings(settings);
@@ -75,7 +84,6 @@ RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const 
   const auto setup_start = Clock::now();
   prepare_renderer(renderer, crowd, options);
   result.setup_s = ms_since(setup_start) / 1000.0;
-  const Viewpoint view(viewpoint, crowd, options.width, options.height, options.viewpoint_overrides);
   if (!options.frames_png_dir.empty()) std::filesystem::create_directories(options.frames_png_dir);
   const int n =
       options.max_frames >= 0 ? std::min(options.max_frames, crowd.frame_count()) : crowd.frame_count();
@@ -200,12 +208,14 @@ BgrImage render_frame(Renderer& renderer, const CrowdAnimation& crowd, const Ren
 }
 
 void write_contact_sheet(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options,
-                         int frame, const std::string& out_png) {
+                         int frame, const std::string& out_png, const CrowdExtent* extent) {
   const int tile_w = options.width / 2, tile_h = options.height / 2;
   cv::Mat sheet(2 * tile_h, 2 * tile_w, CV_8UC3, cv::Scalar(0, 0, 0));
   const char* names[4] = {"V1", "V2", "V3", "V4"};
   for (int k = 0; k < 4; ++k) {
-    const Viewpoint view(names[k], crowd, options.width, options.height, options.viewpoint_overrides);
+    const Viewpoint view =
+        extent ? Viewpoint(names[k], *extent, options.width, options.height, options.viewpoint_overrides)
+               : Viewpoint(names[k], crowd, options.width, options.height, options.viewpoint_overrides);
     BgrImage img = render_frame(renderer, crowd, options, view.at(frame), frame);
     const cv::Mat full(img.height, img.width, CV_8UC3, img.bgr.data());
     cv::Mat tile;

@@ -49,14 +49,19 @@ void prepare_renderer(Renderer& renderer, const CrowdAnimation& crowd, const Ren
 /// below for many clips).
 RenderResult render_clip(const CrowdAnimation& crowd, const RenderOptions& options,
                          const std::string& viewpoint, const std::string& out_mp4);
-/// Renders with an existing Renderer (its context and mesh cache are reused across clips).
+/// Renders with an existing Renderer (its context and mesh cache are reused across clips), framed
+/// from the crowd's own motion (Viewpoint(viewpoint, crowd, ...)).
 RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options,
                          const std::string& viewpoint, const std::string& out_mp4);
+/// Renders from a given viewpoint, e.g. one framed from data several crowds share (crowd_extent.hpp);
+/// its image size must be options.width x options.height.
+RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options,
+                         const Viewpoint& view, const std::string& out_mp4);
 
 /// Renders frame `frame` from each of V1..V4 and tiles them 2x2 (each tile width/2 x height/2, labelled)
-/// into a PNG at `out_png` (OpenCV).
+/// into a PNG at `out_png` (OpenCV). Framed by `extent` when given, else by the crowd's own motion.
 void write_contact_sheet(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options,
-                         int frame, const std::string& out_png);
+                         int frame, const std::string& out_png, const CrowdExtent* extent = nullptr);
 
 /// Renders one frame to an 8-bit BGR image, top row first (for tests and quick looks); sets
 /// *red_fraction when non-null (overlap mode). Loads the crowd into the renderer on every call

@@ -386,10 +386,12 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
       hi = hi.cwiseMax(p.root_position_m + Vec3(1.0, 1.2, 1.0));
     }
   lo.y() = std::min(lo.y(), 0.0);
-  g.bounds_lo = lo;
-  g.bounds_hi = hi;
+  // Snapped outward to a 2 m grid: the shadow map and the ground follow these bounds, and the two methods
+  // of a condition (bodies a few centimetres apart) must get the same shadow map and ground.
+  g.bounds_lo = (2.0 * (0.5 * lo).array().floor()).matrix();
+  g.bounds_hi = (2.0 * (0.5 * hi).array().ceil()).matrix();
   destroy(g.ground);
-  const Vec3 c = 0.5 * (lo + hi);
+  const Vec3 c = 0.5 * (g.bounds_lo + g.bounds_hi);
   const float half = 150.0f, cx = static_cast<float>(c.x()), cz = static_cast<float>(c.z());
   std::vector<StaticVertex> quad = {{{cx - half, 0, cz - half}, {0, 1, 0}},
                                     {{cx - half, 0, cz + half}, {0, 1, 0}},

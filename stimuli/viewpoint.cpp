@@ -1,7 +1,7 @@
 #include "stimuli/viewpoint.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -11,87 +11,97 @@ namespace crowdlab::stimuli {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kBodyMarginM = 0.4;  // half a shoulder width plus arm reach around each root
-constexpr double kFrameFill = 0.92;   // 8 % margin inside the image
-
-struct Preset {
-  double azimuth_deg, elevation_deg, fov_deg;
-};
-
-struct CrowdFrame {
-  Vec3 lo, hi;                     ///< bounding box (metres)
-  Vec3 front = Vec3::UnitZ();      ///< unit, horizontal
-  Vec3 walk_axis = Vec3::UnitX();  ///< principal horizontal direction of root motion (unit)
-};
+constexpr double kFrameFill = 0.92;  // the binding image dimension keeps a 4 % margin on each side
 
 Vec3 horizontal(const Vec3& v) {
   return Vec3(v.x(), 0.0, v.z());
 }
 
-CrowdFrame crowd_frame(const CrowdAnimation& crowd) {
-  CrowdFrame cf;
-  cf.lo = Vec3::Constant(1e30);
-  cf.hi = Vec3::Constant(-1e30);
-  Vec3 forward_sum = Vec3::Zero();
-  double tallest = 0.0;
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const CharacterAnimation& c : crowd.characters) {
-    tallest = std::max(tallest, c.shape.params.height_m);
-    if (c.frames.empty()) continue;
-    const Vec3 first = c.frames.front().root_position_m;
-    for (const Pose& p : c.frames) {
-      cf.lo = cf.lo.cwiseMin(p.root_position_m);
-      cf.hi = cf.hi.cwiseMax(p.root_position_m);
-      forward_sum += horizontal(p.local_rotations[kPelvis] * Vec3::UnitZ());
-      const Eigen::Vector2d d(p.root_position_m.x() - first.x(), p.root_position_m.z() - first.z());
-      scatter += d * d.transpose();
-    }
-  }
-  if (cf.lo.x() > cf.hi.x()) throw InputError("viewpoint: the crowd has no frames to frame");
-  cf.lo = Vec3(cf.lo.x() - kBodyMarginM, 0.0, cf.lo.z() - kBodyMarginM);
-  cf.hi = Vec3(cf.hi.x() + kBodyMarginM, std::max(tallest, 1.0) + 0.05, cf.hi.z() + kBodyMarginM);
-  const double frames = static_cast<double>(crowd.frame_count() * crowd.characters.size());
-  if (frames > 0 && forward_sum.norm() / frames >= 0.25) cf.front = forward_sum.normalized();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
-  if (eig.info() == Eigen::Success && eig.eigenvalues()(1) > 1e-9) {
-    const Eigen::Vector2d a = eig.eigenvectors().col(1);
-    cf.walk_axis = Vec3(a.x(), 0.0, a.y()).normalized();
-  }
-  return cf;
+struct Preset {
+  double azimuth_deg, elevation_deg, fov_deg;
+};
+
+/// Camera axes for a view from the direction (azimuth about +Y from `front`, elevation above the
+/// horizontal): to_eye points from the target to the eye; r, u, f are right, up and forward.
+struct ViewAxes {
+  Vec3 to_eye, r, u, f;
+};
+
+ViewAxes view_axes(const Vec3& front, const Preset& preset) {
+  const double az = preset.azimuth_deg * kDeg, el = preset.elevation_deg * kDeg;
+  const Vec3 side = Vec3::UnitY().cross(front).normalized();  // any horizontal perpendicular
+  const Vec3 horiz = std::cos(az) * front + std::sin(az) * side;
+  ViewAxes a;
+  a.to_eye = (std::cos(el) * horiz + std::sin(el) * Vec3::UnitY()).normalized();
+  a.f = -a.to_eye;
+  const Vec3 up_hint = std::abs(a.f.y()) > 0.999 ? Vec3::UnitZ() : Vec3::UnitY();  // as Camera::view()
+  a.r = a.f.cross(up_hint).normalized();
+  a.u = a.r.cross(a.f);
+  return a;
 }
 
-/// Camera looking at the box centre from the direction (azimuth about +Y from `front`, elevation),
-/// at the distance that puts all eight box corners inside the frame.
-Camera fit_box(const Vec3& lo, const Vec3& hi, const Vec3& front, const Preset& preset, int width,
-               int height) {
-  const Vec3 target = 0.5 * (lo + hi);
-  const double az = preset.azimuth_deg * kDeg, el = preset.elevation_deg * kDeg;
-  const Vec3 side = Vec3::UnitY().cross(front).normalized();  // front x up... any horizontal perpendicular
-  const Vec3 horiz = std::cos(az) * front + std::sin(az) * side;
-  const Vec3 to_eye = (std::cos(el) * horiz + std::sin(el) * Vec3::UnitY()).normalized();
-  const Vec3 f = -to_eye;
-  const Vec3 up_hint = std::abs(f.y()) > 0.999 ? Vec3::UnitZ() : Vec3::UnitY();
-  const Vec3 r = f.cross(up_hint).normalized();
-  const Vec3 u = r.cross(f);
-  const double ty = std::tan(0.5 * preset.fov_deg * kDeg) * kFrameFill;
-  const double tx = ty * width / height;
-  double d = 1.0, near_depth = 1e30, far_depth = 0.0;
-  for (int c = 0; c < 8; ++c) {
-    const Vec3 corner((c & 1) ? hi.x() : lo.x(), (c & 2) ? hi.y() : lo.y(), (c & 4) ? hi.z() : lo.z());
-    const Vec3 q = corner - target;
-    d = std::max({d, std::abs(q.dot(r)) / tx - q.dot(f), std::abs(q.dot(u)) / ty - q.dot(f)});
+/// The projected box of `corners` seen from target + to_eye * d: centre offset and half extents in
+/// normalised image coordinates ([-1, 1] spans the image).
+struct Projection {
+  double cx = 0, cy = 0, half_x = 0, half_y = 0;
+};
+
+Projection project_box(const std::array<Vec3, 8>& corners, const Vec3& target, double d, const ViewAxes& a,
+                       double tan_x, double tan_y) {
+  double x0 = 1e30, x1 = -1e30, y0 = 1e30, y1 = -1e30;
+  for (const Vec3& c : corners) {
+    const Vec3 q = c - (target + a.to_eye * d);
+    const double depth = q.dot(a.f);
+    const double x = q.dot(a.r) / (depth * tan_x), y = q.dot(a.u) / (depth * tan_y);
+    x0 = std::min(x0, x);
+    x1 = std::max(x1, x);
+    y0 = std::min(y0, y);
+    y1 = std::max(y1, y);
   }
-  for (int c = 0; c < 8; ++c) {
-    const Vec3 corner((c & 1) ? hi.x() : lo.x(), (c & 2) ? hi.y() : lo.y(), (c & 4) ? hi.z() : lo.z());
-    const double depth = d + (corner - target).dot(f);
+  return {0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * (x1 - x0), 0.5 * (y1 - y0)};
+}
+
+/// Camera looking along `a` at the box [lo, hi] so that the box projects centred and fills kFrameFill of
+/// the image width or height, whichever binds (see the framing rule in viewpoint.hpp).
+Camera fit_box(const Vec3& lo, const Vec3& hi, const ViewAxes& a, double fov_deg, int width, int height) {
+  std::array<Vec3, 8> corners;
+  for (int c = 0; c < 8; ++c)
+    corners[static_cast<size_t>(c)] =
+        Vec3((c & 1) ? hi.x() : lo.x(), (c & 2) ? hi.y() : lo.y(), (c & 4) ? hi.z() : lo.z());
+  const double tan_y = std::tan(0.5 * fov_deg * kDeg), tan_x = tan_y * width / height;
+  Vec3 target = 0.5 * (lo + hi);
+  double d = 1.0;
+  // Alternate: the distance that gives the fill (bisection: the projection shrinks as d grows once
+  // every corner is in front of the eye), then move the target so the projected box is centred.
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    double nearest = 1e30;  // smallest d that keeps every corner 5 cm in front of the eye
+    for (const Vec3& c : corners) nearest = std::min(nearest, (c - target).dot(a.to_eye));
+    double d_lo = std::max(nearest, 0.0) + 0.05, d_hi = d_lo + 1.0;
+    auto fill = [&](double dist) {
+      const Projection p = project_box(corners, target, dist, a, tan_x, tan_y);
+      return std::max(p.half_x, p.half_y);
+    };
+    while (fill(d_hi) > kFrameFill) d_hi *= 2.0;
+    for (int k = 0; k < 60; ++k) {
+      const double mid = 0.5 * (d_lo + d_hi);
+      (fill(mid) > kFrameFill ? d_lo : d_hi) = mid;
+    }
+    d = d_hi;
+    const Projection p = project_box(corners, target, d, a, tan_x, tan_y);
+    if (std::abs(p.cx) < 1e-6 && std::abs(p.cy) < 1e-6) break;
+    target += a.r * (p.cx * tan_x * d) + a.u * (p.cy * tan_y * d);
+  }
+  double near_depth = 1e30, far_depth = 0.0;
+  for (const Vec3& c : corners) {
+    const double depth = (c - target).dot(a.f) + d;
     near_depth = std::min(near_depth, depth);
     far_depth = std::max(far_depth, depth);
   }
   Camera cam;
-  cam.eye = target + to_eye * d;
+  cam.eye = target + a.to_eye * d;
   cam.target = target;
-  cam.fov_y_deg = preset.fov_deg;
-  cam.near_m = std::clamp(0.5 * near_depth, 0.1, 5.0);
+  cam.fov_y_deg = fov_deg;
+  cam.near_m = std::clamp(0.5 * near_depth, 0.02, 5.0);
   cam.far_m = far_depth + 150.0;
   cam.width = width;
   cam.height = height;
@@ -114,6 +124,10 @@ const std::vector<std::string>& viewpoint_names() {
 }
 
 Viewpoint::Viewpoint(const std::string& name, const CrowdAnimation& crowd, int width, int height,
+                     const ViewpointOverrides& overrides)
+    : Viewpoint(name, crowd_extent(character_tracks(crowd), crowd.meta.fps), width, height, overrides) {}
+
+Viewpoint::Viewpoint(const std::string& name, const CrowdExtent& extent, int width, int height,
                      const ViewpointOverrides& overrides)
     : name_(name) {
   if (width <= 0 || height <= 0) throw InputError("viewpoint: image size must be positive");
@@ -145,39 +159,35 @@ Viewpoint::Viewpoint(const std::string& name, const CrowdAnimation& crowd, int w
     fixed_.height = height;
     return;
   }
-  const CrowdFrame cf = crowd_frame(crowd);
   const Preset& preset = preset_it->second;
   if (name == "pair") {
     // Look across the walking axis so the two paths run diagonally through the image.
-    const Vec3 across = Vec3::UnitY().cross(cf.walk_axis).normalized();
-    fixed_ = fit_box(cf.lo, cf.hi, across, preset, width, height);
+    const Vec3 across = Vec3::UnitY().cross(extent.walk_axis).normalized();
+    fixed_ = fit_box(extent.lo_m, extent.hi_m, view_axes(across, preset), preset.fov_deg, width, height);
   } else if (name == "tracking") {
     tracking_ = true;
-    size_t focal = 0;
-    for (size_t i = 0; i < crowd.characters.size(); ++i)
-      if (crowd.characters[i].name == "c000") focal = i;
-    const std::vector<Pose>& frames = crowd.characters.at(focal).frames;
-    const int n = static_cast<int>(frames.size());
-    const int half_window = std::max(1, static_cast<int>(std::lround(0.5 * crowd.meta.fps)));
-    focal_path_.resize(frames.size());
+    const std::vector<Vec3>& feet = extent.focal_feet_m;
+    const int n = static_cast<int>(feet.size());
+    const int half_window = std::max(1, static_cast<int>(std::lround(0.5 * extent.fps)));
+    focal_path_.resize(feet.size());
     for (int f = 0; f < n; ++f) {
       Vec3 sum = Vec3::Zero();
       const int a = std::max(0, f - half_window), b = std::min(n - 1, f + half_window);
-      for (int g = a; g <= b; ++g) sum += frames[static_cast<size_t>(g)].root_position_m;
+      for (int g = a; g <= b; ++g) sum += feet[static_cast<size_t>(g)];
       focal_path_[static_cast<size_t>(f)] = sum / (b - a + 1);
     }
-    Vec3 travel = horizontal(frames.back().root_position_m - frames.front().root_position_m);
-    if (travel.norm() < 0.5) travel = horizontal(frames.front().local_rotations[kPelvis] * Vec3::UnitZ());
-    const Vec3 behind = -travel.normalized();
-    const Vec3 lo(-0.5, 0.0, -0.5), hi(0.5, 1.9, 0.5);
-    fixed_ = fit_box(lo, hi, behind, preset, width, height);
-    const double distance = 6.0;  // metres behind-above the focal character
-    const Vec3 dir = (fixed_.eye - fixed_.target).normalized();
-    tracking_offset_ = dir * distance;
+    Vec3 travel = horizontal(feet.back() - feet.front());
+    if (travel.norm() < 0.5) travel = extent.focal_forward;
+    const double distance_m = 6.0;  // behind-above the focal character
+    tracking_offset_ = view_axes(-travel.normalized(), preset).to_eye * distance_m;
+    fixed_.fov_y_deg = preset.fov_deg;
     fixed_.near_m = 0.3;
     fixed_.far_m = 200.0;
+    fixed_.width = width;
+    fixed_.height = height;
   } else {
-    fixed_ = fit_box(cf.lo, cf.hi, cf.front, preset, width, height);
+    fixed_ =
+        fit_box(extent.lo_m, extent.hi_m, view_axes(extent.front, preset), preset.fov_deg, width, height);
   }
 }
 
@@ -185,7 +195,7 @@ Camera Viewpoint::at(int frame) const {
   if (!tracking_) return fixed_;
   Camera cam = fixed_;
   const size_t f = static_cast<size_t>(std::clamp(frame, 0, static_cast<int>(focal_path_.size()) - 1));
-  cam.target = Vec3(focal_path_[f].x(), 0.9, focal_path_[f].z());
+  cam.target = focal_path_[f] + Vec3(0.0, 0.9, 0.0);  // about the pelvis
   cam.eye = cam.target + tracking_offset_;
   return cam;
 }

@@ -8,21 +8,28 @@
 // V4 a bird's-eye view 80 deg down. All use a 40 deg vertical field of view.
 // "pair": seed 001 §3.1.4's canonical three-quarter view of two characters passing: 45 deg from the
 //   walking axis, 30 deg down, so that one character starts top right and the other bottom left.
-// "tracking": follows the focal character (named "c000", else the first) of seed 001's flow A
-//   from behind and above (25 deg down, 6 m, 30 deg off its walking axis), on its root position
+// "tracking": follows the focal character (the first, "c000") of seed 001's flow A from behind and
+//   above (25 deg down, 6 m, 30 deg off its walking axis), on its path (CrowdExtent::focal_feet_m)
 //   smoothed over +-0.5 s so that the gait's sway does not shake the image.
 //
-// "front" is the crowd's mean facing direction (unit forward vectors of the roots averaged over all
-// characters and frames); when they cancel out (|mean| < 0.25, e.g. bidirectional flows) it is +Z.
-// The camera sits in front of the crowd looking back at it. Presets put the crowd's bounding box
-// (all root positions over the clip, +-0.4 m, from the ground to the tallest head) inside the
-// frame with an 8 % margin, so a 3 x 3 m concert and a long corridor both fill the view.
+// "front" is the crowd's mean facing direction (CrowdExtent::front); the camera sits in front of the
+// crowd looking back at it.
+//
+// Framing rule (V1-V4, pair): the camera looks along the preset's direction; its target and distance
+// are chosen so that the crowd's box (CrowdExtent: every body cylinder over the whole clip) projects
+// CENTRED in the image and fills kFrameFill = 92 % of the image width or height, whichever binds
+// (4 % margin on each side of that dimension), with all eight box corners inside the image. A 3 x 3 m
+// concert and a long corridor both fill the view.
+//
+// One camera per condition: build the Viewpoint from a CrowdExtent computed from the data that the
+// methods of a condition share (see crowd_extent.hpp), so `baseline` and `ours` get the same camera.
 #include <map>
 #include <string>
 #include <vector>
 
 #include "framework/core/crowd_animation.hpp"
 #include "stimuli/camera.hpp"
+#include "stimuli/crowd_extent.hpp"
 
 namespace crowdlab::stimuli {
 
@@ -36,12 +43,17 @@ class Viewpoint {
  public:
   /// Throws InputError for an unknown name or a malformed override (not 7 finite numbers, fov
   /// outside (1, 170) degrees, eye == target).
+  Viewpoint(const std::string& name, const CrowdExtent& extent, int width, int height,
+            const ViewpointOverrides& overrides = {});
+  /// Frames a lone crowd file from its own root motion (crowd_extent(character_tracks(crowd))).
   Viewpoint(const std::string& name, const CrowdAnimation& crowd, int width, int height,
             const ViewpointOverrides& overrides = {});
 
   /// The camera for frame `frame` (only "tracking" moves).
   Camera at(int frame) const;
   const std::string& name() const { return name_; }
+  /// True when the camera moves with the frame ("tracking"); otherwise at(f) == at(0) for every f.
+  bool moves() const { return tracking_; }
 
  private:
   std::string name_;

@@ -3,14 +3,17 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <numeric>
 #include <sstream>
 #include <string>
 
 #include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/core/error.hpp"
 #include "framework/io/read_crowd_glb.hpp"
+#include "stimuli/clip_sidecar.hpp"
 #include "stimuli/render_clip.hpp"
 #include "stimuli/synthetic_crowd.hpp"
 
@@ -80,13 +83,18 @@ void run(const RenderArgs& a) {
   for (const std::string& text : a.overrides) parse_override(text, o.viewpoint_overrides);
   o.character_files = a.characters;
   stimuli::Renderer renderer;
-  const stimuli::RenderResult r = stimuli::render_clip(renderer, crowd, o, a.viewpoint, a.out);
+  // A lone crowd file is framed from its own motion (`crowdlab run` frames from the shared trajectories).
+  const stimuli::Viewpoint view(a.viewpoint, crowd, o.width, o.height, o.viewpoint_overrides);
+  const std::filesystem::path sidecar = stimuli::clip_sidecar_path(a.out);
+  if (sidecar == std::filesystem::path(a.out)) throw InputError("--out: the clip must not end in .json");
+  const stimuli::RenderResult r = stimuli::render_clip(renderer, crowd, o, view, a.out);
+  write_file_atomic(sidecar, stimuli::clip_sidecar(view, r.frames, crowd).dump(2) + "\n");
   auto median = [](std::vector<double> v) {
     std::sort(v.begin(), v.end());
     return v.empty() ? 0.0 : v[v.size() / 2];
   };
-  spdlog::info("wrote {}: {} frames, {:.2f} s at {} fps, {}x{} ({} characters)", a.out, r.frames,
-               r.duration_s, r.fps, r.width, r.height, crowd.characters.size());
+  spdlog::info("wrote {} and {}: {} frames, {:.2f} s at {} fps, {}x{} ({} characters)", a.out,
+               sidecar.string(), r.frames, r.duration_s, r.fps, r.width, r.height, crowd.characters.size());
   spdlog::info(
       "render {:.1f} ms/frame, encode {:.1f} ms/frame (medians), {:.2f} s wall, mesh setup {:.2f} s on {}",
       median(r.render_ms), median(r.encode_ms), r.wall_s, r.setup_s, r.device);
@@ -123,7 +131,9 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--viewpoint", a->viewpoint,
                   "V1|V2|V3|V4|pair|tracking, or a name given by --viewpoint-override")
       ->capture_default_str();
-  cmd->add_option("-o,--out", a->out, "Output MP4 file")->required();
+  cmd->add_option("-o,--out", a->out,
+                  "Output MP4 file; its camera and characters go to a sidecar with the extension .json")
+      ->required();
   cmd->add_flag("--overlap", a->overlap,
                 "Paint pixels showing volume shared with another character red (seed 000 Fig. 5); writes "
                 "OUT.overlap.csv with the red-pixel fraction per frame");

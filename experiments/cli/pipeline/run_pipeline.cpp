@@ -28,6 +28,8 @@
 #include "framework/spec/effective_scenario_type.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 #include "framework/surface/generate_manifold_scenario.hpp"
+#include "stimuli/clip_sidecar.hpp"
+#include "stimuli/crowd_extent.hpp"
 #include "stimuli/render_clip.hpp"
 #include "stimuli/renderer.hpp"
 
@@ -64,8 +66,12 @@ struct CrowdGroup {
   std::optional<ScenarioResult> scenario;
   SurfaceTrajectories surface;  ///< manifold scenarios only: the 3D frames of the trajectories
   std::optional<CrowdAnimation> baseline, ours;
-  std::map<std::string, json> metrics;  ///< method -> metrics json
+  std::map<std::string, json> metrics;         ///< method -> metrics json
+  std::optional<stimuli::CrowdExtent> extent;  ///< the framing both methods share
 };
+
+/// Version of the framing rule; part of the render hashes, so clips framed by an older rule re-render.
+constexpr const char* kFramingRule = "shared-extent/1";
 
 class Runner {
  public:
@@ -255,6 +261,19 @@ class Runner {
     return g.metrics[method] = j;
   }
 
+  /// What every clip of the group is framed by: the crowd stage's trajectories (3D surface frames for
+  /// manifold crowds) and the body heights of the animation stage, which the correction stage keeps.
+  /// So `baseline` and `ours` of a condition get the identical camera. Inputs: crowd_hash, baseline_hash.
+  const stimuli::CrowdExtent& extent(CrowdGroup& g) {
+    if (g.extent) return *g.extent;
+    const std::vector<double> heights = stimuli::body_heights_m(baseline(g));
+    const ScenarioResult& s = scenario(g);
+    g.extent = stimuli::crowd_extent(g.surface.empty() ? stimuli::character_tracks(s.trajectories, heights)
+                                                       : stimuli::character_tracks(g.surface, heights),
+                                     s.trajectories.fps);
+    return *g.extent;
+  }
+
   static void link_or_copy(const fs::path& from, const fs::path& to) {
     std::error_code ec;
     fs::remove(to, ec);
@@ -305,6 +324,9 @@ class Runner {
     const std::string viewpoint = c.text("viewpoint", default_viewpoint());
     const RenderOptions ro = render_options();
     const fs::path clip = dir / "clip.mp4";
+    const fs::path sidecar = stimuli::clip_sidecar_path(clip);
+    // The camera depends on the shared framing data (trajectories and heights: baseline_hash covers
+    // both), the framing rule, the viewpoint, the image size and the overrides (in the spec).
     const std::string render_hash = stage_input_hash("render",
                                                      json{{"viewpoint", viewpoint},
                                                           {"width", ro.width},
@@ -312,20 +334,28 @@ class Runner {
                                                           {"crf", ro.crf},
                                                           {"overlap", ro.scene.overlap},
                                                           {"characters", ro.character_files},
+                                                          {"framing", kFramingRule},
                                                           {"spec", spec_.source_hash}},
-                                                     {anim_hash});
-    if (!up_to_date(clip, render_hash)) {
-      write_output_via_temporary(
-          clip, [&](const fs::path& tmp) { render_clip(renderer(), crowd, ro, viewpoint, tmp.string()); });
-      record_provenance(clip, "render", render_hash, context_);
+                                                     {anim_hash, g.baseline_hash});
+    const bool clip_done = up_to_date(clip, render_hash);
+    if (!clip_done || !output_up_to_date(sidecar, render_hash)) {
+      const stimuli::Viewpoint view(viewpoint, extent(g), ro.width, ro.height, ro.viewpoint_overrides);
+      if (!clip_done) {
+        write_output_via_temporary(
+            clip, [&](const fs::path& tmp) { render_clip(renderer(), crowd, ro, view, tmp.string()); });
+        record_provenance(clip, "render", render_hash, context_);
+      }
+      write_file_atomic(sidecar, stimuli::clip_sidecar(view, crowd.frame_count(), crowd).dump(2) + "\n");
+      record_provenance(sidecar, "render", render_hash, context_);
     }
     if (spec_.outputs.contact_sheet) {
       const fs::path sheet = g.dir / (method + ".contact_sheet.png");
-      const std::string sheet_hash =
-          stage_input_hash("contact_sheet", json{{"w", ro.width}, {"h", ro.height}}, {anim_hash});
+      const std::string sheet_hash = stage_input_hash(
+          "contact_sheet", json{{"w", ro.width}, {"h", ro.height}, {"framing", kFramingRule}},
+          {anim_hash, g.baseline_hash});
       if (!up_to_date(sheet, sheet_hash)) {
         write_output_via_temporary(sheet, [&](const fs::path& tmp) {
-          write_contact_sheet(renderer(), crowd, ro, crowd.frame_count() / 2, tmp.string());
+          write_contact_sheet(renderer(), crowd, ro, crowd.frame_count() / 2, tmp.string(), &extent(g));
         });
         record_provenance(sheet, "contact_sheet", sheet_hash, context_);
       }
