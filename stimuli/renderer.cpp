@@ -540,7 +540,7 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
       if (std::max(mesh_options_.voxel_m, kLodVoxelM[l - 1]) <= options.lod_pixels * metres_per_pixel)
         level = l;
     const GpuMesh& m = g.mesh_cache.at(g.character_lod_mesh[i][level]);
-    const Palette& pal = palette(chars[i].palette);
+    const Palette pal = character_palette(chars[i].palette);
     float colours[8 * 3];
     for (int r = 0; r < 8; ++r) {
       const Rgb c =
