@@ -1,6 +1,9 @@
 #include "stimuli/palette.hpp"
 
+#include <string>
 #include <vector>
+
+#include "framework/core/error.hpp"
 
 namespace crowdlab::stimuli {
 namespace {
@@ -9,9 +12,9 @@ constexpr Rgb rgb(int r, int g, int b) {
   return {r / 255.0f, g / 255.0f, b / 255.0f};
 }
 
-// Skin tones, light to dark.
-constexpr Rgb kSkin[] = {rgb(241, 205, 180), rgb(226, 184, 150), rgb(198, 150, 112),
-                         rgb(160, 112, 80),  rgb(120, 80, 56),   rgb(86, 58, 42)};
+// Skin tones, light to dark (the skin tone of an appearance index, core/appearance.hpp, indexes them).
+constexpr std::array<Rgb, kSkinToneCount> kSkin = {rgb(241, 205, 180), rgb(226, 184, 150), rgb(198, 150, 112),
+                                                   rgb(160, 112, 80),  rgb(120, 80, 56),   rgb(86, 58, 42)};
 constexpr Rgb kHairBlack = rgb(30, 26, 24), kHairBrown = rgb(78, 52, 34), kHairBlond = rgb(186, 150, 96),
               kHairAuburn = rgb(120, 58, 34), kHairGrey = rgb(150, 146, 140);
 
@@ -65,6 +68,19 @@ int palette_count() {
 const Palette& palette(int index) {
   const int n = palette_count();
   return table()[static_cast<size_t>(((index % n) + n) % n)];
+}
+
+Rgb skin_tone_colour(int tone) {
+  if (tone < 0 || tone >= kSkinToneCount)
+    throw InputError("skin tone " + std::to_string(tone) + " is not in [0, " +
+                     std::to_string(kSkinToneCount - 1) + "]");
+  return kSkin[static_cast<size_t>(tone)];
+}
+
+Palette character_palette(int appearance) {
+  Palette p = palette(clothing_of(appearance));
+  if (skin_tone_of(appearance) >= 0) p.skin = skin_tone_colour(skin_tone_of(appearance));
+  return p;
 }
 
 }  // namespace crowdlab::stimuli

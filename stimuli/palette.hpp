@@ -6,6 +6,7 @@
 // (short sleeves / shorts or skirt), which varies silhouettes as well as colours.
 #include <array>
 
+#include "framework/core/appearance.hpp"
 #include "stimuli/mannequin_mesh.hpp"
 
 namespace crowdlab::stimuli {
@@ -25,5 +26,13 @@ struct Palette {
 int palette_count();
 /// Palette `index` modulo palette_count() (negative indices wrap too).
 const Palette& palette(int index);
+
+/// The colour of skin tone `tone` (0 lightest .. kSkinToneCount - 1 darkest, core/appearance.hpp): the
+/// same six swatches the palettes use. Throws InputError outside [0, kSkinToneCount).
+Rgb skin_tone_colour(int tone);
+
+/// A character's palette from its appearance index (CharacterAnimation::palette, core/appearance.hpp):
+/// the clothing palette, with its skin replaced by the skin tone's colour when the index carries one.
+Palette character_palette(int appearance);
 
 }  // namespace crowdlab::stimuli

@@ -595,7 +595,7 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
     const double metres_per_pixel = distance * pixel_angle;
     const GpuMesh& m = g.mesh_cache.at(
         select_lod(g.lod_sets.at(g.character_lods[i]), options.lod_pixels * metres_per_pixel).key);
-    const Palette& pal = palette(chars[i].palette);
+    const Palette pal = character_palette(chars[i].palette);
     float colours[8 * 3];
     for (int r = 0; r < 8; ++r) {
       const Rgb c =

@@ -17,6 +17,7 @@
 #include "framework/animation/shoulder_reactions.hpp"
 #include "framework/animation/walk_animation.hpp"
 #include "framework/animation/walk_from_clips.hpp"
+#include "framework/core/appearance.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/seed.hpp"
 
@@ -78,6 +79,13 @@ CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Enviro
   if (!context.meshes.empty() && context.meshes.size() != context.shapes.size())
     throw InputError("animate_crowd: " + std::to_string(context.meshes.size()) + " body meshes for " +
                      std::to_string(context.shapes.size()) + " body shapes");
+  if (!context.skin_tones.empty() && context.skin_tones.size() != context.shapes.size())
+    throw InputError("animate_crowd: " + std::to_string(context.skin_tones.size()) + " skin tones for " +
+                     std::to_string(context.shapes.size()) + " body shapes");
+  for (const int tone : context.skin_tones)
+    if (tone < -1 || tone >= kSkinToneCount)
+      throw InputError("animate_crowd: skin tone " + std::to_string(tone) + " is not in [-1, " +
+                       std::to_string(kSkinToneCount - 1) + "]");
   if (context.shapes.empty() && spec.body_model != "procedural")
     throw InputError("animation.body_model: '" + spec.body_model +
                      "' needs its shapes passed in AnimationContext::shapes");
@@ -120,6 +128,7 @@ CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Enviro
     c.shape = shapes[i];
     c.palette = palette[i];
     if (!context.meshes.empty()) c.mesh = context.meshes[i];
+    if (!context.skin_tones.empty()) c.palette = pack_appearance(palette[i], context.skin_tones[i]);
     const std::uint64_t cseed = derive_seed(context.seed, "character/" + c.name);
     if (clips && !stationary) {
       // Each walk clip's gait cycle on this body (retargeting scales to its proportions).

@@ -43,6 +43,9 @@ struct AnimationContext {
   /// optional (only with `shapes`): one skinned surface per agent, bound to that agent's shape (e.g. the
   /// shaped MPFB2 mesh); copied into CharacterAnimation::mesh for renderers and crowd files
   std::vector<std::shared_ptr<const SkinnedMesh>> meshes;
+  /// optional (only with `shapes`): one skin tone per agent, packed into CharacterAnimation::palette with
+  /// the clothing palette (core/appearance.hpp)
+  std::vector<int> skin_tones;
   std::filesystem::path clip_directory;  ///< base for relative clip paths (the spec file's folder)
 };
 

@@ -61,11 +61,6 @@ double round_to_sixteenth(double x) {
 
 }  // namespace
 
-std::filesystem::path mpfb2_default_path() {
-  const char* env = std::getenv("CROWDLAB_MPFB2");
-  return env ? std::filesystem::path(env) : std::filesystem::path{};
-}
-
 ShapeTarget read_target_gz(const std::filesystem::path& path, int vertex_count) {
   gzFile f = gzopen(path.string().c_str(), "rb");
   if (!f) throw InputError(path.string() + ": cannot open target file");

@@ -8,8 +8,8 @@
 //                                     = mean of a joint-cube group's vertices, or default_position in
 //                                     Blender's Z-up metres)
 //   rigs/standard/weights.mixamo.json skinning weights per bone: [[vertex index, weight], ...]
-// Where: a `body_model: {type: mpfb2, path: ...}` spec entry, or $CROWDLAB_MPFB2 (see
-// mpfb2_default_path()).
+// Where: a `body_model: {type: mpfb2, path: ...}` spec entry, else $CROWDLAB_MPFB2, else the subset
+// shipped in framework/body/assets/mpfb2 (core/mpfb2_asset_dir.hpp).
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -84,9 +84,6 @@ class Mpfb2Model {
 
 /// Reads a gzipped target file ("index dx dy dz" per line; '#' comments). vertex_count bounds indices.
 ShapeTarget read_target_gz(const std::filesystem::path& path, int vertex_count);
-
-/// $CROWDLAB_MPFB2 when set, else empty (no assets: the procedural body is the default).
-std::filesystem::path mpfb2_default_path();
 
 /// Blender Z-up (x, y, z) -> crowdlab / OBJ Y-up (x, z, -y); same units.
 inline Vec3 blender_to_y_up(const Vec3& b) {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "crowdlab_version.hpp"
+#include "framework/core/appearance.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/io/capsule_mesh.hpp"
@@ -431,7 +432,7 @@ void write_crowd_glb(const CrowdAnimation& crowd, const std::string& path) {
   for (const CharacterAnimation& ch : crowd.characters) {
     int group = -1;
     const std::vector<int> joint_nodes = add_character_skeleton(model, ch, group);
-    const int material = palette_material(model, material_cache, ch.palette);
+    const int material = palette_material(model, material_cache, clothing_of(ch.palette));
     const int body = add_character_body(model, builder, ch, joint_nodes, material, shared_topology);
     scene.nodes.push_back(group);
     scene.nodes.push_back(body);

@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "framework/core/control_characters.hpp"
+#include "framework/core/mpfb2_asset_dir.hpp"
 #include "framework/core/sha256.hpp"
 #include "framework/core/utf8_validity.hpp"
 #include "framework/spec/parse_factor.hpp"
@@ -147,13 +148,14 @@ void parse_animation(YamlSection s, ExperimentSpec& spec) {
   }
   if (a.body_model == "mpfb2" && a.body_model_path.empty() &&
       !(body_model_map && s.section("body_model").has("path"))) {
-    const char* env = std::getenv("CROWDLAB_MPFB2");
-    if (!env || !std::filesystem::is_directory(env))
-      diag.error(
-          s.get("body_model"), s.child_path("body_model"),
-          "mpfb2 needs body_model.path or the CROWDLAB_MPFB2 environment variable naming the asset folder");
+    const std::filesystem::path dir = default_mpfb2_dir();
+    if (!std::filesystem::is_directory(dir))
+      diag.error(s.get("body_model"), s.child_path("body_model"),
+                 "mpfb2: the asset folder '" + dir.string() +
+                     "' (CROWDLAB_MPFB2, else the shipped framework/body/assets/mpfb2) is not a directory; "
+                     "set body_model.path or CROWDLAB_MPFB2");
     else
-      a.body_model_path = env;
+      a.body_model_path = dir.string();
   }
   s.number("female_fraction", a.female_fraction, Range{0.0, 1.0});
   s.choice("motion", a.motion, {"procedural", "clips"});

@@ -1,4 +1,4 @@
-// MPFB2 body model on the shared test assets (skipped with a message when they are absent).
+// MPFB2 body model on the assets shipped in framework/body/assets/mpfb2.
 #include <zlib.h>
 
 #include <catch2/catch.hpp>
@@ -12,6 +12,7 @@
 #include "framework/body/sample_mpfb2_bodies.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/mpfb2_asset_dir.hpp"
 #include "framework/core/seed.hpp"
 #include "framework/metrics/overlap_volume.hpp"
 #include "tests/support/test_paths.hpp"
@@ -21,10 +22,7 @@ using namespace crowdlab;
 namespace {
 
 std::shared_ptr<const Mpfb2Model> model_or_skip() {
-  static std::shared_ptr<const Mpfb2Model> model;
-  const auto dir = test::shared_data("mpfb2");
-  if (dir.empty()) return nullptr;
-  if (!model) model = Mpfb2Model::load(dir);
+  static const std::shared_ptr<const Mpfb2Model> model = Mpfb2Model::load(shipped_mpfb2_dir());
   return model;
 }
 

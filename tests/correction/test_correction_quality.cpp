@@ -51,6 +51,7 @@ CrowdAnimation corridor_walkers(double seconds) {
   ExperimentSpec spec =
       load_experiment_spec((test::source_dir() / "experiments/gomez2024_nonstationary.yaml").string());
   spec.duration_s = seconds;
+  spec.animation.body_model = "procedural";  // the capsule bodies these thresholds were measured on
   const std::vector<Condition> conditions = enumerate_conditions(spec);
   REQUIRE(!conditions.empty());
   const Condition& condition = conditions.front();

@@ -1,11 +1,16 @@
-// `crowdlab run` with the MPFB2 body model (animation.body_model: mpfb2): the crowd files carry the
-// shaped, skinned meshes, the skeletons and capsules come from those meshes (correction and metrics
-// run on them), and the spec can name the assets by path or through CROWDLAB_MPFB2.
+// `crowdlab run` with the MPFB2 body model (animation.body_model: mpfb2, the shipped assets by default):
+// the crowd files carry the shaped, skinned meshes with their real sex and measured stature, the
+// skeletons and capsules come from those meshes (correction and metrics run on them), and the spec can
+// name other assets by path or through CROWDLAB_MPFB2.
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <fstream>
 
+#include "framework/body/sample_mpfb2_bodies.hpp"
+#include "framework/core/appearance.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/mpfb2_asset_dir.hpp"
+#include "framework/core/seed.hpp"
 #include "framework/io/read_crowd_glb.hpp"
 #include "tests/support/run_cli.hpp"
 
@@ -27,15 +32,15 @@ std::string spec_text(const std::string& body_model) {
 }
 }  // namespace
 
-TEST_CASE("run with the MPFB2 body model: crowd files carry the shaped meshes - capsules from the mesh") {
-  const fs::path assets = shared_data("mpfb2");
-  if (assets.empty()) return;
+TEST_CASE("run with the default MPFB2 assets: crowd files carry the shaped meshes, real sex and height") {
+  ::unsetenv("CROWDLAB_MPFB2");
   const fs::path out = scratch_dir("pipeline_mpfb2");
   const fs::path spec = out / "spec.yaml";
-  std::ofstream(spec) << spec_text("{type: mpfb2, path: " + assets.string() + "}");
+  std::ofstream(spec) << spec_text("mpfb2");
   const CliResult r = run_cli({"-q", "run", spec.string(), "--out", (out / "run").string()});
   INFO(r.out << r.err);
   REQUIRE(r.exit_code == 0);
+  const auto model = Mpfb2Model::load(shipped_mpfb2_dir());
   int crowds = 0;
   for (const auto& dir : fs::directory_iterator(out / "run" / "crowds")) {
     ++crowds;
@@ -62,6 +67,20 @@ TEST_CASE("run with the MPFB2 body model: crowd files carry the shaped meshes - 
       }
       const int n = static_cast<int>(crowd.characters.size());
       CHECK(std::abs(women - n / 2) <= 1);  // half women (female_fraction 0.5)
+      // The recorded sex and height are those of the body the mesh was built from: sampling again with
+      // the condition's seed gives the same bodies, stature measured on their shaped meshes.
+      const std::vector<Mpfb2Sample> again =
+          sample_mpfb2_bodies(*model, n, derive_seed(crowd.meta.seed, "bodies"), 0.5);
+      for (int i = 0; i < n; ++i) {
+        const CharacterAnimation& ch = crowd.characters[static_cast<size_t>(i)];
+        const Mpfb2Sample& s = again[static_cast<size_t>(i)];
+        CHECK(ch.shape.params.sex == s.body.shape.params.sex);
+        CHECK(ch.shape.params.height_m == Approx(measure_mpfb2_height(*model, s.params)).margin(1e-9));
+        CHECK(skin_tone_of(ch.palette) == s.skin_tone);
+        REQUIRE(ch.mesh->rest_vertices_m.size() == s.body.mesh.rest_vertices_m.size());
+        for (size_t v = 0; v < ch.mesh->rest_vertices_m.size(); v += 101)
+          CHECK((ch.mesh->rest_vertices_m[v] - s.body.mesh.rest_vertices_m[v]).norm() < 1e-5);
+      }
     }
     CHECK(fs::exists(dir.path() / "ours.metrics.json"));
   }
@@ -69,19 +88,22 @@ TEST_CASE("run with the MPFB2 body model: crowd files carry the shaped meshes - 
   // (Rendering the MPFB2 meshes is tested in tests/stimuli; no video here keeps this test short.)
 }
 
-TEST_CASE("mpfb2 without a path takes CROWDLAB_MPFB2, and says what is missing when neither is set") {
-  const fs::path assets = shared_data("mpfb2");
-  if (assets.empty()) return;
+TEST_CASE("mpfb2 without a path takes CROWDLAB_MPFB2, else the shipped assets; a bad folder is named") {
   const fs::path out = scratch_dir("pipeline_mpfb2_env");
   const fs::path spec = out / "spec.yaml";
   std::ofstream(spec) << spec_text("mpfb2");
   ::unsetenv("CROWDLAB_MPFB2");
   CliResult r = run_cli({"validate", spec.string()});
-  CHECK(r.exit_code == 2);
-  CHECK_THAT(r.err, Catch::Contains("CROWDLAB_MPFB2"));
-  ::setenv("CROWDLAB_MPFB2", assets.c_str(), 1);
-  r = run_cli({"validate", spec.string()});
-  ::unsetenv("CROWDLAB_MPFB2");
   INFO(r.out << r.err);
-  CHECK(r.exit_code == 0);
+  CHECK(r.exit_code == 0);  // the shipped assets
+  ::setenv("CROWDLAB_MPFB2", (out / "missing").c_str(), 1);
+  r = run_cli({"validate", spec.string()});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("CROWDLAB_MPFB2") && Catch::Contains((out / "missing").string()));
+  fs::create_directories(out / "empty");  // a folder without the assets: the run names the first file
+  ::setenv("CROWDLAB_MPFB2", (out / "empty").c_str(), 1);
+  r = run_cli({"-q", "run", spec.string(), "--out", (out / "run").string()});
+  ::unsetenv("CROWDLAB_MPFB2");
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("base.obj"));
 }

@@ -4,9 +4,12 @@
 #include <cmath>
 
 #include "framework/body/sample_mpfb2_bodies.hpp"
+#include "framework/core/appearance.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/mpfb2_asset_dir.hpp"
 #include "stimuli/character_mesh.hpp"
+#include "stimuli/palette.hpp"
 #include "stimuli/render_clip.hpp"
 #include "stimuli/skinned_body_mesh.hpp"
 #include "tests/support/test_paths.hpp"
@@ -17,10 +20,7 @@ using namespace crowdlab::stimuli;
 namespace {
 
 std::shared_ptr<const Mpfb2Model> mpfb2_or_skip() {
-  static std::shared_ptr<const Mpfb2Model> model;
-  const auto dir = test::shared_data("mpfb2");
-  if (dir.empty()) return nullptr;
-  if (!model) model = Mpfb2Model::load(dir);
+  static const std::shared_ptr<const Mpfb2Model> model = Mpfb2Model::load(shipped_mpfb2_dir());
   return model;
 }
 
@@ -47,6 +47,18 @@ CrowdAnimation mpfb2_row(const Mpfb2Model& model, int count) {
     crowd.characters.push_back(std::move(ch));
   }
   return crowd;
+}
+
+RenderOptions sized_options(int width, int height) {
+  RenderOptions options;
+  options.width = width;
+  options.height = height;
+  return options;
+}
+
+/// The front viewpoint (V1) on frame 1.
+Camera front_camera(const CrowdAnimation& crowd, const RenderOptions& options) {
+  return Viewpoint("V1", crowd, options.width, options.height).at(1);
 }
 
 }  // namespace
@@ -123,10 +135,8 @@ TEST_CASE("MPFB2 bodies: clothing regions by mesh position, rendered where the c
     for (int c : count) CHECK(c > 50);
   }
   Renderer renderer;
-  RenderOptions options;
-  options.width = 320;
-  options.height = 180;
-  const Camera cam = Viewpoint("V1", crowd, options.width, options.height).at(1);
+  const RenderOptions options = sized_options(320, 180);
+  const Camera cam = front_camera(crowd, options);
   const BgrImage img = render_frame(renderer, crowd, options, cam, 1);
   const Rgb bg = options.scene.background;
   auto is_background = [&](int x, int y) {
@@ -151,4 +161,42 @@ TEST_CASE("MPFB2 bodies: clothing regions by mesh position, rendered where the c
   CHECK(hit == checked);
   // Deterministic: a second render is bit-identical.
   CHECK(render_frame(renderer, crowd, options, cam, 1).bgr == img.bgr);
+}
+
+TEST_CASE("an appearance index packs clothing and skin tone; the tone replaces the palette's skin",
+          "[stimuli]") {
+  for (int clothing : {0, 3, 17, 900})
+    for (int tone = -1; tone < kSkinToneCount; ++tone) {
+      CHECK(clothing_of(pack_appearance(clothing, tone)) == clothing);
+      CHECK(skin_tone_of(pack_appearance(clothing, tone)) == tone);
+    }
+  CHECK(pack_appearance(5, -1) == 5);  // a plain index (procedural bodies) keeps its meaning
+  CHECK(skin_tone_of(-3) == -1);
+  CHECK(character_palette(3).skin == palette(3).skin);
+  const Palette dark = character_palette(pack_appearance(3, kSkinToneCount - 1));
+  CHECK(dark.skin == skin_tone_colour(kSkinToneCount - 1));
+  CHECK(dark.shirt == palette(3).shirt);
+  CHECK(dark.trousers == palette(3).trousers);
+  CHECK(skin_tone_colour(0)[0] > skin_tone_colour(kSkinToneCount - 1)[0]);  // light to dark
+  CHECK_THROWS_AS(skin_tone_colour(kSkinToneCount), InputError);
+  CHECK_THROWS_AS(skin_tone_colour(-1), InputError);
+  // Rendered: the same two bodies with the lightest and the darkest skin differ, the dark ones darker.
+  const auto model = mpfb2_or_skip();
+  CrowdAnimation light = mpfb2_row(*model, 2);
+  CrowdAnimation darker = light;
+  for (CharacterAnimation& ch : light.characters) ch.palette = pack_appearance(ch.palette, 0);
+  for (CharacterAnimation& ch : darker.characters)
+    ch.palette = pack_appearance(ch.palette, kSkinToneCount - 1);
+  Renderer renderer;
+  const RenderOptions options = sized_options(160, 90);
+  const Camera cam = front_camera(light, options);
+  const BgrImage a = render_frame(renderer, light, options, cam, 1);
+  const BgrImage b = render_frame(renderer, darker, options, cam, 1);
+  long sum_a = 0, sum_b = 0, differing = 0;
+  for (size_t i = 0; i < a.bgr.size(); ++i) {
+    sum_a += a.bgr[i], sum_b += b.bgr[i];
+    differing += a.bgr[i] != b.bgr[i];
+  }
+  CHECK(differing > 100);
+  CHECK(sum_b < sum_a);
 }

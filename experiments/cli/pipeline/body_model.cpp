@@ -7,6 +7,7 @@
 
 #include "framework/body/sample_mpfb2_bodies.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/mpfb2_asset_dir.hpp"
 #include "framework/core/seed.hpp"
 
 namespace crowdlab::cli {
@@ -27,18 +28,20 @@ void apply_body_model(const AnimationSpec& spec, std::size_t agents, AnimationCo
   if (spec.body_model == "procedural") return;
   if (spec.body_model != "mpfb2")
     throw InputError("animation.body_model: '" + spec.body_model + "' must be 'procedural' or 'mpfb2'");
-  if (spec.body_model_path.empty())
-    throw InputError(
-        "animation.body_model: mpfb2 needs body_model.path or the CROWDLAB_MPFB2 environment variable");
-  const auto model = cached_model(spec.body_model_path);
+  // The spec loader fills the path (spec, else CROWDLAB_MPFB2, else the shipped assets); a spec built in
+  // code may leave it empty.
+  const auto model = cached_model(spec.body_model_path.empty() ? default_mpfb2_dir()
+                                                               : std::filesystem::path(spec.body_model_path));
   const std::vector<Mpfb2Sample> samples = sample_mpfb2_bodies(
       *model, static_cast<int>(agents), derive_seed(context.seed, "bodies"), spec.female_fraction);
   context.shapes.clear();
   context.meshes.clear();
+  context.skin_tones.clear();
   int unreached = 0;
   for (const Mpfb2Sample& s : samples) {
     context.shapes.push_back(s.body.shape);
     context.meshes.push_back(std::make_shared<const SkinnedMesh>(s.body.mesh));
+    context.skin_tones.push_back(s.skin_tone);
     unreached += s.target_reached ? 0 : 1;
   }
   if (unreached > 0)
