@@ -167,7 +167,8 @@ std::string json_digest(const fs::path& file) {
   return sha256_hex(nlohmann::json::parse(slurp(file)).dump());
 }
 
-std::string text_digest(const fs::path& file, const std::map<std::string, std::string>& placeholders) {
+std::string text_digest(const fs::path& file,
+                        const std::vector<std::pair<std::string, std::string>>& placeholders) {
   std::string text = slurp(file);
   for (const auto& [from, to] : placeholders)
     for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))

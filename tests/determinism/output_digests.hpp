@@ -9,8 +9,9 @@
 //   text (report.md)     with the absolute paths it names replaced by placeholders
 // Every digest is SHA-256 as lowercase hex (framework/core/sha256.hpp).
 #include <filesystem>
-#include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "framework/core/crowd_animation.hpp"
 
@@ -29,8 +30,9 @@ std::string csv_digest_without_column(const std::filesystem::path& file, const s
 /// Digest of a JSON file's parsed content.
 std::string json_digest(const std::filesystem::path& file);
 
-/// Digest of a text file after replacing every occurrence of each key of `placeholders` by its value.
+/// Digest of a text file after replacing every occurrence of each `from` by its `to`, pair by pair in
+/// the given order (list a path before any path that is a prefix of it).
 std::string text_digest(const std::filesystem::path& file,
-                        const std::map<std::string, std::string>& placeholders);
+                        const std::vector<std::pair<std::string, std::string>>& placeholders);
 
 }  // namespace crowdlab::test

@@ -96,7 +96,8 @@ void add_study_and_report_digests(const fs::path& root, Digests& d) {
     const std::string label = "report " + relative_label(file, root);
     d[label] = file.extension() == ".json" ? json_digest(file) : sha256_file_hex(file.string());
   }
-  // report.md names the spec and the responses by the paths it was given.
+  // report.md names the spec and the responses by the paths it was given (the run folder lies inside
+  // the source folder, so it is replaced first).
   d["report " + relative_label(root / "report" / "report.md", root)] = text_digest(
       root / "report" / "report.md", {{root.string(), "<run>"}, {source_dir().string(), "<source>"}});
 }
