@@ -1,8 +1,10 @@
 // crowdlab: one binary, many subcommands. Exit codes: 0 ok, 1 runtime failure, 2 usage/invalid input.
 #include <spdlog/spdlog.h>
+#include <tbb/global_control.h>
 
 #include <cstdio>
 #include <exception>
+#include <memory>
 
 #include "crowdlab_version.hpp"
 #include "experiments/cli/command_registry.hpp"
@@ -25,10 +27,19 @@ int main(int argc, char** argv) {
   std::string log_level = "info";
   app.add_flag("-q,--quiet", quiet, "Hide progress bars and info logs");
   app.add_option("--log-level", log_level, "trace|debug|info|warn|error")->capture_default_str();
+  // Outputs do not depend on the thread count (docs/architecture.md, "Determinism"); the limit exists
+  // for shared machines and for the test that checks exactly that (tests/determinism/).
+  int threads = 0;
+  std::unique_ptr<tbb::global_control> thread_limit;  // held until main returns
+  app.add_option("--threads", threads, "Use at most N threads (default: every core)")
+      ->check(CLI::Range(1, 4096));
   app.parse_complete_callback([&] {
     spdlog::set_level(quiet ? spdlog::level::warn : spdlog::level::from_str(log_level));
     spdlog::set_pattern("[crowdlab] %^%l%$: %v");
     crowdlab::Progress::set_enabled(!quiet);
+    if (threads > 0)
+      thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                           static_cast<size_t>(threads));
   });
   for (const auto& setup : crowdlab::cli::command_registry()) setup(app);
 

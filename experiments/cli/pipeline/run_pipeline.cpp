@@ -322,7 +322,9 @@ class Runner {
     if (!spec_.outputs.video) return e;
 
     const std::string viewpoint = c.text("viewpoint", default_viewpoint());
-    const RenderOptions ro = render_options();
+    RenderOptions ro = render_options();
+    // render.frames_png: the rendered frames themselves, before H.264 (tests hash their pixels).
+    if (spec_.render.frames_png) ro.frames_png_dir = (dir / "frames").string();
     const fs::path clip = dir / "clip.mp4";
     const fs::path sidecar = stimuli::clip_sidecar_path(clip);
     // The camera depends on the shared framing data (trajectories and heights: baseline_hash covers
