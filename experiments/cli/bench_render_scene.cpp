@@ -5,7 +5,7 @@
 
 #include "crowdlab_embedded_paper_specs.hpp"
 #include "experiments/cli/pipeline/run_pipeline.hpp"
-#include "framework/body/mpfb2_model.hpp"
+#include "framework/core/mpfb2_asset_dir.hpp"
 #include "framework/core/error.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
@@ -37,7 +37,7 @@ CrowdAnimation make_bench_render_crowd(const BenchRenderScene& scene) {
   ExperimentSpec spec = load_scene_spec(scene);
   if (!scene.body_model.empty()) spec.animation.body_model = scene.body_model;
   if (spec.animation.body_model == "mpfb2" && spec.animation.body_model_path.empty())
-    spec.animation.body_model_path = mpfb2_default_path().string();
+    spec.animation.body_model_path = default_mpfb2_dir().string();
   if (scene.duration_s > 0.0) spec.duration_s = std::min(spec.duration_s, scene.duration_s);
   const Condition condition = crowd_condition(spec, pick_condition(spec, scene));
   const std::string key = crowd_key(condition);
