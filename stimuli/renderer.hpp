@@ -44,7 +44,8 @@ struct SceneOptions {
   bool time_passes = false;  ///< finish each pass before the next to time it (benchmarks; slower)
   /// Draw the ground once per camera and copy it into each frame, with the characters' shadows on it
   /// projected onto the plane (shaders.cpp); false: shade the ground with the shadow map every frame (the
-  /// reference path). Only used without fog and with a ground plane.
+  /// reference path). Only used with one sample per pixel (msaa_samples 1), without fog and with a ground
+  /// plane.
   bool cache_ground = true;
 };
 

@@ -189,8 +189,9 @@ void parse_correction(YamlSection s, ExperimentSpec& spec) {
 void parse_render(YamlSection s, ExperimentSpec& spec) {
   RenderSpec& r = spec.render;
   SpecDiagnostics& diag = s.diagnostics();
-  s.allow_keys({"crf", "overlap", "frames_png", "background", "fog", "viewpoints", "characters"});
-  s.integer("crf", r.crf, 0, 51);  // the H.264 constant-rate-factor range
+  s.allow_keys({"crf", "msaa", "overlap", "frames_png", "background", "fog", "viewpoints", "characters"});
+  s.integer("crf", r.crf, 0, 51);   // the H.264 constant-rate-factor range
+  s.integer("msaa", r.msaa, 1, 8);  // samples per pixel (the GL driver rounds up to one it has)
   s.boolean("overlap", r.overlap);
   s.boolean("frames_png", r.frames_png);
   s.boolean("fog", r.fog);

@@ -42,16 +42,16 @@ const std::string kHeader = "crowdlab: 1\nname: t\nseed: 5\n";
 }  // namespace
 
 TEST_CASE("a spec's values reach the typed structs, with units and defaults") {
-  const ExperimentSpec s =
-      load_text(kHeader +
-                "scenario: {type: corridor, area: {width_m: 2.5, depth_m: 8}}\n"
-                "crowd: {model: social, agent_radius_m: 0.2, cost_weights: {goal: 1.5}}\n"
-                "factors:\n  density: {levels: [2.22, 3.33]}\n  viewpoint: [V3]\n"
-                "duration_s: 12.5\nfps: 25\nresolution: [1280, 720]\n"
-                "render: {crf: 23, background: '#102030', viewpoints: {V3: [1, 2, 3, 0, 1, 0, 50]}}\n"
-                "protocol:\n  type: rating\n  scale: {points: 7, labels: [low, high]}\n"
-                "  questions: [{id: q, text: \"How?\"}]\n"
-                "outputs: {video: false, contact_sheet: false}\n");
+  const ExperimentSpec s = load_text(
+      kHeader +
+      "scenario: {type: corridor, area: {width_m: 2.5, depth_m: 8}}\n"
+      "crowd: {model: social, agent_radius_m: 0.2, cost_weights: {goal: 1.5}}\n"
+      "factors:\n  density: {levels: [2.22, 3.33]}\n  viewpoint: [V3]\n"
+      "duration_s: 12.5\nfps: 25\nresolution: [1280, 720]\n"
+      "render: {crf: 23, msaa: 1, background: '#102030', viewpoints: {V3: [1, 2, 3, 0, 1, 0, 50]}}\n"
+      "protocol:\n  type: rating\n  scale: {points: 7, labels: [low, high]}\n"
+      "  questions: [{id: q, text: \"How?\"}]\n"
+      "outputs: {video: false, contact_sheet: false}\n");
   CHECK(s.name == "t");
   CHECK(s.seed == 5);
   CHECK(s.scenario.type == "corridor");
@@ -71,6 +71,7 @@ TEST_CASE("a spec's values reach the typed structs, with units and defaults") {
   CHECK(s.render.width == 1280);
   CHECK(s.render.height == 720);
   CHECK(s.render.crf == 23);
+  CHECK(s.render.msaa == 1);
   CHECK(s.render.background == "#102030");
   CHECK(s.render.viewpoint_overrides.at("V3").size() == 7);
   CHECK(s.protocol.type == "rating");
@@ -246,6 +247,7 @@ TEST_CASE("every section's keys, types and ranges are checked") {
       {"animation: {walk_clips: [{speed_mps: 1.2}]}\n", "walk_clips[0].file: required key is missing"},
       {"correction: {damping: -0.1}\n", "correction.damping: must be >= 0"},
       {"render: {crf: 60}\n", "render.crf: must be in [0, 51]"},
+      {"render: {msaa: 16}\n", "render.msaa: must be in [1, 8]"},
       {"render: {background: red}\n", "render.background: expected a colour '#rrggbb'"},
       {"render: {overlap: 2}\n", "render.overlap: expected true or false"},
       {"render: {viewpoints: {V1: [1, 2, 3]}}\n", "expected 7 numbers"},

@@ -292,6 +292,7 @@ class Runner {
     r.height = spec_.render.height;
     r.crf = spec_.render.crf;
     r.scene.overlap = spec_.render.overlap;
+    r.scene.msaa_samples = spec_.render.msaa;
     r.scene.background = parse_hex_colour(spec_.render.background, "render.background");
     r.scene.fog_density = spec_.render.fog ? 0.02 : 0.0;
     r.viewpoint_overrides = spec_.render.viewpoint_overrides;
@@ -334,6 +335,7 @@ class Runner {
                                                           {"width", ro.width},
                                                           {"height", ro.height},
                                                           {"crf", ro.crf},
+                                                          {"msaa", ro.scene.msaa_samples},
                                                           {"overlap", ro.scene.overlap},
                                                           {"characters", ro.character_files},
                                                           {"framing", kFramingRule},
