@@ -525,15 +525,9 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   }
 
   // 2. Shadow pass.
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glBindFramebuffer(GL_FRAMEBUFFER, g.shadow_fbo);
-  glViewport(0, 0, g.shadow_size, g.shadow_size);
-  glClear(GL_DEPTH_BUFFER_BIT);
+  begin_shadow_pass(g);
   glEnable(GL_CULL_FACE);
   glCullFace(GL_FRONT);  // back faces cast the shadow: less acne on lit surfaces
-  glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(1.5f, 2.0f);
   GLuint p = g.skinned_depth.id();
   glUseProgram(p);
   set_mat4(p, g.skinned_depth.uniform("u_view_proj"), light_vp);
@@ -657,6 +651,17 @@ void Renderer::draw_environment(Gl& g, unsigned program, int model_location) {
   }
 }
 
+// An empty shadow map, bound for drawing, with the depth bias that keeps lit surfaces free of acne.
+void Renderer::begin_shadow_pass(Gl& g) {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glBindFramebuffer(GL_FRAMEBUFFER, g.shadow_fbo);
+  glViewport(0, 0, g.shadow_size, g.shadow_size);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.5f, 2.0f);
+}
+
 // The ground plane, fully shaded (checker, noise, shadow map) with the current frame's uniforms.
 void Renderer::draw_ground(Gl& g, const Rgb& colour) {
   const GLuint p = g.ground_lit.id();
@@ -693,13 +698,7 @@ std::uint64_t Renderer::ground_cache_key(const Camera& camera, const SceneOption
 // copied (colour, depth, clear stencil) into ground_fbo. Uniforms are those of the current frame.
 void Renderer::draw_ground_cache(const SceneOptions& options, const Mat4& light_view_proj) {
   Gl& g = *gl_;
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glBindFramebuffer(GL_FRAMEBUFFER, g.shadow_fbo);
-  glViewport(0, 0, g.shadow_size, g.shadow_size);
-  glClear(GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(1.5f, 2.0f);
+  begin_shadow_pass(g);
   GLuint p = g.static_depth.id();
   glUseProgram(p);
   set_mat4(p, g.static_depth.uniform("u_view_proj"), light_view_proj);

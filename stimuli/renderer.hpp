@@ -115,6 +115,7 @@ class Renderer {
   struct Gl;
   void draw_environment(Gl& g, unsigned program, int model_location);
   void draw_ground(Gl& g, const Rgb& colour);
+  void begin_shadow_pass(Gl& g);
   std::uint64_t ground_cache_key(const Camera& camera, const SceneOptions& options,
                                  const Mat4& light_view_proj) const;
   void draw_ground_cache(const SceneOptions& options, const Mat4& light_view_proj);
