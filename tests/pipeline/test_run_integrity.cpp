@@ -18,10 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string tiny_spec() {
-  return (source_dir() / "tests/data/pipeline/tiny.yaml").string();
-}
-
 /// Holds flock(2) `operation` on `path` for its lifetime and writes our pid into it, the way a running
 /// `crowdlab run` does.
 struct HeldLock {

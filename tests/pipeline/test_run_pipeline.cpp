@@ -12,9 +12,6 @@ using namespace crowdlab::test;
 namespace fs = std::filesystem;
 
 namespace {
-std::string tiny_spec() {
-  return (source_dir() / "tests/data/pipeline/tiny.yaml").string();
-}
 
 std::map<std::string, std::string> hashes(const fs::path& manifest) {
   std::map<std::string, std::string> out;

@@ -12,6 +12,11 @@ namespace crowdlab::test {
 inline std::filesystem::path source_dir() {
   return CROWDLAB_SOURCE_DIR;
 }
+
+/// The small pipeline spec most `run` tests use (tests/data/pipeline/tiny.yaml).
+inline std::string tiny_spec() {
+  return (source_dir() / "tests/data/pipeline/tiny.yaml").string();
+}
 inline std::filesystem::path binary_dir() {
   return CROWDLAB_BINARY_DIR;
 }
