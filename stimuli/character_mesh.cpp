@@ -15,8 +15,8 @@ namespace {
 // 3.5 and 5 cm); the grid spacing bounds the polygonisation's deviation from the implicit surface.
 constexpr std::array<double, 3> kMannequinLodVoxelM = {0.026, 0.035, 0.05};
 
-/// Shadow casters (inset > 0) of a skinned surface are the coarse capsule mannequin: its capsules were
-/// fitted to that surface, shadows are soft and seen from afar, and it has a tenth of the triangles.
+/// An inset mesh (inset > 0: a shadow caster kept inside the visible skin) is always the capsule mannequin;
+/// otherwise a character with a skinned surface is drawn with that surface.
 bool use_surface(const CharacterAnimation& character, const MannequinOptions& options) {
   return character.mesh && options.inset_m <= 0.0;
 }

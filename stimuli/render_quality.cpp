@@ -25,7 +25,6 @@ cv::Mat reference_luma(Renderer& renderer, const CrowdAnimation& crowd, const Re
 RenderOptions reference_render_options(const RenderOptions& fast) {
   RenderOptions reference = fast;
   reference.scene.msaa_samples = 4;
-  reference.scene.cache_ground = false;
   reference.frames_png_dir.clear();
   return reference;
 }

@@ -35,8 +35,7 @@ QualityReport measure_render_quality(Renderer& renderer, const CrowdAnimation& c
                                      const std::vector<std::string>& viewpoints, int frames,
                                      const std::vector<int>& sample_frames, const std::string& work_dir);
 
-/// The reference options for `fast`: the same scene, size and camera overrides with 4x MSAA and the ground
-/// shaded with the shadow map every frame (SceneOptions::cache_ground off).
+/// The reference options for `fast`: the same scene, size and camera overrides with 4x MSAA.
 RenderOptions reference_render_options(const RenderOptions& fast);
 
 }  // namespace crowdlab::stimuli

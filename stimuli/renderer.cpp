@@ -1,5 +1,7 @@
 #include "stimuli/renderer.hpp"
 
+#include "stimuli/renderer_gl.hpp"
+
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/glcorearb.h>
 #include <spdlog/spdlog.h>
@@ -82,18 +84,6 @@ double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-void set_mat4(GLuint program, int location, const Mat4& m) {
-  const Mat4f f = m.cast<float>();
-  glProgramUniformMatrix4fv(program, location, 1, GL_FALSE, f.data());
-}
-void set_vec3(GLuint program, int location, const Vec3& v) {
-  glProgramUniform3f(program, location, static_cast<float>(v.x()), static_cast<float>(v.y()),
-                     static_cast<float>(v.z()));
-}
-void set_rgb(GLuint program, int location, const Rgb& c) {
-  glProgramUniform3f(program, location, c[0], c[1], c[2]);
-}
-
 }  // namespace
 
 Rgb parse_hex_colour(const std::string& text, const std::string& context) {
@@ -106,97 +96,6 @@ Rgb parse_hex_colour(const std::string& text, const std::string& context) {
         static_cast<float>(std::stoi(hex.substr(static_cast<size_t>(2 * i), 2), nullptr, 16)) / 255.0f;
   return c;
 }
-
-struct Renderer::Gl {
-  EglContext context;
-  GlProgram skinned_lit{glsl::specialise(glsl::kSkinnedVertex, "").c_str(),
-                        glsl::specialise(glsl::kLitFragment, "MATERIAL_CHARACTER").c_str(), "skinned_lit"};
-  GlProgram skinned_lit_overlap{glsl::specialise(glsl::kSkinnedVertex, "").c_str(),
-                                glsl::specialise(glsl::kLitFragment, "MATERIAL_CHARACTER OVERLAP").c_str(),
-                                "skinned_lit_overlap"};
-  GlProgram ground_lit{glsl::kStaticVertex, glsl::specialise(glsl::kLitFragment, "MATERIAL_GROUND").c_str(),
-                       "ground_lit"};
-  GlProgram flat_lit{glsl::kStaticVertex, glsl::specialise(glsl::kLitFragment, "MATERIAL_FLAT").c_str(),
-                     "flat_lit"};
-  GlProgram skinned_depth{glsl::specialise(glsl::kSkinnedVertex, "").c_str(), glsl::kDepthFragment,
-                          "skinned_depth"};
-  GlProgram planar_shadow{glsl::specialise(glsl::kSkinnedVertex, "PLANAR_SHADOW").c_str(),
-                          glsl::specialise(glsl::kLitFragment, "MATERIAL_PLANAR_SHADOW").c_str(),
-                          "planar_shadow"};
-  GlProgram static_depth{glsl::kStaticVertex, glsl::kDepthFragment, "static_depth"};
-  std::map<std::uint64_t, GpuMesh> mesh_cache;
-  GpuMesh cube = make_unit_cube();
-  GpuMesh ground;
-  std::vector<GpuMesh> environment_meshes;
-  std::vector<Mat4> box_models;
-  std::vector<Box> boxes;
-  std::vector<char> box_hidden;
-  std::map<std::uint64_t, std::vector<LodLevel>> lod_sets;  ///< mesh-set key -> its levels, finest first
-  std::vector<std::uint64_t> character_lods;                ///< per character: its mesh-set key
-  std::vector<std::uint64_t> character_shadow_mesh;         ///< per character: a one-level set
-  GLuint noise_tex = 0;
-  std::vector<std::array<Mat4, kJointCount>> inverse_rest;
-  Vec3 bounds_lo = Vec3::Zero(), bounds_hi = Vec3::Zero();
-  GLuint skin_ssbo = 0, caps_ssbo = 0;
-  GLsizeiptr skin_capacity = 0, caps_capacity = 0;
-  GLuint msaa_fbo = 0, msaa_color = 0, msaa_mask = 0, msaa_depth = 0;
-  GLuint resolve_fbo = 0, resolve_color = 0, resolve_mask = 0;
-  bool multisampled = true;  ///< false: the "msaa" targets have one sample and are read directly
-  // The ground drawn once (with the environment's shadows) and copied into every frame (cache_ground).
-  GLuint ground_fbo = 0, ground_color = 0, ground_depth = 0;
-  std::uint64_t ground_key = 0;  ///< what ground_fbo holds (camera, colours, light); 0 = nothing
-  GLuint shadow_fbo = 0, shadow_tex = 0;
-  int shadow_size = 0;
-  GLuint pbo[2] = {0, 0};
-  std::vector<float> skin_data, caps_data;
-  std::vector<int> cap_offset, cap_count, own_offset;
-  std::vector<std::uint8_t> mask_pixels;
-
-  /// The framebuffer whose colour attachment 0 holds the finished frame (1: the overlap mask).
-  GLuint output_fbo() const { return multisampled ? resolve_fbo : msaa_fbo; }
-
-  Gl() {
-    glCreateBuffers(1, &skin_ssbo);
-    glCreateBuffers(1, &caps_ssbo);
-    noise_tex = make_noise_texture();
-  }
-  ~Gl() {
-    for (auto& [key, mesh] : mesh_cache) destroy(mesh);
-    destroy(cube);
-    destroy(ground);
-    for (GpuMesh& m : environment_meshes) destroy(m);
-    free_targets();
-    glDeleteBuffers(1, &skin_ssbo);
-    glDeleteBuffers(1, &caps_ssbo);
-    glDeleteTextures(1, &noise_tex);
-  }
-  void free_targets() {
-    glDeleteFramebuffers(1, &msaa_fbo);
-    glDeleteFramebuffers(1, &resolve_fbo);
-    glDeleteFramebuffers(1, &ground_fbo);
-    const GLuint ground_rbs[] = {ground_color, ground_depth};
-    glDeleteRenderbuffers(2, ground_rbs);
-    ground_fbo = ground_color = ground_depth = 0;
-    ground_key = 0;
-    glDeleteFramebuffers(1, &shadow_fbo);
-    const GLuint rbs[] = {msaa_color, msaa_mask, msaa_depth, resolve_color, resolve_mask};
-    glDeleteRenderbuffers(5, rbs);
-    glDeleteTextures(1, &shadow_tex);
-    glDeleteBuffers(2, pbo);
-    msaa_fbo = resolve_fbo = shadow_fbo = shadow_tex = 0;
-    pbo[0] = pbo[1] = 0;
-  }
-  /// Grows a buffer (never shrinks) and uploads data.
-  static void upload(GLuint buffer, GLsizeiptr& capacity, const std::vector<float>& data) {
-    const auto bytes = static_cast<GLsizeiptr>(std::max<size_t>(data.size(), 4) * sizeof(float));
-    if (bytes > capacity) {
-      glNamedBufferData(buffer, bytes, nullptr, GL_DYNAMIC_DRAW);
-      capacity = bytes;
-    }
-    if (!data.empty())
-      glNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data());
-  }
-};
 
 Renderer::Renderer(MannequinOptions mesh_options)
     : gl_(std::make_unique<Gl>()), mesh_options_(mesh_options) {}
@@ -245,6 +144,7 @@ void Renderer::set_size(int width, int height, int samples, int shadow_map_size)
   g.resolve_color = rbs[3];
   g.resolve_mask = rbs[4];
   g.multisampled = samples > 1;
+  g.create_ground_targets(width, height);
   // One sample: plain renderbuffers, read directly (no resolve copy).
   const auto storage = [&](GLuint rb, GLenum format) {
     if (g.multisampled)
@@ -254,21 +154,12 @@ void Renderer::set_size(int width, int height, int samples, int shadow_map_size)
   };
   storage(g.msaa_color, GL_RGBA8);
   storage(g.msaa_mask, GL_R8);
-  storage(g.msaa_depth, GL_DEPTH24_STENCIL8);  // stencil: each planar shadow darkens a pixel once
+  storage(g.msaa_depth, GL_DEPTH_COMPONENT24);
   glNamedFramebufferRenderbuffer(g.msaa_fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, g.msaa_color);
   glNamedFramebufferRenderbuffer(g.msaa_fbo, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, g.msaa_mask);
-  glNamedFramebufferRenderbuffer(g.msaa_fbo, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, g.msaa_depth);
+  glNamedFramebufferRenderbuffer(g.msaa_fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, g.msaa_depth);
   const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   glNamedFramebufferDrawBuffers(g.msaa_fbo, 2, both);
-  glCreateFramebuffers(1, &g.ground_fbo);
-  GLuint ground_rbs[2];
-  glCreateRenderbuffers(2, ground_rbs);
-  g.ground_color = ground_rbs[0];
-  g.ground_depth = ground_rbs[1];
-  storage(g.ground_color, GL_RGBA8);
-  storage(g.ground_depth, GL_DEPTH24_STENCIL8);
-  glNamedFramebufferRenderbuffer(g.ground_fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, g.ground_color);
-  glNamedFramebufferRenderbuffer(g.ground_fbo, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, g.ground_depth);
   glCreateFramebuffers(1, &g.resolve_fbo);
   glNamedRenderbufferStorage(g.resolve_color, GL_RGBA8, width, height);
   glNamedRenderbufferStorage(g.resolve_mask, GL_R8, width, height);
@@ -339,6 +230,10 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
     const MannequinOptions options = mesh_options_;
     g.character_lods[i] = character_lod_set_key(ch, options);
     want(i, g.character_lods[i], [&ch, options] { return build_character_lods(ch, options); });
+    // A skinned surface casts its shadow with the level the viewer sees: no more detail than is drawn,
+    // and the shadow's outline is the body's own. A procedural mannequin casts with a coarse inset copy.
+    g.character_shadow_mesh[i] = 0;
+    if (ch.mesh) continue;
     g.character_shadow_mesh[i] = character_mesh_key(ch, shadow_options);
     want(i, g.character_shadow_mesh[i], [&ch, shadow_options] {
       return std::vector<CharacterLod>{{build_character_mesh(ch, shadow_options), 0.0}};
@@ -398,6 +293,8 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
                                     {{cx + half, 0, cz + half}, {0, 1, 0}},
                                     {{cx + half, 0, cz - half}, {0, 1, 0}}};
   g.ground = upload_static(quad, {0, 1, 2, 0, 2, 3});
+  g.ground_centre = Vec3(cx, 0.0, cz);
+  g.ground_half_m = half;
 }
 
 void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options) {
@@ -492,13 +389,24 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
       if (segment_hits_box(camera.eye, chest, g.boxes[b])) g.box_hidden[b] = 1;
     }
 
+  // Each character's level of detail: the coarsest whose error spans at most lod_pixels at its distance.
+  const double pixel_angle =
+      2.0 * std::tan(0.5 * camera.fov_y_deg * std::numbers::pi / 180.0) / height_;  // m per px per m
+  std::vector<const GpuMesh*> drawn_mesh(n);
+  for (size_t i = 0; i < n; ++i) {
+    const double distance = (chars[i].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).norm();
+    drawn_mesh[i] = &g.mesh_cache.at(
+        select_lod(g.lod_sets.at(g.character_lods[i]), options.lod_pixels * distance * pixel_angle).key);
+  }
+
   end_stage(pass_times_.prepare_ms, false);
 
   glBindTextureUnit(0, g.shadow_tex);
   glBindTextureUnit(1, g.noise_tex);
   const Mat4& shadow_matrix = light_vp;
   GlProgram& character_lit = options.overlap ? g.skinned_lit_overlap : g.skinned_lit;
-  for (GlProgram* prog : {&g.ground_lit, &g.flat_lit, &character_lit, &g.planar_shadow}) {
+  for (GlProgram* prog :
+       {&g.ground_lit, &g.flat_lit, &character_lit, &g.ground_unshadowed, &g.ground_shadow}) {
     const GLuint id = prog->id();
     set_mat4(id, prog->uniform("u_view_proj"), view_proj);
     set_mat4(id, prog->uniform("u_light_view_proj"), shadow_matrix);
@@ -512,18 +420,6 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
     set_rgb(id, prog->uniform("u_background"), options.background);
     glProgramUniform1f(id, prog->uniform("u_fog_density"), static_cast<float>(options.fog_density));
   }
-  // Only single-sampled: copying a multisampled ground costs llvmpipe as much as shading it (measured:
-  // 399 against 383 CPU ms per 1080p frame at 4x MSAA), so with MSAA the ground is shaded every frame.
-  const bool cached_ground = options.cache_ground && !g.multisampled && crowd_->environment.ground_plane &&
-                             options.fog_density <= 0.0;
-  if (cached_ground) {
-    const std::uint64_t wanted = ground_cache_key(camera, options, light_vp);
-    if (wanted != g.ground_key) {
-      draw_ground_cache(options, light_vp);
-      g.ground_key = wanted;
-    }
-  }
-
   // 2. Shadow pass.
   begin_shadow_pass(g);
   glEnable(GL_CULL_FACE);
@@ -533,7 +429,9 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   set_mat4(p, g.skinned_depth.uniform("u_view_proj"), light_vp);
   const int depth_base = g.skinned_depth.uniform("u_skin_base");
   for (size_t i = 0; i < (options.characters ? n : 0); ++i) {
-    const GpuMesh& m = g.mesh_cache.at(g.lod_sets.at(g.character_shadow_mesh[i]).front().key);
+    const GpuMesh& m = g.character_shadow_mesh[i] == 0
+                           ? *drawn_mesh[i]
+                           : g.mesh_cache.at(g.lod_sets.at(g.character_shadow_mesh[i]).front().key);
     glProgramUniform1i(p, depth_base, static_cast<int>(i * kJointCount));
     glBindVertexArray(m.vao);
     glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
@@ -556,14 +454,17 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   // The overlap mask is drawn, cleared and resolved only in overlap mode (a full-screen multisampled
   // target less to write and resolve otherwise).
   const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  if (cached_ground) {  // the ground as drawn once, with its depth (and a clear stencil)
-    glNamedFramebufferReadBuffer(g.ground_fbo, GL_COLOR_ATTACHMENT0);
-    glNamedFramebufferDrawBuffers(g.msaa_fbo, 1, attachments);
-    glBlitNamedFramebuffer(g.ground_fbo, g.msaa_fbo, 0, 0, width_, height_, 0, 0, width_, height_,
-                           GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, GL_NEAREST);
+  const bool cached_ground = uses_ground_cache(options);
+  if (cached_ground) {
+    const std::uint64_t wanted = ground_cache_key(camera, options);
+    if (wanted != g.ground_key) {
+      draw_ground_cache(options);
+      g.ground_key = wanted;
+    }
+    copy_ground_cache();
   } else {
     glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 0, bg);
-    glClearNamedFramebufferfi(g.msaa_fbo, GL_DEPTH_STENCIL, 0, one, 0);
+    glClearNamedFramebufferfv(g.msaa_fbo, GL_DEPTH, 0, &one);
   }
   glNamedFramebufferDrawBuffers(g.msaa_fbo, options.overlap ? 2 : 1, attachments);
   if (options.overlap) glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 1, zero);
@@ -583,14 +484,9 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
     return (chars[a].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).squaredNorm() <
            (chars[b].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).squaredNorm();
   });
-  const double pixel_angle =
-      2.0 * std::tan(0.5 * camera.fov_y_deg * std::numbers::pi / 180.0) / height_;  // m per px per m
   if (!options.characters) order.clear();
   for (const size_t i : order) {
-    const double distance = (chars[i].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).norm();
-    const double metres_per_pixel = distance * pixel_angle;
-    const GpuMesh& m = g.mesh_cache.at(
-        select_lod(g.lod_sets.at(g.character_lods[i]), options.lod_pixels * metres_per_pixel).key);
+    const GpuMesh& m = *drawn_mesh[i];
     const Palette pal = character_palette(chars[i].palette);
     float colours[8 * 3];
     for (int r = 0; r < 8; ++r) {
@@ -613,11 +509,10 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   glUseProgram(p);
   set_rgb(p, g.flat_lit.uniform("u_base_color"), options.environment);
   draw_environment(g, p, g.flat_lit.uniform("u_model"));
-  if (cached_ground && options.characters) {
-    draw_planar_shadows(order, options.ground);
-  } else if (crowd_->environment.ground_plane && !cached_ground) {
+  if (cached_ground)
+    draw_ground_shadows(options.ground, key);
+  else if (crowd_->environment.ground_plane)
     draw_ground(g, options.ground);
-  }
   glBindVertexArray(0);
 
   end_stage(pass_times_.colour_ms, true);
@@ -670,87 +565,6 @@ void Renderer::draw_ground(Gl& g, const Rgb& colour) {
   set_mat4(p, g.ground_lit.uniform("u_model"), Mat4::Identity());
   glBindVertexArray(g.ground.vao);
   glDrawElements(GL_TRIANGLES, g.ground.count, GL_UNSIGNED_INT, nullptr);
-}
-
-std::uint64_t Renderer::ground_cache_key(const Camera& camera, const SceneOptions& options,
-                                         const Mat4& light_view_proj) const {
-  std::vector<double> data = {camera.eye.x(),
-                              camera.eye.y(),
-                              camera.eye.z(),
-                              camera.target.x(),
-                              camera.target.y(),
-                              camera.target.z(),
-                              camera.fov_y_deg,
-                              camera.near_m,
-                              camera.far_m,
-                              static_cast<double>(width_),
-                              static_cast<double>(height_)};
-  for (const Rgb& c : {options.background, options.ground, options.environment})
-    data.insert(data.end(), c.begin(), c.end());
-  data.insert(data.end(), light_view_proj.data(), light_view_proj.data() + 16);
-  for (char hidden : gl_->box_hidden) data.push_back(hidden);
-  data.push_back(static_cast<double>(crowd_generation_));
-  return stable_hash(
-      std::string_view(reinterpret_cast<const char*>(data.data()), data.size() * sizeof(double)));
-}
-
-// The ground as a frame without characters shows it: shaded, with the shadows of the environment, then
-// copied (colour, depth, clear stencil) into ground_fbo. Uniforms are those of the current frame.
-void Renderer::draw_ground_cache(const SceneOptions& options, const Mat4& light_view_proj) {
-  Gl& g = *gl_;
-  begin_shadow_pass(g);
-  GLuint p = g.static_depth.id();
-  glUseProgram(p);
-  set_mat4(p, g.static_depth.uniform("u_view_proj"), light_view_proj);
-  draw_environment(g, p, g.static_depth.uniform("u_model"));
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  glBindFramebuffer(GL_FRAMEBUFFER, g.msaa_fbo);
-  glViewport(0, 0, width_, height_);
-  const GLenum colour = GL_COLOR_ATTACHMENT0;
-  glNamedFramebufferDrawBuffers(g.msaa_fbo, 1, &colour);
-  const float bg[4] = {options.background[0], options.background[1], options.background[2], 1.0f};
-  glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 0, bg);
-  glClearNamedFramebufferfi(g.msaa_fbo, GL_DEPTH_STENCIL, 0, 1.0f, 0);
-  draw_ground(g, options.ground);
-  glBindVertexArray(0);
-  glNamedFramebufferReadBuffer(g.msaa_fbo, GL_COLOR_ATTACHMENT0);
-  glBlitNamedFramebuffer(g.msaa_fbo, g.ground_fbo, 0, 0, width_, height_, 0, 0, width_, height_,
-                         GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, GL_NEAREST);
-}
-
-// Characters' shadows on the cached ground (shaders.cpp, "Planar ground shadows"): drawn after the
-// characters and the environment, so the depth test keeps them on visible ground; the stencil lets each
-// pixel darken once where shadows overlap.
-void Renderer::draw_planar_shadows(const std::vector<size_t>& characters, const Rgb& ground) {
-  Gl& g = *gl_;
-  const GLenum colour = GL_COLOR_ATTACHMENT0;
-  glNamedFramebufferDrawBuffers(g.msaa_fbo, 1, &colour);
-  glDisable(GL_CULL_FACE);
-  glDepthMask(GL_FALSE);
-  glDepthFunc(GL_LEQUAL);
-  glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(-1.0f, -4.0f);  // on the ground plane, a hair nearer than the ground itself
-  glEnable(GL_STENCIL_TEST);
-  glStencilFunc(GL_EQUAL, 0, 0xff);
-  glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-  glEnable(GL_BLEND);
-  glBlendFunc(GL_DST_COLOR, GL_ZERO);  // multiply
-  const GLuint p = g.planar_shadow.id();
-  glUseProgram(p);
-  set_rgb(p, g.planar_shadow.uniform("u_base_color"), ground);
-  const int base = g.planar_shadow.uniform("u_skin_base");
-  for (const size_t i : characters) {
-    const GpuMesh& m = g.mesh_cache.at(g.lod_sets.at(g.character_shadow_mesh[i]).front().key);
-    glProgramUniform1i(p, base, static_cast<int>(i * kJointCount));
-    glBindVertexArray(m.vao);
-    glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
-  }
-  glBindVertexArray(0);
-  glDisable(GL_BLEND);
-  glDisable(GL_STENCIL_TEST);
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
 }
 
 void Renderer::read_rgba(std::vector<std::uint8_t>& rgba) {

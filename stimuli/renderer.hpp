@@ -42,10 +42,8 @@ struct SceneOptions {
   bool characters =
       true;  ///< false: the scene without its characters (the fixed per-frame cost, for benchmarks)
   bool time_passes = false;  ///< finish each pass before the next to time it (benchmarks; slower)
-  /// Draw the ground once per camera and copy it into each frame, with the characters' shadows on it
-  /// projected onto the plane (shaders.cpp); false: shade the ground with the shadow map every frame (the
-  /// reference path). Only used with one sample per pixel (msaa_samples 1), without fog and with a ground
-  /// plane.
+  /// With one sample per pixel, no fog and a ground plane: light the ground once per camera, copy it into
+  /// each frame and add only the shadows every frame (ground_cache.cpp). false: shade the ground every frame.
   bool cache_ground = true;
 };
 
@@ -116,10 +114,11 @@ class Renderer {
   void draw_environment(Gl& g, unsigned program, int model_location);
   void draw_ground(Gl& g, const Rgb& colour);
   void begin_shadow_pass(Gl& g);
-  std::uint64_t ground_cache_key(const Camera& camera, const SceneOptions& options,
-                                 const Mat4& light_view_proj) const;
-  void draw_ground_cache(const SceneOptions& options, const Mat4& light_view_proj);
-  void draw_planar_shadows(const std::vector<size_t>& characters, const Rgb& ground);
+  bool uses_ground_cache(const SceneOptions& options) const;
+  std::uint64_t ground_cache_key(const Camera& camera, const SceneOptions& options) const;
+  void draw_ground_cache(const SceneOptions& options);
+  void copy_ground_cache();
+  void draw_ground_shadows(const Rgb& ground, const Vec3& key_dir);
   std::unique_ptr<Gl> gl_;
   MannequinOptions mesh_options_;
   const CrowdAnimation* crowd_ = nullptr;

@@ -13,13 +13,13 @@
 // behind the visible surface, passes through a point inside both this character's capsules and
 // another's. The second test is needed because an interpenetration volume is enclosed by the two
 // bodies' surfaces and is never itself the visible surface.
-// Planar ground shadows (Blinn, "Me and my (fake) shadow", IEEE CG&A 8(1), 1988): when the ground is drawn
-// once per clip and cached (renderer.cpp), a character's shadow on the ground is its shadow-caster mesh
-// squashed onto the plane y = 0 along the key light (PLANAR_SHADOW vertex variant), drawn once per pixel
-// (stencil) with a multiplicative blend. Its colour is the ratio of the ground's shaded colour without and
-// with the key light, from the same light() as the lit shader, square-rooted because the framebuffer holds
-// gamma-2.0-encoded colour: sqrt(a * r) = sqrt(a) * sqrt(r). The ground's albedo cancels out of that ratio
-// except in the (2 %) specular term.
+// Ground shadows on a cached ground (ground_cache.cpp): with one sample per pixel the ground is lit once per
+// camera without any shadow (NO_SHADOW) and copied into each frame; the frame's shadows are then applied by
+// a multiplicative pass (MATERIAL_GROUND_SHADOW) over the ground that stays visible. Its factor is the
+// ratio of the lit ground with and without the shadow map's occlusion, from the same light() as the lit
+// shader, square-rooted because the framebuffer holds gamma-2.0-encoded colour: sqrt(a * r) =
+// sqrt(a) * sqrt(r). The ground's albedo cancels out of that ratio except in the (2 %) specular term, so
+// the result is the ground shaded every frame up to that term and 8-bit rounding.
 // Specialisation: the lit fragment shader is compiled once per material (MATERIAL_CHARACTER,
 // MATERIAL_GROUND, MATERIAL_FLAT) and, for characters, with or without OVERLAP. A CPU rasteriser
 // (llvmpipe) runs both sides of a non-uniform branch under a mask, so one shader with runtime material
@@ -40,9 +40,6 @@ layout(location = 5) in vec4 a_colour;  // sRGB vertex colour; alpha 1 replaces 
 layout(std430, binding = 0) readonly buffer SkinMatrices { mat4 skin[]; };
 uniform mat4 u_view_proj;
 uniform int u_skin_base;
-#ifdef PLANAR_SHADOW
-uniform vec3 u_key_dir;  // unit, toward the key light
-#endif
 out vec3 v_world;
 out vec3 v_normal;
 flat out uint v_region;
@@ -55,11 +52,6 @@ void main() {
   v_normal = mat3(m) * a_normal;
   v_region = a_region;
   v_colour = a_colour;
-#ifdef PLANAR_SHADOW
-  world.xyz -= u_key_dir * (world.y / max(u_key_dir.y, 0.05));  // along the key light onto y = 0
-  world.y = 0.0;
-  v_world = world.xyz;
-#endif
   gl_Position = u_view_proj * world;
 }
 )";
@@ -112,6 +104,9 @@ uniform int u_cap_count;
 vec3 to_linear(vec3 c) { return c * c; }  // gamma 2.0, matching the sqrt encode below
 
 float shadow(vec3 p, vec3 n) {
+#ifdef NO_SHADOW
+  return 1.0;
+#endif
   vec4 l = u_light_view_proj * vec4(p + n * 0.02, 1.0);
   vec3 s = l.xyz / l.w * 0.5 + 0.5;
   if (s.x < 0.0 || s.x > 1.0 || s.y < 0.0 || s.y > 1.0 || s.z > 1.0) return 1.0;
@@ -161,12 +156,15 @@ vec3 light(vec3 albedo, vec3 n, vec3 v, float sh, float specular) {
 }
 
 void main() {
-#ifdef MATERIAL_PLANAR_SHADOW
+#ifdef MATERIAL_GROUND_SHADOW
+  // The factor that turns the ground lit without shadows into the ground lit with this frame's shadows.
   vec3 up = vec3(0.0, 1.0, 0.0), to_eye = normalize(u_eye - v_world), base = to_linear(u_base_color);
-  vec3 ratio = light(base, up, to_eye, 0.0, 0.02) / max(light(base, up, to_eye, 1.0, 0.02), vec3(1e-4));
+  float sh_ground = shadow(v_world, up);
+  vec3 ratio = light(base, up, to_eye, sh_ground, 0.02) / max(light(base, up, to_eye, 1.0, 0.02), vec3(1e-4));
   o_color = vec4(sqrt(clamp(ratio, 0.0, 1.0)), 1.0);
   o_overlap = 0.0;
-#else
+  return;
+#endif
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
   vec3 albedo;
@@ -204,7 +202,6 @@ void main() {
   }
   o_color = vec4(sqrt(clamp(color, 0.0, 1.0)), 1.0);  // gamma 2.0 encode (sqrt: far cheaper than pow on llvmpipe)
   o_overlap = overlap ? 1.0 : 0.0;
-#endif
 }
 )";
 

@@ -5,7 +5,7 @@
 namespace crowdlab::stimuli::glsl {
 
 /// Skinned characters: linear blend skinning from an SSBO of per-bone skin matrices (no #version line: use
-/// specialise()). Define PLANAR_SHADOW to squash the skinned mesh onto the ground along the key light.
+/// specialise()).
 extern const char* const kSkinnedVertex;
 /// Static geometry (ground, boxes, meshes) with a model matrix.
 extern const char* const kStaticVertex;
@@ -13,7 +13,7 @@ extern const char* const kStaticVertex;
 extern const char* const kDepthFragment;
 /// Lit fragment shader (no #version line: use specialise()) for every material, with shadows, fog
 /// and the overlap test. Defines: MATERIAL_CHARACTER | MATERIAL_GROUND | MATERIAL_FLAT |
-/// MATERIAL_PLANAR_SHADOW (the multiplicative colour of a planar ground shadow), OVERLAP.
+/// OVERLAP.
 extern const char* const kLitFragment;
 
 /// "#version 450 core", one "#define NAME" per space-separated word of `defines`, then `source`.

@@ -54,8 +54,7 @@ struct Args {
   std::string viewpoint = "V3", preset = "veryfast", out, frames_png;
   int msaa = 4, shadow_map = 2048;
   double lod_pixels = 6.0;
-  bool overlap = false, json = false, empty = false, stages = false, quality = false,
-       reference_ground = false;
+  bool overlap = false, json = false, empty = false, stages = false, quality = false;
 };
 
 CrowdAnimation make_crowd(const Args& a) {
@@ -119,7 +118,6 @@ void run(const Args& a) {
   ro.scene.shadow_map_size = a.shadow_map;
   ro.scene.characters = !a.empty;
   ro.scene.lod_pixels = a.lod_pixels;
-  ro.scene.cache_ground = !a.reference_ground;
   ro.frames_png_dir = a.frames_png;
   const std::string out =
       a.out.empty() ? (std::filesystem::temp_directory_path() / "crowdlab_bench_render.mp4").string() : a.out;
@@ -173,7 +171,6 @@ void run(const Args& a) {
         {"mesh_setup_s", mesh_setup_s},
         {"cpu_ms_per_frame", cpu_ms_per_frame},
         {"scene", a.scene == "synthetic" ? "synthetic" : crowd.meta.condition_id},
-        {"cache_ground", ro.scene.cache_ground},
         {"quality", quality},
         {"stages_ms_median",
          {{"prepare", stage_median(r_stages, skip, [&](size_t f) { return r_stages.passes[f].prepare_ms; })},
@@ -248,9 +245,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_flag(
       "--quality", args->quality,
       "Also compare frames 0, 10, 20 and 29 of V1-V4, rendered and encoded with these options, with a "
-      "reference (4x MSAA, the ground shaded every frame, no encoding): luma SSIM and PSNR");
-  cmd->add_flag("--reference-ground", args->reference_ground,
-                "Shade the ground with the shadow map every frame instead of drawing it once per camera");
+      "reference (4x MSAA, no encoding): luma SSIM and PSNR");
   cmd->add_flag("--stages", args->stages,
                 "Also render the frames once more with each GPU pass finished before the next, and print "
                 "each stage's median time");
