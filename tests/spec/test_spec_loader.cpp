@@ -48,7 +48,7 @@ TEST_CASE("a spec's values reach the typed structs, with units and defaults") {
       "crowd: {model: social, agent_radius_m: 0.2, cost_weights: {goal: 1.5}}\n"
       "factors:\n  density: {levels: [2.22, 3.33]}\n  viewpoint: [V3]\n"
       "duration_s: 12.5\nfps: 25\nresolution: [1280, 720]\n"
-      "render: {crf: 23, msaa: 1, background: '#102030', viewpoints: {V3: [1, 2, 3, 0, 1, 0, 50]}}\n"
+      "render: {crf: 23, msaa: 4, background: '#102030', viewpoints: {V3: [1, 2, 3, 0, 1, 0, 50]}}\n"
       "protocol:\n  type: rating\n  scale: {points: 7, labels: [low, high]}\n"
       "  questions: [{id: q, text: \"How?\"}]\n"
       "outputs: {video: false, contact_sheet: false}\n");
@@ -71,7 +71,7 @@ TEST_CASE("a spec's values reach the typed structs, with units and defaults") {
   CHECK(s.render.width == 1280);
   CHECK(s.render.height == 720);
   CHECK(s.render.crf == 23);
-  CHECK(s.render.msaa == 1);
+  CHECK(s.render.msaa == 4);
   CHECK(s.render.background == "#102030");
   CHECK(s.render.viewpoint_overrides.at("V3").size() == 7);
   CHECK(s.protocol.type == "rating");
