@@ -457,7 +457,11 @@ TEST_CASE(
                                            "timestamp"};  // reload; real vs scripted times
   CHECK(comparable_rows((dir / "web-responses" / "P02.csv").string(), differ) ==
         comparable_rows((dir / "native" / "P02.csv").string(), differ));
-  // analyze report reads the imported folder unchanged.
+  // analyze report reads the imported folder unchanged, here beside a lab session of another id (an
+  // RM-ANOVA needs two participants).
+  REQUIRE(run_command(exe + " study " + spec_path + " --participant P01 --stimuli " +
+                      (dir / "stimuli").string() + " --responses " + script.string() + " --out " +
+                      (dir / "web-responses").string() + " > " + (dir / "native.log").string()) == 0);
   CHECK(run_command(exe + " analyze report " + (dir / "web-responses").string() + " --spec " + spec_path +
                     " --out " + (dir / "report").string() + " > " + (dir / "report.log").string() +
                     " 2>&1") == 0);
