@@ -54,8 +54,11 @@ const CommandRegistration kExportWeb([](CLI::App& root) {
                   "Ids whose trial orders are embedded: N (P01..PN) or a comma-separated list; other ids "
                   "(e.g. PROLIFIC_PID) run the order of a hashed embedded id")
       ->capture_default_str();
-  cmd->add_option("--jspsych", a->jspsych, "node_modules folder holding jspsych and @jspsych/plugin-*")
-      ->capture_default_str();
+  // No capture_default_str: the default is this build's folder, and docs/cli.md must not name one.
+  cmd->add_option(
+      "--jspsych", a->jspsych,
+      "node_modules folder holding jspsych and @jspsych/plugin-* (default: BUILD/web/node_modules, "
+      "installed by make web-deps)");
   cmd->callback([a] {
     const ExperimentSpec spec = load_experiment_spec(a->spec);
     const std::string manifest_path = (std::filesystem::path(a->stimuli) / "manifest.csv").string();
