@@ -390,6 +390,10 @@ StimulusManifest h264_demo_stimuli(const fs::path& dir) {
         m.entries.push_back(e);
         ++variant;
       }
+  StimulusEntry practice = m.entries.front();  // the first clip again, as the practice example
+  practice.id = "practice_1";
+  practice.practice = true;
+  m.entries.push_back(practice);
   write_manifest(m, (dir / "manifest.csv").string());
   return m;
 }
@@ -420,7 +424,16 @@ TEST_CASE(
     return;
   }
   const auto dir = test::scratch_dir("web-browser");
-  const std::string spec_path = (test::source_dir() / "experiments" / "demo.yaml").string();
+  // The demo spec, plus every screen the protocol can have: instructions, consent, a practice trial
+  // (shown at the start of the 'baseline' block), two blocks in Latin-square order, a break.
+  std::string yaml = slurp(test::source_dir() / "experiments" / "demo.yaml");
+  yaml.insert(yaml.find("  scale:"),
+              "  instructions: \"Watch each video, then answer the six statements.\"\n"
+              "  consent: \"I agree to take part in this study.\"\n"
+              "  practice: {density: [3.33], viewpoint: [V1], method: [baseline]}\n"
+              "  block_by: method\n  block_order: latin_square\n  break_every: 3\n");
+  std::ofstream(dir / "demo-online.yaml") << yaml;
+  const std::string spec_path = (dir / "demo-online.yaml").string();
   const ExperimentSpec spec = load_experiment_spec(spec_path);
   const auto m = h264_demo_stimuli(dir / "stimuli");
   const auto qs = resolve_questions(spec.protocol);
@@ -433,19 +446,19 @@ TEST_CASE(
                       " --out " + (dir / "web").string() + " --participants 3 --jatos " +
                       (dir / "demo.jzip").string() + " > " + (dir / "export.log").string()) == 0);
 
-  // The participant: P02, reloading the page after 3 of the 8 trials.
+  // The participant: P02, reloading the page after 3 of the 9 trials.
   REQUIRE(run_command("node " + (test::source_dir() / "tests" / "study" / "web_participant.mjs").string() +
                       " " + (dir / "web").string() + " " + chromium + " " + modules.string() + " " +
                       (dir / "answers.json").string() + " " + (dir / "browser").string() + " P02 3") == 0);
   const auto resume = nlohmann::json::parse(slurp(dir / "browser" / "resume.json"));
   CHECK(resume["before"].size() == 3);
   CHECK(resume["first_trial_after_reload"] == 4);  // the first unanswered trial
-  CHECK(resume["answered"].size() == 8);           // every trial answered once
+  CHECK(resume["answered"].size() == 9);           // every trial answered once (8 + practice)
   const auto download = nlohmann::json::parse(slurp(dir / "browser" / "download.json"));
   CHECK(download == nlohmann::json::parse(slurp(dir / "browser" / "localstorage.json")));
   CHECK(download["complete"] == true);
   CHECK(download["sessions"].size() == 2);
-  REQUIRE(download["records"].size() == 8);
+  REQUIRE(download["records"].size() == 9);
   for (const auto& r : download["records"]) {
     CAPTURE(r["trial"]);
     CHECK(r["session"] == (r["trial"].get<int>() <= 3 ? 1 : 2));
