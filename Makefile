@@ -5,15 +5,29 @@ JOBS       ?= $(shell nproc)
 DEMO_OUT   ?= demo-out
 CMAKE_GEN  := $(shell command -v ninja >/dev/null 2>&1 && echo "-G Ninja")
 
-.PHONY: all deps test-deps build demo test test-asan bench format clean
+.PHONY: all deps test-deps web-deps build demo test test-asan bench format clean
 
 all: build
 
 deps:
 	@scripts/install-deps.sh
+	@$(MAKE) --no-print-directory web-deps
 
 test-deps:
 	@scripts/install-deps.sh --test
+	@$(MAKE) --no-print-directory web-deps
+
+# jsPsych 8 and its plugins (for `crowdlab export-web`) and puppeteer-core (for the browser test), pinned
+# in study_ui/web/package-lock.json, installed with `npm ci` into the build tree ($(BUILD)/web), never
+# into the source tree. Re-run only when the lock file changes. Without npm the web study is skipped.
+WEB_DEPS := $(BUILD)/web/node_modules/.crowdlab-lock
+web-deps: $(WEB_DEPS)
+$(WEB_DEPS): study_ui/web/package.json study_ui/web/package-lock.json
+	@if command -v npm >/dev/null; then \
+	  mkdir -p $(BUILD)/web && cp study_ui/web/package.json study_ui/web/package-lock.json $(BUILD)/web/ && \
+	  echo "crowdlab: npm ci (jsPsych, puppeteer-core) into $(BUILD)/web" && \
+	  (cd $(BUILD)/web && npm ci --silent --no-audit --no-fund) && cp study_ui/web/package-lock.json $@; \
+	else echo "crowdlab: warning: no npm; export-web and the browser test need jsPsych (make web-deps)"; fi
 
 build: deps
 	@cmake -S . -B $(BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=Release >/dev/null

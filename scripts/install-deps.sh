@@ -6,6 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 build_pkgs=(
+  nodejs npm
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libyaml-cpp-dev libtinygltf-dev nlohmann-json3-dev
   libopencv-dev libopencv-contrib-dev libmeshoptimizer-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
@@ -16,8 +17,10 @@ build_pkgs=(
 )
 # Tools the tests drive: a virtual X server and xdotool for the study window, Node.js for the
 # Khronos glTF validator, GNU parallel for the sharding test, and Slurm with munge for the real-sbatch
-# test (a private single-node cluster, scripts/slurm-single-node.sh; it starts in about a second).
-test_pkgs=(xvfb xdotool x11-apps nodejs npm parallel slurm-wlm munge)
+# test (a private single-node cluster, scripts/slurm-single-node.sh; it starts in about a second),
+# and Chromium, driven headless by the web study's browser test (puppeteer-core, see make web-deps).
+# Node.js and npm also install jsPsych for `crowdlab export-web` (make deps runs make web-deps).
+test_pkgs=(xvfb xdotool x11-apps nodejs npm parallel slurm-wlm munge chromium)
 
 want=("${build_pkgs[@]}")
 if [[ ${1:-} == --test ]]; then want+=("${test_pkgs[@]}"); fi

@@ -13,6 +13,7 @@
 #include "framework/core/error.hpp"
 #include "framework/core/sha256.hpp"
 #include "study_ui/response_log.hpp"
+#include "study_ui/session_texts.hpp"
 #include "study_ui/verify_stimuli.hpp"
 
 namespace crowdlab::study {
@@ -33,11 +34,28 @@ nlohmann::json read_metadata(const std::string& path) {
   }
 }
 
-std::vector<std::vector<std::string>> trial_rows(const std::string& participant, int session,
-                                                 const Trial& trial,
-                                                 const std::vector<std::string>& factor_names,
-                                                 const std::vector<StudyQuestion>& questions,
-                                                 const std::vector<Answer>& answers) {
+void check_answers(const TrialOutcome& outcome, const std::vector<StudyQuestion>& questions,
+                   const Trial& trial) {
+  if (outcome.answers.size() != questions.size())
+    throw RuntimeError("trial " + std::to_string(trial.index) + ": presenter returned " +
+                       std::to_string(outcome.answers.size()) + " answers for " +
+                       std::to_string(questions.size()) + " questions");
+  for (size_t i = 0; i < questions.size(); ++i) {
+    const Answer& a = outcome.answers[i];
+    if (a.question_id != questions[i].id || !questions[i].valid(a.raw) || !std::isfinite(a.rt_ms) ||
+        a.rt_ms < 0)
+      throw RuntimeError("trial " + std::to_string(trial.index) + ": invalid answer to " + questions[i].id +
+                         " (" + std::to_string(a.raw) + ")");
+  }
+}
+
+}  // namespace
+
+std::vector<std::vector<std::string>> response_rows(const std::string& participant, int session,
+                                                    const Trial& trial,
+                                                    const std::vector<std::string>& factor_names,
+                                                    const std::vector<StudyQuestion>& questions,
+                                                    const std::vector<Answer>& answers) {
   std::vector<std::vector<std::string>> rows;
   for (size_t i = 0; i < questions.size(); ++i) {
     const StudyQuestion& q = questions[i];
@@ -58,23 +76,6 @@ std::vector<std::vector<std::string>> trial_rows(const std::string& participant,
   }
   return rows;
 }
-
-void check_answers(const TrialOutcome& outcome, const std::vector<StudyQuestion>& questions,
-                   const Trial& trial) {
-  if (outcome.answers.size() != questions.size())
-    throw RuntimeError("trial " + std::to_string(trial.index) + ": presenter returned " +
-                       std::to_string(outcome.answers.size()) + " answers for " +
-                       std::to_string(questions.size()) + " questions");
-  for (size_t i = 0; i < questions.size(); ++i) {
-    const Answer& a = outcome.answers[i];
-    if (a.question_id != questions[i].id || !questions[i].valid(a.raw) || !std::isfinite(a.rt_ms) ||
-        a.rt_ms < 0)
-      throw RuntimeError("trial " + std::to_string(trial.index) + ": invalid answer to " + questions[i].id +
-                         " (" + std::to_string(a.raw) + ")");
-  }
-}
-
-}  // namespace
 
 void check_participant_id(const std::string& participant) {
   bool ok = !participant.empty() && participant.size() <= 64;
@@ -210,16 +211,13 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
   for (const Trial& t : trials) {
     if (recovered.completed_trials.count(t.index)) continue;
     if (t.practice && !in_practice) {
-      if (!presenter.show_screen(ScreenKind::practice_intro, "Practice",
-                                 "The next videos are practice examples, to get used to the task.\n"
-                                 "Your answers to them are not analysed.\n\nPress any key to start."))
+      if (!presenter.show_screen(ScreenKind::practice_intro, texts::kPracticeTitle, texts::kPracticeIntro))
         return abort_session();
     }
     if (!t.practice && (in_practice || t.block != current_block) && (multiple_blocks || in_practice)) {
-      const std::string title = multiple_blocks ? "Part " + std::to_string(t.block_number) : "Main part";
-      const std::string body = in_practice
-                                   ? "The practice is over. The experiment starts now.\n\nPress any key."
-                                   : "Press any key to continue.";
+      const std::string title = multiple_blocks ? texts::kPartTitlePrefix + std::to_string(t.block_number)
+                                                : std::string(texts::kMainPartTitle);
+      const std::string body = in_practice ? texts::kAfterPractice : texts::kBlockIntro;
       if (!presenter.show_screen(ScreenKind::block_intro, title, body)) return abort_session();
     }
     in_practice = t.practice;
@@ -238,7 +236,7 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     if (outcome.aborted) return abort_session();
     check_answers(outcome, questions, t);
     log->append_trial(
-        trial_rows(opt.participant, session, t, manifest.factor_names, questions, outcome.answers));
+        response_rows(opt.participant, session, t, manifest.factor_names, questions, outcome.answers));
     ++result.trials_done_now;
     if (outcome.frames_dropped > 0)
       spdlog::info("trial {} ({}): {} of {} frame(s) dropped", t.index, t.stimulus.id, outcome.frames_dropped,
@@ -247,13 +245,13 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     save_meta("running");  // progress and dropped frames survive a kill too
     const bool last = t.index == static_cast<int>(trials.size());
     if (!last && !t.practice && p.break_every > 0 && test_done % p.break_every == 0) {
-      if (!presenter.show_screen(ScreenKind::break_screen, "Break", p.break_text)) return abort_session();
+      if (!presenter.show_screen(ScreenKind::break_screen, texts::kBreakTitle, p.break_text))
+        return abort_session();
     }
   }
   result.complete = true;
   save_meta("complete");
-  presenter.show_screen(ScreenKind::finished, "Thank you",
-                        "The session is complete. Thank you for taking part!\n\nPress any key to close.");
+  presenter.show_screen(ScreenKind::finished, texts::kFinishedTitle, texts::kFinished);
   spdlog::info("participant {}: complete, responses in {}", opt.participant, result.csv_path);
   return result;
 }

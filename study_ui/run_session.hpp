@@ -53,6 +53,14 @@ void check_participant_id(const std::string& participant);
 /// The response CSV header for a manifest's factor columns.
 std::vector<std::string> response_header(const std::vector<std::string>& factor_names);
 
+/// The tidy rows of one answered trial (one per question, columns as response_header), as written to
+/// P.csv; shared with import-web so that web data land in exactly the native format.
+std::vector<std::vector<std::string>> response_rows(const std::string& participant, int session,
+                                                    const Trial& trial,
+                                                    const std::vector<std::string>& factor_names,
+                                                    const std::vector<StudyQuestion>& questions,
+                                                    const std::vector<Answer>& answers);
+
 SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& manifest,
                           const SessionOptions& options, Presenter& presenter);
 

@@ -120,6 +120,9 @@ struct ProtocolSpec {
   std::string consent;
   std::string break_text = "Take a short break. Press any key to continue.";
   bool loop_video = true;  ///< loop until answered (Likert)
+  /// Online studies (export-web): where the end screen sends the participant, e.g. a panel's
+  /// completion link ("" = no redirect). http(s) only.
+  std::string completion_url;
 };
 
 struct OutputSpec {

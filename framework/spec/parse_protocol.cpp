@@ -27,6 +27,22 @@ void check_label_count(YamlSection& s, const std::string& key, size_t labels, in
                               std::to_string(points) + "), got " + std::to_string(labels));
 }
 
+/// An absolute http(s) URL with a host and no whitespace or quotes (it ends up in a web page's link).
+bool is_web_url(const std::string& url) {
+  const std::string http = "http://", https = "https://";
+  size_t host = 0;
+  if (url.compare(0, https.size(), https) == 0)
+    host = https.size();
+  else if (url.compare(0, http.size(), http) == 0)
+    host = http.size();
+  else
+    return false;
+  if (url.size() <= host || url[host] == '/') return false;
+  for (char c : url)
+    if (c <= ' ' || c == '"' || c == '\'' || c == '<' || c == '>' || c == '\\' || c == 127) return false;
+  return true;
+}
+
 std::vector<std::string> factor_names(const ExperimentSpec& spec) {
   std::vector<std::string> names;
   for (const Factor& f : spec.factors) names.push_back(f.name);
@@ -155,7 +171,7 @@ void parse_protocol(YamlSection s, ExperimentSpec& spec) {
   SpecDiagnostics& diag = s.diagnostics();
   if (!s.present()) return;  // no study: crowds and stimuli only
   s.allow_keys({"type", "scale", "questions", "composites", "practice", "block_by", "block_order",
-                "break_every", "instructions", "consent", "break_text", "loop_video"});
+                "break_every", "instructions", "consent", "break_text", "loop_video", "completion_url"});
   s.choice("type", p.type, {"likert", "2afc", "rating"});
   YamlSection scale = s.section("scale");
   scale.allow_keys({"points", "labels"});
@@ -187,6 +203,12 @@ void parse_protocol(YamlSection s, ExperimentSpec& spec) {
   s.string("consent", p.consent);
   s.string("break_text", p.break_text);
   s.boolean("loop_video", p.loop_video);
+  if (s.has("completion_url")) {
+    s.string("completion_url", p.completion_url);
+    if (!is_web_url(p.completion_url))
+      diag.error(s.get("completion_url"), s.child_path("completion_url"),
+                 "expected an http:// or https:// URL without spaces, got '" + p.completion_url + "'");
+  }
 }
 
 }  // namespace crowdlab

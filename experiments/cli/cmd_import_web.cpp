@@ -1,0 +1,56 @@
+// `crowdlab import-web`: a web study's results as native per-participant tidy CSVs.
+// Logic lives in study_ui/web_import.*; see docs/online.md.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "experiments/cli/command_registry.hpp"
+#include "framework/core/error.hpp"
+#include "framework/core/stimulus_manifest.hpp"
+#include "framework/spec/load_experiment_spec.hpp"
+#include "study_ui/web_import.hpp"
+
+namespace crowdlab::cli {
+namespace {
+
+struct ImportWebArgs {
+  std::vector<std::string> results;
+  std::string spec, stimuli, out;
+};
+
+const CommandRegistration kImportWeb([](CLI::App& root) {
+  auto a = std::make_shared<ImportWebArgs>();
+  auto* cmd = root.add_subcommand(
+      "import-web",
+      "Read a web study's results (JATOS result data, the participant's download or a localStorage dump, "
+      "jsPsych JSON) and write the same per-participant tidy CSVs as `crowdlab study`, after checking the "
+      "spec hash, the stimulus hashes and the trial orders. See docs/online.md.");
+  cmd->add_option("results", a->results, "Result files, or folders searched for *.json, *.jsonl, *.txt")
+      ->required();
+  cmd->add_option("--spec", a->spec, "The experiment spec (YAML) the web study was exported from")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--stimuli", a->stimuli, "Stimulus folder holding manifest.csv (the one exported)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--out", a->out, "Response folder for P.csv / P.json (analyze report reads it)")
+      ->required();
+  cmd->callback([a] {
+    const ExperimentSpec spec = load_experiment_spec(a->spec);
+    const std::string manifest_path = (std::filesystem::path(a->stimuli) / "manifest.csv").string();
+    if (!std::filesystem::is_regular_file(manifest_path))
+      throw InputError(SourceLocation{"", 0, 0, "--stimuli"}, manifest_path + ": no stimulus manifest");
+    study::WebImportOptions opt;
+    opt.out_dir = a->out;
+    opt.stimuli_dir = a->stimuli;
+    const study::WebImportResult r = study::import_web(spec, read_manifest(manifest_path), a->results, opt);
+    std::printf(
+        "%d record(s) from %d file(s), %d identical duplicate(s) merged\n%d participant(s), %d complete, %d "
+        "already imported\nresponses: %s\n",
+        r.records, r.files, r.duplicates_merged, r.participants, r.complete, r.already_imported,
+        a->out.c_str());
+  });
+});
+
+}  // namespace
+}  // namespace crowdlab::cli

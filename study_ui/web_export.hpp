@@ -1,0 +1,67 @@
+#pragma once
+// export_web: a spec's study as a static jsPsych web experiment (and a JATOS study archive), with
+// the same protocol and the same per-participant trial order as the native session (run_session).
+//
+// Output folder (WEBDIR):
+//   index.html, crowdlab_study.js, crowdlab_study.css   our page and script (copied from study_ui/web)
+//   lib/jspsych.js, lib/jspsych.css, lib/plugin-*.js     jsPsych 8 and its official plugins, copied from
+//                                                       the build tree's node_modules (make web-deps)
+//   <manifest file paths>                               the clips, hard-linked (copied across devices)
+//   timeline.json                                       web_timeline() below
+// Trial orders: computed here by build_trial_list for every id in `participants` and embedded, so the
+// browser runs no randomisation of its own and the web order equals `crowdlab study`'s for that id.
+// An id that is not embedded (a panel's PROLIFIC_PID, say) takes the order of the embedded id
+// web_order_participant() picks: ids[fnv1a32(id) mod ids.size()] (FNV-1a, 32 bit, over the id's
+// bytes; http://www.isthe.com/chongo/tech/comp/fnv/). The data record it under `order_of`, and
+// import-web checks the answers against that order.
+// JATOS archive (.jzip, https://www.jatos.org/): a ZIP holding <dir>.jas (JSON, "version": "3", data:
+// study uuid, title, description, dirName, componentList [{uuid, title, htmlFilePath, reloadable,
+// active, ...}]) and the folder <dir>/ with WEBDIR's files (JATOS serves it as the study assets).
+// The uuids derive from the spec's name, so exporting a changed spec again replaces the same study.
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "framework/core/stimulus_manifest.hpp"
+#include "framework/spec/experiment_spec.hpp"
+
+namespace crowdlab::study {
+
+/// The default embedded ids: P01 .. PNN (zero-padded to at least two digits, like the native examples).
+std::vector<std::string> numbered_participant_ids(int count);
+
+/// FNV-1a 32-bit hash of the id's bytes (offset basis 2166136261, prime 16777619).
+std::uint32_t fnv1a32(const std::string& text);
+
+/// The embedded id whose order a participant runs: the id itself when embedded, else the hashed slot.
+std::string web_order_participant(const std::string& participant, const std::vector<std::string>& embedded);
+
+/// The timeline.json object: study settings, questions, screen texts, stimuli and one trial order
+/// per embedded id. Throws InputError (via build_trial_list / resolve_questions) on a bad protocol.
+nlohmann::json web_timeline(const ExperimentSpec& spec, const StimulusManifest& manifest,
+                            const std::string& manifest_sha256, const std::vector<std::string>& participants);
+
+struct WebExportOptions {
+  std::string stimuli_dir;                ///< folder of manifest.csv
+  std::string out_dir;                    ///< WEBDIR; must be absent or empty
+  std::string jatos_path;                 ///< .jzip to write ("" = none)
+  std::vector<std::string> participants;  ///< embedded ids (each checked like --participant)
+  std::string web_source_dir;             ///< study_ui/web
+  std::string node_modules_dir;           ///< holds jspsych/ and @jspsych/plugin-*/
+};
+
+struct WebExportResult {
+  int files = 0;  ///< files written into WEBDIR
+  int clips = 0;
+  long bytes = 0;
+  std::string jatos_dir;  ///< the study-assets folder name inside the .jzip
+};
+
+/// The jsPsych files a web study loads: (path under node_modules, path under WEBDIR).
+std::vector<std::pair<std::string, std::string>> jspsych_bundle_files();
+
+WebExportResult export_web(const ExperimentSpec& spec, const StimulusManifest& manifest,
+                           const WebExportOptions& options);
+
+}  // namespace crowdlab::study

@@ -1,0 +1,495 @@
+// The web study (export-web / import-web): trial orders equal to the native session's, the import of
+// web records into native tidy CSVs, refusal of bad input, the JATOS archive's structure, and a real
+// participant in headless Chromium (skipped, with a message, when chromium or jsPsych are absent).
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "framework/core/csv.hpp"
+#include "framework/core/error.hpp"
+#include "framework/spec/load_experiment_spec.hpp"
+#include "stimuli/video_encoder.hpp"
+#include "study_ui/run_session.hpp"
+#include "study_ui/scripted_presenter.hpp"
+#include "study_ui/web_export.hpp"
+#include "study_ui/web_import.hpp"
+#include "tests/study/study_fixture.hpp"
+#include "tests/support/test_paths.hpp"
+
+using namespace crowdlab;
+using namespace crowdlab::study;
+namespace fs = std::filesystem;
+using crowdlab::test::slurp;
+
+namespace {
+
+/// Answers keyed by (stimulus, question): raw = 1 + (n mod k), yes/no alternating.
+std::map<std::pair<std::string, std::string>, int> scripted_answers(const StimulusManifest& m,
+                                                                    const std::vector<StudyQuestion>& qs) {
+  std::map<std::pair<std::string, std::string>, int> out;
+  int n = 0;
+  for (const auto& e : m.entries)
+    for (const auto& q : qs) {
+      out[{e.id, q.id}] = q.kind == QuestionKind::yesno ? n % 2 : 1 + n % q.points;
+      ++n;
+    }
+  return out;
+}
+
+fs::path write_script(const fs::path& path, const std::map<std::pair<std::string, std::string>, int>& answers,
+                      const std::vector<StudyQuestion>& qs) {
+  std::ofstream out(path);
+  out << "stimulus,question,response,rt_ms\n";
+  for (const auto& [key, raw] : answers) {
+    const bool yesno = std::any_of(qs.begin(), qs.end(), [&](const auto& q) {
+      return q.id == key.second && q.kind == QuestionKind::yesno;
+    });
+    out << key.first << "," << key.second << "," << (yesno ? (raw ? "yes" : "no") : std::to_string(raw))
+        << ",750\n";
+  }
+  return path;
+}
+
+/// A native scripted session's P.csv for `id`.
+std::string native_csv(const ExperimentSpec& spec, const StimulusManifest& m, const fs::path& stimuli,
+                       const fs::path& script, const fs::path& out, const std::string& id) {
+  ScriptedPresenter presenter(script.string(), 0);
+  SessionOptions opt{id, stimuli.string(), out.string(), false, "scripted", true, false};
+  return run_session(spec, m, opt, presenter).csv_path;
+}
+
+/// What the web study stores for one participant (crowdlab_study.js's AnswerStore), built from the
+/// timeline's order and the answers; rt 750 ms like the script.
+nlohmann::json web_dump(const nlohmann::json& timeline, const std::string& participant,
+                        const std::map<std::pair<std::string, std::string>, int>& answers) {
+  const std::string order_of = web_order_participant(participant, timeline["order_ids"]);
+  nlohmann::json dump = {{"format", "crowdlab-web-data"},
+                         {"participant", participant},
+                         {"order_of", order_of},
+                         {"records", nlohmann::json::array()}};
+  for (const auto& t : timeline["orders"][order_of]) {
+    nlohmann::json record = {
+        {"format", "crowdlab-web-data"},
+        {"participant", participant},
+        {"order_of", order_of},
+        {"session", 1},
+        {"spec_hash", timeline["study"]["spec_hash"]},
+        {"trial", t["trial"]},
+        {"stimulus", t["stimulus"]},
+        {"stimulus_sha256", timeline["stimuli"][t["stimulus"].get<std::string>()]["sha256"]},
+        {"block", t["block"]},
+        {"practice", t["practice"]},
+        {"answers", nlohmann::json::array()}};
+    for (const auto& q : timeline["questions"])
+      record["answers"].push_back({{"question", q["id"]},
+                                   {"response", answers.at({t["stimulus"], q["id"]})},
+                                   {"rt_ms", 750},
+                                   {"timestamp", "2026-11-25T03:00:00.000Z"}});
+    dump["records"].push_back(record);
+  }
+  return dump;
+}
+
+/// A CSV's rows without the columns that legitimately differ between two runs of the same answers.
+std::vector<std::vector<std::string>> comparable_rows(const std::string& csv_path,
+                                                      const std::vector<std::string>& ignore) {
+  const CsvTable t = read_csv(csv_path);
+  std::vector<std::vector<std::string>> out;
+  for (size_t r = 0; r < t.rows.size(); ++r) {
+    std::vector<std::string> row;
+    for (size_t c = 0; c < t.header.size(); ++c)
+      if (std::find(ignore.begin(), ignore.end(), t.header[c]) == ignore.end()) row.push_back(t.cell(r, c));
+    out.push_back(row);
+  }
+  return out;
+}
+
+ExperimentSpec blocked_spec(const std::string& block_order) {
+  ExperimentSpec spec = test::likert_spec();
+  spec.protocol.block_by = "density";
+  spec.protocol.block_order = block_order;
+  spec.protocol.break_every = 3;
+  return spec;
+}
+
+void write_json(const fs::path& path, const nlohmann::json& j) {
+  std::ofstream(path) << j.dump() << "\n";
+}
+
+/// Names of the entries of a stored ZIP, read back from its central directory (APPNOTE §4.3.12/16).
+std::vector<std::string> zip_entry_names(const std::string& path) {
+  const std::string z = slurp(path);
+  auto u16 = [&](size_t at) {
+    return static_cast<size_t>(static_cast<unsigned char>(z[at]) | static_cast<unsigned char>(z[at + 1])
+                                                                       << 8);
+  };
+  auto u32 = [&](size_t at) { return u16(at) | u16(at + 2) << 16; };
+  REQUIRE(z.size() > 22);
+  const size_t eocd = z.size() - 22;
+  REQUIRE(u32(eocd) == 0x06054b50);
+  const size_t count = u16(eocd + 10);
+  size_t at = u32(eocd + 16);
+  std::vector<std::string> names;
+  for (size_t i = 0; i < count; ++i) {
+    REQUIRE(u32(at) == 0x02014b50);
+    const size_t name_len = u16(at + 28), extra = u16(at + 30), comment = u16(at + 32);
+    const size_t local = u32(at + 42);
+    CHECK(u32(local) == 0x04034b50);
+    names.push_back(z.substr(at + 46, name_len));
+    at += 46 + name_len + extra + comment;
+  }
+  return names;
+}
+
+/// Empty stand-ins for the jsPsych files, so that export_web runs without npm.
+fs::path fake_node_modules(const fs::path& dir) {
+  for (const auto& [from, to] : jspsych_bundle_files()) {
+    fs::create_directories((dir / from).parent_path());
+    std::ofstream(dir / from) << "// stand-in\n";
+  }
+  return dir;
+}
+
+}  // namespace
+
+TEST_CASE("web trial orders equal the native session's for embedded ids; other ids map by FNV-1a",
+          "[study]") {
+  const auto dir = test::scratch_dir("web-order");
+  const auto m = test::make_stimuli(
+      dir / "stimuli", {{"density", {"2.22", "6.66", "9.99"}}, {"method", {"baseline", "ours"}}}, 2);
+  const auto qs = resolve_questions(test::likert_spec().protocol);
+  const auto script = write_script(dir / "script.csv", scripted_answers(m, qs), qs);
+  const std::vector<std::string> ids = {"P01", "P02", "P03", "P17", "lab_A"};
+  for (const std::string order : {"random", "latin_square", "fixed"}) {
+    const ExperimentSpec spec = blocked_spec(order);
+    const nlohmann::json timeline = web_timeline(spec, m, "sha", ids);
+    for (const std::string& id : ids) {
+      // The native session's sequence of (trial, stimulus, block) from its P.csv, one per trial.
+      const CsvTable t =
+          read_csv(native_csv(spec, m, dir / "stimuli", script, dir / ("native-" + order), id));
+      std::vector<std::tuple<int, std::string, std::string>> native, web;
+      for (size_t r = 0; r < t.rows.size(); r += qs.size())
+        native.emplace_back(std::stoi(t.cell(r, t.column("trial"))), t.cell(r, t.column("stimulus")),
+                            t.cell(r, t.column("block")));
+      for (const auto& w : timeline["orders"][id]) web.emplace_back(w["trial"], w["stimulus"], w["block"]);
+      CAPTURE(order, id);
+      CHECK(web == native);
+    }
+    // Orders differ between participants (the shuffles are per participant).
+    CHECK(timeline["orders"]["P01"] != timeline["orders"]["P02"]);
+  }
+  // FNV-1a 32 test vectors (http://www.isthe.com/chongo/tech/comp/fnv/) and the slot rule.
+  CHECK(fnv1a32("") == 0x811c9dc5u);
+  CHECK(fnv1a32("a") == 0xe40c292cu);
+  CHECK(fnv1a32("foobar") == 0xbf9cf968u);
+  CHECK(web_order_participant("P02", ids) == "P02");
+  CHECK(web_order_participant("5f2a0c9e1b", ids) == ids[fnv1a32("5f2a0c9e1b") % ids.size()]);
+  CHECK(numbered_participant_ids(3) == std::vector<std::string>{"P01", "P02", "P03"});
+  CHECK(numbered_participant_ids(120)[119] == "P120");
+}
+
+TEST_CASE("import-web of web records equals the native scripted session's table", "[study]") {
+  const auto dir = test::scratch_dir("web-import");
+  const auto m = test::make_stimuli(dir / "stimuli",
+                                    {{"density", {"2.22", "6.66"}}, {"method", {"baseline", "ours"}}}, 2);
+  for (const bool afc : {false, true}) {
+    const ExperimentSpec spec = afc ? test::afc_spec() : blocked_spec("latin_square");
+    const auto qs = resolve_questions(spec.protocol);
+    const auto answers = scripted_answers(m, qs);
+    const fs::path sub = dir / (afc ? "afc" : "likert");
+    const auto script = write_script(sub.string() + "-script.csv", answers, qs);
+    const nlohmann::json timeline = web_timeline(spec, m, "sha", numbered_participant_ids(4));
+    for (const std::string id : {"P03", "PROLIFIC5f2a"}) {
+      write_json(sub.string() + "-" + id + ".json", web_dump(timeline, id, answers));
+      const WebImportResult r = import_web(spec, m, {sub.string() + "-" + id + ".json"},
+                                           {(sub / "web").string(), (dir / "stimuli").string()});
+      CHECK(r.participants == 1);
+      CHECK(r.complete == 1);
+      // The native session of the id whose order the web participant ran, renamed.
+      const std::string order_of = web_order_participant(id, timeline["order_ids"]);
+      const auto native = native_csv(spec, m, dir / "stimuli", script, sub / ("native-" + id), order_of);
+      auto expected = comparable_rows(native, {"timestamp", "participant"});
+      CAPTURE(afc, id);
+      CHECK(comparable_rows((sub / "web" / (id + ".csv")).string(), {"timestamp", "participant"}) ==
+            expected);
+      CHECK(read_csv((sub / "web" / (id + ".csv")).string()).header == read_csv(native).header);
+      const auto meta = nlohmann::json::parse(slurp((sub / "web" / (id + ".json")).string()));
+      CHECK(meta["status"] == "complete");
+      CHECK(meta["order_of"] == order_of);
+    }
+  }
+}
+
+TEST_CASE("import-web refuses foreign specs and stimuli, wrong orders, conflicting duplicates and bad files",
+          "[study]") {
+  const auto dir = test::scratch_dir("web-bad");
+  const auto m = test::make_stimuli(dir / "stimuli",
+                                    {{"density", {"2.22", "6.66"}}, {"method", {"baseline", "ours"}}}, 1);
+  const ExperimentSpec spec = test::likert_spec();
+  const auto qs = resolve_questions(spec.protocol);
+  const auto answers = scripted_answers(m, qs);
+  const nlohmann::json timeline = web_timeline(spec, m, "sha", numbered_participant_ids(2));
+  const nlohmann::json good = web_dump(timeline, "P01", answers);
+  const WebImportOptions opt{(dir / "out").string(), (dir / "stimuli").string()};
+  auto expect_refused = [&](nlohmann::json dump, const std::string& name, const std::string& words) {
+    const fs::path file = dir / (name + ".json");
+    write_json(file, dump);
+    CAPTURE(name);
+    try {
+      import_web(spec, m, {file.string()}, opt);
+      FAIL("accepted " + name);
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      CHECK(what.find(file.string()) != std::string::npos);
+      CHECK(what.find(words) != std::string::npos);
+    }
+    CHECK_FALSE(fs::exists(dir / "out" / "P01.csv"));  // nothing written
+  };
+  auto with = [&](const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json d = good;
+    edit(d);
+    return d;
+  };
+  expect_refused(with([](nlohmann::json& d) { d["records"][1]["spec_hash"] = "other"; }), "spec",
+                 "another spec");
+  expect_refused(with([](nlohmann::json& d) { d["records"][2]["stimulus_sha256"] = "00"; }), "sha",
+                 "not the manifest's");
+  expect_refused(
+      with([](nlohmann::json& d) { std::swap(d["records"][1]["stimulus"], d["records"][2]["stimulus"]); }),
+      "order", "the order of P01");
+  expect_refused(with([](nlohmann::json& d) { d["records"][0]["answers"][3]["response"] = 7; }), "range",
+                 "invalid response");
+  expect_refused(with([](nlohmann::json& d) { d["records"][0]["answers"].erase(5); }), "count",
+                 "expected 6 answers");
+  expect_refused(with([](nlohmann::json& d) {
+                   auto copy = d["records"][2];
+                   copy["answers"][0]["response"] = copy["answers"][0]["response"].get<int>() % 6 + 1;
+                   d["records"].push_back(copy);
+                 }),
+                 "conflict", "differently");
+  expect_refused(with([](nlohmann::json& d) { d["format"] = "something"; }), "format",
+                 "not crowdlab web study data");
+  {
+    std::ofstream(dir / "torn.jsonl")
+        << good["records"][0].dump() << "\n{\"format\": \"crowdlab-web-data\", \"tri\n";
+    CHECK_THROWS_WITH(import_web(spec, m, {(dir / "torn.jsonl").string()}, opt),
+                      Catch::Contains("torn.jsonl:2") && Catch::Contains("not valid JSON"));
+  }
+  // Identical duplicates (a JATOS append and the download of the same session) merge.
+  std::ofstream lines(dir / "jatos.txt");
+  for (const auto& r : good["records"]) lines << r.dump() << "\n";
+  lines.close();
+  write_json(dir / "download.json", good);
+  const WebImportResult r =
+      import_web(spec, m, {(dir / "jatos.txt").string(), (dir / "download.json").string()}, opt);
+  CHECK(r.duplicates_merged == static_cast<int>(good["records"].size()));
+  CHECK(r.complete == 1);
+  // jsPsych's own data (jsPsych.data.get().json()): the records ride on the trials as crowdlab_record.
+  nlohmann::json jspsych = nlohmann::json::array({{{"trial_type", "fullscreen"}, {"rt", 812}}});
+  for (const auto& rec : good["records"])
+    jspsych.push_back({{"trial_type", "survey-likert"}, {"crowdlab_record", rec}});
+  write_json(dir / "jspsych.json", jspsych);
+  const WebImportOptions other{(dir / "out-jspsych").string(), (dir / "stimuli").string()};
+  CHECK(import_web(spec, m, {(dir / "jspsych.json").string()}, other).complete == 1);
+  CHECK(slurp(dir / "out-jspsych" / "P01.csv") == slurp(dir / "out" / "P01.csv"));
+  // Importing again is a no-op; different answers for an imported participant are refused.
+  CHECK(import_web(spec, m, {(dir / "download.json").string()}, opt).already_imported == 1);
+  nlohmann::json changed = good;
+  changed["records"][0]["answers"][0]["rt_ms"] = 1.5;
+  write_json(dir / "changed.json", changed);
+  CHECK_THROWS_WITH(import_web(spec, m, {(dir / "changed.json").string()}, opt),
+                    Catch::Contains("refusing to overwrite"));
+}
+
+TEST_CASE("export-web writes the study folder and a JATOS archive; completion_url is validated", "[study]") {
+  const auto dir = test::scratch_dir("web-export");
+  const auto m = test::make_stimuli(dir / "stimuli", {{"density", {"2.22", "6.66"}}}, 1);
+  ExperimentSpec spec = test::likert_spec();
+  spec.protocol.completion_url = "https://app.prolific.com/submissions/complete?cc=C0DE";
+  WebExportOptions opt;
+  opt.stimuli_dir = (dir / "stimuli").string();
+  opt.out_dir = (dir / "web").string();
+  opt.jatos_path = (dir / "study.jzip").string();
+  opt.participants = {"P01", "P02"};
+  opt.web_source_dir = std::string(CROWDLAB_SOURCE_DIR) + "/study_ui/web";
+  opt.node_modules_dir = fake_node_modules(dir / "node_modules").string();
+  const WebExportResult r = export_web(spec, m, opt);
+  CHECK(r.clips == 3);  // v0, v1 and the practice clip
+  for (const char* f : {"index.html", "crowdlab_study.js", "lib/jspsych.js", "lib/plugin-survey-likert.js",
+                        "clips/v0.mp4", "timeline.json"})
+    CHECK(fs::is_regular_file(dir / "web" / f));
+  const auto timeline = nlohmann::json::parse(slurp((dir / "web" / "timeline.json").string()));
+  CHECK(timeline["study"]["completion_url"] == spec.protocol.completion_url);
+  CHECK(timeline["questions"].size() == 6);
+  CHECK(timeline["questions"][0]["text"] == "Contacts made by characters between them seem natural to me");
+  CHECK(timeline["orders"]["P02"].size() == 3);
+  const auto names = zip_entry_names(opt.jatos_path);
+  REQUIRE(names.size() == static_cast<size_t>(r.files) + 1);
+  CHECK(names[0] == r.jatos_dir + ".jas");
+  CHECK(std::find(names.begin(), names.end(), r.jatos_dir + "/index.html") != names.end());
+  // The same export twice gives the same archive bytes (fixed times, sorted entries).
+  const std::string first = slurp(opt.jatos_path);
+  opt.out_dir = (dir / "web2").string();
+  export_web(spec, m, opt);
+  CHECK(slurp(opt.jatos_path) == first);
+  // A non-empty output folder is refused.
+  CHECK_THROWS_WITH(export_web(spec, m, opt), Catch::Contains("not an empty folder"));
+
+  // protocol.completion_url must be an http(s) URL.
+  const std::string demo = slurp(std::string(CROWDLAB_SOURCE_DIR) + "/experiments/demo.yaml");
+  for (const std::string url : {"ftp://x.org/", "https://", "https://a.org/x y", "javascript:alert(1)"}) {
+    std::string yaml = demo;
+    yaml.insert(yaml.find("  composites:"), "  completion_url: \"" + url + "\"\n");
+    std::ofstream(dir / "bad.yaml") << yaml;
+    CAPTURE(url);
+    CHECK_THROWS_WITH(load_experiment_spec((dir / "bad.yaml").string()), Catch::Contains("completion_url"));
+  }
+}
+
+namespace {
+
+/// H.264 clips (what Chromium plays; the fixture's mp4v clips it does not) for the demo spec's eight
+/// conditions: 160x90, 15 fps, 2 s, a flat colour per clip with a moving bar.
+StimulusManifest h264_demo_stimuli(const fs::path& dir) {
+  fs::create_directories(dir / "clips");
+  StimulusManifest m;
+  m.factor_names = {"density", "viewpoint", "method"};
+  int variant = 0;
+  for (const std::string density : {"3.33", "6.66"})
+    for (const std::string view : {"V1", "V3"})
+      for (const std::string method : {"baseline", "ours"}) {
+        StimulusEntry e;
+        e.id = "density-" + density + "_viewpoint-" + view + "_method-" + method;
+        e.factors = {{"density", density}, {"viewpoint", view}, {"method", method}};
+        e.file = "clips/" + e.id + ".mp4";
+        stimuli::VideoEncoder encoder((dir / e.file).string(), {160, 90, 15.0, 28, "ultrafast"});
+        std::vector<std::uint8_t> rgba(160 * 90 * 4);
+        for (int f = 0; f < 30; ++f) {
+          for (size_t p = 0; p < rgba.size(); p += 4) {
+            const int x = static_cast<int>((p / 4) % 160);
+            const bool bar = x >= 5 * f && x < 5 * f + 12;
+            rgba[p] = static_cast<std::uint8_t>(bar ? 250 : 40 + 25 * variant);
+            rgba[p + 1] = static_cast<std::uint8_t>(bar ? 250 : 90);
+            rgba[p + 2] = static_cast<std::uint8_t>(bar ? 250 : 200 - 20 * variant);
+            rgba[p + 3] = 255;
+          }
+          encoder.add_frame(rgba.data(), false);
+        }
+        encoder.close();
+        e.duration_s = 2.0;
+        e.frames = 30;
+        e.width = 160;
+        e.height = 90;
+        e.sha256 = sha256_file_hex((dir / e.file).string());
+        m.entries.push_back(e);
+        ++variant;
+      }
+  StimulusEntry practice = m.entries.front();  // the first clip again, as the practice example
+  practice.id = "practice_1";
+  practice.practice = true;
+  m.entries.push_back(practice);
+  write_manifest(m, (dir / "manifest.csv").string());
+  return m;
+}
+
+int run_command(const std::string& command) {
+  INFO(command);
+  const int rc = std::system(command.c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "browser: a scripted participant completes the demo study in headless Chromium, resumes after a reload",
+    "[study][browser]") {
+  if (test::kSanitized) {
+    // The browser test checks the page, not crowdlab's memory; export-web and import-web run under the
+    // sanitizers in the tests above. This saves CI about 20 s.
+    WARN("skipped under the sanitizers (the Release run performs it)");
+    return;
+  }
+  const fs::path modules = test::binary_dir() / "web" / "node_modules";
+  const char* chromium = "/usr/bin/chromium";
+  if (!fs::exists(chromium) || !fs::is_directory(modules / "puppeteer-core") ||
+      !fs::is_directory(modules / "jspsych")) {
+    WARN("skipped: needs /usr/bin/chromium (scripts/install-deps.sh --test) and jsPsych + puppeteer-core in "
+         << modules.string() << " (make web-deps)");
+    return;
+  }
+  const auto dir = test::scratch_dir("web-browser");
+  // The demo spec, plus every screen the protocol can have: instructions, consent, a practice trial
+  // (shown at the start of the 'baseline' block), two blocks in Latin-square order, a break.
+  std::string yaml = slurp(test::source_dir() / "experiments" / "demo.yaml");
+  yaml.insert(yaml.find("  scale:"),
+              "  instructions: \"Watch each video, then answer the six statements.\"\n"
+              "  consent: \"I agree to take part in this study.\"\n"
+              "  practice: {density: [3.33], viewpoint: [V1], method: [baseline]}\n"
+              "  block_by: method\n  block_order: latin_square\n  break_every: 3\n");
+  std::ofstream(dir / "demo-online.yaml") << yaml;
+  const std::string spec_path = (dir / "demo-online.yaml").string();
+  const ExperimentSpec spec = load_experiment_spec(spec_path);
+  const auto m = h264_demo_stimuli(dir / "stimuli");
+  const auto qs = resolve_questions(spec.protocol);
+  const auto answers = scripted_answers(m, qs);
+  nlohmann::json answers_json;
+  for (const auto& [key, raw] : answers) answers_json[key.first][key.second] = raw;
+  write_json(dir / "answers.json", answers_json);
+  const std::string exe = test::crowdlab_exe().string();
+  REQUIRE(run_command(exe + " export-web " + spec_path + " --stimuli " + (dir / "stimuli").string() +
+                      " --out " + (dir / "web").string() + " --participants 3 --jatos " +
+                      (dir / "demo.jzip").string() + " > " + (dir / "export.log").string()) == 0);
+
+  // The participant: P02, reloading the page after 3 of the 9 trials.
+  REQUIRE(run_command("node " + (test::source_dir() / "tests" / "study" / "web_participant.mjs").string() +
+                      " " + (dir / "web").string() + " " + chromium + " " + modules.string() + " " +
+                      (dir / "answers.json").string() + " " + (dir / "browser").string() + " P02 3") == 0);
+  const auto resume = nlohmann::json::parse(slurp(dir / "browser" / "resume.json"));
+  CHECK(resume["before"].size() == 3);
+  CHECK(resume["first_trial_after_reload"] == 4);  // the first unanswered trial
+  CHECK(resume["answered"].size() == 9);           // every trial answered once (8 + practice)
+  const auto download = nlohmann::json::parse(slurp(dir / "browser" / "download.json"));
+  CHECK(download == nlohmann::json::parse(slurp(dir / "browser" / "localstorage.json")));
+  CHECK(download["complete"] == true);
+  CHECK(download["sessions"].size() == 2);
+  REQUIRE(download["records"].size() == 9);
+  for (const auto& r : download["records"]) {
+    CAPTURE(r["trial"]);
+    CHECK(r["session"] == (r["trial"].get<int>() <= 3 ? 1 : 2));
+    CHECK(r["video"]["timing_api"] == "requestVideoFrameCallback");
+    CHECK(r["video"]["frames_presented"].get<int>() > 0);  // the clip really played
+    CHECK(r["video"]["refresh_hz"].get<double>() > 0);
+    CHECK(r["answers"][0]["rt_ms"].get<double>() > 0);
+  }
+  // The page's FNV-1a equals crowdlab's (the rule for ids that are not embedded).
+  for (const auto& [text, hash] : nlohmann::json::parse(slurp(dir / "browser" / "fnv.json"))
+                                      .get<std::vector<std::pair<std::string, std::uint32_t>>>())
+    CHECK(hash == fnv1a32(text));
+
+  // import-web of the download equals the native scripted session with the same answers.
+  REQUIRE(run_command(exe + " import-web " + (dir / "browser" / "download.json").string() + " --spec " +
+                      spec_path + " --stimuli " + (dir / "stimuli").string() + " --out " +
+                      (dir / "web-responses").string() + " > " + (dir / "import.log").string()) == 0);
+  const auto script = write_script(dir / "script.csv", answers, qs);
+  REQUIRE(run_command(exe + " study " + spec_path + " --participant P02 --stimuli " +
+                      (dir / "stimuli").string() + " --responses " + script.string() + " --out " +
+                      (dir / "native").string() + " > " + (dir / "native.log").string()) == 0);
+  const std::vector<std::string> differ = {"session", "rt_ms",
+                                           "timestamp"};  // reload; real vs scripted times
+  CHECK(comparable_rows((dir / "web-responses" / "P02.csv").string(), differ) ==
+        comparable_rows((dir / "native" / "P02.csv").string(), differ));
+  // analyze report reads the imported folder unchanged, here beside a lab session of another id (an
+  // RM-ANOVA needs two participants).
+  REQUIRE(run_command(exe + " study " + spec_path + " --participant P01 --stimuli " +
+                      (dir / "stimuli").string() + " --responses " + script.string() + " --out " +
+                      (dir / "web-responses").string() + " > " + (dir / "native.log").string()) == 0);
+  CHECK(run_command(exe + " analyze report " + (dir / "web-responses").string() + " --spec " + spec_path +
+                    " --out " + (dir / "report").string() + " > " + (dir / "report.log").string() +
+                    " 2>&1") == 0);
+}
