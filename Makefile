@@ -44,12 +44,14 @@ test: test-deps
 # The whole suite again under AddressSanitizer + UndefinedBehaviorSanitizer (CI runs both).
 # -O1 keeps the instrumented build and run fast; leak detection is off because Mesa's llvmpipe keeps
 # process-lifetime allocations that LeakSanitizer would report.
-# ASAN_SKIP: the five slowest tests under the sanitizers (about 3 min of CI on two cores) check numbers
-# and job engines, not memory: a Monte Carlo body volume, the bookkeeping of shards, GNU parallel / make /
-# Slurm running the shards, and the gomez2024 reproduction's tolerances. The Release run performs them;
-# the code they drive (volumes, the run pipeline, correction, figures, simulated studies and reports) runs
-# under the sanitizers in the other tests.
-ASAN_SKIP  ?= capsule union is 65-80 litres|shards are disjoint|plan writes Slurm|real single-node Slurm|reproduce gomez2024 --quick
+# ASAN_SKIP: the slowest tests under the sanitizers (each 2-8 min of a loaded two-core machine) check numbers,
+# hashes and job engines, not memory: a Monte Carlo body volume, the bookkeeping of shards, GNU parallel /
+# make / Slurm running the shards, the gomez2024 and hoyet2016 reproductions' tolerances, the pinned output
+# hash (its stages run under the sanitizers in the pipeline tests), the whole-spec run-and-reuse test, the
+# simulated observers' statistics and the manifold model comparison. The Release run performs them; the code
+# they drive (volumes, the run pipeline, correction, figures, simulated studies, reports, surface crowds)
+# runs under the sanitizers in the other tests.
+ASAN_SKIP  ?= capsule union is 65-80 litres|shards are disjoint|plan writes Slurm|real single-node Slurm|reproduce gomez2024 --quick|reproduce hoyet2016 --quick|pinned output hash|run makes every condition|simulated observers analysed|experiment manifold-compare
 test-asan: test-deps
 	@cmake -S . -B $(ASAN_BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
 	  -DCROWDLAB_SANITIZE=ON >/dev/null
