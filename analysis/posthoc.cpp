@@ -62,9 +62,31 @@ Eigen::MatrixXd effect_subject_means(const WithinDesign& design, const std::vect
   return out / per_mean;
 }
 
+double posthoc_comparison_count(const WithinDesign& design, const std::vector<size_t>& effect_factors,
+                                bool simple_only) {
+  double means = 1;
+  for (size_t f : effect_factors) means *= static_cast<double>(design.factors[f].levels.size());
+  if (!simple_only) return means * (means - 1.0) / 2.0;
+  double pairs = 0;
+  for (size_t f : effect_factors) {
+    const auto l = static_cast<double>(design.factors[f].levels.size());
+    pairs += l * (l - 1.0) / 2.0 * (means / l);
+  }
+  return pairs;
+}
+
 PosthocResult posthoc(const WithinDesign& design, const std::vector<size_t>& effect_factors,
-                      PosthocMethod method, bool simple_only) {
+                      PosthocMethod method, bool simple_only, size_t max_comparisons) {
   if (effect_factors.empty()) throw InputError("posthoc: empty effect");
+  if (const double count = posthoc_comparison_count(design, effect_factors, simple_only);
+      count > static_cast<double>(max_comparisons)) {
+    std::string effect;
+    for (size_t f : effect_factors) effect += (effect.empty() ? "" : ":") + design.factors[f].name;
+    throw InputError(SourceLocation{design.source, 0, 0, effect},
+                     "post-hoc family of " + std::to_string(std::llround(count)) +
+                         " comparisons, more than the limit of " + std::to_string(max_comparisons) +
+                         " (--max-comparisons)");
+  }
   const Eigen::MatrixXd means = effect_subject_means(design, effect_factors);
   const auto m = static_cast<size_t>(means.cols());
   const double n = static_cast<double>(means.rows());
@@ -142,6 +164,8 @@ std::vector<SimpleEffect> simple_effects(const WithinDesign& design,
   const auto& at = design.factors[at_factor];
   for (size_t level = 0; level < at.levels.size(); ++level) {
     WithinDesign sub;
+    sub.source = design.source;
+    sub.dv = design.dv;
     std::vector<size_t> remap(design.factors.size(), 0);
     for (size_t f = 0; f < design.factors.size(); ++f)
       if (f != at_factor) {

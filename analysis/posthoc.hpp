@@ -45,8 +45,23 @@ std::vector<size_t> parse_effect(const WithinDesign& design, const std::string& 
 /// subjects x (cells of the effect): each subject's mean over the other factors.
 Eigen::MatrixXd effect_subject_means(const WithinDesign& design, const std::vector<size_t>& effect_factors);
 
+/// Default bound on the comparisons of one post-hoc family (`analyze posthoc --max-comparisons`), so a
+/// wrong --effect (an id column, thousands of levels: millions of pairs) is refused at once instead of
+/// running for minutes. Tukey's p for m means costs about m times more than for a few (ptukey integrates
+/// over the range of m normals): 4950 pairs of 100 means took 33 s on a loaded 2-core machine, so the
+/// default family is 1000 (45 levels). Documented in docs/analysis.md ("Limits").
+inline constexpr size_t kDefaultMaxComparisons = 1000;
+
+/// The family's size, computed from the level counts alone: all pairs of the effect's m means, m(m-1)/2,
+/// or with simple_only the pairs differing in one factor, sum over f of C(l_f, 2) * m / l_f.
+double posthoc_comparison_count(const WithinDesign& design, const std::vector<size_t>& effect_factors,
+                                bool simple_only);
+
+/// Throws InputError (naming the design's CSV, the effect and the count) when the family has more than
+/// max_comparisons comparisons; checked before any work.
 PosthocResult posthoc(const WithinDesign& design, const std::vector<size_t>& effect_factors,
-                      PosthocMethod method, bool simple_only = false);
+                      PosthocMethod method, bool simple_only = false,
+                      size_t max_comparisons = kDefaultMaxComparisons);
 
 /// One simple effect: the ANOVA of the effect's other factors at one level of `at_factor`.
 struct SimpleEffect {

@@ -5,6 +5,10 @@
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/fisher_f.hpp>
 #include <cmath>
+#include <sstream>
+#include <string>
+
+#include "framework/core/error.hpp"
 
 namespace crowdlab::analysis {
 
@@ -70,9 +74,46 @@ Eigen::MatrixXd effect_contrasts(const WithinDesign& design, const std::vector<s
   return c;
 }
 
+namespace {
+constexpr Eigen::Index kMinSubjects = 3;
+
+std::string dv_location(const WithinDesign& design) {
+  return (design.source.empty() ? std::string("design") : design.source) +
+         (design.dv.empty() ? std::string() : ": column '" + design.dv + "'");
+}
+
+// With 2 subjects the error covariance has rank 1: Greenhouse-Geisser's epsilon is 1/d whatever the data
+// and Huynh-Feldt's is 0/0, so the sphericity corrections the table reports are meaningless.
+void require_enough_subjects(const WithinDesign& design) {
+  const auto n = design.cell_means.rows();
+  if (n < kMinSubjects)
+    throw InputError((design.source.empty() ? std::string("design") : design.source) + ": " +
+                     std::to_string(n) + " subjects; a repeated-measures ANOVA needs at least " +
+                     std::to_string(kMinSubjects) + " (with 2 the sphericity corrections are undefined)");
+}
+
+// F = MS_effect / MS_error is undefined (0/0, printed -nan) or infinite when the error term is zero:
+// a constant dependent variable, or every subject showing exactly the same differences between cells.
+// "Zero" is relative to the data's total variability, so rounding noise counts as zero too.
+void require_error_variance(const WithinDesign& design, const RmAnovaEffect& e, double ss_total) {
+  if (!(ss_total > 0)) {
+    std::ostringstream value;
+    value << (design.cell_means.size() ? design.cell_means(0, 0) : 0.0);
+    throw InputError(dv_location(design) + ": the dependent variable is constant (every cell mean is " +
+                     value.str() + "): there is no variance to analyse");
+  }
+  if (!(e.ss_error > 1e-12 * ss_total))
+    throw InputError(dv_location(design) + ": effect '" + e.name +
+                     "' has zero error variance (every subject shows the same differences between the "
+                     "cells), so its F ratio is undefined");
+}
+}  // namespace
+
 RmAnovaResult rm_anova(const WithinDesign& design) {
+  require_enough_subjects(design);
   const Eigen::MatrixXd& y = design.cell_means;
   const auto n = static_cast<double>(y.rows());
+  const double ss_total = (y.array() - y.mean()).square().sum();
   RmAnovaResult result;
   result.subjects = static_cast<size_t>(y.rows());
   {
@@ -95,6 +136,7 @@ RmAnovaResult rm_anova(const WithinDesign& design) {
     e.ss_error = s.trace();
     e.ms = e.ss / e.df1;
     e.ms_error = e.ss_error / e.df2;
+    require_error_variance(design, e, ss_total);
     e.f = e.ms / e.ms_error;
     e.p = f_upper(e.f, e.df1, e.df2);
     e.pes = e.ss / (e.ss + e.ss_error);
@@ -103,10 +145,14 @@ RmAnovaResult rm_anova(const WithinDesign& design) {
       const double gg = s.trace() * s.trace() / (d * (s * s).trace());
       const double hf = (n * d * gg - 2.0) / (d * (n - 1.0 - d * gg));
       e.gg_eps = gg;
-      e.hf_eps = hf;
       e.p_gg = f_upper(e.f, gg * e.df1, gg * e.df2);
-      const double hf_used = std::min(1.0, hf);
-      e.p_hf = f_upper(e.f, hf_used * e.df1, hf_used * e.df2);
+      // HF's denominator is <= 0 when n - 1 <= d eps_GG (few subjects for many cells): car then reports
+      // a negative epsilon and a NaN p; here both are left empty.
+      if (std::isfinite(hf) && hf > 0) {
+        e.hf_eps = hf;
+        const double hf_used = std::min(1.0, hf);
+        e.p_hf = f_upper(e.f, hf_used * e.df1, hf_used * e.df2);
+      }
       if (n - 1.0 >= d) {
         const Eigen::MatrixXd sigma = s / (n - 1.0);
         const double det = sigma.determinant();

@@ -45,7 +45,10 @@ struct RmAnovaResult {
 };
 
 /// Runs the ANOVA on a design (see build_within_design). Mauchly's W and p are left empty when
-/// n - 1 < df1 (the error covariance is singular); the epsilons are still reported.
+/// n - 1 < df1 (the error covariance is singular); the epsilons are still reported, except a
+/// Huynh-Feldt epsilon that is not positive (n - 1 <= d eps_GG), left empty with its p.
+/// Throws InputError (naming the design's CSV and dv column) for fewer than 3 subjects, a constant dv,
+/// or an effect with zero error variance (its F would be 0/0 or infinite).
 RmAnovaResult rm_anova(const WithinDesign& design);
 
 /// Orthonormal Helmert-type contrasts: l x (l-1), columns orthonormal and orthogonal to 1.

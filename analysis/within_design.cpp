@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "framework/core/error.hpp"
 
@@ -33,10 +34,57 @@ size_t level_index(std::vector<std::string>& levels, std::map<std::string, size_
   if (inserted) levels.push_back(value);
   return it->second;
 }
+
+struct Row {
+  size_t subject;
+  std::vector<size_t> levels;
+  double value;
+};
+
+size_t cell_of(const std::vector<WithinFactor>& factors, const std::vector<size_t>& levels) {
+  size_t cell = 0;
+  for (size_t f = 0; f < factors.size(); ++f) cell = cell * factors[f].levels.size() + levels[f];
+  return cell;
+}
+
+// Refuses a design past `limits` before its subjects x cells matrix is allocated (issue 21: a CSV whose
+// levels were all unique ran for minutes).
+void check_design_size(const std::string& source, const std::vector<WithinFactor>& factors,
+                       const DesignLimits& limits) {
+  for (const auto& f : factors)
+    if (f.levels.size() > limits.max_levels)
+      throw InputError(
+          SourceLocation{source, 0, 0, f.name},
+          "factor has " + std::to_string(f.levels.size()) + " levels, more than the limit of " +
+              std::to_string(limits.max_levels) +
+              " (--max-levels); is it a within-subject factor, not an id or a continuous value?");
+  double cells = 1;  // in double: the product of many level counts may overflow size_t
+  std::string product;
+  for (const auto& f : factors) {
+    cells *= static_cast<double>(f.levels.size());
+    product += (product.empty() ? "" : " x ") + f.name + " " + std::to_string(f.levels.size());
+  }
+  if (cells > static_cast<double>(limits.max_cells))
+    throw InputError(source + ": the design has " + product + " = " + std::to_string(std::llround(cells)) +
+                     " cells, more than the limit of " + std::to_string(limits.max_cells) + " (--max-cells)");
+}
+
+// Names the first subject that lacks a cell, from the rows alone (memory bounded by the file's rows).
+void check_every_subject_has_every_cell(const std::string& source, const WithinDesign& design,
+                                        const std::vector<Row>& rows, size_t cells) {
+  std::set<std::pair<size_t, size_t>> seen;
+  for (const auto& row : rows) seen.emplace(row.subject, cell_of(design.factors, row.levels));
+  if (seen.size() == design.subjects.size() * cells) return;
+  for (size_t i = 0; i < design.subjects.size(); ++i)
+    for (size_t c = 0; c < cells; ++c)
+      if (!seen.count({i, c}))
+        throw InputError(source + ": unbalanced design: subject '" + design.subjects[i] +
+                         "' has no rows for cell (" + design.cell_label(c) + ")");
+}
 }  // namespace
 
 WithinDesign build_within_design(const CsvTable& table, const std::string& dv, const std::string& subject,
-                                 const std::vector<std::string>& within) {
+                                 const std::vector<std::string>& within, const DesignLimits& limits) {
   if (within.empty()) throw InputError(table.source + ": no within-subject factor given");
   const size_t dv_col = table.column(dv);
   const size_t subject_col = table.column(subject);
@@ -52,14 +100,11 @@ WithinDesign build_within_design(const CsvTable& table, const std::string& dv, c
     factor_cols.push_back(table.column(w));
   }
   WithinDesign design;
+  design.source = table.source;
+  design.dv = dv;
   design.factors.resize(within.size());
   std::vector<std::map<std::string, size_t>> level_maps(within.size());
   std::map<std::string, size_t> subject_map;
-  struct Row {
-    size_t subject;
-    std::vector<size_t> levels;
-    double value;
-  };
   std::vector<Row> rows;
   rows.reserve(table.rows.size());
   for (size_t r = 0; r < table.rows.size(); ++r) {
@@ -87,26 +132,19 @@ WithinDesign build_within_design(const CsvTable& table, const std::string& dv, c
       throw InputError(table.source + ": factor '" + within[f] + "' has fewer than 2 levels");
   }
   if (design.subjects.size() < 2) throw InputError(table.source + ": fewer than 2 subjects");
+  check_design_size(table.source, design.factors, limits);
   size_t cells = 1;
   for (const auto& f : design.factors) cells *= f.levels.size();
+  check_every_subject_has_every_cell(table.source, design, rows, cells);
   const auto n = static_cast<Eigen::Index>(design.subjects.size());
   Eigen::MatrixXd sums = Eigen::MatrixXd::Zero(n, static_cast<Eigen::Index>(cells));
   Eigen::MatrixXi counts = Eigen::MatrixXi::Zero(n, static_cast<Eigen::Index>(cells));
   for (const auto& row : rows) {
-    size_t cell = 0;
-    for (size_t f = 0; f < within.size(); ++f) cell = cell * design.factors[f].levels.size() + row.levels[f];
-    sums(static_cast<Eigen::Index>(row.subject), static_cast<Eigen::Index>(cell)) += row.value;
-    counts(static_cast<Eigen::Index>(row.subject), static_cast<Eigen::Index>(cell)) += 1;
+    const auto cell = static_cast<Eigen::Index>(cell_of(design.factors, row.levels));
+    sums(static_cast<Eigen::Index>(row.subject), cell) += row.value;
+    counts(static_cast<Eigen::Index>(row.subject), cell) += 1;
   }
-  design.cell_means.resize(n, static_cast<Eigen::Index>(cells));
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index c = 0; c < static_cast<Eigen::Index>(cells); ++c) {
-      if (counts(i, c) == 0)
-        throw InputError(table.source + ": unbalanced design: subject '" +
-                         design.subjects[static_cast<size_t>(i)] + "' has no rows for cell (" +
-                         design.cell_label(static_cast<size_t>(c)) + ")");
-      design.cell_means(i, c) = sums(i, c) / counts(i, c);
-    }
+  design.cell_means = sums.array() / counts.cast<double>().array();
   return design;
 }
 

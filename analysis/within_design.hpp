@@ -15,6 +15,8 @@ struct WithinFactor {
 };
 
 struct WithinDesign {
+  std::string source;                 ///< the CSV the design came from (for messages)
+  std::string dv;                     ///< the dependent-variable column (for messages)
   std::vector<WithinFactor> factors;  ///< in the order the user named them
   std::vector<std::string> subjects;  ///< in order of first appearance
   /// subjects x cells. Cells are ordered with the LAST factor varying fastest (row-major over levels).
@@ -27,12 +29,23 @@ struct WithinDesign {
   std::string cell_label(size_t cell) const;
 };
 
+/// Bounds on the work a design may ask for, checked before anything is allocated for it. A factor is
+/// within-subject, so every subject sees every level: hundreds of levels almost always mean a wrong
+/// column (an id, a stimulus name or a continuous value). The cost of the ANOVA grows with the cube of
+/// the number of cells (rm_anova solves a d x d problem per effect, d < cells); the defaults keep it
+/// under a second or so. Documented in docs/analysis.md ("Limits"); `analyze --max-levels/--max-cells`.
+struct DesignLimits {
+  size_t max_levels = 100;  ///< levels per factor
+  size_t max_cells = 1000;  ///< product of the factors' levels
+};
+
 /// Builds the design from a CSV: `dv` numeric, `subject` and every name in `within` are labels.
 /// Repetitions of a cell are averaged (afex::aov_ez's fun_aggregate = mean).
 /// Throws InputError: missing column (names it), a non-numeric or non-finite dv (file:line and column),
-/// a subject lacking a cell (names the subject and the cell), fewer than 2 subjects, or a factor with
-/// fewer than 2 levels.
+/// a subject lacking a cell (names the subject and the cell), fewer than 2 subjects, a factor with
+/// fewer than 2 levels, or a design past `limits` (names the column and the count). The subjects x cells
+/// matrix is allocated only once the rows are known to fill it, so its size is bounded by the file's.
 WithinDesign build_within_design(const CsvTable& table, const std::string& dv, const std::string& subject,
-                                 const std::vector<std::string>& within);
+                                 const std::vector<std::string>& within, const DesignLimits& limits = {});
 
 }  // namespace crowdlab::analysis

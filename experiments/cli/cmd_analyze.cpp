@@ -28,6 +28,7 @@ std::vector<std::string> split_list(const std::string& text) {
 
 struct DesignArgs {
   std::string csv, dv, subject, within;
+  DesignLimits limits;
 };
 
 void add_design_options(CLI::App* cmd, DesignArgs& a) {
@@ -37,12 +38,21 @@ void add_design_options(CLI::App* cmd, DesignArgs& a) {
   cmd->add_option("--subject", a.subject, "Subject (participant) column")->required();
   cmd->add_option("--within", a.within, "Within-subject factor columns, comma-separated (e.g. A,B,C)")
       ->required();
+  cmd->add_option(
+         "--max-levels", a.limits.max_levels,
+         "Refuse (exit 2) a factor with more levels than this, before any work (see docs/analysis.md)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--max-cells", a.limits.max_cells,
+                  "Refuse (exit 2) a design with more cells (product of the levels) than this")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
 }
 
 WithinDesign load_design(const DesignArgs& a) {
   const auto within = split_list(a.within);
   if (within.empty()) throw InputError("--within: no factor given");
-  return build_within_design(read_csv(a.csv), a.dv, a.subject, within);
+  return build_within_design(read_csv(a.csv), a.dv, a.subject, within, a.limits);
 }
 
 const CommandRegistration kRegistration([](CLI::App& root) {
@@ -75,6 +85,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   static DesignArgs ph_args;
   static std::string ph_effect, ph_method = "tukey";
   static bool ph_json = false, ph_simple = false;
+  static size_t ph_max_comparisons = kDefaultMaxComparisons;
   auto* ph =
       analyze->add_subcommand("posthoc", "Pairwise comparisons for a main effect or an interaction's cells");
   add_design_options(ph, ph_args);
@@ -83,12 +94,16 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->check(CLI::IsMember({"tukey", "bonferroni"}))
       ->capture_default_str();
   ph->add_flag("--simple", ph_simple, "Only compare cells that differ in one factor (simple comparisons)");
+  ph->add_option("--max-comparisons", ph_max_comparisons,
+                 "Refuse (exit 2) a family with more pairwise comparisons than this, before any work")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   ph->add_flag("--json", ph_json, "Print JSON");
   ph->callback([] {
     const auto design = load_design(ph_args);
     const auto factors = parse_effect(design, ph_effect);
     const auto method = ph_method == "tukey" ? PosthocMethod::tukey : PosthocMethod::bonferroni;
-    const auto result = posthoc(design, factors, method, ph_simple);
+    const auto result = posthoc(design, factors, method, ph_simple, ph_max_comparisons);
     if (ph_json) {
       auto j = posthoc_to_json(result);
       if (factors.size() > 1) {

@@ -221,3 +221,96 @@ TEST_CASE("analysis: analyze report writes a Markdown report with figures", "[an
   CHECK(unknown.err.find("r.csv:2") != std::string::npos);
   CHECK(unknown.err.find("Q9") != std::string::npos);
 }
+
+// Issue 21: designs the ANOVA cannot analyse are refused with the file, the column and why, exit 2,
+// never a Boost message, a -nan or minutes of work.
+TEST_CASE("analysis: analyze refuses designs without error variance or enough subjects", "[analysis][cli]") {
+  const auto dir = test::scratch_dir("analyze_degenerate");
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream((dir / name).string()) << text;
+    return (dir / name).string();
+  };
+  auto anova = [](const std::string& csv) {
+    return run_cli({"analyze", "anova", "--csv", csv, "--dv", "y", "--subject", "subj", "--within", "A"});
+  };
+  // Two subjects, five levels: the Huynh-Feldt epsilon had a negative denominator (Boost: "Degrees of
+  // freedom argument is -2").
+  std::string two = "subj,A,y\n";
+  for (int s = 1; s <= 2; ++s)
+    for (int a = 0; a < 5; ++a)
+      two += std::to_string(s) + ",a" + std::to_string(a) + "," + std::to_string((a * 7 + s * 3) % 11) + "\n";
+  const auto two_subjects = anova(write("two.csv", two));
+  INFO(two_subjects.err);
+  CHECK(two_subjects.exit_code == 2);
+  CHECK(two_subjects.err.find("two.csv: 2 subjects") != std::string::npos);
+  CHECK(two_subjects.err.find("at least 3") != std::string::npos);
+  CHECK(two_subjects.err.find("Degrees of freedom") == std::string::npos);
+
+  const auto constant = anova(write("constant.csv", "subj,A,y\n1,a,4\n1,b,4\n2,a,4\n2,b,4\n3,a,4\n3,b,4\n"));
+  INFO(constant.err);
+  CHECK(constant.exit_code == 2);
+  CHECK(constant.out.find("nan") == std::string::npos);
+  CHECK(constant.err.find("constant.csv: column 'y'") != std::string::npos);
+  CHECK(constant.err.find("constant") != std::string::npos);
+
+  // Every subject differs by exactly +1 between the levels: zero error, F = 1/0.
+  const auto no_error = anova(write("no_error.csv", "subj,A,y\n1,a,1\n1,b,2\n2,a,2\n2,b,3\n3,a,3\n3,b,4\n"));
+  INFO(no_error.err);
+  CHECK(no_error.exit_code == 2);
+  CHECK(no_error.err.find("no_error.csv: column 'y'") != std::string::npos);
+  CHECK(no_error.err.find("'A' has zero error variance") != std::string::npos);
+}
+
+TEST_CASE("analysis: analyze refuses designs past --max-levels, --max-cells and --max-comparisons",
+          "[analysis][cli]") {
+  const auto dir = test::scratch_dir("analyze_limits");
+  // Every row its own subject and level (an id column given as a factor): refused from the level count.
+  {
+    std::ofstream out((dir / "unique.csv").string());
+    out << "subj,A,y\n";
+    for (int i = 0; i < 3000; ++i) out << "s" << i << ",a" << i << "," << i % 7 << "\n";
+  }
+  const auto unique = run_cli({"analyze", "anova", "--csv", (dir / "unique.csv").string(), "--dv", "y",
+                               "--subject", "subj", "--within", "A"});
+  INFO(unique.err);
+  CHECK(unique.exit_code == 2);
+  CHECK(unique.err.find("unique.csv: A: factor has 3000 levels") != std::string::npos);
+  CHECK(unique.err.find("--max-levels") != std::string::npos);
+
+  // A balanced 3 x 60 x 60 design: within --max-levels, past --max-cells; 60 levels make 1770 pairs.
+  {
+    std::ofstream out((dir / "wide.csv").string());
+    out << "subj,A,B,y\n";
+    for (int s = 0; s < 3; ++s)
+      for (int a = 0; a < 60; ++a)
+        for (int b = 0; b < 2; ++b)
+          out << s << ",a" << a << ",b" << b << "," << (a * 13 + s * 5 + b) % 17 << "\n";
+  }
+  const std::vector<std::string> wide = {
+      "--csv", (dir / "wide.csv").string(), "--dv", "y", "--subject", "subj", "--within", "A,B"};
+  auto with = [&](std::vector<std::string> head, const std::vector<std::string>& tail) {
+    head.insert(head.end(), wide.begin(), wide.end());
+    head.insert(head.end(), tail.begin(), tail.end());
+    return run_cli(head);
+  };
+  const auto cells = with({"analyze", "anova"}, {"--max-cells", "100"});
+  INFO(cells.err);
+  CHECK(cells.exit_code == 2);
+  CHECK(cells.err.find("wide.csv: the design has A 60 x B 2 = 120 cells") != std::string::npos);
+  CHECK(cells.err.find("--max-cells") != std::string::npos);
+  const auto levels = with({"analyze", "anova"}, {"--max-levels", "50"});
+  CHECK(levels.exit_code == 2);
+  CHECK(levels.err.find("wide.csv: A: factor has 60 levels") != std::string::npos);
+  const auto pairs = with({"analyze", "posthoc"}, {"--effect", "A"});
+  INFO(pairs.err);
+  CHECK(pairs.exit_code == 2);
+  CHECK(pairs.err.find("wide.csv: A: post-hoc family of 1770 comparisons") != std::string::npos);
+  CHECK(pairs.err.find("--max-comparisons") != std::string::npos);
+  // Within the limits, the same design is analysed.
+  const auto fits = with({"analyze", "anova"}, {"--json"});
+  INFO(fits.err);
+  CHECK(fits.exit_code == 0);
+  const auto simple = with({"analyze", "posthoc"}, {"--effect", "B", "--method", "bonferroni", "--json"});
+  INFO(simple.err);
+  CHECK(simple.exit_code == 0);
+}
