@@ -38,8 +38,14 @@ CorrectorParams corrector_params(const CorrectionSpec& c) {
   return params;
 }
 
-StageOutput glb_output(const fs::path& path, const std::optional<CrowdAnimation>& crowd) {
-  return {path, [&crowd](const fs::path& tmp) { write_crowd_glb(*crowd, tmp.string()); }};
+/// What the animation and correction stages share: a stage named `name` whose one output is the crowd
+/// file `path`, written from `crowd` and read back into it when up to date.
+Stage crowd_file_stage(const std::string& name, const fs::path& path, std::optional<CrowdAnimation>& crowd) {
+  Stage s;
+  s.name = name;
+  s.outputs.push_back({path, [&crowd](const fs::path& tmp) { write_crowd_glb(*crowd, tmp.string()); }});
+  s.load = [&crowd, path] { crowd = read_crowd_glb(path.string()); };
+  return s;
 }
 
 }  // namespace
@@ -99,31 +105,24 @@ Stage CrowdGroup::crowd_stage() {
 
 Stage CrowdGroup::animation_stage() {
   const size_t i = index_of(CrowdMethod::baseline);
-  const fs::path out = animation_path(CrowdMethod::baseline);
-  Stage s;
-  s.name = "animation";
+  Stage s = crowd_file_stage("animation", animation_path(CrowdMethod::baseline), animation_[i]);
   // The MPFB2 asset folder may come from the environment, so it is an input of its own.
   s.params = json{{"spec", spec_.source_hash}, {"body_model_path", spec_.animation.body_model_path}};
   s.upstream = {crowd_hash_};
-  s.outputs.push_back(glb_output(out, animation_[i]));
   s.compute = [this, i] {
     const ScenarioResult& crowd = scenario();
     animation_[i] = animate_scenario(spec_, condition_, key_, crowd, surface());
   };
-  s.load = [this, i, out] { animation_[i] = read_crowd_glb(out.string()); };
   return s;
 }
 
 Stage CrowdGroup::correction_stage() {
   const size_t i = index_of(CrowdMethod::corrected);
-  const fs::path out = animation_path(CrowdMethod::corrected);
-  Stage s;
-  s.name = "correction";
+  Stage s = crowd_file_stage("correction", animation_path(CrowdMethod::corrected), animation_[i]);
   s.params = json{{"damping", spec_.correction.damping},
                   {"stiffness", spec_.correction.stiffness},
                   {"contact_stiffness", spec_.correction.collision_stiffness}};
   s.upstream = {animation_hash(CrowdMethod::baseline)};
-  s.outputs.push_back(glb_output(out, animation_[i]));
   s.compute = [this, i] {
     const CrowdAnimation& input = animation(CrowdMethod::baseline);
     Progress progress("correct " + key_, static_cast<size_t>(input.frame_count()));
@@ -133,7 +132,6 @@ Stage CrowdGroup::correction_stage() {
       spdlog::warn("{}: the corrector rejected {} of {} steps and kept the last stable state", key_,
                    report.rejected_steps, report.frames);
   };
-  s.load = [this, i, out] { animation_[i] = read_crowd_glb(out.string()); };
   return s;
 }
 
