@@ -5,7 +5,7 @@
 
 #include "experiments/cli/pipeline/library_versions.hpp"
 #include "framework/core/sha256.hpp"
-#include "framework/core/viewpoint_catalogue.hpp"
+#include "framework/spec/condition_viewpoint.hpp"
 #include "stimuli/clip_sidecar.hpp"
 #include "stimuli/crowd_extent.hpp"
 #include "stimuli/render_clip.hpp"
@@ -36,8 +36,7 @@ class RenderStages final : public PresentationStages {
     // render.frames_png: the rendered frames themselves, before H.264 (tests hash their pixels).
     if (spec_.render.frames_png) ro.frames_png_dir = (condition_dir / "frames").string();
     const fs::path clip = condition_dir / "clip.mp4";
-    runner.run(
-        render_stage(g, method, c.text("viewpoint", default_viewpoint(spec_.scenario.type)), ro, clip));
+    runner.run(render_stage(g, method, condition_viewpoint(spec_, c), ro, clip));
     if (spec_.outputs.contact_sheet) runner.run(contact_sheet_stage(g, method, ro));
     e.file = fs::relative(clip, out_dir).string();
     e.width = ro.width;
