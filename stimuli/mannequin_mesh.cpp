@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string_view>
 
+#include "framework/core/capsule_box.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/seed.hpp"
@@ -168,11 +169,8 @@ MannequinMesh build_mannequin_mesh(const BodyShape& shape, const MannequinOption
   const BodyField field(caps, options.blend_m);
 
   // Grid over the capsules' bounding box plus a margin of two cells.
-  Vec3 lo = Vec3::Constant(1e9), hi = Vec3::Constant(-1e9);
-  for (const Capsule& c : caps) {
-    lo = lo.cwiseMin(c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m));
-    hi = hi.cwiseMax(c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m));
-  }
+  const Aabb body = capsules_box(caps);
+  Vec3 lo = body.lo, hi = body.hi;
   const double h = options.voxel_m;
   lo -= Vec3::Constant(2 * h);
   hi += Vec3::Constant(2 * h);

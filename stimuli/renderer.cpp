@@ -16,6 +16,7 @@
 #include <numbers>
 #include <set>
 
+#include "framework/core/capsule_box.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/seed.hpp"
@@ -320,7 +321,7 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   // 1. Skin matrices and (overlap mode) candidate capsules, computed on the CPU.
   g.skin_data.resize(n * kJointCount * 16);
   std::vector<WorldCapsules> world(n);
-  std::vector<Eigen::AlignedBox3d> boxes(n);
+  std::vector<Aabb> boxes(n);
   tbb::parallel_for(size_t{0}, n, [&](size_t i) {
     const BoneTransforms bones =
         forward_kinematics(chars[i].shape, chars[i].frames[static_cast<size_t>(frame)]);
@@ -329,11 +330,7 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
       std::memcpy(&g.skin_data[(i * kJointCount + j) * 16], skin.data(), 16 * sizeof(float));
     }
     world[i] = world_capsules(chars[i].shape, bones);
-    boxes[i].setEmpty();
-    for (const Capsule& c : world[i]) {
-      boxes[i].extend(c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m));
-      boxes[i].extend(c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m));
-    }
+    boxes[i] = capsules_box(world[i]);
   });
   Gl::upload(g.skin_ssbo, g.skin_capacity, g.skin_data);
   g.caps_data.clear();
@@ -352,11 +349,9 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
       for (const Capsule& c : world[a]) push_capsule(c);
       g.cap_offset[a] = static_cast<int>(g.caps_data.size() / 8);
       for (size_t b = 0; b < n; ++b) {
-        if (a == b || !boxes[a].intersects(boxes[b])) continue;
+        if (a == b || !boxes[a].overlaps(boxes[b])) continue;
         for (const Capsule& c : world[b]) {
-          Eigen::AlignedBox3d cb(c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m),
-                                 c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m));
-          if (!cb.intersects(boxes[a])) continue;
+          if (!capsule_box(c).overlaps(boxes[a])) continue;
           push_capsule(c);
           ++g.cap_count[a];
         }

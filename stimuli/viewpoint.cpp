@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "framework/core/error.hpp"
 
@@ -108,20 +109,14 @@ Camera fit_box(const Vec3& lo, const Vec3& hi, const ViewAxes& a, double fov_deg
   return cam;
 }
 
-const std::map<std::string, Preset>& presets() {
-  static const std::map<std::string, Preset> table = {
-      {"V1", {0.0, 6.0, 40.0}},  {"V2", {0.0, 30.0, 40.0}},    {"V3", {45.0, 15.0, 40.0}},
-      {"V4", {0.0, 80.0, 40.0}}, {"pair", {45.0, 30.0, 35.0}}, {"tracking", {30.0, 25.0, 45.0}},
-  };
-  return table;
+/// The catalogue's preset (framework/core/viewpoint_catalogue.hpp) as this file's Preset.
+std::optional<Preset> preset_of(const std::string& name) {
+  const ViewpointPreset* p = find_viewpoint(name);
+  if (!p) return std::nullopt;
+  return Preset{p->azimuth_deg, p->elevation_deg, p->fov_deg};
 }
 
 }  // namespace
-
-const std::vector<std::string>& viewpoint_names() {
-  static const std::vector<std::string> names = {"V1", "V2", "V3", "V4", "pair", "tracking"};
-  return names;
-}
 
 Viewpoint::Viewpoint(const std::string& name, const CrowdAnimation& crowd, int width, int height,
                      const ViewpointOverrides& overrides)
@@ -131,9 +126,9 @@ Viewpoint::Viewpoint(const std::string& name, const CrowdExtent& extent, int wid
                      const ViewpointOverrides& overrides)
     : name_(name) {
   if (width <= 0 || height <= 0) throw InputError("viewpoint: image size must be positive");
-  const auto preset_it = presets().find(name);
+  const std::optional<Preset> preset_found = preset_of(name);
   const auto override_it = overrides.find(name);
-  if (preset_it == presets().end() && override_it == overrides.end()) {
+  if (!preset_found && override_it == overrides.end()) {
     std::string known;
     for (const auto& n : viewpoint_names()) known += (known.empty() ? "" : ", ") + n;
     throw InputError("unknown viewpoint '" + name + "' (known: " + known +
@@ -159,7 +154,7 @@ Viewpoint::Viewpoint(const std::string& name, const CrowdExtent& extent, int wid
     fixed_.height = height;
     return;
   }
-  const Preset& preset = preset_it->second;
+  const Preset& preset = *preset_found;
   if (name == "pair") {
     // Look across the walking axis so the two paths run diagonally through the image.
     const Vec3 across = Vec3::UnitY().cross(extent.walk_axis).normalized();

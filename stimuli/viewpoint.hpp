@@ -28,13 +28,11 @@
 #include <vector>
 
 #include "framework/core/crowd_animation.hpp"
+#include "framework/core/viewpoint_catalogue.hpp"  // viewpoint_names(): the names Viewpoint accepts
 #include "stimuli/camera.hpp"
 #include "stimuli/crowd_extent.hpp"
 
 namespace crowdlab::stimuli {
-
-/// The names accepted by Viewpoint: V1, V2, V3, V4, pair, tracking.
-const std::vector<std::string>& viewpoint_names();
 
 /// Overrides from the spec's render.viewpoint_overrides: name -> [px,py,pz, tx,ty,tz, fov_deg].
 using ViewpointOverrides = std::map<std::string, std::vector<double>>;

@@ -4,9 +4,10 @@
 #include <filesystem>
 
 #include "crowdlab_embedded_paper_specs.hpp"
-#include "experiments/cli/pipeline/run_pipeline.hpp"
-#include "framework/core/mpfb2_asset_dir.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/mpfb2_asset_dir.hpp"
+#include "framework/pipeline/animate_scenario.hpp"
+#include "framework/pipeline/crowd_key.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
 namespace crowdlab::cli {

@@ -1,8 +1,9 @@
 #pragma once
 // The scene `crowdlab bench render` measures by default: a real stimulus of the seed 000 study, the
 // stationary concert crowd at its densest level (D5, 6.66 characters/m^2 on 9 m^2: 60 dancing
-// characters), animated exactly as `crowdlab run` animates baseline.glb (run_pipeline.hpp,
-// animate_scenario), with the spec's body model (MPFB2 bodies unless told otherwise).
+// characters), animated exactly as `crowdlab run` animates baseline.glb
+// (framework/pipeline/animate_scenario.hpp, animate_scenario), with the spec's body model (MPFB2 bodies
+// unless told otherwise).
 #include <string>
 
 #include "framework/core/crowd_animation.hpp"

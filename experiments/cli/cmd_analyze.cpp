@@ -3,6 +3,7 @@
 // and analysis/psychometric_table.hpp).
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "analysis/analysis_json.hpp"
@@ -49,6 +50,28 @@ void add_design_options(CLI::App* cmd, DesignArgs& a) {
       ->capture_default_str();
 }
 
+struct AnovaOptions {
+  DesignArgs design;
+  bool json = false;
+};
+
+struct PosthocOptions {
+  DesignArgs design;
+  std::string effect, method = "tukey";
+  bool json = false, simple = false;
+  size_t max_comparisons = kDefaultMaxComparisons;
+};
+
+struct PsychometricOptions {
+  PsychometricRequest request;
+  std::string csv, probabilities = "0.5,0.05";
+  bool json = false;
+};
+
+struct ReportOptions {
+  std::string study_dir, spec_path, out_dir;
+};
+
 WithinDesign load_design(const DesignArgs& a) {
   const auto within = split_list(a.within);
   if (within.empty()) throw InputError("--within: no factor given");
@@ -61,20 +84,19 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   analyze->require_subcommand(1);
 
   // ---- anova ----
-  static DesignArgs anova_args;
-  static bool anova_json = false;
+  auto anova_opt = std::make_shared<AnovaOptions>();
   auto* anova = analyze->add_subcommand(
       "anova",
       "Repeated-measures ANOVA (all within-subject factors) with Mauchly's test, Greenhouse-Geisser and "
       "Huynh-Feldt corrections, partial and generalised eta squared");
-  add_design_options(anova, anova_args);
+  add_design_options(anova, anova_opt->design);
   anova->add_flag(
-      "--json", anova_json,
+      "--json", anova_opt->json,
       "Print {\"effects\": [{\"effect\", \"df1\", \"df2\", \"F\", \"p\", \"pes\", \"ges\", \"mauchly_W\", "
       "\"mauchly_p\", \"gg_eps\", \"hf_eps\", \"p_gg\", \"p_hf\", ...}]} (null where not applicable)");
-  anova->callback([] {
-    const auto result = rm_anova(load_design(anova_args));
-    if (anova_json)
+  anova->callback([o = anova_opt] {
+    const auto result = rm_anova(load_design(o->design));
+    if (o->json)
       std::cout << anova_to_json(result).dump(2) << "\n";
     else
       std::cout << "Repeated-measures ANOVA, " << result.subjects << " subjects\n\n"
@@ -82,29 +104,27 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   });
 
   // ---- posthoc ----
-  static DesignArgs ph_args;
-  static std::string ph_effect, ph_method = "tukey";
-  static bool ph_json = false, ph_simple = false;
-  static size_t ph_max_comparisons = kDefaultMaxComparisons;
+  auto ph_opt = std::make_shared<PosthocOptions>();
   auto* ph =
       analyze->add_subcommand("posthoc", "Pairwise comparisons for a main effect or an interaction's cells");
-  add_design_options(ph, ph_args);
-  ph->add_option("--effect", ph_effect, "Effect: a factor (A) or an interaction (A:B)")->required();
-  ph->add_option("--method", ph_method, "tukey (pooled-error Tukey HSD) or bonferroni (paired t-tests)")
+  add_design_options(ph, ph_opt->design);
+  ph->add_option("--effect", ph_opt->effect, "Effect: a factor (A) or an interaction (A:B)")->required();
+  ph->add_option("--method", ph_opt->method, "tukey (pooled-error Tukey HSD) or bonferroni (paired t-tests)")
       ->check(CLI::IsMember({"tukey", "bonferroni"}))
       ->capture_default_str();
-  ph->add_flag("--simple", ph_simple, "Only compare cells that differ in one factor (simple comparisons)");
-  ph->add_option("--max-comparisons", ph_max_comparisons,
+  ph->add_flag("--simple", ph_opt->simple,
+               "Only compare cells that differ in one factor (simple comparisons)");
+  ph->add_option("--max-comparisons", ph_opt->max_comparisons,
                  "Refuse (exit 2) a family with more pairwise comparisons than this, before any work")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  ph->add_flag("--json", ph_json, "Print JSON");
-  ph->callback([] {
-    const auto design = load_design(ph_args);
-    const auto factors = parse_effect(design, ph_effect);
-    const auto method = ph_method == "tukey" ? PosthocMethod::tukey : PosthocMethod::bonferroni;
-    const auto result = posthoc(design, factors, method, ph_simple, ph_max_comparisons);
-    if (ph_json) {
+  ph->add_flag("--json", ph_opt->json, "Print JSON");
+  ph->callback([o = ph_opt] {
+    const auto design = load_design(o->design);
+    const auto factors = parse_effect(design, o->effect);
+    const auto method = o->method == "tukey" ? PosthocMethod::tukey : PosthocMethod::bonferroni;
+    const auto result = posthoc(design, factors, method, o->simple, o->max_comparisons);
+    if (o->json) {
       auto j = posthoc_to_json(result);
       if (factors.size() > 1) {
         nlohmann::json simple = nlohmann::json::array();
@@ -134,44 +154,45 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   });
 
   // ---- psychometric ----
-  static PsychometricRequest pr;
-  static std::string pr_csv, pr_probs = "0.5,0.05";
-  static bool pr_json = false;
+  auto psy_opt = std::make_shared<PsychometricOptions>();
+  PsychometricRequest& req = psy_opt->request;
   auto* psy = analyze->add_subcommand(
       "psychometric",
       "Logistic psychometric functions per subject (and condition) by maximum likelihood; thresholds "
       "(D_crit / V_crit at 0.5, the 5 % point), bootstrap CIs, group table and RM-ANOVA of thresholds");
-  psy->add_option("--csv", pr_csv, "Tidy CSV: one row per binary trial")->required();
-  psy->add_option("--subject", pr.subject, "Subject column")->required();
-  psy->add_option("--x", pr.x,
+  psy->add_option("--csv", psy_opt->csv, "Tidy CSV: one row per binary trial")->required();
+  psy->add_option("--subject", req.subject, "Subject column")->required();
+  psy->add_option("--x", req.x,
                   "Stimulus column (distance in metres, or volume in m^3 with --x-transform cbrt)")
       ->required();
-  psy->add_option("--response", pr.response, "Binary response column (0/1)")->required();
-  psy->add_option("--by", pr.by, "Condition column: one fit per subject and level");
-  psy->add_option("--p", pr_probs, "Threshold probabilities, comma-separated")->capture_default_str();
-  psy->add_option("--bootstrap", pr.bootstrap, "Parametric-bootstrap replicates per fit (0 = none)")
+  psy->add_option("--response", req.response, "Binary response column (0/1)")->required();
+  psy->add_option("--by", req.by, "Condition column: one fit per subject and level");
+  psy->add_option("--p", psy_opt->probabilities, "Threshold probabilities, comma-separated")
+      ->capture_default_str();
+  psy->add_option("--bootstrap", req.bootstrap, "Parametric-bootstrap replicates per fit (0 = none)")
       ->check(CLI::Range(0, 100000));
-  psy->add_option("--seed", pr.seed, "Bootstrap seed")->capture_default_str();
-  psy->add_option("--x-transform", pr.x_transform,
+  psy->add_option("--seed", req.seed, "Bootstrap seed")->capture_default_str();
+  psy->add_option("--x-transform", req.x_transform,
                   "none | cbrt (cube root of volume, seed 001 section 4.2.3)")
       ->check(CLI::IsMember({"none", "cbrt"}))
       ->capture_default_str();
-  psy->add_option("--guess", pr.options.guess,
+  psy->add_option("--guess", req.options.guess,
                   "Fixed guess rate (lower asymptote); thresholds are then points of "
                   "the underlying logistic (see analysis/psychometric_fit.hpp)");
-  psy->add_option("--lapse", pr.options.lapse, "Fixed lapse rate (1 - upper asymptote)");
-  psy->add_flag("--json", pr_json, "Print {\"fits\": [...], \"groups\": [...], \"anova\": ...}");
-  psy->callback([] {
+  psy->add_option("--lapse", req.options.lapse, "Fixed lapse rate (1 - upper asymptote)");
+  psy->add_flag("--json", psy_opt->json, "Print {\"fits\": [...], \"groups\": [...], \"anova\": ...}");
+  psy->callback([o = psy_opt] {
+    PsychometricRequest& pr = o->request;
     pr.probabilities.clear();
-    for (const auto& s : split_list(pr_probs)) {
+    for (const auto& s : split_list(o->probabilities)) {
       try {
         pr.probabilities.push_back(std::stod(s));
       } catch (const std::exception&) {
         throw InputError("--p: not a number: '" + s + "'");
       }
     }
-    const auto result = analyze_psychometric(read_csv(pr_csv), pr);
-    if (pr_json) {
+    const auto result = analyze_psychometric(read_csv(o->csv), pr);
+    if (o->json) {
       std::cout << psychometric_to_json(result).dump(2) << "\n";
       return;
     }
@@ -188,15 +209,17 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   });
 
   // ---- report ----
-  static std::string study_dir, spec_path, out_dir;
+  auto report_opt = std::make_shared<ReportOptions>();
   auto* report = analyze->add_subcommand(
       "report", "Markdown report with figures from a study's response CSVs (real or simulated)");
-  report->add_option("study_dir", study_dir, "Folder with the study's response CSVs (*.csv, tidy rows)")
+  report
+      ->add_option("study_dir", report_opt->study_dir,
+                   "Folder with the study's response CSVs (*.csv, tidy rows)")
       ->required();
-  report->add_option("--spec", spec_path, "The experiment spec (YAML) the study ran")->required();
-  report->add_option("--out", out_dir, "Output folder (report.md, figures/)")->required();
-  report->callback([] {
-    const auto path = write_study_report(study_dir, spec_path, out_dir);
+  report->add_option("--spec", report_opt->spec_path, "The experiment spec (YAML) the study ran")->required();
+  report->add_option("--out", report_opt->out_dir, "Output folder (report.md, figures/)")->required();
+  report->callback([o = report_opt] {
+    const auto path = write_study_report(o->study_dir, o->spec_path, o->out_dir);
     std::cout << "wrote " << path << "\n";
   });
 });

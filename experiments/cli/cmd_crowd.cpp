@@ -14,7 +14,6 @@
 #include <tuple>
 
 #include "experiments/cli/command_registry.hpp"
-#include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/core/csv.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
@@ -25,6 +24,7 @@
 #include "framework/crowd/generate_scenario.hpp"
 #include "framework/crowd/interpersonal_distance_histogram.hpp"
 #include "framework/crowd/pair_closest_approaches.hpp"
+#include "framework/pipeline/provenance.hpp"
 #include "framework/spec/effective_scenario_type.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 #include "framework/surface/generate_manifold_scenario.hpp"

@@ -10,9 +10,9 @@
 #include "analysis/study_report.hpp"
 #include "crowdlab_embedded_demo.hpp"
 #include "experiments/cli/command_registry.hpp"
-#include "experiments/cli/pipeline/provenance.hpp"
-#include "experiments/cli/pipeline/run_pipeline.hpp"
+#include "experiments/cli/pipeline/render_stages.hpp"
 #include "framework/core/stimulus_manifest.hpp"
+#include "framework/pipeline/provenance.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 #include "study_ui/simulate_study.hpp"
 
@@ -63,7 +63,7 @@ void run_demo(const Options& o) {
   RunOptions ro;
   ro.out_dir = dir / "stimuli";
   ro.force = o.force;
-  const RunSummary run = run_experiment(spec, ro);
+  const RunSummary run = run_with_stimuli(spec, ro);
 
   // The simulated data set is regenerated from its seed each time (simulate_study never overwrites).
   const fs::path study_dir = dir / "study";

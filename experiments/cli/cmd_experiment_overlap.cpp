@@ -18,8 +18,6 @@
 #include "experiments/cli/corrector_tuning_options.hpp"
 #include "experiments/cli/experiment_group.hpp"
 #include "experiments/cli/figures/overlap_vs_density.hpp"
-#include "experiments/cli/pipeline/body_model.hpp"
-#include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/animation/animate_crowd.hpp"
 #include "framework/core/csv.hpp"
 #include "framework/core/progress.hpp"
@@ -28,6 +26,8 @@
 #include "framework/crowd/generate_scenario.hpp"
 #include "framework/metrics/correction_quality.hpp"
 #include "framework/metrics/measure_crowd.hpp"
+#include "framework/pipeline/body_model.hpp"
+#include "framework/pipeline/provenance.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
 namespace crowdlab::cli {

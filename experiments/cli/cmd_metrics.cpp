@@ -8,10 +8,10 @@
 #include <string>
 
 #include "experiments/cli/command_registry.hpp"
-#include "experiments/cli/metrics_json.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/metrics/measure_crowd.hpp"
+#include "framework/pipeline/metrics_json.hpp"
 
 namespace crowdlab::cli {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "experiments/cli/command_registry.hpp"
 #include "experiments/cli/pipeline/job_script_text.hpp"
-#include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/core/error.hpp"
+#include "framework/pipeline/provenance.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
 namespace crowdlab::cli {

@@ -10,9 +10,9 @@
 #include <string>
 
 #include "experiments/cli/command_registry.hpp"
-#include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/core/error.hpp"
 #include "framework/io/read_crowd_glb.hpp"
+#include "framework/pipeline/provenance.hpp"
 #include "stimuli/clip_sidecar.hpp"
 #include "stimuli/render_clip.hpp"
 #include "stimuli/synthetic_crowd.hpp"

@@ -7,7 +7,7 @@
 #include "experiments/cli/command_registry.hpp"
 #include "experiments/cli/pipeline/collect.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
-#include "experiments/cli/pipeline/run_pipeline.hpp"
+#include "experiments/cli/pipeline/render_stages.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
 namespace crowdlab::cli {
@@ -56,7 +56,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     ro.force = o->force;
     ro.shard = shard;
     ro.only = o->condition;
-    const RunSummary s = run_experiment(spec, ro);
+    const RunSummary s = run_with_stimuli(spec, ro);
     std::printf("%d conditions: %d stage outputs made, %d up to date\nmanifest: %s\n", s.conditions,
                 s.stages_run, s.stages_skipped, s.manifest.string().c_str());
   });

@@ -97,46 +97,75 @@ void to_t_pose(std::array<Vec3, kJointCount>& joint, SkinnedMesh& mesh, std::arr
     joint[static_cast<size_t>(j)] = bones[static_cast<size_t>(j)].translation;
 }
 
-}  // namespace
+/// The skeleton's landmarks (metres, Y-up): the 24 joints plus the surface end points of the leaf
+/// bones (top of the head, middle fingertips, toe tips; index 0 left, 1 right).
+struct BodyLandmarks {
+  std::array<Vec3, kJointCount> joint{};
+  Vec3 head_top = Vec3::Zero();
+  std::array<Vec3, 2> finger_tip{}, toe_tip{};
 
-const char* mixamo_bone_for_joint(int joint) {
-  if (joint < 0 || joint >= kJointCount) throw InputError("mixamo_bone_for_joint: bad joint index");
-  return kMixamoForJoint[static_cast<size_t>(joint)];
+  void translate(const Vec3& d) {
+    for (Vec3& p : joint) p += d;
+    head_top += d;
+    for (Vec3& p : finger_tip) p += d;
+    for (Vec3& p : toe_tip) p += d;
+  }
+};
+
+/// Step 1: the joints and leaf end points placed on the shaped mesh (decimetres).
+BodyLandmarks place_landmarks(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm) {
+  BodyLandmarks lm;
+  for (int j = 0; j < kJointCount; ++j)
+    lm.joint[static_cast<size_t>(j)] =
+        place(bone(model, kMixamoForJoint[static_cast<size_t>(j)]).head, shaped_dm);
+  lm.head_top = place(bone(model, "Head").tail, shaped_dm);
+  lm.finger_tip = {place(bone(model, "LeftHandMiddle3").tail, shaped_dm),
+                   place(bone(model, "RightHandMiddle3").tail, shaped_dm)};
+  lm.toe_tip = {place(bone(model, "LeftToeBase").tail, shaped_dm),
+                place(bone(model, "RightToeBase").tail, shaped_dm)};
+  return lm;
 }
 
-Mpfb2Body make_mpfb2_body(const Mpfb2Model& model, const Mpfb2ShapeParams& params) {
-  const std::vector<Vec3> shaped_dm = shaped_vertices_dm(model, params);
-
-  // 1. Joints on the shaped mesh, plus the three surface end points of leaf bones.
-  std::array<Vec3, kJointCount> joint{};
-  for (int j = 0; j < kJointCount; ++j)
-    joint[static_cast<size_t>(j)] =
-        place(bone(model, kMixamoForJoint[static_cast<size_t>(j)]).head, shaped_dm);
-  const Vec3 head_top = place(bone(model, "Head").tail, shaped_dm);
-  std::array<Vec3, 2> finger_tip = {place(bone(model, "LeftHandMiddle3").tail, shaped_dm),
-                                    place(bone(model, "RightHandMiddle3").tail, shaped_dm)};
-  std::array<Vec3, 2> toe_tip = {place(bone(model, "LeftToeBase").tail, shaped_dm),
-                                 place(bone(model, "RightToeBase").tail, shaped_dm)};
-
-  // 2. Body-group vertices (metres) and the frame shift: feet on y = 0, pelvis above the origin.
-  const std::vector<int>& ids = model.body_vertices();
-  std::vector<int> to_local(model.base().vertices.size(), -1);
-  std::vector<Vec3> verts(ids.size());
+/// Lowest and highest y of a vertex set (metres).
+struct VerticalRange {
   double min_y = HUGE_VAL, max_y = -HUGE_VAL;
+};
+
+VerticalRange vertical_range(const std::vector<Vec3>& verts) {
+  VerticalRange r;
+  for (const Vec3& v : verts) {
+    r.min_y = std::min(r.min_y, v.y());
+    r.max_y = std::max(r.max_y, v.y());
+  }
+  return r;
+}
+
+/// Stands the body on the floor: the lowest vertex (at min_y) to y = 0 and the pelvis above the origin.
+void stand_on_floor(std::vector<Vec3>& verts, BodyLandmarks& lm, double min_y) {
+  const Vec3 shift(-lm.joint[kPelvis].x(), -min_y, -lm.joint[kPelvis].z());
+  for (Vec3& v : verts) v += shift;
+  lm.translate(shift);
+}
+
+/// Step 2: the body group's vertices in metres; to_local maps a base-mesh vertex index to its index
+/// here (-1 for vertices outside the body group).
+std::vector<Vec3> body_vertices_m(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm,
+                                  std::vector<int>& to_local) {
+  const std::vector<int>& ids = model.body_vertices();
+  to_local.assign(model.base().vertices.size(), -1);
+  std::vector<Vec3> verts(ids.size());
   for (size_t i = 0; i < ids.size(); ++i) {
     to_local[static_cast<size_t>(ids[i])] = static_cast<int>(i);
     verts[i] = kDecimetre * shaped_dm[static_cast<size_t>(ids[i])];
-    min_y = std::min(min_y, verts[i].y());
-    max_y = std::max(max_y, verts[i].y());
   }
-  const Vec3 shift(-joint[kPelvis].x(), -min_y, -joint[kPelvis].z());
-  for (Vec3& v : verts) v += shift;
-  for (Vec3& p : joint) p += shift;
-  Vec3 top = head_top + shift;
-  for (Vec3& p : finger_tip) p += shift;
-  for (Vec3& p : toe_tip) p += shift;
+  return verts;
+}
 
-  // 3. Skinning weights, Mixamo bones -> SMPL joints, top 4 per vertex.
+/// Step 3: skinning weights, Mixamo bones -> SMPL joints, the 4 largest per vertex renormalised (a
+/// vertex without weight is bound rigidly to its nearest joint); the triangles of the body group.
+void bind_skin(const Mpfb2Model& model, const std::vector<int>& to_local,
+               const std::array<Vec3, kJointCount>& joint, SkinnedMesh& mesh) {
+  const std::vector<Vec3>& verts = mesh.rest_vertices_m;
   std::vector<std::array<double, kJointCount>> acc(verts.size());
   for (auto& a : acc) a.fill(0.0);
   for (const auto& [bone_name, list] : model.weights()) {
@@ -147,11 +176,6 @@ Mpfb2Body make_mpfb2_body(const Mpfb2Model& model, const Mpfb2ShapeParams& param
       if (local >= 0 && w > 0.0) acc[static_cast<size_t>(local)][static_cast<size_t>(j)] += w;
     }
   }
-  Mpfb2Body body;
-  body.params = params;
-  SkinnedMesh& mesh = body.mesh;
-  mesh.rest_vertices_m = verts;
-  mesh.rest_joints_m = joint;
   mesh.joints.resize(verts.size());
   mesh.weights.resize(verts.size());
   mesh.region.resize(verts.size());
@@ -184,94 +208,119 @@ Mpfb2Body make_mpfb2_body(const Mpfb2Model& model, const Mpfb2ShapeParams& param
   for (const auto& t : model.body_triangles())
     mesh.triangles.emplace_back(to_local[static_cast<size_t>(t[0])], to_local[static_cast<size_t>(t[1])],
                                 to_local[static_cast<size_t>(t[2])]);
+}
 
-  const double stature_m = max_y - min_y;  // standing height in MakeHuman's own rest pose
-
-  // 3b. MakeHuman's rest is an A-pose (arms ~45 degrees down and forward, legs apart); crowdlab's
-  // rest is a T-pose (body_shape.hpp). Re-pose by skinning: arm bones to +-X, leg bones to -Y.
-  to_t_pose(joint, mesh, finger_tip, toe_tip);
-  verts = mesh.rest_vertices_m;
-  min_y = HUGE_VAL;
-  max_y = -HUGE_VAL;
-  for (const Vec3& v : verts) {
-    min_y = std::min(min_y, v.y());
-    max_y = std::max(max_y, v.y());
-  }
-  const Vec3 refloor(-joint[kPelvis].x(), -min_y, -joint[kPelvis].z());
-  for (Vec3& v : verts) v += refloor;
-  for (Vec3& p : joint) p += refloor;
-  top += refloor;
-  for (Vec3& p : finger_tip) p += refloor;
-  for (Vec3& p : toe_tip) p += refloor;
-  max_y -= min_y;
-  min_y = 0.0;
-  mesh.rest_vertices_m = verts;
-  mesh.rest_joints_m = joint;
-  mesh.rest_normals = vertex_normals(mesh.rest_vertices_m, mesh.triangles);
-
-  // 4. Skeleton: rest offsets (bone frames are aligned with the character frame in the rest pose).
-  BodyShape& shape = body.shape;
-  body.height_m = stature_m;
-  shape.params = {params.gender >= 0.5 ? Sex::kMale : Sex::kFemale, body.height_m, 1.0};
+/// Step 5: the skeleton's rest offsets (bone frames are aligned with the character frame at rest).
+void set_rest_offsets(const std::array<Vec3, kJointCount>& joint, BodyShape& shape) {
   shape.joint_offsets_m[kPelvis] = Vec3(0.0, joint[kPelvis].y(), 0.0);
   for (int j = 1; j < kJointCount; ++j)
     shape.joint_offsets_m[static_cast<size_t>(j)] =
         joint[static_cast<size_t>(j)] - joint[static_cast<size_t>(kJointParent[static_cast<size_t>(j)])];
+}
 
-  // 5. Capsules: axis between joints, radius from the volume of the part the bone carries.
-  auto end_of = [&](int j, bool& surface) -> Vec3 {
-    surface = false;
-    switch (j) {
-      case kPelvis:
-        return joint[kRightHip];
-      case kSpine1:
-        return joint[kSpine2];
-      case kSpine2:
-        return joint[kSpine3];
-      case kSpine3:
-        return joint[kNeck];
-      case kNeck:
-        return joint[kHead];
-      case kHead:
-        surface = true;
-        return top;
-      case kLeftFoot:
-        surface = true;
-        return toe_tip[0];
-      case kRightFoot:
-        surface = true;
-        return toe_tip[1];
-      case kLeftHand:
-        surface = true;
-        return finger_tip[0];
-      case kRightHand:
-        surface = true;
-        return finger_tip[1];
-      default:
-        break;
-    }
-    for (int c = 1; c < kJointCount; ++c)  // chain bones: their one child joint
-      if (kJointParent[static_cast<size_t>(c)] == j) return joint[static_cast<size_t>(c)];
-    return joint[static_cast<size_t>(j)];
-  };
-  std::array<Vec3, kJointCount> seg_a{}, seg_b{};
-  std::array<bool, kJointCount> leaf{};
-  for (int j = 0; j < kJointCount; ++j) {
-    bool surface = false;
-    seg_a[static_cast<size_t>(j)] = j == kPelvis ? joint[kLeftHip] : joint[static_cast<size_t>(j)];
-    seg_b[static_cast<size_t>(j)] = end_of(j, surface);
-    leaf[static_cast<size_t>(j)] = surface;
+/// The axis segment of each bone's capsule, before leaf axes are shortened by their radius.
+struct CapsuleAxes {
+  std::array<Vec3, kJointCount> a{}, b{};
+};
+
+/// Where bone j's axis ends (see the header): the next joint, or a surface landmark for leaf bones.
+Vec3 axis_end(int j, const BodyLandmarks& lm) {
+  const auto& joint = lm.joint;
+  switch (j) {
+    case kPelvis:
+      return joint[kRightHip];
+    case kSpine1:
+      return joint[kSpine2];
+    case kSpine2:
+      return joint[kSpine3];
+    case kSpine3:
+      return joint[kNeck];
+    case kNeck:
+      return joint[kHead];
+    case kHead:
+      return lm.head_top;
+    case kLeftFoot:
+      return lm.toe_tip[0];
+    case kRightFoot:
+      return lm.toe_tip[1];
+    case kLeftHand:
+      return lm.finger_tip[0];
+    case kRightHand:
+      return lm.finger_tip[1];
+    default:
+      break;
   }
-  // Volume of the body part each bone carries, by the divergence theorem with the field radial to
-  // the bone's axis line, F(x) = (x - a) - ((x - a).u) u, whose divergence is 2: V = 1/2 ∮ F.n dA.
-  // F is affine, so a triangle contributes exactly F(centroid).n A. Triangles are shared among bones
-  // by their mean skinning weights; for a closed part around its own axis this is its exact volume.
-  std::array<double, kJointCount> part_volume{};
+  for (int c = 1; c < kJointCount; ++c)  // chain bones: their one child joint
+    if (kJointParent[static_cast<size_t>(c)] == j) return joint[static_cast<size_t>(c)];
+  return joint[static_cast<size_t>(j)];
+}
+
+CapsuleAxes capsule_axes(const BodyLandmarks& lm) {
+  CapsuleAxes axes;
+  for (int j = 0; j < kJointCount; ++j) {
+    axes.a[static_cast<size_t>(j)] = j == kPelvis ? lm.joint[kLeftHip] : lm.joint[static_cast<size_t>(j)];
+    axes.b[static_cast<size_t>(j)] = axis_end(j, lm);
+  }
+  return axes;
+}
+
+/// The radius (m) whose modelled volume is target_m3: the cylinder pi r^2 L for a joint-to-joint bone
+/// (its caps lie inside the neighbouring bones' capsules, so counting them would count that volume
+/// twice), the whole capsule pi r^2 (L - r) + 4/3 pi r^3 for a bone ending at the surface. Both grow
+/// with r; solved by bisection on [0, 0.5 m] to machine precision.
+double capsule_radius_for_volume(double length_m, bool ends_at_surface, double target_m3) {
+  auto volume = [&](double r) {
+    if (!ends_at_surface) return std::numbers::pi * r * r * length_m;
+    return std::numbers::pi * r * r * (std::max(0.0, length_m - r) + 4.0 / 3.0 * r);
+  };
+  double lo = 0.0, hi = 0.5;
+  for (int iter = 0; iter < 60; ++iter) (volume(0.5 * (lo + hi)) < target_m3 ? lo : hi) = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
+/// Step 6: one capsule per bone, its radius matching the volume of the part the bone carries.
+void fit_capsules(const SkinnedMesh& mesh, const BodyLandmarks& lm, BodyShape& shape) {
+  const CapsuleAxes axes = capsule_axes(lm);
   std::array<Vec3, kJointCount> axis_dir{};
   for (size_t j = 0; j < kJointCount; ++j) {
-    const Vec3 d = seg_b[j] - seg_a[j];
+    const Vec3 d = axes.b[j] - axes.a[j];
     axis_dir[j] = d.norm() > 1e-9 ? Vec3(d.normalized()) : Vec3::UnitY();
   }
+  const std::array<double, kJointCount> part_volume = body_part_volumes_m3(mesh, axes.a, axis_dir);
+  for (int j = 0; j < kJointCount; ++j) {
+    const auto jj = static_cast<size_t>(j);
+    const Vec3 start = axes.a[jj];
+    const double len = (axes.b[jj] - start).norm();
+    const Vec3 dir = len > 0.0 ? Vec3((axes.b[jj] - start) / len) : Vec3::UnitY();
+    if (!(part_volume[jj] > 0.0))
+      throw InputError("MPFB2 body: joint '" + std::string(joint_name(j)) + "' carries no mesh volume");
+    const bool leaf = mpfb2_bone_ends_at_surface(j);
+    const double r = capsule_radius_for_volume(len, leaf, part_volume[jj]);
+    // Axes ending at the surface are shortened by r so the cap ends there.
+    const Vec3 end = leaf ? Vec3(start + std::max(0.0, len - r) * dir) : axes.b[jj];
+    const Vec3 origin = lm.joint[jj];
+    shape.capsules[jj] = Capsule{start - origin, end - origin, r};
+  }
+}
+
+}  // namespace
+
+const char* mixamo_bone_for_joint(int joint) {
+  if (joint < 0 || joint >= kJointCount) throw InputError("mixamo_bone_for_joint: bad joint index");
+  return kMixamoForJoint[static_cast<size_t>(joint)];
+}
+
+bool mpfb2_bone_ends_at_surface(int joint) {
+  return joint == kHead || joint == kLeftFoot || joint == kRightFoot || joint == kLeftHand ||
+         joint == kRightHand;
+}
+
+std::array<double, kJointCount> body_part_volumes_m3(const SkinnedMesh& mesh,
+                                                     const std::array<Vec3, kJointCount>& axis_point,
+                                                     const std::array<Vec3, kJointCount>& axis_dir) {
+  // F(x) = (x - a) - ((x - a).u) u is affine, so a triangle contributes exactly F(centroid).n A.
+  const std::vector<Vec3>& verts = mesh.rest_vertices_m;
+  std::array<double, kJointCount> part_volume{};
   for (const auto& t : mesh.triangles) {
     const Vec3& v0 = verts[static_cast<size_t>(t[0])];
     const Vec3& v1 = verts[static_cast<size_t>(t[1])];
@@ -285,33 +334,42 @@ Mpfb2Body make_mpfb2_body(const Mpfb2Model& model, const Mpfb2ShapeParams& param
     }
     for (size_t j = 0; j < kJointCount; ++j) {
       if (w[j] <= 0.0) continue;
-      const Vec3 r = centroid - seg_a[j];
+      const Vec3 r = centroid - axis_point[j];
       const Vec3 radial = r - r.dot(axis_dir[j]) * axis_dir[j];
       part_volume[j] += w[j] * 0.5 * radial.dot(area_normal);
     }
   }
-  for (int j = 0; j < kJointCount; ++j) {
-    const auto jj = static_cast<size_t>(j);
-    const Vec3 start = seg_a[jj];
-    const double len = (seg_b[jj] - start).norm();
-    const Vec3 dir = len > 0.0 ? Vec3((seg_b[jj] - start) / len) : Vec3::UnitY();
-    const double target = part_volume[jj];
-    if (!(target > 0.0))
-      throw InputError("MPFB2 body: joint '" + std::string(joint_name(j)) + "' carries no mesh volume");
-    // Joint-to-joint bones: the cylinder pi r^2 L carries the part (its caps overlap the neighbouring
-    // bones' capsules, so counting them would count that volume twice). Bones ending at the surface:
-    // the whole capsule pi r^2 (L - r) + 4/3 pi r^3. Both increase with r; solved by bisection.
-    auto volume = [&](double r) {
-      if (!leaf[jj]) return std::numbers::pi * r * r * len;  // caps lie inside the neighbours
-      return std::numbers::pi * r * r * (std::max(0.0, len - r) + 4.0 / 3.0 * r);
-    };
-    double lo = 0.0, hi = 0.5;
-    for (int iter = 0; iter < 60; ++iter) (volume(0.5 * (lo + hi)) < target ? lo : hi) = 0.5 * (lo + hi);
-    const double r = 0.5 * (lo + hi);
-    const Vec3 end = leaf[jj] ? Vec3(start + std::max(0.0, len - r) * dir) : seg_b[jj];
-    const Vec3 origin = joint[jj];
-    shape.capsules[jj] = Capsule{start - origin, end - origin, r};
-  }
+  return part_volume;
+}
+
+Mpfb2Body make_mpfb2_body(const Mpfb2Model& model, const Mpfb2ShapeParams& params) {
+  const std::vector<Vec3> shaped_dm = shaped_vertices_dm(model, params);
+  BodyLandmarks lm = place_landmarks(model, shaped_dm);
+
+  Mpfb2Body body;
+  body.params = params;
+  SkinnedMesh& mesh = body.mesh;
+  std::vector<int> to_local;
+  mesh.rest_vertices_m = body_vertices_m(model, shaped_dm, to_local);
+  const VerticalRange as_made = vertical_range(mesh.rest_vertices_m);
+  stand_on_floor(mesh.rest_vertices_m, lm, as_made.min_y);
+  bind_skin(model, to_local, lm.joint, mesh);
+  // Standing height in MakeHuman's own rest pose.
+  body.height_m = as_made.max_y - as_made.min_y;
+
+  // Step 4: MakeHuman's rest is an A-pose (arms ~45 degrees down and forward, legs apart); crowdlab's
+  // rest is a T-pose (body_shape.hpp). Re-pose by skinning (arm bones to +-X, leg bones to -Y) and
+  // stand the T-posed body on the floor again.
+  mesh.rest_joints_m = lm.joint;
+  to_t_pose(lm.joint, mesh, lm.finger_tip, lm.toe_tip);
+  stand_on_floor(mesh.rest_vertices_m, lm, vertical_range(mesh.rest_vertices_m).min_y);
+  mesh.rest_joints_m = lm.joint;
+  mesh.rest_normals = vertex_normals(mesh.rest_vertices_m, mesh.triangles);
+
+  BodyShape& shape = body.shape;
+  shape.params = {params.gender >= 0.5 ? Sex::kMale : Sex::kFemale, body.height_m, 1.0};
+  set_rest_offsets(lm.joint, shape);
+  fit_capsules(mesh, lm, shape);
   compute_rest_contact_pairs(shape);
   validate_body_shape(shape, "MPFB2 body");
   return body;

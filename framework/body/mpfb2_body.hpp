@@ -36,8 +36,8 @@
 
 #include "framework/body/mpfb2_model.hpp"
 #include "framework/body/mpfb2_shape.hpp"
-#include "framework/core/skinned_mesh.hpp"
 #include "framework/core/body_shape.hpp"
+#include "framework/core/skinned_mesh.hpp"
 
 namespace crowdlab {
 
@@ -50,8 +50,22 @@ struct Mpfb2Body {
   double height_m = 0.0;
 };
 
-/// Builds the body for the given shape. Throws InputError on bad params or broken assets.
+/// Builds the body for the given shape, in named steps: place the landmarks on the shaped mesh, take
+/// the body group's vertices and stand them on the floor, bind the skin, re-pose into the T-pose and
+/// stand it on the floor again, set the skeleton's rest offsets, fit the capsules. Throws InputError on
+/// bad params or broken assets.
 Mpfb2Body make_mpfb2_body(const Mpfb2Model& model, const Mpfb2ShapeParams& params);
+
+/// Whether bone `joint`'s capsule axis ends at the body's surface (head, feet, hands: the whole
+/// capsule carries the part) rather than at the next joint (the cylinder carries it).
+bool mpfb2_bone_ends_at_surface(int joint);
+
+/// Volume (m^3) of the body part each bone carries, the quantity its capsule's radius matches: the
+/// divergence theorem over the rest mesh with the field radial to the line through axis_point[j]
+/// along the unit axis_dir[j], each triangle shared among bones by its mean skinning weights.
+std::array<double, kJointCount> body_part_volumes_m3(const SkinnedMesh& mesh,
+                                                     const std::array<Vec3, kJointCount>& axis_point,
+                                                     const std::array<Vec3, kJointCount>& axis_dir);
 
 /// The Mixamo bone whose head is SMPL joint j (see the table above).
 const char* mixamo_bone_for_joint(int joint);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "framework/core/capsule_box.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
 
@@ -138,12 +139,8 @@ void validate_body_shape(const BodyShape& shape, const std::string& context) {
     if (j != kPelvis && off.norm() < 1e-6) throw InputError(where + " has a zero-length bone to its parent");
   }
   // The whole rest-pose body, relative to its pelvis (the root offset places it, not its size).
-  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
-  for (const Capsule& c : world_capsules(shape, Pose::rest(shape))) {
-    lo = lo.cwiseMin(c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m));
-    hi = hi.cwiseMax(c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m));
-  }
-  const double extent_m = (hi - lo).maxCoeff();
+  const Aabb body = capsules_box(world_capsules(shape, Pose::rest(shape)));
+  const double extent_m = (body.hi - body.lo).maxCoeff();
   if (!(extent_m <= kMaxBodyExtent_m))
     throw InputError(context + ": the rest-pose body spans " + std::to_string(extent_m) +
                      " m, more than the limit of 4 m (kMaxBodyExtent_m; joint offsets or capsules are not in "

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 
+#include "framework/core/capsule_box.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
 
@@ -75,17 +76,11 @@ int tree_distance(int i, int j) {
 /// ~5000 cells of an adult body; only capsules whose box holds the cell centre are tested).
 double union_fraction(const BodyShape& shape) {
   const WorldCapsules caps = world_capsules(shape, Pose::rest(shape));
-  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
-  for (const Capsule& c : caps) {
-    lo = lo.cwiseMin(c.a.cwiseMin(c.b) - Vec3::Constant(c.radius_m));
-    hi = hi.cwiseMax(c.a.cwiseMax(c.b) + Vec3::Constant(c.radius_m));
-  }
+  const Aabb body = capsules_box(caps);
+  const Vec3 &lo = body.lo, &hi = body.hi;
   constexpr double kStep = 0.025;
-  std::array<Vec3, kJointCount> box_lo, box_hi;
-  for (size_t i = 0; i < kJointCount; ++i) {
-    box_lo[i] = caps[i].a.cwiseMin(caps[i].b) - Vec3::Constant(caps[i].radius_m);
-    box_hi[i] = caps[i].a.cwiseMax(caps[i].b) + Vec3::Constant(caps[i].radius_m);
-  }
+  std::array<Aabb, kJointCount> boxes;
+  for (size_t i = 0; i < kJointCount; ++i) boxes[i] = capsule_box(caps[i]);
   long inside_any = 0, inside_sum = 0;
   for (double x = lo.x() + kStep / 2; x < hi.x(); x += kStep)
     for (double y = lo.y() + kStep / 2; y < hi.y(); y += kStep)
@@ -93,7 +88,7 @@ double union_fraction(const BodyShape& shape) {
         const Vec3 p(x, y, z);
         int count = 0;
         for (size_t i = 0; i < kJointCount; ++i) {
-          if ((p.array() < box_lo[i].array()).any() || (p.array() > box_hi[i].array()).any()) continue;
+          if (!boxes[i].contains(p)) continue;
           const Capsule& c = caps[i];
           if (segment_closest_points(c.a, c.b, p, p).distance_m < c.radius_m) ++count;
         }

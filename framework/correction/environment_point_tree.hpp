@@ -11,35 +11,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "framework/core/capsule_box.hpp"
 #include "framework/core/crowd_animation.hpp"
 #include "framework/core/math_types.hpp"
 
 namespace crowdlab {
-
-struct Aabb {
-  Vec3 lo = Vec3::Constant(1e300);
-  Vec3 hi = Vec3::Constant(-1e300);
-  void extend(const Vec3& p) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  void extend(const Aabb& b) {
-    lo = lo.cwiseMin(b.lo);
-    hi = hi.cwiseMax(b.hi);
-  }
-  bool overlaps(const Aabb& b) const {
-    return (lo.array() <= b.hi.array()).all() && (b.lo.array() <= hi.array()).all();
-  }
-  bool contains(const Vec3& p) const {
-    return (lo.array() <= p.array()).all() && (p.array() <= hi.array()).all();
-  }
-};
-
-/// The axis-aligned box of a capsule (world frame, m), grown by `grow_m` on every side.
-inline Aabb capsule_box(const Capsule& c, double grow_m = 0.0) {
-  const Vec3 r = Vec3::Constant(c.radius_m + grow_m);
-  return {c.a.cwiseMin(c.b) - r, c.a.cwiseMax(c.b) + r};
-}
 
 class EnvironmentPointTree {
  public:

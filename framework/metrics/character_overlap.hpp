@@ -11,27 +11,18 @@
 //                                  between their axes, clamped at 0 (metres).
 #include <span>
 
+#include "framework/core/capsule_box.hpp"
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/metrics/overlap_volume.hpp"
 
 namespace crowdlab {
 
-/// Axis-aligned box around a body's world capsules (metres).
-struct BodyBounds {
-  Vec3 lo = Vec3::Zero();
-  Vec3 hi = Vec3::Zero();
-  bool overlaps(const BodyBounds& o) const {
-    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
-  }
-};
-BodyBounds body_bounds(const WorldCapsules& capsules);
-
 OverlapVolume character_overlap(const WorldCapsules& a, const WorldCapsules& b,
                                 const OverlapOptions& options = {});
 
-/// bounds[j] must be body_bounds(bodies[j]); i indexes bodies.
-OverlapVolume overlap_with_others(std::span<const WorldCapsules> bodies, std::span<const BodyBounds> bounds,
-                                  int i, const OverlapOptions& options = {});
+/// bounds[j] must be capsules_box(bodies[j]); i indexes bodies.
+OverlapVolume overlap_with_others(std::span<const WorldCapsules> bodies, std::span<const Aabb> bounds, int i,
+                                  const OverlapOptions& options = {});
 
 double max_penetration_depth(const WorldCapsules& a, const WorldCapsules& b);
 

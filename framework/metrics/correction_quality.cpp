@@ -36,10 +36,10 @@ CorrectionQuality measure_correction_quality(const CrowdAnimation& input, const 
   std::vector<double> depths, deviations;
   for (int f = std::max(0, first_frame); f < frames; f += frame_stride) {
     std::vector<WorldCapsules> bodies;
-    std::vector<BodyBounds> bounds;
+    std::vector<Aabb> bounds;
     for (const CharacterAnimation& ch : corrected.characters) {
       bodies.push_back(world_capsules(ch.shape, ch.frames[static_cast<size_t>(f)]));
-      bounds.push_back(body_bounds(bodies.back()));
+      bounds.push_back(capsules_box(bodies.back()));
     }
     for (size_t i = 0; i < n; ++i)
       for (size_t j = i + 1; j < n; ++j) {

@@ -30,11 +30,11 @@ struct FrameSample {
 FrameSample measure_frame(const CrowdAnimation& crowd, int f, const MetricsOptions& options) {
   const size_t n = crowd.characters.size();
   std::vector<WorldCapsules> bodies(n);
-  std::vector<BodyBounds> bounds(n);
+  std::vector<Aabb> bounds(n);
   for (size_t i = 0; i < n; ++i) {
     const CharacterAnimation& c = crowd.characters[i];
     bodies[i] = world_capsules(c.shape, c.frames[static_cast<size_t>(f)]);
-    bounds[i] = body_bounds(bodies[i]);
+    bounds[i] = capsules_box(bodies[i]);
   }
   FrameSample out;
   out.character_overlap_m3.assign(n, 0.0);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "framework/core/capsule_box.hpp"
 #include "framework/core/error.hpp"
 
 namespace crowdlab {
@@ -181,15 +182,6 @@ double intersection_length(const Interval* x, int nx, const Interval* y, int ny)
   return total;
 }
 
-struct Box3 {
-  Vec3 lo = Vec3::Constant(HUGE_VAL);
-  Vec3 hi = Vec3::Constant(-HUGE_VAL);
-};
-
-bool boxes_overlap(const Box3& x, const Box3& y) {
-  return (x.lo.array() <= y.hi.array()).all() && (y.lo.array() <= x.hi.array()).all();
-}
-
 struct Chords {
   double inner = 0.0;    ///< chord with radii shrunk by h
   double nominal = 0.0;  ///< chord with the true radii
@@ -201,7 +193,7 @@ class ColumnIntegrator {
  public:
   /// Integrates vol(A ∩ B ∩ clip) for the capsule sets A, B.
   ColumnIntegrator(std::vector<PreparedCapsule> caps_a, std::vector<PreparedCapsule> caps_b,
-                   const LineFrame& frame, const Box3& clip, const OverlapOptions& options)
+                   const LineFrame& frame, const Aabb& clip, const OverlapOptions& options)
       : a_(std::move(caps_a)), b_(std::move(caps_b)), frame_(frame), clip_(clip), options_(options) {
     const int levels = options_.depth + 2;
     list_a_.assign(static_cast<size_t>(levels) * a_.size(), 0);
@@ -348,18 +340,13 @@ class ColumnIntegrator {
 
   std::vector<PreparedCapsule> a_, b_;
   LineFrame frame_;
-  Box3 clip_;
+  Aabb clip_;
   OverlapOptions options_;
   std::vector<int> list_a_, list_b_;
   std::array<int, 64> count_a_{}, count_b_{};
   std::vector<Interval> iv_a_, iv_b_;
   OverlapVolume result_;
 };
-
-Box3 capsule_box(const Capsule& c) {
-  const Vec3 r = Vec3::Constant(c.radius_m);
-  return {c.a.cwiseMin(c.b) - r, c.a.cwiseMax(c.b) + r};
-}
 
 void check_capsules(std::span<const Capsule> caps, const char* which) {
   for (size_t i = 0; i < caps.size(); ++i) {
@@ -388,7 +375,7 @@ OverlapVolume overlap_volume(std::span<const Capsule> a, std::span<const Capsule
   // integrated on its own grid, clipped to its box, so a small contact far from a large one gets its
   // own resolution, and the clusters' volumes add up exactly.
   struct Cluster {
-    Box3 box;
+    Aabb box;
     std::vector<char> in_a, in_b;
     double deepest = 0.0;
     Vec3 normal = Vec3::UnitX();
@@ -396,13 +383,13 @@ OverlapVolume overlap_volume(std::span<const Capsule> a, std::span<const Capsule
   };
   std::vector<Cluster> clusters;
   for (size_t i = 0; i < a.size(); ++i) {
-    const Box3 ba = capsule_box(a[i]);
+    const Aabb ba = capsule_box(a[i]);
     for (size_t j = 0; j < b.size(); ++j) {
-      const Box3 bb = capsule_box(b[j]);
-      if (!boxes_overlap(ba, bb)) continue;
+      const Aabb bb = capsule_box(b[j]);
+      if (!ba.overlaps(bb)) continue;
       const CapsuleContact contact = capsule_contact(a[i], b[j]);
       if (contact.depth_m <= 0.0) continue;
-      Cluster c{{ba.lo.cwiseMax(bb.lo), ba.hi.cwiseMin(bb.hi)},
+      Cluster c{ba.intersection(bb),
                 std::vector<char>(a.size(), 0),
                 std::vector<char>(b.size(), 0),
                 contact.depth_m,
@@ -417,12 +404,10 @@ OverlapVolume overlap_volume(std::span<const Capsule> a, std::span<const Capsule
     merged = false;
     for (size_t p = 0; p < clusters.size(); ++p) {
       for (size_t q = p + 1; q < clusters.size(); ++q) {
-        if (!clusters[p].alive || !clusters[q].alive || !boxes_overlap(clusters[p].box, clusters[q].box))
-          continue;
+        if (!clusters[p].alive || !clusters[q].alive || !clusters[p].box.overlaps(clusters[q].box)) continue;
         Cluster& x = clusters[p];
         Cluster& y = clusters[q];
-        x.box.lo = x.box.lo.cwiseMin(y.box.lo);
-        x.box.hi = x.box.hi.cwiseMax(y.box.hi);
+        x.box.extend(y.box);
         for (size_t i = 0; i < a.size(); ++i) x.in_a[i] |= y.in_a[i];
         for (size_t j = 0; j < b.size(); ++j) x.in_b[j] |= y.in_b[j];
         if (y.deepest > x.deepest) {
@@ -449,7 +434,7 @@ OverlapVolume overlap_volume(std::span<const Capsule> a, std::span<const Capsule
     // The quadrature rectangle: the cluster box projected on (e1, e2).
     Vec2 lo = Vec2::Constant(HUGE_VAL), hi = Vec2::Constant(-HUGE_VAL);
     for (int corner = 0; corner < 8; ++corner) {
-      const Box3& r = cluster.box;
+      const Aabb& r = cluster.box;
       const Vec3 p((corner & 1) ? r.hi.x() : r.lo.x(), (corner & 2) ? r.hi.y() : r.lo.y(),
                    (corner & 4) ? r.hi.z() : r.lo.z());
       const Vec2 q(p.dot(frame.e1), p.dot(frame.e2));

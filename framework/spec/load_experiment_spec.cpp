@@ -17,6 +17,7 @@
 #include "framework/core/mpfb2_asset_dir.hpp"
 #include "framework/core/sha256.hpp"
 #include "framework/core/utf8_validity.hpp"
+#include "framework/core/viewpoint_catalogue.hpp"
 #include "framework/spec/parse_factor.hpp"
 #include "framework/spec/parse_protocol.hpp"
 #include "framework/spec/yaml_section.hpp"
@@ -221,7 +222,7 @@ void parse_render(YamlSection s, ExperimentSpec& spec) {
   }
   YamlSection vps = s.section("viewpoints");
   if (vps.present()) {
-    vps.allow_keys({"V1", "V2", "V3", "V4", "pair", "tracking"});
+    vps.allow_keys(viewpoint_names());
     for (auto it = vps.node().begin(); it != vps.node().end(); ++it) {
       const std::string name = it->first.Scalar();
       std::vector<double> v;

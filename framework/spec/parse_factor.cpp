@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "framework/core/viewpoint_catalogue.hpp"
 #include "framework/spec/did_you_mean.hpp"
 
 namespace crowdlab {
@@ -21,7 +22,7 @@ const std::vector<FactorRule>& factor_rules() {
   static const std::vector<FactorRule> rules = {
       {"density", LevelKind::kNumber, Range{0.0, 10.0, true, false}, {}, "characters per m^2"},
       {"characters", LevelKind::kWhole, Range{1.0, 10000.0}, {}, "characters"},
-      {"viewpoint", LevelKind::kChoice, {}, {"V1", "V2", "V3", "V4", "pair", "tracking"}, ""},
+      {"viewpoint", LevelKind::kChoice, {}, viewpoint_names(), ""},
       {"method", LevelKind::kChoice, {}, {"baseline", "ours"}, ""},
       {"shoulder", LevelKind::kWhole, Range{0.0, 2.0}, {}, "characters with shoulder motions"},
       {"distance", LevelKind::kNumber, Range{0.0, 10.0, true, false}, {}, "metres"},

@@ -12,6 +12,7 @@
 #include "framework/core/seed.hpp"
 #include "framework/surface/geodesic_distance.hpp"
 #include "framework/surface/smooth_surface_up.hpp"
+#include "framework/surface/surface_avoidance.hpp"
 #include "framework/surface/tangent_orca.hpp"
 
 namespace crowdlab {
@@ -52,66 +53,10 @@ std::uint32_t cell_hash(const Eigen::Vector3i& c) {
          static_cast<std::uint32_t>(c.z() * 83492791);
 }
 
-/// Three Offset tuples per neighbour at most (seed 002's OffsetImproved), for the largest max_neighbors.
-constexpr size_t kMaxOrcaLines = 3 * 32;
-
 Eigen::Vector3i cell_of(const Vec3& p, double cell) {
   return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell)),
                          static_cast<int>(std::floor(p.y() / cell)),
                          static_cast<int>(std::floor(p.z() / cell)));
-}
-
-/// Social forces (see header): velocity after one explicit step of the force model.
-Vec3 social_force_velocity(const SurfaceCrowdModel& model, const SurfaceCrowdState& s, size_t i, size_t keep,
-                           const Vec3& v_pref) {
-  const SurfaceCrowdParams& p = model.params;
-  const size_t K = static_cast<size_t>(p.max_neighbors);
-  const Vec3& feet_a = s.points[i].position_m;
-  Vec3 acc = (v_pref - s.velocity_mps[i]) / p.sf_tau_s;
-  for (size_t k = 0; k < keep; ++k) {
-    const size_t j = static_cast<size_t>(s.neighbors[i * K + k]);
-    const auto tuples = offset_three_spheres(feet_a, s.up[i], s.points[j].position_m, s.up[j], p.body);
-    const OffsetTuple* worst = &tuples[0];
-    for (const auto& t : tuples)
-      if (t.clearance_m < worst->clearance_m) worst = &t;
-    const double magnitude =
-        p.sf_a_n * std::exp(-worst->clearance_m / p.sf_b_m) + p.sf_k * std::max(0.0, -worst->clearance_m);
-    acc -= worst->direction * (magnitude / p.sf_mass_kg);
-  }
-  return s.velocity_mps[i] + acc * p.dt_s;
-}
-
-/// ORCA in a's tangent plane over the union of the Offset tuples (see header).
-Vec3 orca_velocity(const SurfaceCrowdModel& model, const SurfaceCrowdState& s, size_t i, size_t keep,
-                   const Vec3& v_pref, orca::Line* lines, orca::Line* scratch) {
-  const SurfaceCrowdParams& p = model.params;
-  const size_t K = static_cast<size_t>(p.max_neighbors);
-  const Vec3& up = s.up[i];
-  Vec3 e1, e2;
-  tangent_basis(up, e1, e2);
-  const auto in_plane = [&](const Vec3& x) { return Vec2(e1.dot(x), e2.dot(x)); };
-  const Vec2 velocity = in_plane(s.velocity_mps[i]);
-  const double diameter = 2 * p.body.sphere_radius_m;
-  size_t n = 0;
-  for (size_t k = 0; k < keep; ++k) {
-    const size_t j = static_cast<size_t>(s.neighbors[i * K + k]);
-    const auto tuples =
-        offset_three_spheres(s.points[i].position_m, up, s.points[j].position_m, s.up[j], p.body);
-    const Vec2 rel_vel = velocity - in_plane(s.velocity_mps[j]);
-    Vec2 previous = Vec2::Zero();
-    bool have_previous = false;
-    for (const OffsetTuple& t : tuples) {
-      if (t.direction.squaredNorm() == 0.0) continue;  // straight above/below: no tangent direction
-      const Vec2 rel_pos = in_plane(t.direction) * (t.clearance_m + diameter);
-      if (have_previous && (rel_pos - previous).squaredNorm() < 1e-12) continue;  // same disc again
-      previous = rel_pos;
-      have_previous = true;
-      lines[n++] = orca_half_plane(rel_pos, rel_vel, velocity, diameter + 2 * p.orca_margin_m,
-                                   p.orca_time_horizon_s, p.dt_s);
-    }
-  }
-  const Vec2 v = solve_orca(lines, n, in_plane(v_pref), p.max_speed_mps, scratch);
-  return e1 * v.x() + e2 * v.y();
 }
 
 }  // namespace
@@ -206,17 +151,13 @@ SurfaceCrowdState spawn_surface_agents(const SurfaceCrowdModel& model, int n, st
   return s;
 }
 
-void step_surface_crowd(const SurfaceCrowdModel& model, SurfaceCrowdState& s) {
-  const SurfaceMesh& mesh = *model.mesh;
+namespace {
+
+/// Stage 1: bins body centres (counting sort into a power-of-two hash table of cells as large as the
+/// neighbour distance) and copies the agents in slot order. Returns the table's index mask.
+std::uint32_t bin_agents(const SurfaceCrowdModel& model, SurfaceCrowdState& s) {
   const SurfaceCrowdParams& p = model.params;
   const size_t N = s.points.size();
-  const size_t K = static_cast<size_t>(p.max_neighbors);
-  s.neighbors.resize(N * K);
-  s.neighbor_count.resize(N);
-  s.next_velocity.resize(N);
-  s.next_goal.resize(N);
-
-  // Stage 1: bin body centres (counting sort into a power-of-two hash table).
   size_t slots = 1;
   while (slots < 2 * N) slots <<= 1;
   const std::uint32_t mask = static_cast<std::uint32_t>(slots - 1);
@@ -247,114 +188,166 @@ void step_surface_crowd(const SurfaceCrowdModel& model, SurfaceCrowdState& s) {
         SurfaceCrowdState::SortedAgent{s.center_m[j], s.points[j].position_m, s.up[j], static_cast<int>(j)};
   }
   if (p.relevant == RelevantMode::kSurface) {
-    s.face_agents.assign(static_cast<size_t>(mesh.face_count()), {});
+    s.face_agents.assign(static_cast<size_t>(model.mesh->face_count()), {});
     for (size_t i = 0; i < N; ++i)
       s.face_agents[static_cast<size_t>(s.points[i].face)].push_back(static_cast<int>(i));
   }
+  return mask;
+}
 
-  // Stages 2 + 3 per agent, from the old state only.
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, N, 64), [&](const tbb::blocked_range<size_t>& range) {
-    std::vector<std::pair<double, int>> candidates;
-    std::vector<int> reached_faces;
-    std::array<orca::Line, kMaxOrcaLines> lines, scratch;
-    // Agents in slot order: neighbours in space are processed together and share cached mesh and
-    // agent data. Each writes only its own slots, so the order does not change any result.
-    for (size_t r = range.begin(); r != range.end(); ++r) {
-      const size_t i = s.slot_agents[r];
-      const SurfacePoint& a = s.points[i];
-      const Vec3 up_a = s.up[i], center_a = s.center_m[i];
-      const double radius2 = p.neighbor_distance_m * p.neighbor_distance_m;
-      candidates.clear();
-      auto consider = [&](size_t k) {  // k: position in slot order
-        const SurfaceCrowdState::SortedAgent& o = s.sorted[k];
-        if (static_cast<size_t>(o.index) == i) return;
-        const double d2 = (o.center_m - center_a).squaredNorm();
-        if (d2 > radius2) return;
-        // Seed 002 §3 gives each agent one normal, used both for the disk at its feet and for stacking
-        // its spheres (o_up): here the body's up. (Disks in the face planes under tilted bodies were
-        // measured too, docs/surfaces.md: fewer false negatives on the thin slab, more at the building's
-        // convex ramp crests; the mesh test has neither.)
-        if (p.relevant == RelevantMode::kVisibility &&
-            !mutually_visible(a.position_m, up_a, o.feet_m, o.up, o.feet_m + o.up * p.body.height_m))
-          return;
-        if (p.relevant == RelevantMode::kVisibilityMesh &&
-            !mutually_visible_near_feet(a.position_m, up_a, o.feet_m, o.feet_m + o.up * p.body.height_m,
-                                        *model.bvh))
-          return;
-        candidates.emplace_back(stacked_clearance(a.position_m, up_a, o.feet_m, o.up, p.body), o.index);
-      };
-      if (p.relevant == RelevantMode::kSurface) {
-        // Bounded Dijkstra over the face graph (centroid distances) up to the neighbour distance.
-        reached_faces.clear();
-        std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, std::greater<>> q;
-        q.emplace(0.0, a.face);
-        while (!q.empty()) {
-          auto [d, f] = q.top();
-          q.pop();
-          if (std::find(reached_faces.begin(), reached_faces.end(), f) != reached_faces.end()) continue;
-          reached_faces.push_back(f);
-          for (int e = 0; e < 3; ++e) {
-            const int g = mesh.neighbors[static_cast<size_t>(f)][static_cast<size_t>(e)];
-            if (g < 0) continue;
-            const double nd = d + (mesh.centroid(g) - mesh.centroid(f)).norm();
-            if (nd <= p.neighbor_distance_m) q.emplace(nd, g);
-          }
-        }
-        for (int f : reached_faces)
-          for (int j : s.face_agents[static_cast<size_t>(f)]) {
-            if (static_cast<size_t>(j) == i) continue;
-            const size_t js = static_cast<size_t>(j);
-            candidates.emplace_back(
-                stacked_clearance(a.position_m, up_a, s.points[js].position_m, s.up[js], p.body), j);
-          }
-      } else {
-        const Eigen::Vector3i c = cell_of(center_a, p.neighbor_distance_m);
-        std::uint32_t visited[27];
-        int nv = 0;
-        for (int dx = -1; dx <= 1; ++dx)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dz = -1; dz <= 1; ++dz) {
-              const std::uint32_t slot = cell_hash(c + Eigen::Vector3i(dx, dy, dz)) & mask;
-              if (std::find(visited, visited + nv, slot) != visited + nv) continue;
-              visited[nv++] = slot;
-              for (std::uint32_t k = s.slot_start[slot]; k < s.slot_start[slot + 1]; ++k) consider(k);
-            }
-      }
-      const size_t keep = std::min(K, candidates.size());
-      std::partial_sort(candidates.begin(), candidates.begin() + static_cast<long>(keep), candidates.end());
-      s.neighbor_count[i] = static_cast<int>(keep);
-      for (size_t k = 0; k < keep; ++k) s.neighbors[i * K + k] = candidates[k].second;
+/// Per-task scratch of the relevant stage (reused across agents: no allocation once grown).
+struct RelevantScratch {
+  std::vector<std::pair<double, int>> candidates;  ///< (clearance m, agent)
+  std::vector<int> reached_faces;
+};
 
-      // Steer: goal direction from the geodesic field, slowing down within a metre of the goal.
-      int goal = s.goal[i];
-      const auto& field = model.goal_fields[static_cast<size_t>(goal)];
-      const double to_goal = interpolate_field(mesh, field, a.face, a.position_m);
-      if (!(to_goal > p.goal_reached_m)) {
-        Rng rng(derive_seed(static_cast<std::uint64_t>(s.step_index), "goal" + std::to_string(i)));
-        goal = static_cast<int>(uniform_index(rng, model.goal_fields.size()));
-      }
-      Vec3 dir = descent_direction(mesh, model.goal_fields[static_cast<size_t>(goal)], a.face);
-      const Vec3 v_pref = dir * p.preferred_speed_mps;
-      Vec3 v = p.avoidance == SurfaceAvoidance::kOrca
-                   ? orca_velocity(model, s, i, keep, v_pref, lines.data(), scratch.data())
-                   : social_force_velocity(model, s, i, keep, v_pref);
-      v = to_tangent(mesh, a.face, v);
-      const double speed = v.norm();
-      if (speed > p.max_speed_mps) v *= p.max_speed_mps / speed;
-      s.next_velocity[i] = v;
-      s.next_goal[i] = goal;
+/// kSurface: the agents on the faces within the neighbour distance of a's face, by a bounded Dijkstra
+/// over the face graph (centroid distances).
+void surface_candidates(const SurfaceCrowdModel& model, const SurfaceCrowdState& s, size_t i,
+                        RelevantScratch& scratch) {
+  const SurfaceMesh& mesh = *model.mesh;
+  const SurfaceCrowdParams& p = model.params;
+  const SurfacePoint& a = s.points[i];
+  std::vector<int>& reached_faces = scratch.reached_faces;
+  reached_faces.clear();
+  std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, std::greater<>> q;
+  q.emplace(0.0, a.face);
+  while (!q.empty()) {
+    auto [d, f] = q.top();
+    q.pop();
+    if (std::find(reached_faces.begin(), reached_faces.end(), f) != reached_faces.end()) continue;
+    reached_faces.push_back(f);
+    for (int e = 0; e < 3; ++e) {
+      const int g = mesh.neighbors[static_cast<size_t>(f)][static_cast<size_t>(e)];
+      if (g < 0) continue;
+      const double nd = d + (mesh.centroid(g) - mesh.centroid(f)).norm();
+      if (nd <= p.neighbor_distance_m) q.emplace(nd, g);
     }
-  });
+  }
+  for (int f : reached_faces)
+    for (int j : s.face_agents[static_cast<size_t>(f)]) {
+      if (static_cast<size_t>(j) == i) continue;
+      const size_t js = static_cast<size_t>(j);
+      scratch.candidates.emplace_back(
+          stacked_clearance(a.position_m, s.up[i], s.points[js].position_m, s.up[js], p.body), j);
+    }
+}
 
-  // Stage 4: commit (each agent moves independently; parallel-safe).
+/// The other modes: the agents of the 27 cells around a's body centre within the neighbour distance,
+/// filtered by visibility for kVisibility and kVisibilityMesh.
+void grid_candidates(const SurfaceCrowdModel& model, const SurfaceCrowdState& s, size_t i, std::uint32_t mask,
+                     RelevantScratch& scratch) {
+  const SurfaceCrowdParams& p = model.params;
+  const SurfacePoint& a = s.points[i];
+  const Vec3 up_a = s.up[i], center_a = s.center_m[i];
+  const double radius2 = p.neighbor_distance_m * p.neighbor_distance_m;
+  auto consider = [&](size_t k) {  // k: position in slot order
+    const SurfaceCrowdState::SortedAgent& o = s.sorted[k];
+    if (static_cast<size_t>(o.index) == i) return;
+    const double d2 = (o.center_m - center_a).squaredNorm();
+    if (d2 > radius2) return;
+    // Seed 002 §3 gives each agent one normal, used both for the disk at its feet and for stacking
+    // its spheres (o_up): here the body's up. (Disks in the face planes under tilted bodies were
+    // measured too, docs/surfaces.md: fewer false negatives on the thin slab, more at the building's
+    // convex ramp crests; the mesh test has neither.)
+    if (p.relevant == RelevantMode::kVisibility &&
+        !mutually_visible(a.position_m, up_a, o.feet_m, o.up, o.feet_m + o.up * p.body.height_m))
+      return;
+    if (p.relevant == RelevantMode::kVisibilityMesh &&
+        !mutually_visible_near_feet(a.position_m, up_a, o.feet_m, o.feet_m + o.up * p.body.height_m,
+                                    *model.bvh))
+      return;
+    scratch.candidates.emplace_back(stacked_clearance(a.position_m, up_a, o.feet_m, o.up, p.body), o.index);
+  };
+  const Eigen::Vector3i c = cell_of(center_a, p.neighbor_distance_m);
+  std::uint32_t visited[27];
+  int nv = 0;
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz) {
+        const std::uint32_t slot = cell_hash(c + Eigen::Vector3i(dx, dy, dz)) & mask;
+        if (std::find(visited, visited + nv, slot) != visited + nv) continue;
+        visited[nv++] = slot;
+        for (std::uint32_t k = s.slot_start[slot]; k < s.slot_start[slot + 1]; ++k) consider(k);
+      }
+}
+
+/// Stage 2: agent i's relevant neighbours, the max_neighbors candidates of least body clearance, into
+/// s.neighbors[i * K ..]. Returns how many were kept.
+size_t find_relevant(const SurfaceCrowdModel& model, SurfaceCrowdState& s, size_t i, std::uint32_t mask,
+                     RelevantScratch& scratch) {
+  const size_t K = static_cast<size_t>(model.params.max_neighbors);
+  scratch.candidates.clear();
+  if (model.params.relevant == RelevantMode::kSurface)
+    surface_candidates(model, s, i, scratch);
+  else
+    grid_candidates(model, s, i, mask, scratch);
+  auto& candidates = scratch.candidates;
+  const size_t keep = std::min(K, candidates.size());
+  std::partial_sort(candidates.begin(), candidates.begin() + static_cast<long>(keep), candidates.end());
+  s.neighbor_count[i] = static_cast<int>(keep);
+  for (size_t k = 0; k < keep; ++k) s.neighbors[i * K + k] = candidates[k].second;
+  return keep;
+}
+
+/// Stage 3: the goal direction from the geodesic field (a new goal once within goal_reached_m), the
+/// avoidance's velocity in the tangent plane, clamped to max_speed_mps, into s.next_velocity/next_goal.
+void steer(const SurfaceCrowdModel& model, SurfaceCrowdState& s, size_t i, size_t keep,
+           const SurfaceAvoidanceModel& avoidance) {
+  const SurfaceMesh& mesh = *model.mesh;
+  const SurfaceCrowdParams& p = model.params;
+  const SurfacePoint& a = s.points[i];
+  int goal = s.goal[i];
+  const auto& field = model.goal_fields[static_cast<size_t>(goal)];
+  const double to_goal = interpolate_field(mesh, field, a.face, a.position_m);
+  if (!(to_goal > p.goal_reached_m)) {
+    Rng rng(derive_seed(static_cast<std::uint64_t>(s.step_index), "goal" + std::to_string(i)));
+    goal = static_cast<int>(uniform_index(rng, model.goal_fields.size()));
+  }
+  Vec3 dir = descent_direction(mesh, model.goal_fields[static_cast<size_t>(goal)], a.face);
+  const Vec3 v_pref = dir * p.preferred_speed_mps;
+  Vec3 v = to_tangent(mesh, a.face, avoidance.velocity(model, s, i, keep, v_pref));
+  const double speed = v.norm();
+  if (speed > p.max_speed_mps) v *= p.max_speed_mps / speed;
+  s.next_velocity[i] = v;
+  s.next_goal[i] = goal;
+}
+
+/// Stage 4: every agent moves along the surface with its new velocity (independently; parallel-safe).
+void move_agents(const SurfaceCrowdModel& model, SurfaceCrowdState& s) {
+  const size_t N = s.points.size();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, N, 128), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i != range.end(); ++i) {
       Vec3 v = s.next_velocity[i];
-      move_on_surface(mesh, s.points[i], v * p.dt_s, v);
+      move_on_surface(*model.mesh, s.points[i], v * model.params.dt_s, v);
       s.velocity_mps[i] = v;
       s.goal[i] = s.next_goal[i];
     }
   });
+}
+
+}  // namespace
+
+void step_surface_crowd(const SurfaceCrowdModel& model, SurfaceCrowdState& s) {
+  const size_t N = s.points.size();
+  s.neighbors.resize(N * static_cast<size_t>(model.params.max_neighbors));
+  s.neighbor_count.resize(N);
+  s.next_velocity.resize(N);
+  s.next_goal.resize(N);
+  const std::uint32_t mask = bin_agents(model, s);
+  const SurfaceAvoidanceModel& avoidance = surface_avoidance_model(model.params.avoidance);
+  // Stages 2 + 3 per agent, from the old state only. Agents in slot order: neighbours in space are
+  // processed together and share cached mesh and agent data. Each writes only its own slots, so the
+  // order does not change any result.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, N, 64), [&](const tbb::blocked_range<size_t>& range) {
+    RelevantScratch scratch;
+    for (size_t r = range.begin(); r != range.end(); ++r) {
+      const size_t i = s.slot_agents[r];
+      const size_t keep = find_relevant(model, s, i, mask, scratch);
+      steer(model, s, i, keep, avoidance);
+    }
+  });
+  move_agents(model, s);
   ++s.step_index;
 }
 

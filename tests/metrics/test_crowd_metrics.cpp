@@ -110,10 +110,10 @@ TEST_CASE("a character's overlap with all others counts a shared region once") {
   crowd.characters.push_back(walker("c1", Sex::kMale, 1.75, {Vec3(0.25, 0, 0.05)}, 0.3));
   crowd.characters.push_back(walker("c2", Sex::kFemale, 1.7, {Vec3(0.2, 0, -0.1)}, -0.4));
   std::vector<WorldCapsules> bodies;
-  std::vector<BodyBounds> bounds;
+  std::vector<Aabb> bounds;
   for (const auto& c : crowd.characters) {
     bodies.push_back(world_capsules(c.shape, c.frames[0]));
-    bounds.push_back(body_bounds(bodies.back()));
+    bounds.push_back(capsules_box(bodies.back()));
   }
   const double v01 = character_overlap(bodies[0], bodies[1]).volume_m3;
   const double v02 = character_overlap(bodies[0], bodies[2]).volume_m3;

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "analysis/plot_lines.hpp"
-#include "experiments/cli/pipeline/provenance.hpp"
+#include "framework/pipeline/provenance.hpp"
 
 namespace crowdlab::cli {
 namespace fs = std::filesystem;

@@ -4,8 +4,8 @@
 #include <limits>
 
 #include "analysis/plot_interaction.hpp"
-#include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/core/csv.hpp"
+#include "framework/pipeline/provenance.hpp"
 
 namespace crowdlab::cli {
 namespace fs = std::filesystem;

@@ -4,16 +4,17 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "experiments/cli/pipeline/provenance.hpp"
+#include "experiments/cli/pipeline/library_versions.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/stimulus_manifest.hpp"
+#include "framework/pipeline/provenance.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
 namespace crowdlab::cli {
 namespace fs = std::filesystem;
 
 namespace {
-/// "manifest.shard-K-of-N.csv", as run_pipeline names a shard's manifest.
+/// "manifest.shard-K-of-N.csv", as run_experiment() names a shard's manifest.
 bool is_shard_manifest(const std::string& name) {
   return name.starts_with("manifest.shard-") && name.ends_with(".csv") &&
          name.find("-of-") != std::string::npos;

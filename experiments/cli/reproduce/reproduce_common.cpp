@@ -3,7 +3,7 @@
 #include <fstream>
 
 #include "analysis/study_report.hpp"
-#include "experiments/cli/pipeline/run_pipeline.hpp"
+#include "experiments/cli/pipeline/render_stages.hpp"
 #include "experiments/cli/reproduce/spec_variant.hpp"
 #include "framework/core/error.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
@@ -26,7 +26,7 @@ SpecRun run_spec_variant(const std::string& yaml_text, const fs::path& dir, cons
   RunOptions ro;
   ro.out_dir = r.run_dir;
   ro.force = force;
-  const RunSummary summary = run_experiment(r.spec, ro);
+  const RunSummary summary = run_with_stimuli(r.spec, ro);
   r.manifest = read_manifest(summary.manifest.string());
   return r;
 }

@@ -14,10 +14,10 @@
 #include "experiments/cli/bench_correct_run.hpp"
 #include "experiments/cli/figures/damping_figure.hpp"
 #include "experiments/cli/figures/overlap_vs_density.hpp"
-#include "experiments/cli/pipeline/provenance.hpp"
 #include "experiments/cli/reproduce/reproduction_checks.hpp"
 #include "framework/core/error.hpp"
 #include "framework/correction/damping_experiment.hpp"
+#include "framework/pipeline/provenance.hpp"
 
 namespace crowdlab::cli {
 namespace {

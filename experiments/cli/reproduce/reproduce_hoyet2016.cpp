@@ -12,13 +12,13 @@
 #include "analysis/psychometric_table.hpp"
 #include "analysis/study_responses.hpp"
 #include "crowdlab_embedded_paper_specs.hpp"
-#include "experiments/cli/pipeline/provenance.hpp"
 #include "experiments/cli/reproduce/reproduction_checks.hpp"
 #include "experiments/cli/reproduce/spec_variant.hpp"
 #include "framework/core/csv.hpp"
 #include "framework/core/seed.hpp"
 #include "framework/crowd/collision_table.hpp"
 #include "framework/crowd/count_spec_collisions.hpp"
+#include "framework/pipeline/provenance.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
 namespace crowdlab::cli {

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "experiments/cli/pipeline/provenance.hpp"
 #include "framework/core/error.hpp"
+#include "framework/pipeline/provenance.hpp"
 
 namespace crowdlab::cli {
 

@@ -1,6 +1,6 @@
 #include "experiments/cli/reproduce/spec_variant.hpp"
 
-#include "experiments/cli/pipeline/provenance.hpp"
+#include "framework/pipeline/provenance.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
 namespace crowdlab::cli {

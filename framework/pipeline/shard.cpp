@@ -1,10 +1,10 @@
-#include "experiments/cli/pipeline/shard.hpp"
+#include "framework/pipeline/shard.hpp"
 
 #include <charconv>
 
 #include "framework/core/error.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab {
 
 Shard parse_shard(const std::string& text) {
   const auto slash = text.find('/');
@@ -21,4 +21,4 @@ Shard parse_shard(const std::string& text) {
   return s;
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab

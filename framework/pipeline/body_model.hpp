@@ -10,10 +10,10 @@
 
 #include "framework/animation/animate_crowd.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab {
 
 /// Fills context.shapes and context.meshes for `agents` characters when spec.body_model is "mpfb2".
 /// Throws InputError when the asset folder is missing or broken (naming the file).
 void apply_body_model(const AnimationSpec& spec, std::size_t agents, AnimationContext& context);
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab

@@ -1,6 +1,6 @@
-#include "experiments/cli/metrics_json.hpp"
+#include "framework/pipeline/metrics_json.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab {
 
 nlohmann::json crowd_metrics_json(const CrowdMetrics& m, bool per_frame) {
   nlohmann::json j = {{"characters", m.characters},
@@ -42,4 +42,4 @@ nlohmann::json crowd_metrics_json(const CrowdMetrics& m, bool per_frame) {
   return j;
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab

@@ -4,7 +4,7 @@
 // every condition is in exactly one shard and no two shards write the same files.
 #include <string>
 
-namespace crowdlab::cli {
+namespace crowdlab {
 
 struct Shard {
   int index = 1;  ///< K, 1-based
@@ -17,4 +17,4 @@ struct Shard {
 /// Parses "K/N" with 1 <= K <= N; throws InputError otherwise.
 Shard parse_shard(const std::string& text);
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab

@@ -1,4 +1,4 @@
-#include "experiments/cli/pipeline/body_model.hpp"
+#include "framework/pipeline/body_model.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -10,7 +10,7 @@
 #include "framework/core/mpfb2_asset_dir.hpp"
 #include "framework/core/seed.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab {
 namespace {
 
 std::shared_ptr<const Mpfb2Model> cached_model(const std::filesystem::path& dir) {
@@ -49,4 +49,4 @@ void apply_body_model(const AnimationSpec& spec, std::size_t agents, AnimationCo
                  unreached, agents);
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab

@@ -1,5 +1,5 @@
 #pragma once
-// Provenance and incremental re-runs for `crowdlab run`.
+// Provenance and incremental re-runs for the run pipeline (`crowdlab run`, stage_runner.hpp).
 //
 // Every output file OUT gets a sidecar OUT.prov.json recording what made it:
 //   {"stage", "input_hash", "output_sha256", "crowdlab_version", "spec_hash", "seed", "libraries",
@@ -19,11 +19,16 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace crowdlab::cli {
+namespace crowdlab {
+
+/// Versions of the libraries the framework was built against (crowdlab, Eigen); the composing program
+/// adds its own (the CLI: libav*, OpenCV) to ProvenanceContext::libraries.
+nlohmann::json framework_library_versions();
 
 struct ProvenanceContext {
   std::string spec_hash;
   std::uint64_t seed = 0;
+  nlohmann::json libraries = framework_library_versions();  ///< recorded in every sidecar
 };
 
 /// SHA-256 over the stage name, its parameters (canonical JSON dump) and its upstream hashes.
@@ -41,9 +46,6 @@ void record_provenance(const std::filesystem::path& output, const std::string& s
 /// The recorded input hash of an output ("" when it has no sidecar).
 std::string recorded_hash(const std::filesystem::path& output);
 
-/// Versions of the libraries crowdlab was built against (Eigen, yaml-cpp, libav*, OpenCV, ...).
-nlohmann::json library_versions();
-
 /// Makes `output` atomically: `write(tmp)` writes the complete file at `tmp` (same folder, name
 /// "<stem>.tmp.<pid><extension>", so writers that choose a format by extension still work); it is then
 /// fsync'd and renamed over `output`. When `write` throws, the temporary is removed and the exception
@@ -51,7 +53,11 @@ nlohmann::json library_versions();
 void write_output_via_temporary(const std::filesystem::path& output,
                                 const std::function<void(const std::filesystem::path& tmp)>& write);
 
+/// Writes `contents` to `path` in place (a stage output's `write`, called on its temporary); errors name
+/// the file and the system's reason.
+void write_text_file(const std::filesystem::path& path, const std::string& contents);
+
 /// Writes a file atomically (write_output_via_temporary); errors name the file and the system's reason.
 void write_file_atomic(const std::filesystem::path& path, const std::string& contents);
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab

@@ -1,4 +1,4 @@
-#include "experiments/cli/pipeline/provenance.hpp"
+#include "framework/pipeline/provenance.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -10,19 +10,13 @@
 #include <cstring>
 #include <ctime>
 #include <fstream>
-#include <opencv2/core/version.hpp>
 #include <sstream>
 
 #include "crowdlab_version.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/sha256.hpp"
 
-extern "C" {
-#include <libavcodec/version.h>
-#include <libavformat/version.h>
-}
-
-namespace crowdlab::cli {
+namespace crowdlab {
 namespace fs = std::filesystem;
 
 std::string stage_input_hash(const std::string& stage, const nlohmann::json& params,
@@ -62,14 +56,11 @@ bool output_up_to_date(const fs::path& output, const std::string& input_hash) {
          j.value("output_sha256", "") == sha256_file_hex(output.string());
 }
 
-nlohmann::json library_versions() {
+nlohmann::json framework_library_versions() {
   nlohmann::json j;
   j["crowdlab"] = CROWDLAB_VERSION;
   j["eigen"] = std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
                std::to_string(EIGEN_MINOR_VERSION);
-  j["opencv"] = CV_VERSION;
-  j["libavcodec"] = LIBAVCODEC_IDENT;
-  j["libavformat"] = LIBAVFORMAT_IDENT;
   return j;
 }
 
@@ -98,24 +89,26 @@ void write_output_via_temporary(const fs::path& output, const std::function<void
   }
 }
 
-void write_file_atomic(const fs::path& path, const std::string& contents) {
-  write_output_via_temporary(path, [&](const fs::path& tmp) {
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) throw RuntimeError(tmp.string() + ": cannot write: " + std::strerror(errno));
-    const char* p = contents.data();
-    size_t left = contents.size();
-    while (left > 0) {
-      const ssize_t n = ::write(fd, p, left);
-      if (n <= 0) {
-        const int error = n < 0 ? errno : ENOSPC;
-        ::close(fd);
-        throw RuntimeError(tmp.string() + ": write failed: " + std::strerror(error));
-      }
-      p += n;
-      left -= static_cast<size_t>(n);
+void write_text_file(const fs::path& path, const std::string& contents) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw RuntimeError(path.string() + ": cannot write: " + std::strerror(errno));
+  const char* p = contents.data();
+  size_t left = contents.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n <= 0) {
+      const int error = n < 0 ? errno : ENOSPC;
+      ::close(fd);
+      throw RuntimeError(path.string() + ": write failed: " + std::strerror(error));
     }
-    ::close(fd);
-  });
+    p += n;
+    left -= static_cast<size_t>(n);
+  }
+  ::close(fd);
+}
+
+void write_file_atomic(const fs::path& path, const std::string& contents) {
+  write_output_via_temporary(path, [&](const fs::path& tmp) { write_text_file(tmp, contents); });
 }
 
 void record_provenance(const fs::path& output, const std::string& stage, const std::string& input_hash,
@@ -128,7 +121,7 @@ void record_provenance(const fs::path& output, const std::string& stage, const s
   j["crowdlab_version"] = CROWDLAB_VERSION;
   j["spec_hash"] = context.spec_hash;
   j["seed"] = context.seed;
-  j["libraries"] = library_versions();
+  j["libraries"] = context.libraries;
   const std::time_t now = std::time(nullptr);
   char buf[32];
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
@@ -136,4 +129,4 @@ void record_provenance(const fs::path& output, const std::string& stage, const s
   write_file_atomic(sidecar(output), j.dump(2) + "\n");
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab

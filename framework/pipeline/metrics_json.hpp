@@ -5,9 +5,9 @@
 
 #include "framework/metrics/measure_crowd.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab {
 
 /// Summary, per-character means and colliding pairs; per-frame series too when `per_frame`.
 nlohmann::json crowd_metrics_json(const CrowdMetrics& m, bool per_frame);
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab

@@ -1,0 +1,26 @@
+#include "framework/core/viewpoint_catalogue.hpp"
+
+namespace crowdlab {
+
+const std::vector<std::string>& viewpoint_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const ViewpointPreset& p : kViewpointCatalogue) out.emplace_back(p.name);
+    return out;
+  }();
+  return names;
+}
+
+const ViewpointPreset* find_viewpoint(std::string_view name) {
+  for (const ViewpointPreset& p : kViewpointCatalogue)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+std::string default_viewpoint(std::string_view scenario_type) {
+  if (scenario_type == "pair_crossing") return "pair";
+  if (scenario_type == "flow_a") return "tracking";
+  return "V1";
+}
+
+}  // namespace crowdlab

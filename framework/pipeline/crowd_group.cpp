@@ -1,0 +1,193 @@
+#include "framework/pipeline/crowd_group.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+
+#include "framework/core/progress.hpp"
+#include "framework/core/trajectories.hpp"
+#include "framework/correction/correct_crowd.hpp"
+#include "framework/io/read_crowd_glb.hpp"
+#include "framework/io/write_crowd_glb.hpp"
+#include "framework/metrics/measure_crowd.hpp"
+#include "framework/pipeline/animate_scenario.hpp"
+#include "framework/pipeline/crowd_key.hpp"
+#include "framework/pipeline/metrics_json.hpp"
+#include "framework/spec/effective_scenario_type.hpp"
+#include "framework/surface/generate_manifold_scenario.hpp"
+
+namespace crowdlab {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+json level_json(const Condition& c) {
+  json j = json::object();
+  for (const auto& [name, level] : c.levels) j[name] = level.text;
+  j["rep"] = c.repetition;
+  return j;
+}
+
+/// The spec's correction section as corrector parameters (0 keeps the corrector's default).
+CorrectorParams corrector_params(const CorrectionSpec& c) {
+  CorrectorParams params;
+  if (c.stiffness > 0) params.stiffness = c.stiffness;
+  params.damping = c.damping;
+  if (c.collision_stiffness > 0) params.contact_stiffness = c.collision_stiffness;
+  return params;
+}
+
+/// What the animation and correction stages share: a stage named `name` whose one output is the crowd
+/// file `path`, written from `crowd` and read back into it when up to date.
+Stage crowd_file_stage(const std::string& name, const fs::path& path, std::optional<CrowdAnimation>& crowd) {
+  Stage s;
+  s.name = name;
+  s.outputs.push_back({path, [&crowd](const fs::path& tmp) { write_crowd_glb(*crowd, tmp.string()); }});
+  s.load = [&crowd, path] { crowd = read_crowd_glb(path.string()); };
+  return s;
+}
+
+}  // namespace
+
+CrowdGroup::CrowdGroup(const ExperimentSpec& spec, StageRunner& runner, const fs::path& crowds_dir,
+                       const Condition& first)
+    : spec_(spec),
+      runner_(runner),
+      key_(crowd_key(first)),
+      dir_(crowds_dir / key_),
+      condition_(crowd_condition(spec, first)) {
+  fs::create_directories(dir_);
+  // Each stage's input hash covers its own parameters plus its upstream hash.
+  crowd_hash_ = crowd_stage().input_hash();
+  animation_hash_[index_of(CrowdMethod::baseline)] = animation_stage().input_hash();
+  animation_hash_[index_of(CrowdMethod::corrected)] = correction_stage().input_hash();
+}
+
+bool CrowdGroup::is_manifold() const {
+  return effective_scenario_type(spec_, condition_) == "manifold";
+}
+
+const ScenarioResult& CrowdGroup::scenario() {
+  if (scenario_) return *scenario_;
+  if (is_manifold()) {
+    // Crowds on surfaces come from the surface stage (seed 002), with their 3D frames.
+    ManifoldScenario m = generate_manifold_scenario(spec_, condition_);
+    surface_ = std::move(m.surface);
+    scenario_ = std::move(m.result);
+  } else {
+    scenario_ = generate_scenario(spec_, condition_);
+  }
+  return *scenario_;
+}
+
+const SurfaceTrajectories& CrowdGroup::surface() {
+  scenario();
+  return surface_;
+}
+
+Stage CrowdGroup::crowd_stage() {
+  Stage s;
+  s.name = "crowd";
+  s.params["levels"] = level_json(condition_);
+  s.params["scenario"] = spec_.scenario.type;
+  s.params["seed"] = condition_.seed;
+  s.params["spec"] = spec_.source_hash;  // scenario/crowd sections live in the spec text
+  s.outputs.push_back({dir_ / "trajectories.csv", [this](const fs::path& tmp) {
+                         write_text_file(tmp, trajectories_csv(scenario().trajectories));
+                       }});
+  if (is_manifold())
+    s.outputs.push_back({dir_ / "surface_trajectories.csv", [this](const fs::path& tmp) {
+                           write_text_file(tmp, surface_trajectories_csv(surface(), spec_.fps));
+                         }});
+  return s;
+}
+
+Stage CrowdGroup::animation_stage() {
+  const size_t i = index_of(CrowdMethod::baseline);
+  Stage s = crowd_file_stage("animation", animation_path(CrowdMethod::baseline), animation_[i]);
+  // The MPFB2 asset folder may come from the environment, so it is an input of its own.
+  s.params = json{{"spec", spec_.source_hash}, {"body_model_path", spec_.animation.body_model_path}};
+  s.upstream = {crowd_hash_};
+  s.compute = [this, i] {
+    const ScenarioResult& crowd = scenario();
+    animation_[i] = animate_scenario(spec_, condition_, key_, crowd, surface());
+  };
+  return s;
+}
+
+Stage CrowdGroup::correction_stage() {
+  const size_t i = index_of(CrowdMethod::corrected);
+  Stage s = crowd_file_stage("correction", animation_path(CrowdMethod::corrected), animation_[i]);
+  s.params = json{{"damping", spec_.correction.damping},
+                  {"stiffness", spec_.correction.stiffness},
+                  {"contact_stiffness", spec_.correction.collision_stiffness}};
+  s.upstream = {animation_hash(CrowdMethod::baseline)};
+  s.compute = [this, i] {
+    const CrowdAnimation& input = animation(CrowdMethod::baseline);
+    Progress progress("correct " + key_, static_cast<size_t>(input.frame_count()));
+    CorrectionReport report;
+    animation_[i] = correct_crowd(input, corrector_params(spec_.correction), &progress, &report);
+    if (report.rejected_steps > 0)
+      spdlog::warn("{}: the corrector rejected {} of {} steps and kept the last stable state", key_,
+                   report.rejected_steps, report.frames);
+  };
+  return s;
+}
+
+Stage CrowdGroup::metrics_stage(CrowdMethod method) {
+  const size_t i = index_of(method);
+  const fs::path out = metrics_path(method);
+  Stage s;
+  s.name = "metrics";
+  s.upstream = {animation_hash(method)};
+  s.outputs.push_back(
+      {out, [this, i](const fs::path& tmp) { write_text_file(tmp, metrics_[i]->dump(2) + "\n"); }});
+  s.compute = [this, i, method] {
+    metrics_[i] = crowd_metrics_json(measure_crowd(animation(method)), false);
+  };
+  s.load = [this, i, out] {
+    std::ifstream in(out);
+    metrics_[i] = json::parse(in);
+  };
+  return s;
+}
+
+void CrowdGroup::run_crowd_stage() {
+  if (crowd_done_) return;
+  runner_.run(crowd_stage());
+  crowd_done_ = true;
+}
+
+const CrowdAnimation& CrowdGroup::animation(CrowdMethod method) {
+  const size_t i = index_of(method);
+  if (animation_[i]) return *animation_[i];
+  if (method == CrowdMethod::baseline) {
+    run_crowd_stage();
+    runner_.run(animation_stage());
+  } else {
+    animation(CrowdMethod::baseline);
+    runner_.run(correction_stage());
+  }
+  return *animation_[i];
+}
+
+fs::path CrowdGroup::animation_path(CrowdMethod method) const {
+  return dir_ / (std::string(crowd_method_name(method)) + ".glb");
+}
+
+const std::string& CrowdGroup::animation_hash(CrowdMethod method) const {
+  return animation_hash_[index_of(method)];
+}
+
+const json& CrowdGroup::metrics(CrowdMethod method) {
+  const size_t i = index_of(method);
+  if (!metrics_[i]) runner_.run(metrics_stage(method));
+  return *metrics_[i];
+}
+
+fs::path CrowdGroup::metrics_path(CrowdMethod method) const {
+  return dir_ / (std::string(crowd_method_name(method)) + ".metrics.json");
+}
+
+}  // namespace crowdlab

@@ -1,0 +1,31 @@
+#include "framework/pipeline/crowd_key.hpp"
+
+#include "framework/core/seed.hpp"
+
+namespace crowdlab {
+namespace {
+
+/// Factors that change how a crowd is shown, not the crowd itself.
+bool is_presentation_factor(const std::string& name) {
+  return name == "viewpoint" || name == "method";
+}
+
+}  // namespace
+
+std::string crowd_key(const Condition& condition) {
+  std::string key;
+  for (const auto& [name, level] : condition.levels) {
+    if (is_presentation_factor(name)) continue;
+    key += name + "-" + level.text + "_";
+  }
+  key += "rep-" + std::to_string(condition.repetition);
+  return condition.practice ? "practice_" + key : key;
+}
+
+Condition crowd_condition(const ExperimentSpec& spec, const Condition& condition) {
+  Condition c = condition;
+  c.seed = derive_seed(spec.seed, "crowd/" + crowd_key(condition));
+  return c;
+}
+
+}  // namespace crowdlab

@@ -1,0 +1,49 @@
+#include "framework/pipeline/stage_runner.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "framework/core/error.hpp"
+
+namespace crowdlab {
+
+std::string Stage::input_hash() const {
+  return stage_input_hash(name, params, upstream);
+}
+
+StageRunner::StageRunner(ProvenanceContext context, bool force)
+    : context_(std::move(context)), force_(force) {}
+
+bool StageRunner::run(const Stage& stage) {
+  if (stage.outputs.empty()) throw RuntimeError("stage '" + stage.name + "' declares no output");
+  const std::string hash = stage.input_hash();
+  std::vector<const StageOutput*> stale;
+  for (const StageOutput& out : stage.outputs)
+    if (force_ || !output_up_to_date(out.path, hash)) stale.push_back(&out);
+  if (stale.empty()) {
+    ++skipped_;
+    spdlog::debug("stage {}: up to date ({})", stage.name, stage.outputs.front().path.string());
+    if (stage.load) stage.load();
+    return false;
+  }
+  // The stage counts as run when its main output is remade; remaking only a derived output (a clip's
+  // JSON sidecar) keeps it counted as up to date, as `crowdlab run` has always reported it.
+  (stale.front() == &stage.outputs.front() ? run_ : skipped_)++;
+  spdlog::debug("stage {}: running ({})", stage.name, stale.front()->path.string());
+  const StageOutput* current = stale.front();
+  try {
+    if (stage.compute) stage.compute();
+    for (const StageOutput* out : stale) {
+      current = out;
+      write_output_via_temporary(out->path, out->write);
+      record_provenance(out->path, stage.name, hash, context_);
+    }
+  } catch (const InputError&) {
+    spdlog::error("stage '{}' failed on bad input while making {}", stage.name, current->path.string());
+    throw;
+  } catch (const std::exception& e) {
+    throw RuntimeError("stage '" + stage.name + "' (" + current->path.string() + "): " + e.what());
+  }
+  return true;
+}
+
+}  // namespace crowdlab
