@@ -7,6 +7,7 @@
 // the frame's shadows with one shadow-map lookup per pixel, only where a shadow can fall.
 #include <algorithm>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "framework/core/seed.hpp"
@@ -14,6 +15,15 @@
 #include "stimuli/renderer_gl.hpp"
 
 namespace crowdlab::stimuli {
+namespace {
+// Raw image copies of a colour and a depth renderbuffer of equal formats and size, not a blit: llvmpipe blits
+// depth by drawing a textured quad, while glCopyImageSubData is a memory copy.
+void copy_colour_and_depth(GLuint from_colour, GLuint from_depth, GLuint to_colour, GLuint to_depth,
+                           int width, int height) {
+  for (const auto& [from, to] : {std::pair{from_colour, to_colour}, std::pair{from_depth, to_depth}})
+    glCopyImageSubData(from, GL_RENDERBUFFER, 0, 0, 0, 0, to, GL_RENDERBUFFER, 0, 0, 0, 0, width, height, 1);
+}
+}  // namespace
 
 bool Renderer::uses_ground_cache(const SceneOptions& options) const {
   return options.cache_ground && !gl_->multisampled && crowd_->environment.ground_plane &&
@@ -57,20 +67,13 @@ void Renderer::draw_ground_cache(const SceneOptions& options) {
   glBindVertexArray(g.ground.vao);
   glDrawElements(GL_TRIANGLES, g.ground.count, GL_UNSIGNED_INT, nullptr);
   glBindVertexArray(0);
-  glCopyImageSubData(g.msaa_color, GL_RENDERBUFFER, 0, 0, 0, 0, g.ground_color, GL_RENDERBUFFER, 0, 0, 0, 0,
-                     width_, height_, 1);
-  glCopyImageSubData(g.msaa_depth, GL_RENDERBUFFER, 0, 0, 0, 0, g.ground_depth, GL_RENDERBUFFER, 0, 0, 0, 0,
-                     width_, height_, 1);
+  copy_colour_and_depth(g.msaa_color, g.msaa_depth, g.ground_color, g.ground_depth, width_, height_);
 }
 
-// Raw image copies, not a blit: llvmpipe blits depth by drawing a textured quad, while glCopyImageSubData
-// of equal formats is a memory copy.
+// The cached ground (colour and depth) into the frame's targets.
 void Renderer::copy_ground_cache() {
   Gl& g = *gl_;
-  glCopyImageSubData(g.ground_color, GL_RENDERBUFFER, 0, 0, 0, 0, g.msaa_color, GL_RENDERBUFFER, 0, 0, 0, 0,
-                     width_, height_, 1);
-  glCopyImageSubData(g.ground_depth, GL_RENDERBUFFER, 0, 0, 0, 0, g.msaa_depth, GL_RENDERBUFFER, 0, 0, 0, 0,
-                     width_, height_, 1);
+  copy_colour_and_depth(g.ground_color, g.ground_depth, g.msaa_color, g.msaa_depth, width_, height_);
 }
 
 namespace {
