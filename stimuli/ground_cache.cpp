@@ -26,8 +26,7 @@ void copy_colour_and_depth(GLuint from_colour, GLuint from_depth, GLuint to_colo
 }  // namespace
 
 bool Renderer::uses_ground_cache(const SceneOptions& options) const {
-  return options.cache_ground && !gl_->multisampled && crowd_->environment.ground_plane &&
-         options.fog_density <= 0.0;
+  return !gl_->multisampled && crowd_->environment.ground_plane && options.fog_density <= 0.0;
 }
 
 std::uint64_t Renderer::ground_cache_key(const Camera& camera, const SceneOptions& options) const {

@@ -42,9 +42,6 @@ struct SceneOptions {
   bool characters =
       true;  ///< false: the scene without its characters (the fixed per-frame cost, for benchmarks)
   bool time_passes = false;  ///< finish each pass before the next to time it (benchmarks; slower)
-  /// With one sample per pixel, no fog and a ground plane: light the ground once per camera, copy it into
-  /// each frame and add only the shadows every frame (ground_cache.cpp). false: shade the ground every frame.
-  bool cache_ground = true;
 };
 
 /// Wall time of each stage of the last draw(), milliseconds. The GPU passes (shadow, colour, resolve) are
