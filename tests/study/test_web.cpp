@@ -30,13 +30,17 @@ using crowdlab::test::slurp;
 namespace {
 
 /// Answers keyed by (stimulus, question): raw = 1 + (n mod k), yes/no alternating.
+/// Answers for every (stimulus, question). `participant` 0 is the web participant; others (lab
+/// participants beside it in a report) answer differently, so that every ANOVA effect has error variance.
 std::map<std::pair<std::string, std::string>, int> scripted_answers(const StimulusManifest& m,
-                                                                    const std::vector<StudyQuestion>& qs) {
+                                                                    const std::vector<StudyQuestion>& qs,
+                                                                    int participant = 0) {
   std::map<std::pair<std::string, std::string>, int> out;
   int n = 0;
   for (const auto& e : m.entries)
     for (const auto& q : qs) {
-      out[{e.id, q.id}] = q.kind == QuestionKind::yesno ? n % 2 : 1 + n % q.points;
+      const int k = n + participant * (n % 5 + 1);
+      out[{e.id, q.id}] = q.kind == QuestionKind::yesno ? k % 2 : 1 + k % q.points;
       ++n;
     }
   return out;
@@ -484,11 +488,16 @@ TEST_CASE(
                                            "timestamp"};  // reload; real vs scripted times
   CHECK(comparable_rows((dir / "web-responses" / "P02.csv").string(), differ) ==
         comparable_rows((dir / "native" / "P02.csv").string(), differ));
-  // analyze report reads the imported folder unchanged, here beside a lab session of another id (an
-  // RM-ANOVA needs two participants).
-  REQUIRE(run_command(exe + " study " + spec_path + " --participant P01 --stimuli " +
-                      (dir / "stimuli").string() + " --responses " + script.string() + " --out " +
-                      (dir / "web-responses").string() + " > " + (dir / "native.log").string()) == 0);
+  // analyze report reads the imported folder unchanged, here beside lab sessions of two other ids who
+  // answered differently (an RM-ANOVA needs three participants, and error variance in every effect).
+  for (const int lab : {1, 3}) {
+    const std::string id = "P0" + std::to_string(lab);
+    const auto lab_script =
+        write_script(dir / (id + "-script.csv"), scripted_answers(m, qs, lab), qs);
+    REQUIRE(run_command(exe + " study " + spec_path + " --participant " + id + " --stimuli " +
+                        (dir / "stimuli").string() + " --responses " + lab_script.string() + " --out " +
+                        (dir / "web-responses").string() + " > " + (dir / "native.log").string()) == 0);
+  }
   CHECK(run_command(exe + " analyze report " + (dir / "web-responses").string() + " --spec " + spec_path +
                     " --out " + (dir / "report").string() + " > " + (dir / "report.log").string() +
                     " 2>&1") == 0);
