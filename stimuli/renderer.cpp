@@ -34,52 +34,6 @@ namespace {
 // Grid spacing of the coarse mannequin meshes drawn into the shadow map: shadows are soft-edged and
 // seen from afar, so a 4.5 cm mesh casts the same shadow at a fraction of the vertex work.
 constexpr double kShadowVoxelM = 0.045;
-using Mat4f = Eigen::Matrix4f;
-
-Mat4 to_matrix(const RigidTransform& t) {
-  Mat4 m = Mat4::Identity();
-  m.block<3, 3>(0, 0) = t.rotation.toRotationMatrix();
-  m.block<3, 1>(0, 3) = t.translation;
-  return m;
-}
-
-/// True when the segment [p, q] passes through the oriented box (slab test in the box frame).
-bool segment_hits_box(const Vec3& p, const Vec3& q, const Box& box) {
-  const Quat r = box.rotation.normalized();
-  const Vec3 a = r.conjugate() * (p - box.center_m), b = r.conjugate() * (q - box.center_m);
-  const Vec3 d = b - a;
-  double t0 = 0.0, t1 = 1.0;
-  for (int k = 0; k < 3; ++k) {
-    const double h = box.half_extents_m[k];
-    if (std::abs(d[k]) < 1e-12) {
-      if (std::abs(a[k]) > h) return false;
-      continue;
-    }
-    double ta = (-h - a[k]) / d[k], tb = (h - a[k]) / d[k];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-    if (t0 > t1) return false;
-  }
-  return true;
-}
-
-Mat4 ortho(double half, double near_m, double far_m) {
-  Mat4 m = Mat4::Identity();
-  m(0, 0) = 1.0 / half;
-  m(1, 1) = 1.0 / half;
-  m(2, 2) = -2.0 / (far_m - near_m);
-  m(2, 3) = -(far_m + near_m) / (far_m - near_m);
-  return m;
-}
-
-/// A horizontal direction rotated by `deg` about +Y, raised by `elevation_deg`.
-Vec3 light_direction(const Vec3& horizontal_dir, double deg, double elevation_deg) {
-  const double a = deg * std::numbers::pi / 180.0, e = elevation_deg * std::numbers::pi / 180.0;
-  const Vec3 h = Eigen::AngleAxisd(a, Vec3::UnitY()) * horizontal_dir;
-  return (std::cos(e) * h + std::sin(e) * Vec3::UnitY()).normalized();
-}
-
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
@@ -252,12 +206,13 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
                     built[k][l].mesh.indices.size() / 3, built[k][l].error_m);
     }
   }
-  // Inverse bind matrices.
-  g.inverse_rest.resize(n);
+  // What prepare_frame reads besides the poses.
+  FrameScene& scene = g.scene;
+  scene.inverse_rest.resize(n);
+  scene.lod_sets.resize(n);
   for (size_t i = 0; i < n; ++i) {
-    const BodyShape& shape = crowd.characters[i].shape;
-    const BoneTransforms rest = forward_kinematics(shape, Pose::rest(shape));
-    for (size_t j = 0; j < rest.size(); ++j) g.inverse_rest[i][j] = to_matrix(rest[j]).inverse();
+    scene.inverse_rest[i] = inverse_rest_transforms(crowd.characters[i].shape);
+    scene.lod_sets[i] = &g.lod_sets.at(g.character_lods[i]);
   }
   // Environment.
   for (GpuMesh& m : g.environment_meshes) destroy(m);
@@ -265,7 +220,7 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   for (const TriangleMesh& m : crowd.environment.meshes)
     if (!m.triangles.empty()) g.environment_meshes.push_back(make_environment_mesh(m));
   g.box_models.clear();
-  g.boxes = crowd.environment.boxes;
+  scene.boxes = crowd.environment.boxes;
   Vec3 lo = Vec3::Constant(1e30), hi = Vec3::Constant(-1e30);
   for (const Box& b : crowd.environment.boxes) {
     Mat4 model = Mat4::Identity();
@@ -284,10 +239,10 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   lo.y() = std::min(lo.y(), 0.0);
   // Snapped outward to a 2 m grid: the shadow map and the ground follow these bounds, and the two methods
   // of a condition (bodies a few centimetres apart) must get the same shadow map and ground.
-  g.bounds_lo = (2.0 * (0.5 * lo).array().floor()).matrix();
-  g.bounds_hi = (2.0 * (0.5 * hi).array().ceil()).matrix();
+  scene.bounds_lo = (2.0 * (0.5 * lo).array().floor()).matrix();
+  scene.bounds_hi = (2.0 * (0.5 * hi).array().ceil()).matrix();
   destroy(g.ground);
-  const Vec3 c = 0.5 * (g.bounds_lo + g.bounds_hi);
+  const Vec3 c = 0.5 * (scene.bounds_lo + scene.bounds_hi);
   const float half = 150.0f, cx = static_cast<float>(c.x()), cz = static_cast<float>(c.z());
   std::vector<StaticVertex> quad = {{{cx - half, 0, cz - half}, {0, 1, 0}},
                                     {{cx - half, 0, cz + half}, {0, 1, 0}},
@@ -302,9 +257,6 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   gl_->context.make_current();
   if (!crowd_) throw RuntimeError("Renderer::draw: no crowd loaded");
   if (width_ == 0) throw RuntimeError("Renderer::draw: set_size() first");
-  if (frame < 0 || frame >= crowd_->frame_count())
-    throw InputError("frame " + std::to_string(frame) + " out of range [0, " +
-                     std::to_string(crowd_->frame_count()) + ")");
   Gl& g = *gl_;
   auto stage_start = Clock::now();
   // Ends a timed stage: with options.time_passes the rasteriser finishes it first (llvmpipe rasterises at
@@ -315,132 +267,85 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
     stage_start = Clock::now();
   };
   pass_times_ = {};
-  const auto& chars = crowd_->characters;
-  const size_t n = chars.size();
+  g.scene.height_px = height_;
+  prepare_frame(*crowd_, frame, camera, options, g.scene, g.plan);
+  upload_frame(g);
+  end_stage(pass_times_.prepare_ms, false);
+  set_frame_uniforms(g, camera, options);
+  shadow_pass(g, options);
+  end_stage(pass_times_.shadow_ms, true);
+  colour_pass(g, camera, options);
+  end_stage(pass_times_.colour_ms, true);
+  resolve_pass(g, options);
+  end_stage(pass_times_.resolve_ms, true);
+}
 
-  // 1. Skin matrices and (overlap mode) candidate capsules, computed on the CPU.
-  g.skin_data.resize(n * kJointCount * 16);
-  std::vector<WorldCapsules> world(n);
-  std::vector<Aabb> boxes(n);
-  tbb::parallel_for(size_t{0}, n, [&](size_t i) {
-    const BoneTransforms bones =
-        forward_kinematics(chars[i].shape, chars[i].frames[static_cast<size_t>(frame)]);
-    for (size_t j = 0; j < bones.size(); ++j) {
-      const Mat4f skin = (to_matrix(bones[j]) * g.inverse_rest[i][j]).cast<float>();
-      std::memcpy(&g.skin_data[(i * kJointCount + j) * 16], skin.data(), 16 * sizeof(float));
-    }
-    world[i] = world_capsules(chars[i].shape, bones);
-    boxes[i] = capsules_box(world[i]);
-  });
-  Gl::upload(g.skin_ssbo, g.skin_capacity, g.skin_data);
-  g.caps_data.clear();
-  g.cap_offset.assign(n, 0);
-  g.cap_count.assign(n, 0);
-  g.own_offset.assign(n, 0);
-  if (options.overlap) {
-    auto push_capsule = [&](const Capsule& c) {
-      g.caps_data.insert(g.caps_data.end(), {static_cast<float>(c.a.x()), static_cast<float>(c.a.y()),
-                                             static_cast<float>(c.a.z()), static_cast<float>(c.radius_m),
-                                             static_cast<float>(c.b.x()), static_cast<float>(c.b.y()),
-                                             static_cast<float>(c.b.z()), 0.0f});
-    };
-    for (size_t a = 0; a < n; ++a) {
-      g.own_offset[a] = static_cast<int>(g.caps_data.size() / 8);
-      for (const Capsule& c : world[a]) push_capsule(c);
-      g.cap_offset[a] = static_cast<int>(g.caps_data.size() / 8);
-      for (size_t b = 0; b < n; ++b) {
-        if (a == b || !boxes[a].overlaps(boxes[b])) continue;
-        for (const Capsule& c : world[b]) {
-          if (!capsule_box(c).overlaps(boxes[a])) continue;
-          push_capsule(c);
-          ++g.cap_count[a];
-        }
-      }
-    }
-  }
-  Gl::upload(g.caps_ssbo, g.caps_capacity, g.caps_data);
+// The frame's skin matrices and overlap capsules, into the shader storage buffers 0 and 1.
+void Renderer::upload_frame(Gl& g) {
+  Gl::upload(g.skin_ssbo, g.skin_capacity, g.plan.skin_matrices);
+  Gl::upload(g.caps_ssbo, g.caps_capacity, g.plan.capsules);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g.skin_ssbo);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g.caps_ssbo);
+}
 
-  // Lights relative to the camera's horizontal viewing direction (three-point lighting).
-  Vec3 view_h(camera.target.x() - camera.eye.x(), 0.0, camera.target.z() - camera.eye.z());
-  view_h = view_h.norm() > 1e-6 ? Vec3(view_h.normalized()) : Vec3(-Vec3::UnitZ());
-  const Vec3 key = light_direction(-view_h, 35.0, 50.0);
-  const Vec3 fill = light_direction(-view_h, -60.0, 20.0);
-  const Vec3 rim = light_direction(view_h, 20.0, 35.0);
-  const Vec3 centre = 0.5 * (g.bounds_lo + g.bounds_hi);
-  const double radius = 0.5 * (g.bounds_hi - g.bounds_lo).norm() + 0.5;
-  Camera light_cam;
-  light_cam.eye = centre + key * (radius + 1.0);
-  light_cam.target = centre;
-  const Mat4 light_vp = ortho(radius, 0.5, 2.0 * radius + 2.0) * light_cam.view();
-  const Mat4 view_proj = camera.projection() * camera.view();
-  // Architectural cutaway: a box that hides the crowd from the camera (the near wall of a corridor
-  // seen from the side) is left out, tested on the segments from the eye to every character's chest.
-  g.box_hidden.assign(g.boxes.size(), 0);
-  for (size_t b = 0; b < g.boxes.size(); ++b)
-    for (size_t i = 0; i < n && !g.box_hidden[b]; ++i) {
-      const Vec3 chest = chars[i].frames[static_cast<size_t>(frame)].root_position_m + Vec3(0, 0.35, 0);
-      if (segment_hits_box(camera.eye, chest, g.boxes[b])) g.box_hidden[b] = 1;
-    }
-
-  // Each character's level of detail: the coarsest whose error spans at most lod_pixels at its distance.
-  const double pixel_angle =
-      2.0 * std::tan(0.5 * camera.fov_y_deg * std::numbers::pi / 180.0) / height_;  // m per px per m
-  std::vector<const GpuMesh*> drawn_mesh(n);
-  for (size_t i = 0; i < n; ++i) {
-    const double distance = (chars[i].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).norm();
-    drawn_mesh[i] = &g.mesh_cache.at(
-        select_lod(g.lod_sets.at(g.character_lods[i]), options.lod_pixels * distance * pixel_angle).key);
-  }
-
-  end_stage(pass_times_.prepare_ms, false);
-
+// The uniforms every lit program shares: camera, lights, shadow map, ground noise, background and fog.
+void Renderer::set_frame_uniforms(Gl& g, const Camera& camera, const SceneOptions& options) {
+  const FrameLights& lights = g.plan.lights;
   glBindTextureUnit(0, g.shadow_tex);
   glBindTextureUnit(1, g.noise_tex);
-  const Mat4& shadow_matrix = light_vp;
-  GlProgram& character_lit = options.overlap ? g.skinned_lit_overlap : g.skinned_lit;
   for (GlProgram* prog :
-       {&g.ground_lit, &g.flat_lit, &character_lit, &g.ground_unshadowed, &g.ground_shadow}) {
+       {&g.ground_lit, &g.flat_lit, &character_program(g, options), &g.ground_unshadowed, &g.ground_shadow}) {
     const GLuint id = prog->id();
-    set_mat4(id, prog->uniform("u_view_proj"), view_proj);
-    set_mat4(id, prog->uniform("u_light_view_proj"), shadow_matrix);
+    set_mat4(id, prog->uniform("u_view_proj"), g.plan.view_proj);
+    set_mat4(id, prog->uniform("u_light_view_proj"), lights.light_view_proj);
     set_vec3(id, prog->uniform("u_eye"), camera.eye);
-    set_vec3(id, prog->uniform("u_key_dir"), key);
-    set_vec3(id, prog->uniform("u_fill_dir"), fill);
-    set_vec3(id, prog->uniform("u_rim_dir"), rim);
+    set_vec3(id, prog->uniform("u_key_dir"), lights.key_dir);
+    set_vec3(id, prog->uniform("u_fill_dir"), lights.fill_dir);
+    set_vec3(id, prog->uniform("u_rim_dir"), lights.rim_dir);
     glProgramUniform1i(id, prog->uniform("u_shadow_map"), 0);
     glProgramUniform1i(id, prog->uniform("u_ground_noise"), 1);
     glProgramUniform1f(id, prog->uniform("u_shadow_texel"), 1.0f / static_cast<float>(g.shadow_size));
     set_rgb(id, prog->uniform("u_background"), options.background);
     glProgramUniform1f(id, prog->uniform("u_fog_density"), static_cast<float>(options.fog_density));
   }
-  // 2. Shadow pass.
+}
+
+GlProgram& Renderer::character_program(Gl& g, const SceneOptions& options) {
+  return options.overlap ? g.skinned_lit_overlap : g.skinned_lit;
+}
+
+// Characters and environment into the key light's depth map.
+void Renderer::shadow_pass(Gl& g, const SceneOptions& options) {
+  const FramePlan& plan = g.plan;
   begin_shadow_pass(g);
   glEnable(GL_CULL_FACE);
   glCullFace(GL_FRONT);  // back faces cast the shadow: less acne on lit surfaces
   GLuint p = g.skinned_depth.id();
   glUseProgram(p);
-  set_mat4(p, g.skinned_depth.uniform("u_view_proj"), light_vp);
+  set_mat4(p, g.skinned_depth.uniform("u_view_proj"), plan.lights.light_view_proj);
   const int depth_base = g.skinned_depth.uniform("u_skin_base");
-  for (size_t i = 0; i < (options.characters ? n : 0); ++i) {
-    const GpuMesh& m = g.character_shadow_mesh[i] == 0
-                           ? *drawn_mesh[i]
-                           : g.mesh_cache.at(g.lod_sets.at(g.character_shadow_mesh[i]).front().key);
+  const size_t n = options.characters ? crowd_->characters.size() : 0;
+  for (size_t i = 0; i < n; ++i) {
+    const std::uint64_t caster = g.character_shadow_mesh[i] == 0
+                                     ? plan.mesh[i]
+                                     : g.lod_sets.at(g.character_shadow_mesh[i]).front().key;
+    const GpuMesh& m = g.mesh_cache.at(caster);
     glProgramUniform1i(p, depth_base, static_cast<int>(i * kJointCount));
     glBindVertexArray(m.vao);
     glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
   }
   p = g.static_depth.id();
   glUseProgram(p);
-  set_mat4(p, g.static_depth.uniform("u_view_proj"), light_vp);
+  set_mat4(p, g.static_depth.uniform("u_view_proj"), plan.lights.light_view_proj);
   glDisable(GL_CULL_FACE);
   draw_environment(g, p, g.static_depth.uniform("u_model"));
   glDisable(GL_POLYGON_OFFSET_FILL);
+}
 
-  end_stage(pass_times_.shadow_ms, true);
-
-  // 3. Colour pass.
+// The colour pass: the ground (cached, or cleared and drawn last), then characters near to far, the
+// environment and the ground or its shadows. Characters first, ground last: early depth rejection then
+// skips ground pixels behind people.
+void Renderer::colour_pass(Gl& g, const Camera& camera, const SceneOptions& options) {
   glBindFramebuffer(GL_FRAMEBUFFER, g.msaa_fbo);
   glViewport(0, 0, width_, height_);
   const float bg[4] = {options.background[0], options.background[1], options.background[2], 1.0f};
@@ -463,26 +368,33 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   }
   glNamedFramebufferDrawBuffers(g.msaa_fbo, options.overlap ? 2 : 1, attachments);
   if (options.overlap) glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 1, zero);
-  // Characters first, ground last: early depth rejection then skips ground pixels behind people.
-  p = character_lit.id();
+  draw_characters(g, options);
+  const GLuint p = g.flat_lit.id();
+  glUseProgram(p);
+  set_rgb(p, g.flat_lit.uniform("u_base_color"), options.environment);
+  draw_environment(g, p, g.flat_lit.uniform("u_model"));
+  if (cached_ground)
+    draw_ground_shadows(options.ground, g.plan.lights.key_dir);
+  else if (crowd_->environment.ground_plane)
+    draw_ground(g, options.ground);
+  glBindVertexArray(0);
+}
+
+// Each character in the plan's near-to-far order, with its palette, skin matrices and overlap candidates.
+void Renderer::draw_characters(Gl& g, const SceneOptions& options) {
+  const FramePlan& plan = g.plan;
+  GlProgram& program = character_program(g, options);
+  const GLuint p = program.id();
   glUseProgram(p);
   glEnable(GL_CULL_FACE);
   glCullFace(GL_BACK);
-  const int lit_base = character_lit.uniform("u_skin_base"), palette_loc = character_lit.uniform("u_palette");
-  const int offset_loc = character_lit.uniform("u_cap_offset"),
-            count_loc = character_lit.uniform("u_cap_count");
-  const int own_loc = character_lit.uniform("u_own_offset");
+  const int lit_base = program.uniform("u_skin_base"), palette_loc = program.uniform("u_palette");
+  const int offset_loc = program.uniform("u_cap_offset"), count_loc = program.uniform("u_cap_count");
+  const int own_loc = program.uniform("u_own_offset");
   triangles_ = 0;
-  std::vector<size_t> order(n);
-  for (size_t i = 0; i < n; ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {  // near to far
-    return (chars[a].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).squaredNorm() <
-           (chars[b].frames[static_cast<size_t>(frame)].root_position_m - camera.eye).squaredNorm();
-  });
-  if (!options.characters) order.clear();
-  for (const size_t i : order) {
-    const GpuMesh& m = *drawn_mesh[i];
-    const Palette pal = character_palette(chars[i].palette);
+  for (const size_t i : plan.order) {
+    const GpuMesh& m = g.mesh_cache.at(plan.mesh[i]);
+    const Palette pal = character_palette(crowd_->characters[i].palette);
     float colours[8 * 3];
     for (int r = 0; r < 8; ++r) {
       const Rgb c =
@@ -492,28 +404,21 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
     }
     glProgramUniform3fv(p, palette_loc, 8, colours);
     glProgramUniform1i(p, lit_base, static_cast<int>(i * kJointCount));
-    glProgramUniform1i(p, offset_loc, g.cap_offset[i]);
-    glProgramUniform1i(p, count_loc, g.cap_count[i]);
-    glProgramUniform1i(p, own_loc, g.own_offset[i]);
+    glProgramUniform1i(p, offset_loc, plan.cap_offset[i]);
+    glProgramUniform1i(p, count_loc, plan.cap_count[i]);
+    glProgramUniform1i(p, own_loc, plan.own_offset[i]);
     glBindVertexArray(m.vao);
     glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
     triangles_ += static_cast<size_t>(m.count) / 3;
   }
   glDisable(GL_CULL_FACE);
-  p = g.flat_lit.id();
-  glUseProgram(p);
-  set_rgb(p, g.flat_lit.uniform("u_base_color"), options.environment);
-  draw_environment(g, p, g.flat_lit.uniform("u_model"));
-  if (cached_ground)
-    draw_ground_shadows(options.ground, key);
-  else if (crowd_->environment.ground_plane)
-    draw_ground(g, options.ground);
-  glBindVertexArray(0);
+}
 
-  end_stage(pass_times_.colour_ms, true);
-
-  // 4. Resolve the colour attachment (and the overlap mask in overlap mode).
+// Resolves the multisampled colour attachment (and the overlap mask in overlap mode); nothing to do at
+// one sample per pixel, where the frame is read from the drawn target itself.
+void Renderer::resolve_pass(Gl& g, const SceneOptions& options) {
   overlap_drawn_ = options.overlap;
+  const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   for (int k = 0; k < (!g.multisampled ? 0 : options.overlap ? 2 : 1); ++k) {
     const GLenum attachment = attachments[k];
     glNamedFramebufferReadBuffer(g.msaa_fbo, attachment);
@@ -522,14 +427,13 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
                            GL_COLOR_BUFFER_BIT, GL_NEAREST);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  end_stage(pass_times_.resolve_ms, true);
 }
 
 // The static environment (visible boxes, then meshes in world coordinates), drawn the same way by the
 // shadow pass and the colour pass; only the program and its model-matrix uniform differ.
 void Renderer::draw_environment(Gl& g, unsigned program, int model_location) {
   for (size_t b = 0; b < g.box_models.size(); ++b) {
-    if (g.box_hidden[b]) continue;
+    if (g.plan.box_hidden[b]) continue;
     set_mat4(program, model_location, g.box_models[b]);
     glBindVertexArray(g.cube.vao);
     glDrawElements(GL_TRIANGLES, g.cube.count, GL_UNSIGNED_INT, nullptr);

@@ -3,10 +3,11 @@
 // across clips), the GPU mesh cache (one mannequin mesh per distinct body shape) and the frame
 // buffers. One Renderer per thread; all calls must come from the thread that created it.
 //
-// Per frame:
-//   1. CPU: forward kinematics -> skin matrices (bone_world(frame) * bone_world(rest)^-1) for every
-//      character, uploaded to one SSBO; in overlap mode also every character's candidate capsules of
-//      OTHER characters (those whose bounding boxes meet its own), so each fragment tests only a few.
+// Per frame (draw(): prepare_frame, then one function per pass):
+//   1. CPU (prepare_frame, stimuli/frame_plan.hpp, no OpenGL): forward kinematics -> skin matrices
+//      (bone_world(frame) * bone_world(rest)^-1) for every character, uploaded to one SSBO; in overlap mode
+//      also every character's candidate capsules of OTHER characters (those whose bounding boxes meet its
+//      own), so each fragment tests only a few.
 //   2. Shadow pass: characters and environment into a depth map from the key light (orthographic,
 //      fitted to the crowd's clip-wide bounds).
 //   3. Colour pass into a 4x multisampled FBO (colour + overlap mask + depth): characters (near to far,
@@ -29,6 +30,7 @@
 namespace crowdlab::stimuli {
 
 struct GltfCharacter;
+class GlProgram;
 
 struct SceneOptions {
   bool overlap = false;                       ///< paint fragments inside other characters red
@@ -108,6 +110,14 @@ class Renderer {
 
  private:
   struct Gl;
+  // The passes of draw(), in order, over the FramePlan that prepare_frame() filled (stimuli/frame_plan.hpp).
+  void upload_frame(Gl& g);
+  void set_frame_uniforms(Gl& g, const Camera& camera, const SceneOptions& options);
+  void shadow_pass(Gl& g, const SceneOptions& options);
+  void colour_pass(Gl& g, const Camera& camera, const SceneOptions& options);
+  void draw_characters(Gl& g, const SceneOptions& options);
+  void resolve_pass(Gl& g, const SceneOptions& options);
+  static GlProgram& character_program(Gl& g, const SceneOptions& options);
   void draw_environment(Gl& g, unsigned program, int model_location);
   void draw_ground(Gl& g, const Rgb& colour);
   void begin_shadow_pass(Gl& g);

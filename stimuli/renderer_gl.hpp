@@ -11,6 +11,7 @@
 
 #include "framework/core/forward_kinematics.hpp"
 #include "stimuli/egl_context.hpp"
+#include "stimuli/frame_plan.hpp"
 #include "stimuli/gl_program.hpp"
 #include "stimuli/gpu_geometry.hpp"
 #include "stimuli/level_of_detail.hpp"
@@ -56,16 +57,14 @@ struct Renderer::Gl {
   GpuMesh ground;
   std::vector<GpuMesh> environment_meshes;
   std::vector<Mat4> box_models;
-  std::vector<Box> boxes;
-  std::vector<char> box_hidden;
   std::map<std::uint64_t, std::vector<LodLevel>> lod_sets;  ///< mesh-set key -> its levels, finest first
   std::vector<std::uint64_t> character_lods;                ///< per character: its mesh-set key
   /// Per character: a one-level set of its shadow caster, or 0 when the caster is the level the colour pass
   /// draws (skinned surfaces).
   std::vector<std::uint64_t> character_shadow_mesh;
   GLuint noise_tex = 0;
-  std::vector<std::array<Mat4, kJointCount>> inverse_rest;
-  Vec3 bounds_lo = Vec3::Zero(), bounds_hi = Vec3::Zero();
+  FrameScene scene;  ///< per crowd: what prepare_frame reads besides the poses (load_crowd)
+  FramePlan plan;    ///< the frame being drawn (prepare_frame)
   GLuint skin_ssbo = 0, caps_ssbo = 0;
   GLsizeiptr skin_capacity = 0, caps_capacity = 0;
   GLuint msaa_fbo = 0, msaa_color = 0, msaa_mask = 0, msaa_depth = 0;
@@ -80,8 +79,6 @@ struct Renderer::Gl {
   GLuint shadow_fbo = 0, shadow_tex = 0;
   int shadow_size = 0;
   GLuint pbo[2] = {0, 0};
-  std::vector<float> skin_data, caps_data;
-  std::vector<int> cap_offset, cap_count, own_offset;
   std::vector<std::uint8_t> mask_pixels;
 
   /// The framebuffer whose colour attachment 0 holds the finished frame (1: the overlap mask).

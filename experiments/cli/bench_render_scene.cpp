@@ -25,7 +25,7 @@ Condition pick_condition(const ExperimentSpec& spec, const BenchRenderScene& sce
       if (c.id == scene.condition_id) return c;
       continue;
     }
-    if (std::abs(c.number("density", -1.0) - scene.density) < 1e-9) return c;
+    if (c.params.density_per_m2 && std::abs(*c.params.density_per_m2 - scene.density) < 1e-9) return c;
   }
   throw InputError(SourceLocation{spec.source_path, 0, 0, "--condition"},
                    scene.condition_id.empty() ? "no condition with density " + std::to_string(scene.density)
@@ -36,8 +36,8 @@ Condition pick_condition(const ExperimentSpec& spec, const BenchRenderScene& sce
 
 CrowdAnimation make_bench_render_crowd(const BenchRenderScene& scene) {
   ExperimentSpec spec = load_scene_spec(scene);
-  if (!scene.body_model.empty()) spec.animation.body_model = scene.body_model;
-  if (spec.animation.body_model == "mpfb2" && spec.animation.body_model_path.empty())
+  if (scene.body_model) spec.animation.body_model = *scene.body_model;
+  if (spec.animation.body_model == BodyModel::mpfb2 && spec.animation.body_model_path.empty())
     spec.animation.body_model_path = default_mpfb2_dir().string();
   if (scene.duration_s > 0.0) spec.duration_s = std::min(spec.duration_s, scene.duration_s);
   const Condition condition = crowd_condition(spec, pick_condition(spec, scene));

@@ -4,18 +4,20 @@
 // characters), animated exactly as `crowdlab run` animates baseline.glb
 // (framework/pipeline/animate_scenario.hpp, animate_scenario), with the spec's body model (MPFB2 bodies
 // unless told otherwise).
+#include <optional>
 #include <string>
 
 #include "framework/core/crowd_animation.hpp"
+#include "framework/spec/condition_kinds.hpp"
 
 namespace crowdlab::cli {
 
 struct BenchRenderScene {
-  std::string spec_path;     ///< "" = the embedded gomez2024_stationary spec
-  std::string condition_id;  ///< "" = the first condition whose density level is `density`
-  double density = 6.66;     ///< characters per m^2 (used when condition_id is empty)
-  std::string body_model;    ///< "" = the spec's; else procedural | mpfb2
-  double duration_s = 0.0;   ///< > 0: shorten the crowd to this many seconds (the start is unchanged)
+  std::string spec_path;                ///< "" = the embedded gomez2024_stationary spec
+  std::string condition_id;             ///< "" = the first condition whose density level is `density`
+  double density = 6.66;                ///< characters per m^2 (used when condition_id is empty)
+  std::optional<BodyModel> body_model;  ///< nullopt = the spec's
+  double duration_s = 0.0;  ///< > 0: shorten the crowd to this many seconds (the start is unchanged)
 };
 
 /// Generates the crowd stage and the animation stage of the chosen condition. Throws InputError when the

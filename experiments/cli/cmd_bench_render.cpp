@@ -69,7 +69,7 @@ CrowdAnimation make_crowd(const Args& a) {
   scene.spec_path = a.spec;
   scene.condition_id = a.condition;
   scene.density = a.density;
-  scene.body_model = a.body_model;
+  if (!a.body_model.empty()) scene.body_model = parse_kind<BodyModel>(a.body_model);
   CrowdAnimation crowd = make_bench_render_crowd(scene);
   const size_t wanted = static_cast<size_t>(a.frames + a.warmup);
   for (CharacterAnimation& c : crowd.characters)  // only the frames the bench draws
@@ -214,7 +214,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--density", args->density, "Paper scene: the density level (characters per m^2)")
       ->capture_default_str();
   cmd->add_option("--body-model", args->body_model, "Paper scene: procedural | mpfb2 (default: the spec's)")
-      ->check(CLI::IsMember({"procedural", "mpfb2"}));
+      ->check(CLI::IsMember(kind_names<BodyModel>()));
   cmd->add_option("--characters", args->characters, "Characters in the procedural crowd")
       ->capture_default_str()
       ->check(CLI::Range(1, 10000));

@@ -25,7 +25,6 @@
 #include "framework/crowd/interpersonal_distance_histogram.hpp"
 #include "framework/crowd/pair_closest_approaches.hpp"
 #include "framework/pipeline/provenance.hpp"
-#include "framework/spec/effective_scenario_type.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 #include "framework/surface/generate_manifold_scenario.hpp"
 
@@ -78,7 +77,7 @@ void run(const Args& a) {
   if (a.csv.empty() && a.measures_dir.empty())
     throw InputError("crowd: give --csv FILE and/or --measures DIR");
   const Condition& condition = find_condition(conditions, a.condition);
-  if (effective_scenario_type(spec, condition) == "manifold") {
+  if (condition.params.scenario == ScenarioKind::manifold) {
     // Surface crowds (seed 002): the 3D trajectories; the 2D disc measures do not apply to them.
     if (!a.measures_dir.empty())
       throw InputError(
@@ -91,7 +90,7 @@ void run(const Args& a) {
   const ScenarioResult r = generate_scenario(spec, condition);
   if (!a.csv.empty()) write_file(a.csv, trajectories_csv(r.trajectories));
   nlohmann::json summary = {{"condition", condition.id},
-                            {"scenario", r.scenario},
+                            {"scenario", kind_name(r.scenario)},
                             {"characters", r.trajectories.agents.size()},
                             {"frames", r.trajectories.frame_count()},
                             {"fps", r.trajectories.fps},

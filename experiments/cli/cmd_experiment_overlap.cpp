@@ -66,8 +66,10 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
     Condition crowd_condition = c;
     crowd_condition.seed = derive_seed(spec.seed, "crowd/density-" + density);
     const ScenarioResult s = generate_scenario(spec, crowd_condition);
+    const std::string scenario(kind_name(s.scenario));
+    const double density_per_m2 = c.params.density_per_m2.value_or(0.0);
     AnimationContext ctx;
-    ctx.scenario_type = s.scenario;
+    ctx.scenario = s.scenario;
     ctx.seed = crowd_condition.seed;
     ctx.condition_id = "density-" + density;
     apply_body_model(spec.animation, s.trajectories.agents.size(), ctx);
@@ -75,20 +77,20 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
     CorrectorParams params = o.params;
     params.exact_prediction = !o.inertial_prediction;
     params.damping = spec.correction.damping;
-    Progress progress(s.scenario + " density " + density + ": correcting",
+    Progress progress(scenario + " density " + density + ": correcting",
                       static_cast<size_t>(baseline.frame_count()));
     CorrectionReport report;
     const CrowdAnimation ours = correct_crowd(baseline, params, &progress, &report);
     progress.finish();
     const int n = static_cast<int>(baseline.characters.size());
-    rows.push_back({s.scenario, n, c.number("density", 0), "baseline",
+    rows.push_back({scenario, n, density_per_m2, "baseline",
                     measure_crowd(baseline).mean_character_overlap_l});
     rows.push_back(
-        {s.scenario, n, c.number("density", 0), "ours", measure_crowd(ours).mean_character_overlap_l});
+        {scenario, n, density_per_m2, "ours", measure_crowd(ours).mean_character_overlap_l});
     std::printf("%-10s %3d characters (%.2f/m2): baseline %.3f L, ours %.3f L per character\n",
-                s.scenario.c_str(), n, c.number("density", 0), rows[rows.size() - 2].mean_overlap_l,
+                scenario.c_str(), n, density_per_m2, rows[rows.size() - 2].mean_overlap_l,
                 rows.back().mean_overlap_l);
-    QualityRow qr{s.scenario, n, c.number("density", 0), 0.0, measure_correction_quality(baseline, ours),
+    QualityRow qr{scenario, n, density_per_m2, 0.0, measure_correction_quality(baseline, ours),
                   report};
     const double base_l = rows[rows.size() - 2].mean_overlap_l;
     qr.overlap_reduction = base_l > 0.0 ? 1.0 - rows.back().mean_overlap_l / base_l : 0.0;
@@ -96,7 +98,7 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
         "%-10s %3d characters: overlap -%.1f %%, p99 depth %.1f mm (max %.1f), rotation deviation mean %.2f "
         "deg "
         "(p99 %.2f), foot skate %.1f mm, max joint speed %.1f m/s, CG %.1f, rejected %d\n",
-        s.scenario.c_str(), n, 100 * qr.overlap_reduction, 1000 * qr.quality.depth_p99_m,
+        scenario.c_str(), n, 100 * qr.overlap_reduction, 1000 * qr.quality.depth_p99_m,
         1000 * qr.quality.depth_max_m, qr.quality.rotation_dev_mean_deg, qr.quality.rotation_dev_p99_deg,
         1000 * qr.quality.foot_skate_max_m, qr.quality.joint_speed_max_mps, report.cg_iterations_mean,
         report.rejected_steps);

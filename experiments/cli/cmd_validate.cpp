@@ -28,10 +28,11 @@ void print_summary(const ExperimentSpec& spec) {
   if (!spec.description.empty()) std::printf("description: %s\n", spec.description.c_str());
   std::printf("sha256:      %s\n", spec.source_hash.c_str());
   std::printf("seed:        %llu\n", static_cast<unsigned long long>(spec.seed));
-  if (spec.scenario.type == "pair_crossing" || spec.scenario.type == "manifold")
-    std::printf("scenario:    %s\n", spec.scenario.type.c_str());
+  const std::string scenario(kind_name(spec.scenario.type));
+  if (spec.scenario.type == ScenarioKind::pair_crossing || spec.scenario.type == ScenarioKind::manifold)
+    std::printf("scenario:    %s\n", scenario.c_str());
   else
-    std::printf("scenario:    %s (%.6g m x %.6g m)\n", spec.scenario.type.c_str(), spec.scenario.width_m,
+    std::printf("scenario:    %s (%.6g m x %.6g m)\n", scenario.c_str(), spec.scenario.width_m,
                 spec.scenario.depth_m);
   std::printf("crowd model: %s, agent radius %.6g m\n", spec.crowd.model.c_str(), spec.crowd.agent_radius_m);
   std::printf("clips:       %.6g s at %.6g fps, %dx%d\n", spec.duration_s, spec.fps, spec.render.width,

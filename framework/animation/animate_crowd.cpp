@@ -51,10 +51,8 @@ CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Enviro
   check_trajectories(trajectories);
   const size_t n = trajectories.agents.size();
   const auto frames = static_cast<size_t>(trajectories.frame_count());
-  const bool stationary = context.scenario_type == "stationary";
-  const bool clips = spec.motion == "clips";
-  if (spec.motion != "procedural" && !clips)
-    throw InputError("animation.motion: '" + spec.motion + "' must be 'procedural' or 'clips'");
+  const bool stationary = context.scenario == ScenarioKind::stationary;
+  const bool clips = spec.motion == MotionSource::clips;
   if (clips && stationary && spec.dance_clips.empty())
     throw InputError(
         "animation.dance_clips: 'clips' motion in a stationary scenario needs at least one dance clip");
@@ -86,8 +84,8 @@ CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Enviro
     if (tone < -1 || tone >= kSkinToneCount)
       throw InputError("animate_crowd: skin tone " + std::to_string(tone) + " is not in [-1, " +
                        std::to_string(kSkinToneCount - 1) + "]");
-  if (context.shapes.empty() && spec.body_model != "procedural")
-    throw InputError("animation.body_model: '" + spec.body_model +
+  if (context.shapes.empty() && spec.body_model != BodyModel::procedural)
+    throw InputError("animation.body_model: '" + std::string(kind_name(spec.body_model)) +
                      "' needs its shapes passed in AnimationContext::shapes");
 
   std::vector<BodyShape> shapes = context.shapes;
@@ -119,7 +117,7 @@ CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Enviro
   crowd.meta.fps = trajectories.fps;
   crowd.meta.seed = context.seed;
   crowd.meta.condition_id = context.condition_id;
-  crowd.meta.scenario = context.scenario_type;
+  crowd.meta.scenario = kind_name(context.scenario);
   crowd.characters.resize(n);
   const double duration = static_cast<double>(frames) / trajectories.fps;
   tbb::parallel_for(size_t{0}, n, [&](size_t i) {

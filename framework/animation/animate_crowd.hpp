@@ -34,10 +34,10 @@
 namespace crowdlab {
 
 struct AnimationContext {
-  std::string scenario_type = "stationary";  ///< "stationary" -> dancing, anything else -> walking
-  std::uint64_t seed = 0;                    ///< the condition seed
-  int shoulder_count = -1;                   ///< >= 0: exactly this many characters react (pairs)
-  double trigger_probability = 0.0;          ///< per-event shoulder reaction probability
+  ScenarioKind scenario = ScenarioKind::stationary;  ///< stationary -> dancing, anything else -> walking
+  std::uint64_t seed = 0;                            ///< the condition seed
+  int shoulder_count = -1;                           ///< >= 0: exactly this many characters react (pairs)
+  double trigger_probability = 0.0;                  ///< per-event shoulder reaction probability
   std::string condition_id;
   std::vector<BodyShape> shapes;  ///< optional: one shape per agent (overrides sampling)
   /// optional (only with `shapes`): one skinned surface per agent, bound to that agent's shape (e.g. the

@@ -17,10 +17,4 @@ const ViewpointPreset* find_viewpoint(std::string_view name) {
   return nullptr;
 }
 
-std::string default_viewpoint(std::string_view scenario_type) {
-  if (scenario_type == "pair_crossing") return "pair";
-  if (scenario_type == "flow_a") return "tracking";
-  return "V1";
-}
-
 }  // namespace crowdlab

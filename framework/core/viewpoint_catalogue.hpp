@@ -1,7 +1,8 @@
 #pragma once
 // The named camera viewpoints: one catalogue, used by the spec's validation (the `viewpoint` factor's
-// levels, the keys of render.viewpoints), by the run pipeline (the viewpoint of conditions without a
-// `viewpoint` factor) and by the renderer (stimuli/viewpoint.hpp: the framing presets).
+// levels, the keys of render.viewpoints; the default of conditions without a `viewpoint` factor is
+// chosen with the condition's typed settings, framework/spec/type_condition.cpp) and by the renderer
+// (stimuli/viewpoint.hpp: the framing presets).
 //   V1-V4     seed 000 §4.4.1 (Fig. 8): front, upper-front, front-side and overhead. The paper gives no
 //             numbers; the angles are chosen to match the figure (see stimuli/viewpoint.hpp).
 //   pair      seed 001 §3.1.4's three-quarter view of two characters passing.
@@ -36,9 +37,5 @@ const std::vector<std::string>& viewpoint_names();
 
 /// The preset named `name`, or nullptr when the catalogue has none.
 const ViewpointPreset* find_viewpoint(std::string_view name);
-
-/// The viewpoint of a condition that has no `viewpoint` factor, by its scenario type: "pair" for
-/// pair_crossing (seed 001 §3.1.4), "tracking" for flow_a (seed 001's flow A), "V1" otherwise.
-std::string default_viewpoint(std::string_view scenario_type);
 
 }  // namespace crowdlab

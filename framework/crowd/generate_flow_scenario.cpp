@@ -31,12 +31,7 @@ namespace crowdlab {
 namespace {
 
 double flow_spacing(const ExperimentSpec& spec, const Condition& condition) {
-  if (const FactorLevel* l = condition.level("density")) {
-    if (!l->number || !(*l->number > 0.0) || !std::isfinite(*l->number))
-      throw InputError("factors.density: level '" + l->text +
-                       "' is not a positive number of characters per m^2");
-    return 1.0 / std::sqrt(*l->number);
-  }
+  if (condition.params.density_per_m2) return 1.0 / std::sqrt(*condition.params.density_per_m2);
   const double s = spec.scenario.initial_spacing_m;
   if (!(s > 0.0) || !std::isfinite(s)) throw InputError("scenario.initial_spacing_m: must be > 0 m");
   return s;

@@ -20,18 +20,10 @@
 namespace crowdlab {
 
 ScenarioResult generate_pair_crossing_scenario(const ExperimentSpec& spec, const Condition& condition) {
-  const FactorLevel* dist = condition.level("distance");
-  if (!dist)
+  if (!condition.params.distance_m)
     throw InputError("factors.distance: the pair_crossing scenario needs a `distance` factor (metres)");
-  if (!dist->number || !(*dist->number > 0.0) || !std::isfinite(*dist->number))
-    throw InputError("factors.distance: level '" + dist->text + "' is not a positive distance in metres");
-  const double D = *dist->number;
-  std::string side = spec.scenario.passing_side;
-  if (const FactorLevel* l = condition.level("side")) side = l->text;
-  if (side == "alternate") side = condition.repetition % 2 == 1 ? "left" : "right";
-  if (side != "left" && side != "right")
-    throw InputError("scenario.passing_side: '" + side + "' is not left, right or alternate");
-  const double s = side == "left" ? 1.0 : -1.0;
+  const double D = *condition.params.distance_m;
+  const double s = condition.params.side == PassingSide::left ? 1.0 : -1.0;
   const double v = spec.scenario.walk_speed_mps;
   const int frames = std::max(1, static_cast<int>(std::lround(spec.duration_s * spec.fps)));
   const double t_mid = std::lround((frames - 1) / 2.0) / spec.fps;

@@ -2,9 +2,9 @@
 // generate_scenario: one condition's 2D crowd (where each character stands and how it moves) for the
 // papers' scenarios, from the spec's scenario.* and crowd.* sections and the condition's factors.
 //
-// Scenario type: the condition's `scenario` factor when present (A -> flow_a, B -> flow_b, or a type
-// name), else scenario.type. Crowd size: the `characters` factor, else round(density * area) from the
-// `density` factor (characters per m^2), else scenario.agents. Randomness: derive_seed(condition.seed,
+// Scenario kind: condition.params.scenario (its `scenario` factor, else scenario.type). Crowd size: the
+// `characters` factor, else round(density * area) from the `density` factor (characters per m^2), else
+// scenario.agents; the levels are read from condition.params, typed and validated once by the spec layer. Randomness: derive_seed(condition.seed,
 // "<stage key>") per stream. Positions are world (x, z) metres; the ground is y = 0.
 //   stationary    (seed 000 §4.1) concert on width x depth: Poisson-disk positions, in-place sway and
 //                 heading toward a stage placed in front of the area.
@@ -31,14 +31,12 @@ struct ScenarioResult {
   double area_m2 = 0.0;            ///< the area the density refers to
   double achieved_density_per_m2 = 0.0;
   double min_spacing_m = 0.0;  ///< smallest initial centre distance (pair_crossing: D at closest approach)
-  std::string scenario;        ///< resolved type: stationary | corridor | pair_crossing | flow_a | flow_b
+  ScenarioKind scenario = ScenarioKind::stationary;
 };
 
 /// Throws InputError for missing factors, bad parameters or impossible requests.
 ScenarioResult generate_scenario(const ExperimentSpec& spec, const Condition& condition);
 
-/// The scenario type this condition resolves to (see above). Throws InputError when unknown.
-std::string resolve_scenario_type(const ExperimentSpec& spec, const Condition& condition);
 
 // The generators behind generate_scenario (inputs already validated by it).
 ScenarioResult generate_stationary_scenario(const ExperimentSpec& spec, const Condition& condition);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "framework/core/bucket_sort.hpp"
 #include "framework/core/error.hpp"
 
 namespace crowdlab {
@@ -44,23 +45,14 @@ void NeighborGrid::begin_rebuild(std::size_t n) {
 }
 
 void NeighborGrid::finish_rebuild(const double* x, const double* y, std::size_t n) {
-  // Count per bucket, inclusive prefix sums (bucket_start_[b] = end of bucket b), then scatter in
-  // reverse with pre-decrement: each start ends at its bucket's begin and points keep increasing
-  // index order within a bucket (stable), with no extra pass to shift starts.
-  const std::size_t table = bucket_start_.size() - 1;
-  std::fill(bucket_start_.begin(), bucket_start_.end(), 0u);
-  for (std::size_t i = 0; i < n; ++i) ++bucket_start_[point_bucket_[i]];
-  for (std::size_t b = 1; b < table; ++b) bucket_start_[b] += bucket_start_[b - 1];
-  bucket_start_[table] = static_cast<std::uint32_t>(n);
-  for (std::size_t i = n; i-- > 0;) {
-    const std::uint32_t slot = --bucket_start_[point_bucket_[i]];
+  bucket_sort(point_bucket_.data(), n, bucket_start_, [&](std::size_t i, std::uint32_t slot) {
     sorted_index_[slot] = static_cast<std::uint32_t>(i);
     position_of_[i] = slot;
     sorted_x_[slot] = x[i];
     sorted_y_[slot] = y[i];
     sorted_cx_[slot] = point_cx_[i];
     sorted_cy_[slot] = point_cy_[i];
-  }
+  });
 }
 
 }  // namespace crowdlab

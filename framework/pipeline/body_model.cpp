@@ -6,7 +6,6 @@
 #include <mutex>
 
 #include "framework/body/sample_mpfb2_bodies.hpp"
-#include "framework/core/error.hpp"
 #include "framework/core/mpfb2_asset_dir.hpp"
 #include "framework/core/seed.hpp"
 
@@ -25,9 +24,7 @@ std::shared_ptr<const Mpfb2Model> cached_model(const std::filesystem::path& dir)
 }  // namespace
 
 void apply_body_model(const AnimationSpec& spec, std::size_t agents, AnimationContext& context) {
-  if (spec.body_model == "procedural") return;
-  if (spec.body_model != "mpfb2")
-    throw InputError("animation.body_model: '" + spec.body_model + "' must be 'procedural' or 'mpfb2'");
+  if (spec.body_model == BodyModel::procedural) return;
   // The spec loader fills the path (spec, else CROWDLAB_MPFB2, else the shipped assets); a spec built in
   // code may leave it empty.
   const auto model = cached_model(spec.body_model_path.empty() ? default_mpfb2_dir()

@@ -13,7 +13,6 @@
 #include "framework/pipeline/animate_scenario.hpp"
 #include "framework/pipeline/crowd_key.hpp"
 #include "framework/pipeline/metrics_json.hpp"
-#include "framework/spec/effective_scenario_type.hpp"
 #include "framework/surface/generate_manifold_scenario.hpp"
 
 namespace crowdlab {
@@ -65,7 +64,7 @@ CrowdGroup::CrowdGroup(const ExperimentSpec& spec, StageRunner& runner, const fs
 }
 
 bool CrowdGroup::is_manifold() const {
-  return effective_scenario_type(spec_, condition_) == "manifold";
+  return condition_.params.scenario == ScenarioKind::manifold;
 }
 
 const ScenarioResult& CrowdGroup::scenario() {
@@ -90,7 +89,7 @@ Stage CrowdGroup::crowd_stage() {
   Stage s;
   s.name = "crowd";
   s.params["levels"] = level_json(condition_);
-  s.params["scenario"] = spec_.scenario.type;
+  s.params["scenario"] = kind_name(spec_.scenario.type);
   s.params["seed"] = condition_.seed;
   s.params["spec"] = spec_.source_hash;  // scenario/crowd sections live in the spec text
   s.outputs.push_back({dir_ / "trajectories.csv", [this](const fs::path& tmp) {
@@ -173,7 +172,7 @@ const CrowdAnimation& CrowdGroup::animation(CrowdMethod method) {
 }
 
 fs::path CrowdGroup::animation_path(CrowdMethod method) const {
-  return dir_ / (std::string(crowd_method_name(method)) + ".glb");
+  return dir_ / (std::string(kind_name(method)) + ".glb");
 }
 
 const std::string& CrowdGroup::animation_hash(CrowdMethod method) const {
@@ -187,7 +186,7 @@ const json& CrowdGroup::metrics(CrowdMethod method) {
 }
 
 fs::path CrowdGroup::metrics_path(CrowdMethod method) const {
-  return dir_ / (std::string(crowd_method_name(method)) + ".metrics.json");
+  return dir_ / (std::string(kind_name(method)) + ".metrics.json");
 }
 
 }  // namespace crowdlab

@@ -19,7 +19,7 @@
 #include "framework/core/crowd_animation.hpp"
 #include "framework/core/surface_trajectories.hpp"
 #include "framework/crowd/generate_scenario.hpp"
-#include "framework/pipeline/crowd_method.hpp"
+#include "framework/spec/condition_kinds.hpp"
 #include "framework/pipeline/stage_runner.hpp"
 #include "framework/spec/experiment_spec.hpp"
 

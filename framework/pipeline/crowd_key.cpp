@@ -1,16 +1,9 @@
 #include "framework/pipeline/crowd_key.hpp"
 
 #include "framework/core/seed.hpp"
+#include "framework/spec/type_condition.hpp"
 
 namespace crowdlab {
-namespace {
-
-/// Factors that change how a crowd is shown, not the crowd itself.
-bool is_presentation_factor(const std::string& name) {
-  return name == "viewpoint" || name == "method";
-}
-
-}  // namespace
 
 std::string crowd_key(const Condition& condition) {
   std::string key;

@@ -64,7 +64,7 @@ void link_or_copy(const fs::path& from, const fs::path& to) {
 /// One condition: its crowd (linked from the group), its metrics and its presentation.
 StimulusEntry run_condition(const ExperimentSpec& spec, const RunOptions& opt, StageRunner& runner,
                             CrowdGroup& g, const Condition& c, PresentationStages* presentation) {
-  const CrowdMethod method = crowd_method(c);
+  const CrowdMethod method = c.params.method;
   const fs::path dir = opt.out_dir / "conditions" / c.id;
   fs::create_directories(dir);
   const CrowdAnimation& crowd = g.animation(method);

@@ -3,6 +3,7 @@
 // and seeds are derive_seed(spec.seed, id), so neither depends on a level's position in its list.
 #include "framework/core/seed.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
+#include "framework/spec/type_condition.hpp"
 
 namespace crowdlab {
 namespace {
@@ -31,6 +32,7 @@ void cross(const ExperimentSpec& spec, const std::vector<const Factor*>& factors
       c.repetition = r;
       c.id = stem + "rep-" + std::to_string(r);
       c.seed = derive_seed(spec.seed, c.id);
+      type_condition(spec, c);
       out.push_back(std::move(c));
     }
     // Odometer increment, last factor fastest.

@@ -8,6 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "framework/spec/condition_kinds.hpp"
+#include "framework/spec/condition_params.hpp"
+
 namespace crowdlab {
 
 /// A factor level as written in the spec. `text` is the canonical string used in ids and tables
@@ -26,13 +29,13 @@ struct Factor {
 
 /// scenario.* : where characters are and how they move (2D). Fields apply per `type`.
 struct ScenarioSpec {
-  std::string type = "stationary";   ///< stationary | corridor | pair_crossing | flow_a | flow_b | manifold
-  double width_m = 3.0;              ///< area / corridor width (x extent), metres
-  double depth_m = 3.0;              ///< area depth / corridor length (z extent), metres
-  double stage_direction_deg = 0.0;  ///< stationary: direction the crowd faces (0 = +Z)
-  double walk_speed_mps = 1.3;       ///< preferred walking speed, metres/second
-  double initial_spacing_m = 1.0;    ///< flow_a/flow_b: initial distance between agents
-  std::string passing_side = "alternate";  ///< pair_crossing: left | right | alternate (by repetition)
+  ScenarioKind type = ScenarioKind::stationary;
+  double width_m = 3.0;                               ///< area / corridor width (x extent), metres
+  double depth_m = 3.0;                               ///< area depth / corridor length (z extent), metres
+  double stage_direction_deg = 0.0;                   ///< stationary: direction the crowd faces (0 = +Z)
+  double walk_speed_mps = 1.3;                        ///< preferred walking speed, metres/second
+  double initial_spacing_m = 1.0;                     ///< flow_a/flow_b: initial distance between agents
+  PassingSide passing_side = PassingSide::alternate;  ///< pair_crossing (alternate: by repetition)
   std::string mesh;  ///< manifold: scene name, or mesh file path resolved against the spec folder
   int agents = 0;    ///< manifold/flows: agent count when not set by a factor (0 = derive)
 };
@@ -55,10 +58,10 @@ struct CrowdSpec {
 
 /// animation.* : bodies and motion.
 struct AnimationSpec {
-  std::string body_model = "procedural";  ///< procedural | mpfb2
-  std::string body_model_path;            ///< mpfb2 asset folder (or env CROWDLAB_MPFB2)
+  BodyModel body_model = BodyModel::procedural;
+  std::string body_model_path;  ///< mpfb2 asset folder (or env CROWDLAB_MPFB2)
   double female_fraction = 0.5;
-  std::string motion = "procedural";         ///< procedural | clips
+  MotionSource motion = MotionSource::procedural;
   std::vector<std::string> walk_clips;       ///< BVH/glTF files, resolved against the spec folder
   std::vector<double> walk_clip_speeds_mps;  ///< one per walk clip, metres/second
   std::vector<std::string> dance_clips;      ///< resolved against the spec folder
@@ -78,7 +81,7 @@ struct RenderSpec {
   int width = 1920;
   int height = 1080;
   int crf = 18;
-  int msaa = 1;          ///< samples per pixel: 1 (the fast path) or 4 (the quality reference), docs/stimuli.md
+  int msaa = 1;  ///< samples per pixel: 1 (the fast path) or 4 (the quality reference), docs/stimuli.md
   bool overlap = false;  ///< paint overlapping volume red (seed 000 Fig. 5)
   bool frames_png = false;
   bool contact_sheet = true;  ///< copied from outputs.contact_sheet
@@ -159,13 +162,15 @@ struct ExperimentSpec {
   }
 };
 
-/// One cell of the design: a level for every factor, plus the repetition index (1-based).
+/// One cell of the design: a level for every factor, plus the repetition index (1-based). Stages read
+/// the typed `params`; the level texts name the condition in ids, file names and response tables.
 struct Condition {
   std::string id;                             ///< stable, e.g. "density-2.22_viewpoint-V1_method-ours_rep-1"
   std::map<std::string, FactorLevel> levels;  ///< factor name -> level
   int repetition = 1;
   bool practice = false;
   std::uint64_t seed = 0;  ///< derive_seed(spec.seed, id)
+  ConditionParams params;  ///< the levels as typed values (type_condition(), framework/spec)
 
   const FactorLevel* level(const std::string& factor) const {
     auto it = levels.find(factor);

@@ -56,7 +56,7 @@ void parse_scenario(YamlSection s, ExperimentSpec& spec) {
   ScenarioSpec& sc = spec.scenario;
   s.allow_keys({"type", "area", "stage_direction_deg", "walk_speed_mps", "initial_spacing_m", "passing_side",
                 "mesh", "agents"});
-  s.choice("type", sc.type, {"stationary", "corridor", "pair_crossing", "flow_a", "flow_b", "manifold"});
+  s.choice("type", sc.type);
   YamlSection area = s.section("area");
   area.allow_keys({"width_m", "depth_m"});
   area.number("width_m", sc.width_m, Range::positive(1000.0));
@@ -65,7 +65,7 @@ void parse_scenario(YamlSection s, ExperimentSpec& spec) {
   // 3 m/s is a fast run; human preferred walking speed is ~1.3 m/s (Bohannon 1997).
   s.number("walk_speed_mps", sc.walk_speed_mps, Range::positive(3.0));
   s.number("initial_spacing_m", sc.initial_spacing_m, Range::positive(10.0));
-  s.choice("passing_side", sc.passing_side, {"left", "right", "alternate"});
+  s.choice("passing_side", sc.passing_side);
   s.integer("agents", sc.agents, 0, 100000);
   if (s.has("mesh")) {
     std::string mesh;
@@ -77,7 +77,7 @@ void parse_scenario(YamlSection s, ExperimentSpec& spec) {
       sc.mesh = mesh;
     }
   }
-  if (sc.type == "manifold" && sc.mesh.empty() && !s.has("mesh"))
+  if (sc.type == ScenarioKind::manifold && sc.mesh.empty() && !s.has("mesh"))
     s.diagnostics().error(s.node(), s.child_path("mesh"),
                           "a manifold scenario needs a mesh (scene name or file)");
 }
@@ -137,17 +137,16 @@ void parse_animation(YamlSection s, ExperimentSpec& spec) {
   SpecDiagnostics& diag = s.diagnostics();
   s.allow_keys({"body_model", "female_fraction", "motion", "walk_clips", "dance_clips", "ttca_threshold_s",
                 "dtca_threshold_m"});
-  const std::vector<std::string> models = {"procedural", "mpfb2"};
   const bool body_model_map = s.has("body_model") && s.get("body_model").IsMap();
   if (body_model_map) {
     YamlSection bm = s.section("body_model");
     bm.allow_keys({"type", "path"});
-    bm.choice("type", a.body_model, models);
+    bm.choice("type", a.body_model);
     bm.existing_path("path", a.body_model_path, true);
   } else {
-    s.choice("body_model", a.body_model, models);
+    s.choice("body_model", a.body_model);
   }
-  if (a.body_model == "mpfb2" && a.body_model_path.empty() &&
+  if (a.body_model == BodyModel::mpfb2 && a.body_model_path.empty() &&
       !(body_model_map && s.section("body_model").has("path"))) {
     const std::filesystem::path dir = default_mpfb2_dir();
     if (!std::filesystem::is_directory(dir))
@@ -159,7 +158,7 @@ void parse_animation(YamlSection s, ExperimentSpec& spec) {
       a.body_model_path = dir.string();
   }
   s.number("female_fraction", a.female_fraction, Range{0.0, 1.0});
-  s.choice("motion", a.motion, {"procedural", "clips"});
+  s.choice("motion", a.motion);
   parse_walk_clips(s, a);
   if (s.has("dance_clips")) {
     const YAML::Node list = s.get("dance_clips");
@@ -173,7 +172,7 @@ void parse_animation(YamlSection s, ExperimentSpec& spec) {
       }
     }
   }
-  if (a.motion == "clips" && !s.has("walk_clips") && !s.has("dance_clips"))
+  if (a.motion == MotionSource::clips && !s.has("walk_clips") && !s.has("dance_clips"))
     diag.error(s.get("motion"), s.child_path("motion"), "motion: clips needs walk_clips or dance_clips");
   // seed 001 §4.1: ttca_th = 0.7 s, dtca_th = 0.6 m.
   s.number("ttca_threshold_s", a.ttca_threshold_s, Range::positive(10.0));
@@ -342,7 +341,7 @@ void check_encoding(SpecDiagnostics& diag, const std::string& text) {
 void check_consistency(YamlSection& top, ExperimentSpec& spec) {
   SpecDiagnostics& diag = top.diagnostics();
   const Factor* density = spec.factor("density");
-  const bool area_scenario = spec.scenario.type == "stationary" || spec.scenario.type == "corridor";
+  const bool area_scenario = is_area_scenario(spec.scenario.type);
   if (density && area_scenario && !spec.factor("characters")) {
     const double area = spec.scenario.width_m * spec.scenario.depth_m;
     for (const FactorLevel& l : density->levels)
@@ -368,7 +367,7 @@ double largest_crowd(const ExperimentSpec& spec) {
   double most = spec.scenario.agents;
   if (const Factor* characters = spec.factor("characters"))
     for (const FactorLevel& l : characters->levels) most = std::max(most, l.number.value_or(0.0));
-  const bool area_scenario = spec.scenario.type == "stationary" || spec.scenario.type == "corridor";
+  const bool area_scenario = is_area_scenario(spec.scenario.type);
   if (const Factor* density = spec.factor("density"); density && area_scenario && !spec.factor("characters"))
     for (const FactorLevel& l : density->levels)
       most =

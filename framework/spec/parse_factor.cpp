@@ -18,20 +18,23 @@ struct FactorRule {
   std::string units;  ///< for messages
 };
 
+// The scenario kinds, plus seed 001 §4.2.1's names for its flows (A, B; framework/spec/type_condition.cpp).
+std::vector<std::string> scenario_level_names() {
+  std::vector<std::string> names = kind_names<ScenarioKind>();
+  names.insert(names.end(), {"A", "B"});
+  return names;
+}
+
 const std::vector<FactorRule>& factor_rules() {
   static const std::vector<FactorRule> rules = {
       {"density", LevelKind::kNumber, Range{0.0, 10.0, true, false}, {}, "characters per m^2"},
       {"characters", LevelKind::kWhole, Range{1.0, 10000.0}, {}, "characters"},
       {"viewpoint", LevelKind::kChoice, {}, viewpoint_names(), ""},
-      {"method", LevelKind::kChoice, {}, {"baseline", "ours"}, ""},
+      {"method", LevelKind::kChoice, {}, kind_names<CrowdMethod>(), ""},
       {"shoulder", LevelKind::kWhole, Range{0.0, 2.0}, {}, "characters with shoulder motions"},
       {"distance", LevelKind::kNumber, Range{0.0, 10.0, true, false}, {}, "metres"},
       {"trigger", LevelKind::kNumber, Range{0.0, 100.0}, {}, "percent"},
-      {"scenario",
-       LevelKind::kChoice,
-       {},
-       {"stationary", "corridor", "pair_crossing", "flow_a", "flow_b", "manifold", "A", "B"},
-       ""},
+      {"scenario", LevelKind::kChoice, {}, scenario_level_names(), ""},
       {"side", LevelKind::kChoice, {}, {"left", "right"}, ""},
   };
   return rules;

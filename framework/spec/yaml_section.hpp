@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "framework/spec/condition_kinds.hpp"
+
 namespace crowdlab {
 
 /// The list of problems found so far, plus what messages need (the file name and spec folder).
@@ -79,6 +81,13 @@ class YamlSection {
   void string(const std::string& key, std::string& out);
   /// A string that must be one of `choices` (did-you-mean on mismatch).
   void choice(const std::string& key, std::string& out, const std::vector<std::string>& choices);
+  /// choice() into one of the enums of framework/spec/condition_kinds.hpp, by its spellings.
+  template <class E>
+  void choice(const std::string& key, E& out) {
+    std::string text(kind_name(out));
+    choice(key, text, kind_names<E>());
+    if (const auto value = parse_kind<E>(text)) out = *value;
+  }
   void string_list(const std::string& key, std::vector<std::string>& out);
   void number_list(const std::string& key, std::vector<double>& out, const Range& range);
   /// A path relative to the spec folder; `out` receives the resolved path. `directory` selects

@@ -120,7 +120,7 @@ ManifoldScenario generate_manifold_scenario(const ExperimentSpec& spec, const Co
     for (size_t j = i + 1; j < static_cast<size_t>(n); ++j)
       min_gap = std::min(min_gap, (out.surface.agents[i].feet_m[0] - out.surface.agents[j].feet_m[0]).norm());
   r.min_spacing_m = std::isfinite(min_gap) ? min_gap : 0.0;
-  r.scenario = "manifold";
+  r.scenario = ScenarioKind::manifold;
   return out;
 }
 

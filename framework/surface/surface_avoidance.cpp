@@ -19,7 +19,8 @@ Vec3 social_force_velocity(const SurfaceCrowdModel& model, const SurfaceCrowdSta
   const SurfaceCrowdParams& p = model.params;
   const size_t K = static_cast<size_t>(p.max_neighbors);
   const Vec3& feet_a = s.points[i].position_m;
-  Vec3 acc = (v_pref - s.velocity_mps[i]) / p.sf_tau_s;
+  const SocialForceParams& sf = p.social;
+  Vec3 acc = (v_pref - s.velocity_mps[i]) / sf.relaxation_s;
   for (size_t k = 0; k < keep; ++k) {
     const size_t j = static_cast<size_t>(s.neighbors[i * K + k]);
     const auto tuples = offset_three_spheres(feet_a, s.up[i], s.points[j].position_m, s.up[j], p.body);
@@ -27,8 +28,8 @@ Vec3 social_force_velocity(const SurfaceCrowdModel& model, const SurfaceCrowdSta
     for (const auto& t : tuples)
       if (t.clearance_m < worst->clearance_m) worst = &t;
     const double magnitude =
-        p.sf_a_n * std::exp(-worst->clearance_m / p.sf_b_m) + p.sf_k * std::max(0.0, -worst->clearance_m);
-    acc -= worst->direction * (magnitude / p.sf_mass_kg);
+        sf.A_n * std::exp(-worst->clearance_m / sf.B_m) + sf.k_body * std::max(0.0, -worst->clearance_m);
+    acc -= worst->direction * (magnitude / sf.mass_kg);
   }
   return s.velocity_mps[i] + acc * p.dt_s;
 }

@@ -8,6 +8,7 @@
 #include <queue>
 #include <unordered_map>
 
+#include "framework/core/bucket_sort.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/seed.hpp"
 #include "framework/surface/geodesic_distance.hpp"
@@ -168,17 +169,12 @@ std::uint32_t bin_agents(const SurfaceCrowdModel& model, SurfaceCrowdState& s) {
     s.center_m[i] = s.points[i].position_m + s.up[i] * (p.body.height_m / 2);
   }
   s.cell_slot.resize(N);
-  s.slot_start.assign(slots + 1, 0);
+  s.slot_start.resize(slots + 1);
   s.slot_agents.resize(N);
-  for (size_t i = 0; i < N; ++i) {
+  for (size_t i = 0; i < N; ++i)
     s.cell_slot[i] = cell_hash(cell_of(s.center_m[i], p.neighbor_distance_m)) & mask;
-    ++s.slot_start[s.cell_slot[i] + 1];
-  }
-  for (size_t k = 0; k < slots; ++k) s.slot_start[k + 1] += s.slot_start[k];
-  {
-    std::vector<std::uint32_t> fill(s.slot_start.begin(), s.slot_start.end() - 1);
-    for (size_t i = 0; i < N; ++i) s.slot_agents[fill[s.cell_slot[i]]++] = static_cast<std::uint32_t>(i);
-  }
+  bucket_sort(s.cell_slot.data(), N, s.slot_start,
+              [&](size_t i, std::uint32_t slot) { s.slot_agents[slot] = static_cast<std::uint32_t>(i); });
   // Copies in slot order, so that scanning a cell reads contiguous memory (at 10,000 agents the
   // scattered reads of the agent arrays, not the arithmetic, dominated the step).
   s.sorted.resize(N);

@@ -1,7 +1,8 @@
 #pragma once
 // A crowd walking on a SurfaceMesh (seed 002). Immutable model (mesh, parameters, goal distance
 // fields) + mutable state (agents, scratch). One step, in named stages:
-//   1. bin      agents into a 3D hash grid of body centres (cell = neighbour distance)
+//   1. bin      agents into a 3D hash grid of body centres (cell = neighbour distance), by the same
+//               counting sort as the 2D neighbour grid (framework/core/bucket_sort.hpp)
 //   2. relevant per agent, candidates from the 27 surrounding cells filtered by RelevantMode, the
 //               max_neighbors with the smallest body clearance (stacked_clearance) kept (relevance.hpp).
 //               Ranking by body clearance, not by centre distance: two agents on perpendicular surfaces
@@ -37,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "framework/crowd/social_force_model.hpp"
 #include "framework/surface/relevance.hpp"
 #include "framework/surface/surface_walk.hpp"
 
@@ -54,7 +56,9 @@ struct SurfaceCrowdParams {
   double max_speed_mps = 1.8;        ///< >= preferred speed
   double dt_s = 1.0 / 30.0;          ///< (0, 0.2]
   RelevantMode relevant = RelevantMode::kVisibility;
-  double sf_a_n = 2000.0, sf_b_m = 0.08, sf_k = 1.2e5, sf_tau_s = 0.5, sf_mass_kg = 80.0;
+  /// The 2D crowd model's social-force constants (A_n, B_m, k_body, relaxation_s, mass_kg), one source for
+  /// both (framework/crowd/social_force_model.hpp); the surface model uses no wall or friction terms.
+  SocialForceParams social;
   double orca_time_horizon_s = 2.0;  ///< ORCA tau (s), as the 2D crowd model's default; (0, 10]
   double orca_margin_m = 0.1;        ///< ORCA plans with each sphere radius + margin (m); [0, 1]; see header
   double goal_reached_m = 0.75;      ///< a new goal is chosen within this geodesic distance

@@ -245,7 +245,7 @@ TEST_CASE("Bandai-Namco walks retarget to plausible forward walking with alterna
 }
 
 // (The ankle -> toe bone is excluded: feet are deliberately re-pitched to stand flat, see retarget.hpp.)
-TEST_CASE("Bandai-Namco: every clip imports; retargeted bones point where the source bones point") {
+TEST_CASE("Bandai-Namco: every clip imports, retargeted bones point where the source bones point") {
   const auto dir = test::shared_data("bandai-namco-1");
   if (dir.empty()) return;
   const BodyShape s = make_procedural_body({Sex::kFemale, 1.6, 1.0});
@@ -307,11 +307,11 @@ TEST_CASE("stationary crowd dancing from a BVH clip: in place, varied start time
   const auto dir = test::shared_data("bandai-namco-1");
   if (dir.empty()) return;
   AnimationSpec spec;
-  spec.motion = "clips";
+  spec.motion = MotionSource::clips;
   spec.dance_clips = {"dataset-1_dance-short_normal_001.bvh"};
   AnimationContext ctx;
   ctx.seed = 8;
-  ctx.scenario_type = "stationary";
+  ctx.scenario = ScenarioKind::stationary;
   ctx.clip_directory = dir;
   CrowdTrajectories t;
   t.fps = 30;
@@ -333,7 +333,7 @@ TEST_CASE("stationary crowd dancing from a BVH clip: in place, varied start time
             crowd.characters[1].frames[0].local_rotations[kLeftShoulder]) > 1e-3);
   spec.dance_clips = {"missing.bvh"};
   CHECK_THROWS_AS(animate_crowd(t, Environment{}, spec, ctx), InputError);
-  ctx.scenario_type = "corridor";
+  ctx.scenario = ScenarioKind::corridor;
   CHECK_THROWS_AS(animate_crowd(t, Environment{}, spec, ctx), InputError);
 }
 

@@ -57,16 +57,16 @@ TEST_CASE("animate_crowd: names, palettes, validity, stationary vs walking, dete
   AnimationContext ctx;
   ctx.seed = 77;
   ctx.condition_id = "test";
-  for (std::string scenario : {"stationary", "corridor"}) {
-    ctx.scenario_type = scenario;
-    const CrowdTrajectories t = line_crowd(6, scenario == "stationary" ? 0.0 : 1.2, 90);
+  for (const ScenarioKind scenario : {ScenarioKind::stationary, ScenarioKind::corridor}) {
+    ctx.scenario = scenario;
+    const CrowdTrajectories t = line_crowd(6, scenario == ScenarioKind::stationary ? 0.0 : 1.2, 90);
     const CrowdAnimation a = animate_crowd(t, Environment{}, spec, ctx);
     const CrowdAnimation b = animate_crowd(t, Environment{}, spec, ctx);
     REQUIRE(a.characters.size() == 6);
     CHECK(a.characters[0].name == "c000");
     CHECK(a.characters[5].name == "c005");
     CHECK(a.frame_count() == 90);
-    CHECK(a.meta.scenario == scenario);
+    CHECK(a.meta.scenario == kind_name(scenario));
     CHECK_NOTHROW(validate_crowd(a, "test"));
     int women = 0;
     for (size_t i = 0; i < 6; ++i) {
@@ -82,17 +82,17 @@ TEST_CASE("animate_crowd: names, palettes, validity, stationary vs walking, dete
     }
     CHECK(women == 3);
   }
-  ctx.scenario_type = "corridor";
+  ctx.scenario = ScenarioKind::corridor;
   CHECK_THROWS_AS(animate_crowd(CrowdTrajectories{}, Environment{}, spec, ctx), InputError);
-  spec.body_model = "mpfb2";
+  spec.body_model = BodyModel::mpfb2;
   CHECK_THROWS_AS(animate_crowd(line_crowd(2, 1, 10), Environment{}, spec, ctx), InputError);
 }
 
-TEST_CASE("animate_crowd gives identical results with one thread and many; shoulder factor is honoured") {
+TEST_CASE("animate_crowd gives identical results with one thread and many, shoulder factor is honoured") {
   AnimationSpec spec;
   AnimationContext ctx;
   ctx.seed = 5;
-  ctx.scenario_type = "pair_crossing";
+  ctx.scenario = ScenarioKind::pair_crossing;
   ctx.shoulder_count = 2;
   // A crossing pair 0.4 m apart plus a bystander.
   CrowdTrajectories t;

@@ -104,7 +104,7 @@ TEST_CASE("dance loops are seamless: the seam jump is like any other frame-to-fr
   }
 }
 
-TEST_CASE("neighbours are never in lock-step; dancing is deterministic") {
+TEST_CASE("neighbours are never in lock-step, dancing is deterministic") {
   const int n = 20, frames = 240;
   // Lock-step = the same joint velocities at the same time. Signal: every joint's velocity
   // relative to the pelvis (all characters face +Z), concatenated.
@@ -143,7 +143,7 @@ TEST_CASE("neighbours are never in lock-step; dancing is deterministic") {
   }
 }
 
-TEST_CASE("jumping leaves the ground with both feet; idle motions keep both feet down") {
+TEST_CASE("jumping leaves the ground with both feet, idle motions keep both feet down") {
   const BodyShape s = make_procedural_body({Sex::kMale, 1.8, 1.0});
   int jump = -1, idle = -1;
   for (size_t m = 0; m < dance_motions().size(); ++m) {

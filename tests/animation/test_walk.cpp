@@ -114,7 +114,7 @@ TEST_CASE("stride frequency measured from contacts matches the cadence relation"
   CHECK(120.0 / period == Approx(gait_parameters(v, 1.70).cadence_steps_per_min).epsilon(0.03));
 }
 
-TEST_CASE("walking follows curved paths and turns without skating; standing agents idle in place") {
+TEST_CASE("walking follows curved paths and turns without skating, standing agents idle in place") {
   const BodyShape s = make_procedural_body({Sex::kFemale, 1.65, 1.1});
   const WalkResult w = animate_walking(s, circle(1.2, 2.0, 8.0, 30.0), 30.0, walk_style_from_seed(5));
   const FootSkate skate = measure_foot_skate(s, w.frames, w.contact);

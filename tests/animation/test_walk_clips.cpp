@@ -146,12 +146,12 @@ TEST_CASE("a walking crowd from the spec's walk clips - errors name the clip") {
   const auto dir = test::shared_data("bandai-namco-1");
   if (dir.empty()) return;
   AnimationSpec spec;
-  spec.motion = "clips";
+  spec.motion = MotionSource::clips;
   spec.walk_clips = {"dataset-1_walk_normal_001.bvh", "dataset-1_walk_happy_001.bvh"};
   spec.walk_clip_speeds_mps = {1.2, 1.4};
   AnimationContext ctx;
   ctx.seed = 4;
-  ctx.scenario_type = "corridor";
+  ctx.scenario = ScenarioKind::corridor;
   ctx.clip_directory = dir;
   CrowdTrajectories t;
   t.fps = 30;

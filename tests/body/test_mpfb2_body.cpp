@@ -40,7 +40,7 @@ double body_height_from_mesh(const Mpfb2Model& model, const Mpfb2ShapeParams& p)
 
 }  // namespace
 
-TEST_CASE("MPFB2 assets load; the base mesh body is a plausible adult height") {
+TEST_CASE("MPFB2 assets load, the base mesh body is a plausible adult height") {
   const auto model = model_or_skip();
   if (!model) return;
   CHECK(model->body_vertices().size() > 10000);

@@ -35,7 +35,7 @@ TEST_CASE("capsule_box holds the capsule and is tight on every axis") {
   }
 }
 
-TEST_CASE("capsules_box is the union of the capsule boxes; the empty set gives an empty box") {
+TEST_CASE("capsules_box is the union of the capsule boxes, the empty set gives an empty box") {
   const std::array<Capsule, 2> caps{Capsule{{0, 0, 0}, {1, 0, 0}, 0.1}, Capsule{{0, 2, 0}, {0, 3, -1}, 0.2}};
   const Aabb box = capsules_box(caps);
   CHECK(box.lo.isApprox(Vec3(-0.2, -0.1, -1.2)));

@@ -51,13 +51,13 @@ CrowdAnimation corridor_walkers(double seconds) {
   ExperimentSpec spec =
       load_experiment_spec((test::source_dir() / "experiments/gomez2024_nonstationary.yaml").string());
   spec.duration_s = seconds;
-  spec.animation.body_model = "procedural";  // the capsule bodies these thresholds were measured on
+  spec.animation.body_model = BodyModel::procedural;  // the capsule bodies these thresholds were measured on
   const std::vector<Condition> conditions = enumerate_conditions(spec);
   REQUIRE(!conditions.empty());
   const Condition& condition = conditions.front();
   const ScenarioResult s = generate_scenario(spec, condition);
   AnimationContext ctx;
-  ctx.scenario_type = s.scenario;
+  ctx.scenario = s.scenario;
   ctx.seed = condition.seed;
   return animate_crowd(s.trajectories, s.environment, spec.animation, ctx);
 }

@@ -58,7 +58,7 @@ TEST_CASE("crowd.overlap_free: loaded from YAML, off by default, checked with fi
              Catch::Contains("did you mean 'overlap_free'?"));
 }
 
-TEST_CASE("crowd.overlap_free reaches the ORCA model; other models reject it",
+TEST_CASE("crowd.overlap_free reaches the ORCA model, other models reject it",
           "[crowd][spec][overlap_free]") {
   CrowdSpec c;
   CHECK_FALSE(make_navigation_model(c)->resolves_overlaps());

@@ -7,6 +7,7 @@
 #include "framework/core/error.hpp"
 #include "framework/crowd/count_spec_collisions.hpp"
 #include "framework/crowd/generate_scenario.hpp"
+#include "framework/spec/type_condition.hpp"
 #include "tests/crowd/crowd_test_helpers.hpp"
 #include "tests/support/test_paths.hpp"
 
@@ -32,12 +33,19 @@ Condition condition(std::map<std::string, FactorLevel> levels, int rep = 1, std:
 ExperimentSpec spec_for(const std::string& type, double width, double depth, double duration = 4.0) {
   ExperimentSpec s;
   s.seed = 5;
-  s.scenario.type = type;
+  s.scenario.type = parse_kind<ScenarioKind>(type).value();
   s.scenario.width_m = width;
   s.scenario.depth_m = depth;
   s.duration_s = duration;
   s.fps = 30.0;
   return s;
+}
+
+/// generate_scenario() of a hand-built condition, typed against `spec` as enumerate_conditions() types
+/// the spec's own conditions.
+ScenarioResult generate(const ExperimentSpec& spec, Condition c) {
+  type_condition(spec, c);
+  return generate(spec, c);
 }
 
 }  // namespace
@@ -47,9 +55,9 @@ TEST_CASE("scenarios: the stationary concert at seed 000's densities", "[crowd][
   const int expected[] = {20, 30, 40, 50, 60};
   const double densities[] = {2.22, 3.33, 4.44, 5.55, 6.66};
   for (int k = 0; k < 5; ++k) {
-    const ScenarioResult r = generate_scenario(spec, condition({{"density", level(densities[k])}}));
+    const ScenarioResult r = generate(spec, condition({{"density", level(densities[k])}}));
     INFO("density " << densities[k]);
-    CHECK(r.scenario == "stationary");
+    CHECK(r.scenario == ScenarioKind::stationary);
     REQUIRE(r.trajectories.agents.size() == static_cast<std::size_t>(expected[k]));
     CHECK(r.trajectories.frame_count() == 60);
     CHECK(r.area_m2 == Approx(9.0));
@@ -68,7 +76,7 @@ TEST_CASE("scenarios: the stationary concert at seed 000's densities", "[crowd][
     }
   }
   // The characters factor wins over density.
-  CHECK(generate_scenario(spec, condition({{"characters", level(25)}})).trajectories.agents.size() == 25);
+  CHECK(generate(spec, condition({{"characters", level(25)}})).trajectories.agents.size() == 25);
 }
 
 TEST_CASE("scenarios: corridor densities hold within 5 %, walls are obstacles and boxes",
@@ -76,9 +84,9 @@ TEST_CASE("scenarios: corridor densities hold within 5 %, walls are obstacles an
   const double w = 3.0, len = 8.0;
   for (double density : {2.2, 3.3, 4.4, 5.5, 6.6}) {
     const ExperimentSpec spec = spec_for("corridor", w, len, 4.0);
-    const ScenarioResult r = generate_scenario(spec, condition({{"density", level(density)}}));
+    const ScenarioResult r = generate(spec, condition({{"density", level(density)}}));
     INFO("density " << density);
-    CHECK(r.scenario == "corridor");
+    CHECK(r.scenario == ScenarioKind::corridor);
     CHECK(r.achieved_density_per_m2 == Approx(density).epsilon(0.05));
     REQUIRE(r.environment.boxes.size() == 2);
     const auto& agents = r.trajectories.agents;
@@ -134,12 +142,12 @@ TEST_CASE("scenarios: pair crossing hits the requested distance within 1 cm at m
     }
   }
   // alternate: odd repetitions left, even right.
-  spec.scenario.passing_side = "alternate";
-  const auto r1 = generate_scenario(spec, condition({{"distance", level(0.4)}}, 1));
-  const auto r2 = generate_scenario(spec, condition({{"distance", level(0.4)}}, 2));
+  spec.scenario.passing_side = PassingSide::alternate;
+  const auto r1 = generate(spec, condition({{"distance", level(0.4)}}, 1));
+  const auto r2 = generate(spec, condition({{"distance", level(0.4)}}, 2));
   CHECK(r1.trajectories.agents[1].position_m[0].x() > 0);
   CHECK(r2.trajectories.agents[1].position_m[0].x() < 0);
-  CHECK_THROWS_WITH(generate_scenario(spec, condition({})), Catch::Contains("distance"));
+  CHECK_THROWS_WITH(generate(spec, condition({})), Catch::Contains("distance"));
 }
 
 TEST_CASE("scenarios: flow densities match seed 001's levels within 5 %", "[crowd][scenario]") {
@@ -150,7 +158,7 @@ TEST_CASE("scenarios: flow densities match seed 001's levels within 5 %", "[crow
       const ScenarioResult r = generate_scenario(
           spec, condition({{"scenario", FactorLevel{type, std::nullopt}}, {"density", level(density)}}));
       INFO("scenario " << type << " density " << density);
-      CHECK(r.scenario == (std::string(type) == "A" ? "flow_a" : "flow_b"));
+      CHECK(r.scenario == (std::string(type) == "A" ? ScenarioKind::flow_a : ScenarioKind::flow_b));
       CHECK(r.achieved_density_per_m2 == Approx(density).epsilon(0.05));
       // Independent check at frame 0: crowd members per area of their lattice blocks.
       const double s = 1.0 / std::sqrt(density);
@@ -180,25 +188,24 @@ TEST_CASE("scenarios: bad parameters give clear InputErrors", "[crowd][scenario]
   ExperimentSpec spec = spec_for("stationary", 3.0, 3.0, 1.0);
   const Condition c = condition({{"density", level(4.44)}});
   spec.crowd.agent_radius_m = -0.2;
-  CHECK_THROWS_WITH(generate_scenario(spec, c), Catch::Contains("crowd.agent_radius_m"));
+  CHECK_THROWS_WITH(generate(spec, c), Catch::Contains("crowd.agent_radius_m"));
   spec = spec_for("stationary", 0.0, 3.0, 1.0);
-  CHECK_THROWS_WITH(generate_scenario(spec, c), Catch::Contains("scenario.width_m"));
+  CHECK_THROWS_WITH(generate(spec, c), Catch::Contains("scenario.width_m"));
   spec = spec_for("stationary", 3.0, 3.0, 1.0);
-  CHECK_THROWS_WITH(generate_scenario(spec, condition({{"characters", level(400)}})),
+  CHECK_THROWS_WITH(generate(spec, condition({{"characters", level(400)}})),
                     Catch::Contains("cannot fit") || Catch::Contains("cannot be placed"));
-  CHECK_THROWS_WITH(generate_scenario(spec, condition({{"density", level(-1)}})),
-                    Catch::Contains("factors.density"));
-  CHECK_THROWS_WITH(generate_scenario(spec, condition({})), Catch::Contains("crowd size is unknown"));
-  spec.scenario.type = "parade";
-  CHECK_THROWS_WITH(generate_scenario(spec, c), Catch::Contains("unknown scenario 'parade'"));
+  CHECK_THROWS_WITH(generate(spec, condition({{"density", level(-1)}})), Catch::Contains("factors.density"));
+  CHECK_THROWS_WITH(generate(spec, condition({})), Catch::Contains("crowd size is unknown"));
+  spec.scenario.type = ScenarioKind::manifold;
+  CHECK_THROWS_WITH(generate(spec, c), Catch::Contains("surface stage"));
   spec = spec_for("corridor", 3.0, 8.0, 1.0);
   spec.crowd.model = "nope";
-  CHECK_THROWS_WITH(generate_scenario(spec, c), Catch::Contains("crowd.model"));
+  CHECK_THROWS_WITH(generate(spec, c), Catch::Contains("crowd.model"));
   spec = spec_for("flow_b", 0.3, 8.0, 1.0);
-  CHECK_THROWS_AS(generate_scenario(spec, c), InputError);
+  CHECK_THROWS_AS(generate(spec, c), InputError);
   spec = spec_for("corridor", 3.0, 8.0, 1.0);
   spec.fps = 0;
-  CHECK_THROWS_WITH(generate_scenario(spec, c), Catch::Contains("fps"));
+  CHECK_THROWS_WITH(generate(spec, c), Catch::Contains("fps"));
 }
 
 TEST_CASE("scenarios: deterministic per seed and thread count", "[crowd][scenario][determinism]") {
@@ -207,13 +214,13 @@ TEST_CASE("scenarios: deterministic per seed and thread count", "[crowd][scenari
   auto hash = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                               static_cast<std::size_t>(threads));
-    return test::trajectories_hash(generate_scenario(spec, c).trajectories);
+    return test::trajectories_hash(generate(spec, c).trajectories);
   };
   const std::string h1 = hash(1);
   CHECK(h1 == hash(2));
   CHECK(h1 == hash(1));
-  CHECK(h1 != test::trajectories_hash(
-                  generate_scenario(spec, condition({{"density", level(5.5)}}, 1, 78)).trajectories));
+  CHECK(h1 !=
+        test::trajectories_hash(generate(spec, condition({{"density", level(5.5)}}, 1, 78)).trajectories));
 }
 
 TEST_CASE("scenarios: Table 2 counts colliding pair-frames over all pairs, varying per repetition",
@@ -225,13 +232,15 @@ TEST_CASE("scenarios: Table 2 counts colliding pair-frames over all pairs, varyi
   spec.crowd.cost_weights = {{"separation", 1.0}, {"sigma_m", 0.3}, {"lookahead_s", 2.0}};
   for (const char* type : {"A", "B"}) {
     std::vector<Condition> conditions;
-    for (int rep = 1; rep <= 3; ++rep)
+    for (int rep = 1; rep <= 3; ++rep) {
       conditions.push_back(condition({{"scenario", FactorLevel{type, std::nullopt}}, {"density", level(2.8)}},
                                      rep, 100 + rep));
+      type_condition(spec, conditions.back());
+    }
     const auto counts = count_spec_collisions(spec, conditions);
     REQUIRE(counts.size() == 3);
     for (std::size_t k = 0; k < counts.size(); ++k) {
-      const auto t = generate_scenario(spec, conditions[k]).trajectories;
+      const auto t = generate(spec, conditions[k]).trajectories;
       long long brute = 0;
       for (int f = 0; f < t.frame_count(); ++f)
         for (std::size_t i = 0; i < t.agents.size(); ++i)

@@ -88,7 +88,7 @@ TEST_CASE("run with the default MPFB2 assets: crowd files carry the shaped meshe
   // (Rendering the MPFB2 meshes is tested in tests/stimuli; no video here keeps this test short.)
 }
 
-TEST_CASE("mpfb2 without a path takes CROWDLAB_MPFB2, else the shipped assets; a bad folder is named") {
+TEST_CASE("mpfb2 without a path takes CROWDLAB_MPFB2, else the shipped assets, a bad folder is named") {
   const fs::path out = scratch_dir("pipeline_mpfb2_env");
   const fs::path spec = out / "spec.yaml";
   std::ofstream(spec) << spec_text("mpfb2");

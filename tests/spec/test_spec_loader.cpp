@@ -7,7 +7,6 @@
 #include "framework/core/seed.hpp"
 #include "framework/core/sha256.hpp"
 #include "framework/spec/did_you_mean.hpp"
-#include "framework/spec/effective_scenario_type.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 #include "tests/support/test_paths.hpp"
 
@@ -54,7 +53,7 @@ TEST_CASE("a spec's values reach the typed structs, with units and defaults") {
       "outputs: {video: false, contact_sheet: false}\n");
   CHECK(s.name == "t");
   CHECK(s.seed == 5);
-  CHECK(s.scenario.type == "corridor");
+  CHECK(s.scenario.type == ScenarioKind::corridor);
   CHECK(s.scenario.width_m == 2.5);
   CHECK(s.scenario.depth_m == 8.0);
   CHECK(s.crowd.model == "social");
@@ -310,7 +309,7 @@ TEST_CASE("referenced files resolve against the spec folder and must exist") {
   CHECK(s.animation.walk_clip_speeds_mps[0] == 1.2);
   CHECK(std::filesystem::equivalent(s.animation.dance_clips.at(0), dir / "clips" / "dance.bvh"));
   CHECK(std::filesystem::equivalent(s.animation.body_model_path, dir / "clips" / "body"));
-  CHECK(s.animation.body_model == "mpfb2");
+  CHECK(s.animation.body_model == BodyModel::mpfb2);
   // From another folder the same relative paths are missing: three errors, each with its line.
   const auto errors = errors_of(kHeader + anim, (dir / "elsewhere").string());
   REQUIRE(errors.size() == 3);
@@ -386,14 +385,14 @@ TEST_CASE("edit distance and suggestions") {
   CHECK(suggestion_suffix("zzz", {"a", "b"}) == " (expected one of: a, b)");
 }
 
-TEST_CASE("the effective scenario follows the scenario factor, with A/B as flows") {
+TEST_CASE("typed conditions: the scenario follows the scenario factor, with A/B as flows") {
   const ExperimentSpec s =
       load_text(kHeader + "scenario: {type: corridor}\nfactors: {scenario: [A, B, stationary]}\n");
   const auto conds = enumerate_conditions(s);
   REQUIRE(conds.size() == 3);
-  CHECK(effective_scenario_type(s, conds[0]) == "flow_a");
-  CHECK(effective_scenario_type(s, conds[1]) == "flow_b");
-  CHECK(effective_scenario_type(s, conds[2]) == "stationary");
+  CHECK(conds[0].params.scenario == ScenarioKind::flow_a);
+  CHECK(conds[1].params.scenario == ScenarioKind::flow_b);
+  CHECK(conds[2].params.scenario == ScenarioKind::stationary);
   const ExperimentSpec plain = load_text(kHeader + "scenario: {type: corridor}\n");
-  CHECK(effective_scenario_type(plain, enumerate_conditions(plain).at(0)) == "corridor");
+  CHECK(enumerate_conditions(plain).at(0).params.scenario == ScenarioKind::corridor);
 }

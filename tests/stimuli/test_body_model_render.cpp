@@ -163,7 +163,7 @@ TEST_CASE("MPFB2 bodies: clothing regions by mesh position, rendered where the c
   CHECK(render_frame(renderer, crowd, options, cam, 1).bgr == img.bgr);
 }
 
-TEST_CASE("an appearance index packs clothing and skin tone; the tone replaces the palette's skin",
+TEST_CASE("an appearance index packs clothing and skin tone, the tone replaces the palette's skin",
           "[stimuli]") {
   for (int clothing : {0, 3, 17, 900})
     for (int tone = -1; tone < kSkinToneCount; ++tone) {

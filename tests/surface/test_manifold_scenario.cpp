@@ -18,7 +18,7 @@ namespace {
 ExperimentSpec manifold_spec(const std::string& mesh, const std::string& model, int agents,
                              double duration_s) {
   ExperimentSpec spec;
-  spec.scenario.type = "manifold";
+  spec.scenario.type = ScenarioKind::manifold;
   spec.scenario.mesh = mesh;
   spec.scenario.agents = agents;
   spec.crowd.model = model;
@@ -121,7 +121,7 @@ TEST_CASE("a manifold scenario animates walkers standing on the floor and the wa
   CHECK_FALSE(m.result.environment.ground_plane);
   REQUIRE(m.result.environment.meshes.size() == 1);
   AnimationContext ctx;
-  ctx.scenario_type = "manifold";
+  ctx.scenario = ScenarioKind::manifold;
   ctx.seed = 5;
   CrowdAnimation crowd = animate_crowd(m.result.trajectories, m.result.environment, spec.animation, ctx);
   const CrowdAnimation flat = crowd;  // animated on the developed plane y = 0

@@ -5,7 +5,6 @@
 
 #include "experiments/cli/pipeline/library_versions.hpp"
 #include "framework/core/sha256.hpp"
-#include "framework/spec/condition_viewpoint.hpp"
 #include "stimuli/clip_sidecar.hpp"
 #include "stimuli/crowd_extent.hpp"
 #include "stimuli/render_clip.hpp"
@@ -31,12 +30,12 @@ class RenderStages final : public PresentationStages {
 
   void run(StageRunner& runner, CrowdGroup& g, const Condition& c, const fs::path& out_dir,
            const fs::path& condition_dir, StimulusEntry& e) override {
-    const CrowdMethod method = crowd_method(c);
+    const CrowdMethod method = c.params.method;
     RenderOptions ro = render_options();
     // render.frames_png: the rendered frames themselves, before H.264 (tests hash their pixels).
     if (spec_.render.frames_png) ro.frames_png_dir = (condition_dir / "frames").string();
     const fs::path clip = condition_dir / "clip.mp4";
-    runner.run(render_stage(g, method, condition_viewpoint(spec_, c), ro, clip));
+    runner.run(render_stage(g, method, c.params.viewpoint, ro, clip));
     if (spec_.outputs.contact_sheet) runner.run(contact_sheet_stage(g, method, ro));
     e.file = fs::relative(clip, out_dir).string();
     e.width = ro.width;
@@ -82,7 +81,7 @@ class RenderStages final : public PresentationStages {
     s.name = "contact_sheet";
     s.params = json{{"w", ro.width}, {"h", ro.height}, {"framing", kFramingRule}};
     s.upstream = {g.animation_hash(method), g.animation_hash(CrowdMethod::baseline)};
-    s.outputs.push_back({g.dir() / (std::string(crowd_method_name(method)) + ".contact_sheet.png"),
+    s.outputs.push_back({g.dir() / (std::string(kind_name(method)) + ".contact_sheet.png"),
                          [this, &g, &crowd, ro](const fs::path& tmp) {
                            write_contact_sheet(renderer(), crowd, ro, crowd.frame_count() / 2, tmp.string(),
                                                &extent(g));
