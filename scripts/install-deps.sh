@@ -13,14 +13,15 @@ build_pkgs=(
   libboost-dev libboost-math-dev libcli11-dev libspdlog-dev libfmt-dev libtbb-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
   libplplot-dev plplot-driver-cairo libfreetype-dev fonts-dejavu-core
-  libbenchmark-dev catch2 zlib1g-dev
+  libbenchmark-dev catch2 zlib1g-dev libzip-dev
 )
 # Tools the tests drive: a virtual X server and xdotool for the study window, Node.js for the
 # Khronos glTF validator, GNU parallel for the sharding test, and Slurm with munge for the real-sbatch
 # test (a private single-node cluster, scripts/slurm-single-node.sh; it starts in about a second),
-# and Chromium, driven headless by the web study's browser test (puppeteer-core, see make web-deps).
+# Chromium, driven headless by the web study's browser test (puppeteer-core, see make web-deps), and
+# Info-ZIP unzip, whose `unzip -t` checks the JATOS archives that libzip (libzip-dev) writes.
 # Node.js and npm also install jsPsych for `crowdlab export-web` (make deps runs make web-deps).
-test_pkgs=(xvfb xdotool x11-apps nodejs npm parallel slurm-wlm munge chromium)
+test_pkgs=(xvfb xdotool x11-apps nodejs npm parallel slurm-wlm munge chromium unzip)
 
 want=("${build_pkgs[@]}")
 if [[ ${1:-} == --test ]]; then want+=("${test_pkgs[@]}"); fi

@@ -14,10 +14,14 @@
 // web_order_participant() picks: ids[fnv1a32(id) mod ids.size()] (FNV-1a, 32 bit, over the id's
 // bytes; http://www.isthe.com/chongo/tech/comp/fnv/). The data record it under `order_of`, and
 // import-web checks the answers against that order.
-// JATOS archive (.jzip, https://www.jatos.org/): a ZIP holding <dir>.jas (JSON, "version": "3", data:
-// study uuid, title, description, dirName, componentList [{uuid, title, htmlFilePath, reloadable,
-// active, ...}]) and the folder <dir>/ with WEBDIR's files (JATOS serves it as the study assets).
-// The uuids derive from the spec's name, so exporting a changed spec again replaces the same study.
+// JATOS archive (.jzip, https://www.jatos.org/JATOS-Study-Archive-JZIP.html): a ZIP holding, at its top
+// level, exactly one <dir>.jas and one folder <dir>/ with WEBDIR's files (JATOS moves that folder into
+// its study assets; it refuses archives with two .jas files or two folders, ImportExportService). The
+// .jas is jatos_study_json(): "version": "3" and "data" with the fields of JATOS's documented example
+// and JSON schema, in their order (study uuid, title, description, flags, dirName, comments, jsonData,
+// endRedirectUrl, studyEntryMsg, componentList with one component, batchList with one "Default"
+// batch). The uuids derive from the spec's name, so exporting a changed spec again replaces the same
+// study.
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -41,6 +45,9 @@ std::string web_order_participant(const std::string& participant, const std::vec
 /// per embedded id. Throws InputError (via build_trial_list / resolve_questions) on a bad protocol.
 nlohmann::json web_timeline(const ExperimentSpec& spec, const StimulusManifest& manifest,
                             const std::string& manifest_sha256, const std::vector<std::string>& participants);
+
+/// The JATOS study properties (.jas) for the study assets folder `dir_name`.
+nlohmann::ordered_json jatos_study_json(const ExperimentSpec& spec, const std::string& dir_name);
 
 struct WebExportOptions {
   std::string stimuli_dir;                ///< folder of manifest.csv

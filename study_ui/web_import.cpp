@@ -1,6 +1,7 @@
 #include "study_ui/web_import.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -21,6 +22,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kFormat = "crowdlab-web-data";
+constexpr const char* kRecordColumn = "crowdlab_record";  ///< the record's key in jsPsych's trial data
 
 struct WebRecord {
   std::string file;
@@ -45,8 +47,8 @@ void collect_records(const nlohmann::json& value, const std::string& file, int l
                      std::vector<WebRecord>& out) {
   if (value.is_array()) {
     for (const auto& trial : value)
-      if (trial.is_object() && trial.contains("crowdlab_record"))
-        out.push_back({file, line, trial["crowdlab_record"]});
+      if (trial.is_object() && trial.contains(kRecordColumn))
+        out.push_back({file, line, trial[kRecordColumn]});
     return;
   }
   if (!value.is_object() || value.value("format", "") != kFormat)
@@ -61,9 +63,47 @@ void collect_records(const nlohmann::json& value, const std::string& file, int l
   }
 }
 
-/// One file: a whole JSON document, else JSON lines.
+bool is_csv_file(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".csv";
+}
+
+/// jsPsych's CSV data (jsPsych.data.get().csv(), JSON2CSV in jspsych/src/modules/data/utils.ts): one
+/// row per jsPsych trial, one column per data key, every cell quoted, objects as JSON text. The trial
+/// records are the JSON objects in the crowdlab_record column; rows with that cell empty are the
+/// study's other screens.
+std::vector<WebRecord> read_jspsych_csv(const std::string& path, const std::string& text) {
+  const CsvTable table = parse_csv(text, path);  // names file and line for a ragged row or open quote
+  if (!table.has_column(kRecordColumn))
+    throw InputError(SourceLocation{path, 1, 0, kRecordColumn},
+                     "not jsPsych data of a crowdlab web study (no column '" + std::string(kRecordColumn) +
+                         "' in the header)");
+  const size_t col = table.column(kRecordColumn);
+  std::vector<WebRecord> out;
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    const std::string& cell = table.cell(r, col);
+    if (cell.find_first_not_of(" \t") == std::string::npos) continue;
+    const int line = table.line_numbers[r];
+    nlohmann::json record;
+    try {
+      record = nlohmann::json::parse(cell);
+    } catch (const nlohmann::json::parse_error& e) {
+      throw InputError(SourceLocation{path, line, 0, kRecordColumn},
+                       std::string("not valid JSON: ") + e.what());
+    }
+    if (!record.is_object())
+      throw InputError(SourceLocation{path, line, 0, kRecordColumn},
+                       "expected a trial record (a JSON object)");
+    out.push_back({path, line, record});
+  }
+  return out;
+}
+
+/// One file: jsPsych CSV (*.csv), else a whole JSON document, else JSON lines.
 std::vector<WebRecord> read_result_file(const std::string& path) {
   const std::string text = read_text(path);
+  if (is_csv_file(path)) return read_jspsych_csv(path, text);
   std::vector<WebRecord> out;
   try {
     collect_records(nlohmann::json::parse(text), path, 1, out);
@@ -96,11 +136,13 @@ std::vector<std::string> result_files(const std::vector<std::string>& inputs) {
       std::vector<std::string> found;
       for (const auto& e : fs::recursive_directory_iterator(in)) {
         const std::string ext = e.path().extension().string();
-        if (e.is_regular_file() && (ext == ".json" || ext == ".jsonl" || ext == ".txt"))
+        if (e.is_regular_file() &&
+            (ext == ".json" || ext == ".jsonl" || ext == ".txt" || is_csv_file(e.path())))
           found.push_back(e.path().string());
       }
       std::sort(found.begin(), found.end());
-      if (found.empty()) throw InputError(in + ": no result files (*.json, *.jsonl, *.txt) in this folder");
+      if (found.empty())
+        throw InputError(in + ": no result files (*.json, *.jsonl, *.txt, *.csv) in this folder");
       files.insert(files.end(), found.begin(), found.end());
     } else {
       throw InputError(SourceLocation{"", 0, 0, "RESULTS"}, in + ": no such file or folder");

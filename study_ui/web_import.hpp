@@ -3,12 +3,15 @@
 // sessions (P.csv with run_session.hpp's columns, plus P.json metadata), so `crowdlab analyze report`
 // reads online and lab data alike.
 //
-// Inputs (files, or folders searched recursively for *.json, *.jsonl, *.txt), any mix of:
+// Inputs (files, or folders searched recursively for *.json, *.jsonl, *.txt, *.csv), any mix of:
 //   - the participant's download / a localStorage dump: {"format": "crowdlab-web-data", "records": [...]}
 //   - JATOS result data (appendResultData): one record per line, {"format": "crowdlab-web-data",
 //     "trial": ..., ...} (JSON lines; JATOS's exported data.txt files)
 //   - jsPsych's own JSON data (jsPsych.data.get().json()): an array of trials, the records under
 //     "crowdlab_record".
+//   - jsPsych's CSV data (jsPsych.data.get().csv(), *.csv): RFC 4180, a header row of data keys, the
+//     records as JSON text in the column "crowdlab_record" (empty on the other screens' rows). The
+//     line of a CSV record is the file line of its row.
 // Checks, each an InputError naming the file, line and key (exit code 2): the record's spec_hash is the
 // spec's, its stimulus sha256 is the manifest's, its trial number, stimulus, block and practice flag are
 // those of the order that crowdlab computes for `order_of` (build_trial_list), its answers are one valid

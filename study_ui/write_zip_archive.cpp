@@ -1,43 +1,19 @@
 #include "study_ui/write_zip_archive.hpp"
 
-#include <zlib.h>
+#include <sys/stat.h>
+#include <zip.h>
 
-#include <cstdint>
 #include <filesystem>
-#include <fstream>
-#include <limits>
-#include <sstream>
+#include <memory>
 
 #include "framework/core/error.hpp"
-#include "study_ui/response_log.hpp"
 
 namespace crowdlab::study {
 namespace {
 
-constexpr std::uint32_t kLocalHeaderSignature = 0x04034b50;
-constexpr std::uint32_t kCentralHeaderSignature = 0x02014b50;
-constexpr std::uint32_t kEndOfCentralDirectorySignature = 0x06054b50;
-constexpr std::uint16_t kVersion = 20;             // 2.0: the version that introduced directories/stored
-constexpr std::uint16_t kUtf8NamesFlag = 1 << 11;  // APPNOTE §4.4.4 bit 11
-constexpr std::uint16_t kDosDate1980 = (0 << 9) | (1 << 5) | 1;  // 1980-01-01, time 00:00:00
-
-void put16(std::string& out, std::uint32_t v) {
-  out.push_back(static_cast<char>(v & 0xff));
-  out.push_back(static_cast<char>((v >> 8) & 0xff));
-}
-
-void put32(std::string& out, std::uint32_t v) {
-  put16(out, v & 0xffff);
-  put16(out, v >> 16);
-}
-
-std::string read_binary(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read (for the zip archive)");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+constexpr zip_uint16_t kDosTime0000 = 0;                           // 00:00:00
+constexpr zip_uint16_t kDosDate1980 = (0 << 9) | (1 << 5) | 1;     // 1980-01-01 (APPNOTE §4.4.6)
+constexpr zip_uint32_t kRegularFile0644 = (S_IFREG | 0644) << 16;  // Unix mode in the high 16 bits
 
 void check_name(const std::string& name) {
   if (name.empty() || name.front() == '/' || name.find('\\') != std::string::npos ||
@@ -45,63 +21,53 @@ void check_name(const std::string& name) {
     throw InputError("invalid name inside a zip archive: '" + name + "'");
 }
 
-/// The fields a local header and a central header share (APPNOTE §4.3.7 and §4.3.12, from "version
-/// needed" to "extra field length").
-void put_common_fields(std::string& out, const std::string& name, std::uint32_t crc, std::uint32_t size) {
-  put16(out, kVersion);
-  put16(out, kUtf8NamesFlag);
-  put16(out, 0);  // method: stored
-  put16(out, 0);  // time 00:00:00
-  put16(out, kDosDate1980);
-  put32(out, crc);
-  put32(out, size);  // compressed size = size (stored)
-  put32(out, size);
-  put16(out, static_cast<std::uint32_t>(name.size()));
-  put16(out, 0);  // extra field length
-}
+struct Discard {
+  void operator()(zip_t* z) const { zip_discard(z); }
+};
 
 }  // namespace
 
 void write_zip_archive(const std::string& zip_path, const std::vector<ZipEntry>& entries) {
-  if (entries.size() > 0xffff) throw RuntimeError(zip_path + ": more than 65535 entries (no ZIP64)");
-  std::string archive, central;
+  int code = 0;
+  std::unique_ptr<zip_t, Discard> archive(zip_open(zip_path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &code));
+  if (!archive) {
+    zip_error_t error;
+    zip_error_init_with_code(&error, code);
+    const std::string what = zip_error_strerror(&error);
+    zip_error_fini(&error);
+    throw RuntimeError(zip_path + ": cannot create the zip archive: " + what);
+  }
+  zip_t* z = archive.get();
+  auto fail = [&](const std::string& what) -> RuntimeError {
+    return RuntimeError(zip_path + ": " + what + ": " + zip_strerror(z));
+  };
   for (const ZipEntry& e : entries) {
     check_name(e.name);
-    const std::string data = read_binary(e.source_path);
-    if (data.size() >= std::numeric_limits<std::uint32_t>::max() ||
-        archive.size() + data.size() >= std::numeric_limits<std::uint32_t>::max())
-      throw RuntimeError(zip_path + ": over 4 GiB (no ZIP64)");
-    const auto size = static_cast<std::uint32_t>(data.size());
-    const auto crc = static_cast<std::uint32_t>(
-        crc32(0L, reinterpret_cast<const Bytef*>(data.data()), static_cast<uInt>(data.size())));
-    const auto offset = static_cast<std::uint32_t>(archive.size());
-
-    put32(archive, kLocalHeaderSignature);
-    put_common_fields(archive, e.name, crc, size);
-    archive += e.name;
-    archive += data;
-
-    put32(central, kCentralHeaderSignature);
-    put16(central, kVersion);  // version made by (MS-DOS attributes, i.e. none)
-    put_common_fields(central, e.name, crc, size);
-    put16(central, 0);  // file comment length
-    put16(central, 0);  // disk number start
-    put16(central, 0);  // internal attributes
-    put32(central, 0);  // external attributes
-    put32(central, offset);
-    central += e.name;
+    zip_source_t* source = nullptr;
+    if (e.source_path.empty()) {
+      source = zip_source_buffer(z, e.contents.data(), e.contents.size(), 0);  // kept alive by `entries`
+    } else {
+      if (!std::filesystem::is_regular_file(e.source_path))
+        throw InputError(e.source_path + ": cannot read (for the zip archive)");
+      source = zip_source_file(z, e.source_path.c_str(), 0, -1);
+    }
+    if (!source) throw fail("cannot read " + (e.source_path.empty() ? e.name : e.source_path));
+    const zip_int64_t index = zip_file_add(z, e.name.c_str(), source, ZIP_FL_ENC_UTF_8);
+    if (index < 0) {
+      zip_source_free(source);
+      if (zip_error_code_zip(zip_get_error(z)) == ZIP_ER_EXISTS)
+        throw InputError("name twice inside a zip archive: '" + e.name + "'");
+      throw fail("cannot add " + e.name);
+    }
+    const auto i = static_cast<zip_uint64_t>(index);
+    if (zip_set_file_compression(z, i, ZIP_CM_STORE, 0) != 0 ||
+        zip_file_set_dostime(z, i, kDosTime0000, kDosDate1980, 0) != 0 ||
+        zip_file_set_external_attributes(z, i, 0, ZIP_OPSYS_UNIX, kRegularFile0644) != 0)
+      throw fail("cannot set the attributes of " + e.name);
   }
-  const auto central_offset = static_cast<std::uint32_t>(archive.size());
-  archive += central;
-  put32(archive, kEndOfCentralDirectorySignature);
-  put16(archive, 0);  // this disk
-  put16(archive, 0);  // disk with the central directory
-  put16(archive, static_cast<std::uint32_t>(entries.size()));
-  put16(archive, static_cast<std::uint32_t>(entries.size()));
-  put32(archive, static_cast<std::uint32_t>(central.size()));
-  put32(archive, central_offset);
-  put16(archive, 0);  // comment length
-  write_file_atomically(zip_path, archive, false);
+  // zip_close writes a temporary file beside zip_path, renames it on success and frees the archive.
+  if (zip_close(z) != 0) throw fail("cannot write the zip archive");
+  archive.release();
 }
 
 }  // namespace crowdlab::study

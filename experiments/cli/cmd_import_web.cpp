@@ -23,9 +23,11 @@ const CommandRegistration kImportWeb([](CLI::App& root) {
   auto* cmd = root.add_subcommand(
       "import-web",
       "Read a web study's results (JATOS result data, the participant's download or a localStorage dump, "
-      "jsPsych JSON) and write the same per-participant tidy CSVs as `crowdlab study`, after checking the "
+      "jsPsych JSON or CSV) and write the same per-participant tidy CSVs as `crowdlab study`, after checking "
+      "the "
       "spec hash, the stimulus hashes and the trial orders. See docs/online.md.");
-  cmd->add_option("results", a->results, "Result files, or folders searched for *.json, *.jsonl, *.txt")
+  cmd->add_option("results", a->results,
+                  "Result files, or folders searched for *.json, *.jsonl, *.txt, *.csv (jsPsych CSV)")
       ->required();
   cmd->add_option("--spec", a->spec, "The experiment spec (YAML) the web study was exported from")
       ->required()

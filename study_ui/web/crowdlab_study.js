@@ -229,6 +229,7 @@
       display_element: "crowdlab-study",
       on_finish: () => finish(jsPsych, store, study, screens),
     });
+    window.crowdlab.jsPsych = jsPsych;  // for jsPsych.data.get().csv() / .json() (pilots, the browser test)
     const clipUrl = (stimulusId) => timeline.stimuli[stimulusId].file;
     const videoHtml = (src, loop) => {
       const url = jsPsych.pluginAPI.getVideoBuffer(src) || src;
@@ -335,6 +336,7 @@
         if (q.kind === "yesno") {
           out.push({
             type: jsPsychHtmlKeyboardResponse,
+            css_classes: media ? ["crowdlab-video-page"] : [],
             stimulus: `${headerHtml}${media}<p class="crowdlab-question">${escapeHtml(q.text)}</p>` +
               `<p class="crowdlab-keys">Press <kbd>Y</kbd> for ${escapeHtml(q.high_label || "yes")}, <kbd>N</kbd> for ${escapeHtml(q.low_label || "no")}.</p>`,
             choices: ["y", "n"],
@@ -350,12 +352,17 @@
         }
         const page = [];
         while (i < questions.length && questions[i].kind !== "yesno") page.push(questions[i++]);
+        // Layout (crowdlab_study.css): the statements in a grid of up to three columns, each scale as
+        // wide as its column (scale_width null), and, with the looping clip, the page filling the
+        // window: the clip gets the height the statements leave, so nothing scrolls.
+        const columns = page.length >= 5 ? 3 : page.length >= 2 ? 2 : 1;
         out.push({
           type: jsPsychSurveyLikert,
+          css_classes: [`crowdlab-scale-columns-${columns}`].concat(media ? ["crowdlab-video-page"] : []),
           preamble: `${headerHtml}${media}`,
           questions: page.map((pq) => ({ prompt: escapeHtml(pq.text), labels: likertLabels(pq), required: true, name: pq.id })),
           button_label: "Next",
-          scale_width: 720,
+          scale_width: columns > 1 ? null : 720,
           on_load: onLoad,
           on_finish: (data) => {
             const rt = sinceOnset(screenStart);

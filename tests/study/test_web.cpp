@@ -3,13 +3,18 @@
 // participant in headless Chromium (skipped, with a message, when chromium or jsPsych are absent).
 #include <sys/wait.h>
 
+#include <zip.h>
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
 
 #include "framework/core/csv.hpp"
 #include "framework/core/error.hpp"
@@ -19,136 +24,37 @@
 #include "study_ui/scripted_presenter.hpp"
 #include "study_ui/web_export.hpp"
 #include "study_ui/web_import.hpp"
-#include "tests/study/study_fixture.hpp"
+#include "tests/study/web_fixture.hpp"
 #include "tests/support/test_paths.hpp"
 
 using namespace crowdlab;
 using namespace crowdlab::study;
 namespace fs = std::filesystem;
 using crowdlab::test::slurp;
+using namespace crowdlab::test::web;
 
 namespace {
 
-/// Answers keyed by (stimulus, question): raw = 1 + (n mod k), yes/no alternating.
-/// Answers for every (stimulus, question). `participant` 0 is the web participant; others (lab
-/// participants beside it in a report) answer differently, so that every ANOVA effect has error variance.
-std::map<std::pair<std::string, std::string>, int> scripted_answers(const StimulusManifest& m,
-                                                                    const std::vector<StudyQuestion>& qs,
-                                                                    int participant = 0) {
-  std::map<std::pair<std::string, std::string>, int> out;
-  int n = 0;
-  for (const auto& e : m.entries)
-    for (const auto& q : qs) {
-      const int k = n + participant * (n % 5 + 1);
-      out[{e.id, q.id}] = q.kind == QuestionKind::yesno ? k % 2 : 1 + k % q.points;
-      ++n;
-    }
+/// The entries of a ZIP archive (name -> bytes), read back with libzip; also checks that each entry is
+/// stored (not compressed) and carries the fixed 1980-01-01 time.
+std::vector<std::pair<std::string, std::string>> zip_entries(const std::string& path) {
+  int code = 0;
+  zip_t* z = zip_open(path.c_str(), ZIP_RDONLY | ZIP_CHECKCONS, &code);
+  REQUIRE(z != nullptr);
+  std::vector<std::pair<std::string, std::string>> out;
+  for (zip_int64_t i = 0; i < zip_get_num_entries(z, 0); ++i) {
+    zip_stat_t st;
+    REQUIRE(zip_stat_index(z, static_cast<zip_uint64_t>(i), 0, &st) == 0);
+    CHECK(st.comp_method == ZIP_CM_STORE);
+    std::string data(st.size, '\0');
+    zip_file_t* f = zip_fopen_index(z, static_cast<zip_uint64_t>(i), 0);
+    REQUIRE(f != nullptr);
+    CHECK(zip_fread(f, data.data(), st.size) == static_cast<zip_int64_t>(st.size));
+    zip_fclose(f);
+    out.emplace_back(st.name, data);
+  }
+  zip_discard(z);
   return out;
-}
-
-fs::path write_script(const fs::path& path, const std::map<std::pair<std::string, std::string>, int>& answers,
-                      const std::vector<StudyQuestion>& qs) {
-  std::ofstream out(path);
-  out << "stimulus,question,response,rt_ms\n";
-  for (const auto& [key, raw] : answers) {
-    const bool yesno = std::any_of(qs.begin(), qs.end(), [&](const auto& q) {
-      return q.id == key.second && q.kind == QuestionKind::yesno;
-    });
-    out << key.first << "," << key.second << "," << (yesno ? (raw ? "yes" : "no") : std::to_string(raw))
-        << ",750\n";
-  }
-  return path;
-}
-
-/// A native scripted session's P.csv for `id`.
-std::string native_csv(const ExperimentSpec& spec, const StimulusManifest& m, const fs::path& stimuli,
-                       const fs::path& script, const fs::path& out, const std::string& id) {
-  ScriptedPresenter presenter(script.string(), 0);
-  SessionOptions opt{id, stimuli.string(), out.string(), false, "scripted", true, false};
-  return run_session(spec, m, opt, presenter).csv_path;
-}
-
-/// What the web study stores for one participant (crowdlab_study.js's AnswerStore), built from the
-/// timeline's order and the answers; rt 750 ms like the script.
-nlohmann::json web_dump(const nlohmann::json& timeline, const std::string& participant,
-                        const std::map<std::pair<std::string, std::string>, int>& answers) {
-  const std::string order_of = web_order_participant(participant, timeline["order_ids"]);
-  nlohmann::json dump = {{"format", "crowdlab-web-data"},
-                         {"participant", participant},
-                         {"order_of", order_of},
-                         {"records", nlohmann::json::array()}};
-  for (const auto& t : timeline["orders"][order_of]) {
-    nlohmann::json record = {
-        {"format", "crowdlab-web-data"},
-        {"participant", participant},
-        {"order_of", order_of},
-        {"session", 1},
-        {"spec_hash", timeline["study"]["spec_hash"]},
-        {"trial", t["trial"]},
-        {"stimulus", t["stimulus"]},
-        {"stimulus_sha256", timeline["stimuli"][t["stimulus"].get<std::string>()]["sha256"]},
-        {"block", t["block"]},
-        {"practice", t["practice"]},
-        {"answers", nlohmann::json::array()}};
-    for (const auto& q : timeline["questions"])
-      record["answers"].push_back({{"question", q["id"]},
-                                   {"response", answers.at({t["stimulus"], q["id"]})},
-                                   {"rt_ms", 750},
-                                   {"timestamp", "2026-11-25T03:00:00.000Z"}});
-    dump["records"].push_back(record);
-  }
-  return dump;
-}
-
-/// A CSV's rows without the columns that legitimately differ between two runs of the same answers.
-std::vector<std::vector<std::string>> comparable_rows(const std::string& csv_path,
-                                                      const std::vector<std::string>& ignore) {
-  const CsvTable t = read_csv(csv_path);
-  std::vector<std::vector<std::string>> out;
-  for (size_t r = 0; r < t.rows.size(); ++r) {
-    std::vector<std::string> row;
-    for (size_t c = 0; c < t.header.size(); ++c)
-      if (std::find(ignore.begin(), ignore.end(), t.header[c]) == ignore.end()) row.push_back(t.cell(r, c));
-    out.push_back(row);
-  }
-  return out;
-}
-
-ExperimentSpec blocked_spec(const std::string& block_order) {
-  ExperimentSpec spec = test::likert_spec();
-  spec.protocol.block_by = "density";
-  spec.protocol.block_order = block_order;
-  spec.protocol.break_every = 3;
-  return spec;
-}
-
-void write_json(const fs::path& path, const nlohmann::json& j) {
-  std::ofstream(path) << j.dump() << "\n";
-}
-
-/// Names of the entries of a stored ZIP, read back from its central directory (APPNOTE §4.3.12/16).
-std::vector<std::string> zip_entry_names(const std::string& path) {
-  const std::string z = slurp(path);
-  auto u16 = [&](size_t at) {
-    return static_cast<size_t>(static_cast<unsigned char>(z[at]) | static_cast<unsigned char>(z[at + 1])
-                                                                       << 8);
-  };
-  auto u32 = [&](size_t at) { return u16(at) | u16(at + 2) << 16; };
-  REQUIRE(z.size() > 22);
-  const size_t eocd = z.size() - 22;
-  REQUIRE(u32(eocd) == 0x06054b50);
-  const size_t count = u16(eocd + 10);
-  size_t at = u32(eocd + 16);
-  std::vector<std::string> names;
-  for (size_t i = 0; i < count; ++i) {
-    REQUIRE(u32(at) == 0x02014b50);
-    const size_t name_len = u16(at + 28), extra = u16(at + 30), comment = u16(at + 32);
-    const size_t local = u32(at + 42);
-    CHECK(u32(local) == 0x04034b50);
-    names.push_back(z.substr(at + 46, name_len));
-    at += 46 + name_len + extra + comment;
-  }
-  return names;
 }
 
 /// Empty stand-ins for the jsPsych files, so that export_web runs without npm.
@@ -162,7 +68,7 @@ fs::path fake_node_modules(const fs::path& dir) {
 
 }  // namespace
 
-TEST_CASE("web trial orders equal the native session's for embedded ids; other ids map by FNV-1a",
+TEST_CASE("web trial orders equal the native session's for embedded ids, other ids map by FNV-1a",
           "[study]") {
   const auto dir = test::scratch_dir("web-order");
   const auto m = test::make_stimuli(
@@ -226,6 +132,12 @@ TEST_CASE("import-web of web records equals the native scripted session's table"
       const auto meta = nlohmann::json::parse(slurp((sub / "web" / (id + ".json")).string()));
       CHECK(meta["status"] == "complete");
       CHECK(meta["order_of"] == order_of);
+      // The same records in jsPsych's CSV data (jsPsych.data.get().csv()) give the same table.
+      const fs::path csv = sub.string() + "-" + id + "-jspsych.csv";
+      std::ofstream(csv, std::ios::binary) << jspsych_csv(jspsych_trials(web_dump(timeline, id, answers)));
+      CHECK(import_web(spec, m, {csv.string()}, {(sub / "web-csv").string(), (dir / "stimuli").string()})
+                .complete == 1);
+      CHECK(slurp(sub / "web-csv" / (id + ".csv")) == slurp(sub / "web" / (id + ".csv")));
     }
   }
 }
@@ -311,7 +223,7 @@ TEST_CASE("import-web refuses foreign specs and stimuli, wrong orders, conflicti
                     Catch::Contains("refusing to overwrite"));
 }
 
-TEST_CASE("export-web writes the study folder and a JATOS archive; completion_url is validated", "[study]") {
+TEST_CASE("export-web writes the study folder and a JATOS archive, completion_url is validated", "[study]") {
   const auto dir = test::scratch_dir("web-export");
   const auto m = test::make_stimuli(dir / "stimuli", {{"density", {"2.22", "6.66"}}}, 1);
   ExperimentSpec spec = test::likert_spec();
@@ -333,14 +245,64 @@ TEST_CASE("export-web writes the study folder and a JATOS archive; completion_ur
   CHECK(timeline["questions"].size() == 6);
   CHECK(timeline["questions"][0]["text"] == "Contacts made by characters between them seem natural to me");
   CHECK(timeline["orders"]["P02"].size() == 3);
-  const auto names = zip_entry_names(opt.jatos_path);
-  REQUIRE(names.size() == static_cast<size_t>(r.files) + 1);
-  CHECK(names[0] == r.jatos_dir + ".jas");
-  CHECK(std::find(names.begin(), names.end(), r.jatos_dir + "/index.html") != names.end());
-  // The same export twice gives the same archive bytes (fixed times, sorted entries).
+  // The archive: one .jas and one folder at the top level (JATOS refuses two of either), the folder
+  // holding exactly the web study's files, stored byte for byte.
+  const auto entries = zip_entries(opt.jatos_path);
+  REQUIRE(entries.size() == static_cast<size_t>(r.files) + 1);
+  CHECK(entries[0].first == r.jatos_dir + ".jas");
+  for (size_t i = 1; i < entries.size(); ++i) {
+    CAPTURE(entries[i].first);
+    REQUIRE(entries[i].first.rfind(r.jatos_dir + "/", 0) == 0);
+    CHECK(entries[i].second == slurp(dir / "web" / entries[i].first.substr(r.jatos_dir.size() + 1)));
+  }
+  // The .jas: JATOS's documented schema (JATOS-Study-Archive-JZIP): "version" "3" and the required
+  // fields of the study, its components and its batches.
+  const auto jas = nlohmann::json::parse(entries[0].second);
+  CHECK(jas["version"] == "3");
+  const auto& data = jas["data"];
+  const std::regex uuid("[0-9a-f]{8}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{12}");
+  CHECK(std::regex_match(data["uuid"].get<std::string>(), uuid));
+  CHECK(data["title"] == "crowdlab: " + spec.name);
+  CHECK(data["dirName"] == r.jatos_dir);
+  CHECK(data["endRedirectUrl"] == spec.protocol.completion_url);
+  CHECK(data.contains("jsonData"));  // the name every JATOS 3 accepts (newer ones alias it as studyInput)
+  REQUIRE(data["componentList"].size() == 1);
+  const auto& component = data["componentList"][0];
+  CHECK(std::regex_match(component["uuid"].get<std::string>(), uuid));
+  CHECK(component["htmlFilePath"] == "index.html");
+  CHECK(component["reloadable"] == true);  // a reload resumes (under JATOS, too)
+  CHECK(!component["title"].get<std::string>().empty());
+  REQUIRE(data["batchList"].size() == 1);
+  const auto& batch = data["batchList"][0];
+  CHECK(std::regex_match(batch["uuid"].get<std::string>(), uuid));
+  CHECK(batch["title"] == "Default");
+  CHECK(batch["allowedWorkerTypes"] ==
+        nlohmann::json::array({"Jatos", "PersonalSingle", "PersonalMultiple", "GeneralMultiple"}));
+  CHECK(std::set<std::string>{data["uuid"].get<std::string>(), component["uuid"].get<std::string>(),
+                              batch["uuid"].get<std::string>()}
+            .size() == 3);
+  if (fs::exists("/usr/bin/unzip"))
+    CHECK(std::system(("/usr/bin/unzip -tqq " + opt.jatos_path + " > /dev/null").c_str()) == 0);
+  else
+    WARN("unzip -t not run: no /usr/bin/unzip");
+
+  // The same export again gives the same archive bytes, whatever the files' times and modes and the
+  // time zone (fixed DOS time and Unix attributes, sorted entries).
   const std::string first = slurp(opt.jatos_path);
+  const fs::path clip = dir / "stimuli" / "clips" / "v0.mp4";  // hard-linked into the next export
+  fs::last_write_time(clip, fs::file_time_type::clock::now() - std::chrono::hours(24 * 365 * 20));
+  fs::permissions(clip, fs::perms::owner_read | fs::perms::owner_write);
+  const char* tz = std::getenv("TZ");
+  const std::string old_tz = tz ? tz : "";
+  setenv("TZ", "Pacific/Kiritimati", 1);  // UTC+14: a local-time DOS stamp would move by a day
+  tzset();
   opt.out_dir = (dir / "web2").string();
   export_web(spec, m, opt);
+  if (tz)
+    setenv("TZ", old_tz.c_str(), 1);
+  else
+    unsetenv("TZ");
+  tzset();
   CHECK(slurp(opt.jatos_path) == first);
   // A non-empty output folder is refused.
   CHECK_THROWS_WITH(export_web(spec, m, opt), Catch::Contains("not an empty folder"));
@@ -476,6 +438,28 @@ TEST_CASE(
                                       .get<std::vector<std::pair<std::string, std::uint32_t>>>())
     CHECK(hash == fnv1a32(text));
 
+  // The Likert screen fits both window sizes without scrolling, the clip as large as the statements
+  // leave (at least half the window's height here), the six statements in three columns of two rows.
+  const auto layout = nlohmann::json::parse(slurp(dir / "browser" / "layout.json"));
+  for (const std::string size : {"1920x1080", "1440x900"}) {
+    CAPTURE(size, layout[size].dump());
+    const auto& l = layout[size];
+    const double width = l["viewport"][0], height = l["viewport"][1];
+    CHECK(l["scroll"][0].get<double>() <= width);
+    CHECK(l["scroll"][1].get<double>() <= height);
+    CHECK(l["next_bottom"].get<double>() <= height);
+    CHECK(l["picture"][1].get<double>() >= 0.5 * height);
+    std::set<int> lefts, tops;
+    for (const auto& st : l["statements"]) {
+      lefts.insert(static_cast<int>(st[0].get<double>()));
+      tops.insert(static_cast<int>(st[1].get<double>()));
+    }
+    CHECK(lefts.size() == 3);
+    CHECK(tops.size() == 2);
+    for (size_t q = 0; q < 6; ++q)  // each scale lies under its statement, as wide as its column
+      CHECK(l["scales"][q][0].get<double>() <= l["statements"][q][0].get<double>() + 1);
+  }
+
   // import-web of the download equals the native scripted session with the same answers.
   REQUIRE(run_command(exe + " import-web " + (dir / "browser" / "download.json").string() + " --spec " +
                       spec_path + " --stimuli " + (dir / "stimuli").string() + " --out " +
@@ -488,9 +472,15 @@ TEST_CASE(
                                            "timestamp"};  // reload; real vs scripted times
   CHECK(comparable_rows((dir / "web-responses" / "P02.csv").string(), differ) ==
         comparable_rows((dir / "native" / "P02.csv").string(), differ));
-  // analyze report reads the imported folder unchanged, here beside lab sessions of two other ids who
+  // jsPsych's own CSV data of the two page loads (trials 1-3, then 4-9) imports to the same table.
+  REQUIRE(run_command(exe + " import-web " + (dir / "browser" / "jspsych-1.csv").string() + " " +
+                      (dir / "browser" / "jspsych-2.csv").string() + " --spec " + spec_path + " --stimuli " +
+                      (dir / "stimuli").string() + " --out " + (dir / "csv-responses").string() + " > " +
+                      (dir / "import-csv.log").string()) == 0);
+  CHECK(slurp(dir / "csv-responses" / "P02.csv") == slurp(dir / "web-responses" / "P02.csv"));
+  // analyze report reads the imported folder unchanged, here beside lab sessions of three other ids who
   // answered differently (an RM-ANOVA needs three participants, and error variance in every effect).
-  for (const int lab : {1, 3}) {
+  for (const int lab : {1, 3, 4}) {
     const std::string id = "P0" + std::to_string(lab);
     const auto lab_script = write_script(dir / (id + "-script.csv"), scripted_answers(m, qs, lab), qs);
     REQUIRE(run_command(exe + " study " + spec_path + " --participant " + id + " --stimuli " +

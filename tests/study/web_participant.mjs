@@ -6,7 +6,10 @@
 //   index.html?participant=PARTICIPANT, answers every screen (answers: {stimulus: {question: raw}}),
 //   reloads the page once after RELOAD_AFTER answered trials and checks that the study resumes at the
 //   next trial, and writes to OUTDIR: download.json (the end screen's download), localstorage.json,
-//   fnv.json (the page's FNV-1a of test strings), resume.json and one screenshot per kind of screen.
+//   fnv.json (the page's FNV-1a of test strings), resume.json, jspsych-1.csv and jspsych-2.csv
+//   (jsPsych.data.get().csv() before the reload and at the end), layout.json with likert-1920x1080.png
+//   and likert-1440x900.png (the first Likert screen at both window sizes) and one screenshot per kind
+//   of screen (at 1440x900).
 // Exit code: 0 done, 1 failure (message on stderr).
 import fs from "node:fs";
 import http from "node:http";
@@ -38,9 +41,10 @@ const base = `http://127.0.0.1:${server.address().port}/index.html?participant=$
 const browser = await puppeteer.launch({
   executablePath: chromium,
   headless: true,
-  args: ["--no-sandbox", "--autoplay-policy=no-user-gesture-required", "--window-size=1280,900"],
-  defaultViewport: { width: 1280, height: 900 },
+  args: ["--no-sandbox", "--autoplay-policy=no-user-gesture-required", "--window-size=1920,1080"],
+  defaultViewport: { width: 1440, height: 900 },
 });
+const sizes = [[1920, 1080], [1440, 900]];
 const shots = new Set();
 const fail = (message) => {
   throw new Error(message);
@@ -55,6 +59,36 @@ async function screenshot(page, kind) {
 const ANY_SCREEN =
   "#jspsych-fullscreen-btn, #jspsych-instructions-next, #jspsych-html-button-response-btngroup button, " +
   "#jspsych-survey-likert-form, #jspsych-html-keyboard-response-stimulus, #crowdlab-download";
+
+/// The Likert screen at each window size: whether anything scrolls, the clip's box and the picture
+/// in it (object-fit: contain), the statements' positions; one screenshot per size.
+async function probeLikertLayout(page) {
+  const layout = {};
+  for (const [width, height] of sizes) {
+    await page.setViewport({ width, height });
+    await new Promise((r) => setTimeout(r, 400));
+    layout[`${width}x${height}`] = await page.evaluate(() => {
+      const rect = (el) => el.getBoundingClientRect();
+      const v = document.querySelector("#crowdlab-study video");
+      const box = rect(v);
+      const scale = Math.min(box.width / v.videoWidth, box.height / v.videoHeight);
+      return {
+        viewport: [window.innerWidth, window.innerHeight],
+        scroll: [document.scrollingElement.scrollWidth, document.scrollingElement.scrollHeight],
+        video_box: [box.width, box.height],
+        picture: [v.videoWidth * scale, v.videoHeight * scale],
+        next_bottom: rect(document.querySelector("#jspsych-survey-likert-next")).bottom,
+        statements: [...document.querySelectorAll(".jspsych-survey-likert-statement")].map((e) => [rect(e).left, rect(e).top]),
+        scales: [...document.querySelectorAll(".jspsych-survey-likert-opts")].map((e) => [rect(e).left, rect(e).top, rect(e).width]),
+      };
+    });
+    await page.screenshot({ path: path.join(outDir, `likert-${width}x${height}.png`) });
+  }
+  await page.setViewport({ width: 1440, height: 900 });
+  fs.writeFileSync(path.join(outDir, "layout.json"), JSON.stringify(layout));
+}
+
+const jspsychCsv = (page) => page.evaluate(() => window.crowdlab.jsPsych.data.get().csv());
 
 /// The trial number in the header of the current trial screen (0 when none).
 async function currentTrial(page) {
@@ -99,6 +133,7 @@ async function step(page, answered) {
       const v = document.querySelector("#crowdlab-study video");
       return !v || v.currentTime > 0.05;  // a looping clip plays above the questions
     }, { timeout: 10000 });
+    if (!shots.has("trial-likert")) await probeLikertLayout(page);
     await screenshot(page, "trial-likert");
     const names = await page.$$eval("ul.jspsych-survey-likert-opts", (uls) => uls.map((u) => u.dataset.name));
     for (const q of names) await page.click(`ul[data-name="${q}"] input[value="${answers[stimulus][q] - 1}"]`);
@@ -142,6 +177,7 @@ try {
     if (what === "done") break;
     if (what === "trial" && answered.length === reloadAfter && resume.before === undefined) {
       resume.before = answered.slice();
+      fs.writeFileSync(path.join(outDir, "jspsych-1.csv"), await jspsychCsv(page));
       await page.reload();
       // Resumed: the first trial screen after the reload must be the next unanswered trial. Play the
       // screens before it (preload, full screen, instructions) without answering any trial.
@@ -154,6 +190,7 @@ try {
     }
   }
   await screenshot(page, "end");
+  fs.writeFileSync(path.join(outDir, "jspsych-2.csv"), await jspsychCsv(page));
   const download = await page.$eval("#crowdlab-download", async (a) => (await fetch(a.href)).text());
   fs.writeFileSync(path.join(outDir, "download.json"), download);
   const storage = await page.evaluate(() => {
