@@ -45,7 +45,7 @@ ExperimentSpec spec_for(const std::string& type, double width, double depth, dou
 /// the spec's own conditions.
 ScenarioResult generate(const ExperimentSpec& spec, Condition c) {
   type_condition(spec, c);
-  return generate(spec, c);
+  return generate_scenario(spec, c);
 }
 
 }  // namespace
@@ -125,8 +125,8 @@ TEST_CASE("scenarios: pair crossing hits the requested distance within 1 cm at m
   for (int k = 0; k <= 10; ++k) {
     const double D = 0.2 + 0.05 * k;
     for (const char* side : {"left", "right"}) {
-      const ScenarioResult r = generate_scenario(
-          spec, condition({{"distance", level(D)}, {"side", FactorLevel{side, std::nullopt}}}));
+      const ScenarioResult r =
+          generate(spec, condition({{"distance", level(D)}, {"side", FactorLevel{side, std::nullopt}}}));
       REQUIRE(r.trajectories.agents.size() == 2);
       const auto& a = r.trajectories.agents[0].position_m;
       const auto& b = r.trajectories.agents[1].position_m;
@@ -155,7 +155,7 @@ TEST_CASE("scenarios: flow densities match seed 001's levels within 5 %", "[crow
     ExperimentSpec spec = spec_for("stationary", 6.0, 12.0, 3.0);  // the scenario factor overrides the type
     spec.crowd.model = "cost";
     for (double density : {0.5, 0.7, 1.0, 1.6, 2.8}) {
-      const ScenarioResult r = generate_scenario(
+      const ScenarioResult r = generate(
           spec, condition({{"scenario", FactorLevel{type, std::nullopt}}, {"density", level(density)}}));
       INFO("scenario " << type << " density " << density);
       CHECK(r.scenario == (std::string(type) == "A" ? ScenarioKind::flow_a : ScenarioKind::flow_b));

@@ -27,10 +27,10 @@ TEST_CASE("typed conditions carry every factor of the paper specs as typed value
     CAPTURE(c.id);
     CHECK(c.params.scenario == ScenarioKind::stationary);
     REQUIRE(c.params.density_per_m2);
-    CHECK(*c.params.density_per_m2 == *c.level("density")->number);
+    CHECK(*c.params.density_per_m2 == c.levels.at("density").number.value());
     CHECK_FALSE(c.params.characters);
-    CHECK(c.params.viewpoint == c.level("viewpoint")->text);
-    CHECK(kind_name(c.params.method) == c.level("method")->text);
+    CHECK(c.params.viewpoint == c.levels.at("viewpoint").text);
+    CHECK(kind_name(c.params.method) == c.levels.at("method").text);
   }
   CHECK(conditions.front().params.method == CrowdMethod::baseline);
   CHECK(conditions.back().params.method == CrowdMethod::corrected);
@@ -50,7 +50,7 @@ TEST_CASE("typed conditions take the spec's defaults: viewpoint by scenario, pas
     CHECK(c.params.method == CrowdMethod::baseline);  // no method factor
     REQUIRE(c.params.distance_m);
     REQUIRE(c.params.shoulder_count);
-    CHECK(*c.params.shoulder_count == static_cast<int>(*c.level("shoulder")->number));
+    CHECK(*c.params.shoulder_count == static_cast<int>(c.levels.at("shoulder").number.value()));
     CHECK(c.params.side == (c.repetition == 1 ? PassingSide::left : PassingSide::right));
   }
   const ExperimentSpec flows =
