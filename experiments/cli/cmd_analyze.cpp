@@ -64,7 +64,7 @@ struct AnovaOptions {
 
 struct PosthocOptions {
   DesignArgs design;
-  std::string effect, method = "tukey";
+  std::string effect, method = "tukey", error = "classic";
   bool json = false, simple = false;
   size_t max_comparisons = kDefaultMaxComparisons;
 };
@@ -144,6 +144,13 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   ph->add_option("--method", ph_opt->method, "tukey (pooled-error Tukey HSD) or bonferroni (paired t-tests)")
       ->check(CLI::IsMember({"tukey", "bonferroni"}))
       ->capture_default_str();
+  ph->add_option(
+        "--error", ph_opt->error,
+        "classic (Tukey with the effect's own error term, or paired t), pooled (emmeans' univariate "
+        "model: error strata pooled, Satterthwaite df) or separate (emmeans' multivariate model: each "
+        "contrast's own error); with pooled/separate the statistic is t and --method adjusts p")
+      ->check(CLI::IsMember({"classic", "pooled", "separate"}))
+      ->capture_default_str();
   ph->add_flag("--simple", ph_opt->simple,
                "Only compare cells that differ in one factor (simple comparisons)");
   ph->add_option("--max-comparisons", ph_opt->max_comparisons,
@@ -155,7 +162,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     const auto design = load_design(o->design);
     const auto factors = parse_effect(design, o->effect);
     const auto method = o->method == "tukey" ? PosthocMethod::tukey : PosthocMethod::bonferroni;
-    const auto result = posthoc(design, factors, method, o->simple, o->max_comparisons);
+    const auto error = o->error == "pooled"     ? PosthocError::pooled
+                       : o->error == "separate" ? PosthocError::separate
+                                                : PosthocError::classic;
+    const auto result = posthoc(design, factors, method, o->simple, o->max_comparisons, error);
     if (o->json) {
       auto j = posthoc_to_json(result);
       if (factors.size() > 1) {
