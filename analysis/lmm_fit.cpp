@@ -1,7 +1,5 @@
 #include "analysis/lmm_fit.hpp"
 
-#include <nlopt.h>
-
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -11,6 +9,7 @@
 #include <set>
 
 #include "analysis/model_matrix.hpp"
+#include "analysis/nlopt_minimise.hpp"
 #include "framework/core/error.hpp"
 
 namespace crowdlab::analysis {
@@ -212,23 +211,15 @@ LmmResult fit_lmm(const CsvTable& table, const std::string& formula, bool reml) 
     theta[k] = pr.diagonal[k] ? 1.0 : 0.0;  // lme4's start: identity factors
     lower[k] = pr.diagonal[k] ? 0.0 : -HUGE_VAL;
   }
-  // BOBYQA needs two or more parameters; one variance parameter goes to COBYLA (same bounds).
-  nlopt_opt opt = nlopt_create(m >= 2 ? NLOPT_LN_BOBYQA : NLOPT_LN_COBYLA, m);
-  nlopt_set_lower_bounds(opt, lower.data());
-  nlopt_set_min_objective(opt, objective, &pr);
-  nlopt_set_ftol_rel(opt, 1e-15);
-  nlopt_set_xtol_rel(opt, 1e-10);
-  nlopt_set_maxeval(opt, 100000);
-  double best = 0;
-  const nlopt_result status = nlopt_optimize(opt, theta.data(), &best);
-  nlopt_destroy(opt);
+  const NloptOutcome opt = minimise_derivative_free(theta, lower, objective, &pr, 100000);
   LmmResult out;
   out.reml = reml;
   out.observations = static_cast<size_t>(pr.n);
   out.evaluations = pr.evaluations;
-  out.converged = status > 0 || status == NLOPT_ROUNDOFF_LIMITED;
+  out.converged = opt.converged();
   if (!out.converged)
-    out.warnings.push_back("the optimiser did not converge (NLopt status " + std::to_string(status) + ")");
+    out.warnings.push_back("the optimiser did not converge (NLopt status " + std::to_string(opt.status) +
+                           ")");
   for (unsigned k = 0; k < m; ++k)
     if (pr.diagonal[k] && theta[k] < 1e-10) theta[k] = 0.0;  // on the bound, as lme4 reports it
   const Profile fin = profile(pr, theta.data());

@@ -8,6 +8,7 @@
 
 #include "analysis/analysis_json.hpp"
 #include "analysis/apa_format.hpp"
+#include "analysis/clmm_fit.hpp"
 #include "analysis/lmm_fit.hpp"
 #include "analysis/posthoc.hpp"
 #include "analysis/psychometric_table.hpp"
@@ -92,6 +93,24 @@ void print_lmm(const LmmResult& r) {
     std::printf("  %-14s corr(%s, %s) %.4f\n", c.group.c_str(), c.term1.c_str(), c.term2.c_str(), c.corr);
   std::printf("  residual SD %.6f\n\n%s %.6f%s\n", r.residual_sd, r.reml ? "REML criterion" : "deviance",
               r.criterion, r.converged ? "" : " (NOT converged)");
+  for (const auto& w : r.warnings) std::printf("WARNING: %s\n", w.c_str());
+}
+
+struct ClmmOptions {
+  std::string csv, formula, link = "logit";
+  bool json = false;
+};
+
+void print_clmm(const ClmmResult& r) {
+  std::printf("Cumulative link mixed model (%s link, Laplace), %zu observations, %zu groups\n\nThresholds:\n",
+              r.link.c_str(), r.observations, r.groups);
+  for (const auto& t : r.thresholds)
+    std::printf("  %-12s %10.5f  SE %8.5f\n", t.name.c_str(), t.estimate, t.se);
+  std::printf("\nFixed effects:\n");
+  for (const auto& f : r.fixed)
+    std::printf("  %-28s %10.5f  SE %8.5f  z %8.3f  p %.4g\n", f.name.c_str(), f.estimate, f.se, f.z, f.p);
+  std::printf("\nRandom intercept SD (%s): %.5f\nlog-likelihood %.6f%s\n", r.group.c_str(), r.random_sd,
+              r.loglik, r.converged ? "" : " (NOT converged)");
   for (const auto& w : r.warnings) std::printf("WARNING: %s\n", w.c_str());
 }
 
@@ -296,6 +315,30 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       std::cout << lmm_to_json(result).dump(2) << "\n";
     else
       print_lmm(result);
+  });
+
+  // ---- clmm ----
+  auto clmm_opt = std::make_shared<ClmmOptions>();
+  auto* clmm = analyze->add_subcommand(
+      "clmm",
+      "Cumulative link mixed model for ordinal (Likert) answers as ordinal::clmm: flexible thresholds, "
+      "a random intercept, Laplace approximation (see analysis/clmm_fit.hpp)");
+  clmm->add_option("--csv", clmm_opt->csv, "Tidy CSV: one row per answer")->required();
+  clmm->add_option("--formula", clmm_opt->formula, "e.g. \"R ~ a * b + (1 | S)\": one random-intercept term")
+      ->required();
+  clmm->add_option("--link", clmm_opt->link, "logit or probit")
+      ->check(CLI::IsMember({"logit", "probit"}))
+      ->capture_default_str();
+  clmm->add_flag("--json", clmm_opt->json,
+                 "Print {\"thresholds\": [{name, estimate, se}], \"fixed\": [{term, estimate, se, z, p}], "
+                 "\"random\": [{group, sd}], \"loglik\", \"link\", \"converged\", \"observations\", "
+                 "\"warnings\"}");
+  clmm->callback([o = clmm_opt] {
+    const auto result = fit_clmm(read_csv(o->csv), o->formula, o->link);
+    if (o->json)
+      std::cout << clmm_to_json(result).dump(2) << "\n";
+    else
+      print_clmm(result);
   });
 
   // ---- report ----
