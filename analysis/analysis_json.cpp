@@ -46,11 +46,15 @@ nlohmann::json posthoc_to_json(const PosthocResult& result) {
                      {"p", finite_or_null(p.p)},
                      {"p_adjusted", finite_or_null(p.p_adjusted)},
                      {"simple", p.simple}});
-  return {{"effect", result.effect},
-          {"method", result.method == PosthocMethod::tukey ? "tukey" : "bonferroni"},
-          {"levels", result.levels},
-          {"means", result.means},
-          {"comparisons", pairs}};
+  nlohmann::json j = {{"effect", result.effect},
+                      {"method", result.method == PosthocMethod::tukey ? "tukey" : "bonferroni"},
+                      {"levels", result.levels},
+                      {"means", result.means},
+                      {"comparisons", pairs}};
+  // Only with --error pooled|separate: the classic output (and the pinned report) stays as it was.
+  if (result.error != PosthocError::classic)
+    j["error"] = result.error == PosthocError::pooled ? "pooled" : "separate";
+  return j;
 }
 
 }  // namespace crowdlab::analysis

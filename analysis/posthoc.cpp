@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
+#include <tuple>
 
 #include "analysis/studentized_range.hpp"
 #include "framework/core/error.hpp"
@@ -75,8 +76,63 @@ double posthoc_comparison_count(const WithinDesign& design, const std::vector<si
   return pairs;
 }
 
+namespace {
+double t_two_sided(double t, double df) {
+  return 2.0 * boost::math::cdf(
+                   boost::math::complement(boost::math::students_t_distribution<double>(df), std::abs(t)));
+}
+
+// One within effect's error stratum: its orthonormal contrasts, MS_error and df2.
+struct Stratum {
+  Eigen::MatrixXd contrasts;
+  double ms_error = 0, df = 0;
+};
+
+// SE and df of the cell contrast c (emmeans' univariate or multivariate model, see PosthocError).
+std::pair<double, double> contrast_error(const WithinDesign& design, const std::vector<Stratum>& strata,
+                                         const Eigen::VectorXd& c, PosthocError error) {
+  const double n = static_cast<double>(design.cell_means.rows());
+  if (error == PosthocError::separate) {
+    const Eigen::VectorXd d = design.cell_means * c;
+    const double sd = std::sqrt((d.array() - d.mean()).square().sum() / (n - 1.0));
+    return {sd / std::sqrt(n), n - 1.0};
+  }
+  double var = 0, denom = 0;
+  for (const auto& s : strata) {
+    const double term = (s.contrasts.transpose() * c).squaredNorm() * s.ms_error / n;
+    var += term;
+    denom += term * term / s.df;
+  }
+  return {std::sqrt(var), var * var / denom};
+}
+
+std::vector<Stratum> error_strata(const WithinDesign& design) {
+  std::vector<Stratum> out;
+  for (const auto& e : rm_anova(design).effects)
+    out.push_back({effect_contrasts(design, e.factors), e.ms_error, e.df2});
+  return out;
+}
+
+void compare_with_error(const WithinDesign& design, const std::vector<size_t>& effect_factors,
+                        const std::vector<Stratum>& strata, size_t a, size_t b, size_t means,
+                        PosthocMethod method, PosthocError error, PairwiseComparison& pc) {
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(design.cell_count()));
+  const double per_mean = static_cast<double>(design.cell_count()) / static_cast<double>(means);
+  for (size_t cell = 0; cell < design.cell_count(); ++cell) {
+    const size_t k = effect_cell(design, effect_factors, cell);
+    if (k == a) c[static_cast<Eigen::Index>(cell)] = 1.0 / per_mean;
+    if (k == b) c[static_cast<Eigen::Index>(cell)] = -1.0 / per_mean;
+  }
+  std::tie(pc.se, pc.df) = contrast_error(design, strata, c, error);
+  pc.statistic = pc.difference / pc.se;
+  pc.p = t_two_sided(pc.statistic, pc.df);
+  if (method == PosthocMethod::tukey)
+    pc.p_adjusted = 1.0 - ptukey(std::abs(pc.statistic) * std::sqrt(2.0), static_cast<int>(means), pc.df);
+}
+}  // namespace
+
 PosthocResult posthoc(const WithinDesign& design, const std::vector<size_t>& effect_factors,
-                      PosthocMethod method, bool simple_only, size_t max_comparisons) {
+                      PosthocMethod method, bool simple_only, size_t max_comparisons, PosthocError error) {
   if (effect_factors.empty()) throw InputError("posthoc: empty effect");
   if (const double count = posthoc_comparison_count(design, effect_factors, simple_only);
       count > static_cast<double>(max_comparisons)) {
@@ -92,6 +148,7 @@ PosthocResult posthoc(const WithinDesign& design, const std::vector<size_t>& eff
   const double n = static_cast<double>(means.rows());
   PosthocResult res;
   res.method = method;
+  res.error = error;
   for (size_t i = 0; i < effect_factors.size(); ++i)
     res.effect += (i ? ":" : "") + design.factors[effect_factors[i]].name;
   for (size_t c = 0; c < m; ++c) {
@@ -104,7 +161,9 @@ PosthocResult posthoc(const WithinDesign& design, const std::vector<size_t>& eff
   }
   // Tukey's pooled error term: the effect's row of the ANOVA.
   double ms_error = 0, df_error = 0;
-  if (method == PosthocMethod::tukey) {
+  const std::vector<Stratum> strata =
+      error == PosthocError::pooled ? error_strata(design) : std::vector<Stratum>{};
+  if (method == PosthocMethod::tukey && error == PosthocError::classic) {
     const auto anova = rm_anova(design);
     for (const auto& e : anova.effects)
       if (e.factors == effect_factors) {
@@ -127,7 +186,9 @@ PosthocResult posthoc(const WithinDesign& design, const std::vector<size_t>& eff
       pc.mean_a = res.means[a];
       pc.mean_b = res.means[b];
       pc.difference = pc.mean_a - pc.mean_b;
-      if (method == PosthocMethod::bonferroni) {
+      if (error != PosthocError::classic) {
+        compare_with_error(design, effect_factors, strata, a, b, m, method, error, pc);
+      } else if (method == PosthocMethod::bonferroni) {
         const Eigen::VectorXd d =
             means.col(static_cast<Eigen::Index>(a)) - means.col(static_cast<Eigen::Index>(b));
         const double sd = std::sqrt((d.array() - d.mean()).square().sum() / (n - 1.0));

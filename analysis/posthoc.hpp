@@ -21,12 +21,24 @@ namespace crowdlab::analysis {
 
 enum class PosthocMethod { bonferroni, tukey };
 
+/// The error term of each comparison (`analyze posthoc --error`):
+/// - classic (the default, unchanged): Tukey with the effect's own MS_error and df2 (see above), or
+///   Bonferroni paired t-tests;
+/// - pooled: emmeans' univariate model (afex include_aov, `model = "univariate"`): a contrast c of the
+///   cell means has variance sum over within effects E of |C_E' c|^2 MS_err(E) / n (the error strata
+///   pooled by the contrast's projections), df by Satterthwaite (1946): V^2 / sum_E (term_E^2 / df2_E);
+/// - separate: emmeans' multivariate model: each contrast's own error, the subjects' contrast scores
+///   (SE = sd / sqrt(n), df = n - 1).
+/// With pooled or separate, the statistic is t, `p` the unadjusted two-sided p and `p_adjusted` Tukey's
+/// (ptukey(|t| sqrt 2, means, df), emmeans' default for pairs) or Bonferroni's by `method`.
+enum class PosthocError { classic, pooled, separate };
+
 struct PairwiseComparison {
   std::string level_a, level_b;                   ///< level names joined with ':' in effect-factor order
   double mean_a = 0, mean_b = 0, difference = 0;  ///< difference = mean_a - mean_b
   double se = 0, df = 0;
   double statistic = 0;   ///< t (Bonferroni) or q (Tukey)
-  double p = 0;           ///< unadjusted (Bonferroni), Tukey-adjusted (Tukey)
+  double p = 0;           ///< unadjusted (Bonferroni, pooled, separate), Tukey-adjusted (classic Tukey)
   double p_adjusted = 0;  ///< Bonferroni: min(1, p * family size); Tukey: == p
   bool simple = false;    ///< the two means differ in exactly one factor
 };
@@ -34,6 +46,7 @@ struct PairwiseComparison {
 struct PosthocResult {
   std::string effect;
   PosthocMethod method = PosthocMethod::bonferroni;
+  PosthocError error = PosthocError::classic;
   std::vector<std::string> levels;  ///< the effect's cells, first factor slowest
   std::vector<double> means;        ///< grand means of those cells
   std::vector<PairwiseComparison> pairs;
@@ -61,7 +74,8 @@ double posthoc_comparison_count(const WithinDesign& design, const std::vector<si
 /// max_comparisons comparisons; checked before any work.
 PosthocResult posthoc(const WithinDesign& design, const std::vector<size_t>& effect_factors,
                       PosthocMethod method, bool simple_only = false,
-                      size_t max_comparisons = kDefaultMaxComparisons);
+                      size_t max_comparisons = kDefaultMaxComparisons,
+                      PosthocError error = PosthocError::classic);
 
 /// One simple effect: the ANOVA of the effect's other factors at one level of `at_factor`.
 struct SimpleEffect {

@@ -6,6 +6,7 @@
 #include <limits>
 #include <set>
 
+#include "analysis/psychometric_lapse.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/seed.hpp"
 
@@ -28,6 +29,8 @@ void validate(const std::vector<double>& x, const std::vector<double>& y, const 
   if (distinct.size() < 2) throw InputError("psychometric fit: need at least 2 distinct x values");
   if (!(o.guess >= 0 && o.lapse >= 0 && o.guess + o.lapse < 1))
     throw InputError("psychometric fit: need guess >= 0, lapse >= 0 and guess + lapse < 1");
+  if (o.fit_symmetric_lapse && (o.guess != 0 || o.lapse != 0))
+    throw InputError("psychometric fit: a fitted symmetric lapse rate excludes fixed guess/lapse rates");
 }
 
 struct ModelEval {
@@ -150,9 +153,9 @@ PsychometricFit fit_logistic_firth(const std::vector<double>& x, const std::vect
   return fit;
 }
 
-PsychometricFit fit_psychometric(const std::vector<double>& x, const std::vector<double>& y,
-                                 const PsychometricOptions& options) {
-  validate(x, y, options);
+namespace {
+PsychometricFit fit_model(const std::vector<double>& x, const std::vector<double>& y,
+                          const PsychometricOptions& options) {
   if (is_separated(x, y)) {
     PsychometricFit fit = fit_logistic_firth(x, y, options.max_iterations);
     fit.separated = true;
@@ -160,9 +163,22 @@ PsychometricFit fit_psychometric(const std::vector<double>& x, const std::vector
         "complete separation of the answers by x: the maximum-likelihood slope is infinite; reporting "
         "Firth's penalised-likelihood estimate (bounded)";
     if (options.guess > 0 || options.lapse > 0) fit.warning += " of the plain logistic model";
+    fit.lapse_fitted = options.fit_symmetric_lapse;
+    fit.lapse_at_boundary = options.fit_symmetric_lapse;
     return fit;
   }
-  return fit_ml(x, y, options);
+  if (!options.fit_symmetric_lapse) return fit_ml(x, y, options);
+  const PsychometricFit plain = fit_ml(x, y, options);
+  return fit_symmetric_lapse(x, y, plain);
+}
+}  // namespace
+
+PsychometricFit fit_psychometric(const std::vector<double>& x, const std::vector<double>& y,
+                                 const PsychometricOptions& options) {
+  validate(x, y, options);
+  PsychometricFit fit = fit_model(x, y, options);
+  fit.nll = psychometric_nll(x, y, fit);
+  return fit;
 }
 
 std::vector<ThresholdInterval> bootstrap_thresholds(const std::vector<double>& x, const PsychometricFit& fit,

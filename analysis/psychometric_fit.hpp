@@ -12,6 +12,8 @@
 //   only) makes the ML slope infinite. It is detected before fitting, a warning is set, and the
 //   estimate is Firth's (1993) penalised likelihood (Jeffreys prior), which is always finite
 //   (Heinze & Schemper 2002). With guess/lapse rates the Firth fit is of the plain logistic model.
+// - Fitted symmetric lapse (options.fit_symmetric_lapse): see psychometric_lapse.hpp. Separated data
+//   keep the Firth fit of the plain model (lambda = 0: a lapse cannot raise a likelihood that is 1).
 // threshold(p) = (logit(p) - intercept) / slope: D_crit and V_crit at p = 0.5; seed 001 also uses
 // the 5 % point (dtca_th).
 #include <cstdint>
@@ -23,6 +25,8 @@ namespace crowdlab::analysis {
 struct PsychometricOptions {
   double guess = 0.0;  ///< lower asymptote, fixed, in [0, 1)
   double lapse = 0.0;  ///< 1 - upper asymptote, fixed, guess + lapse < 1
+  /// Fit guess = lapse = lambda by ML (analysis/psychometric_lapse.hpp); guess and lapse must be 0.
+  bool fit_symmetric_lapse = false;
   int max_iterations = 200;
 };
 
@@ -30,7 +34,11 @@ struct PsychometricFit {
   double intercept = 0, slope = 0;
   double guess = 0, lapse = 0;
   bool converged = false;
-  bool separated = false;  ///< complete/quasi-complete separation: Firth estimate
+  bool separated = false;            ///< complete/quasi-complete separation: Firth estimate
+  bool lapse_fitted = false;         ///< guess = lapse = lambda estimated (symmetric-lapse model)
+  bool lapse_at_boundary = false;    ///< the fitted lambda is on its bound 0
+  bool step_not_identified = false;  ///< fitted lapse: a step fits as well, slope/threshold not identified
+  double nll = 0;                    ///< negative log-likelihood of the answers under the fitted curve
   int iterations = 0;
   std::string warning;  ///< empty when the plain fit is fine
 

@@ -49,7 +49,7 @@ PsychometricAnalysis analyze_psychometric(const CsvTable& table, const Psychomet
       x = std::cbrt(x);
     }
     auto [it, inserted] = index.emplace(std::make_pair(subject, by), out.fits.size());
-    if (inserted) out.fits.push_back(PsychometricRow{subject, by, {}, {}, {}, {}, {}});
+    if (inserted) out.fits.push_back(PsychometricRow{subject, by, {}, {}, {}, {}, {}, {}});
     out.fits[it->second].x.push_back(x);
     out.fits[it->second].y.push_back(y);
     if (by_index.emplace(by, by_levels.size()).second) by_levels.push_back(by);
@@ -62,6 +62,7 @@ PsychometricAnalysis analyze_psychometric(const CsvTable& table, const Psychomet
                        (row.by.empty() ? "" : ", " + request.by + " '" + row.by + "'") + ": " + e.what());
     }
     for (double p : request.probabilities) row.thresholds.push_back(row.fit.threshold(p));
+    row.goodness = psychometric_goodness(row.x, row.y, row.fit, row.fit.lapse_fitted ? 3 : 2);
     if (request.bootstrap > 0)
       row.ci = bootstrap_thresholds(row.x, row.fit, request.probabilities, request.bootstrap,
                                     derive_seed(request.seed, row.subject + "/" + row.by), request.options);
@@ -132,7 +133,18 @@ nlohmann::json psychometric_to_json(const PsychometricAnalysis& a) {
          {"trials", row.x.size()},
          {"converged", row.fit.converged},
          {"separated", row.fit.separated},
-         {"warning", row.fit.warning.empty() ? nlohmann::json(nullptr) : nlohmann::json(row.fit.warning)}});
+         {"warning", row.fit.warning.empty() ? nlohmann::json(nullptr) : nlohmann::json(row.fit.warning)},
+         {"lapse", row.fit.lapse},
+         {"lapse_fitted", row.fit.lapse_fitted},
+         {"lapse_at_boundary",
+          row.fit.lapse_fitted ? nlohmann::json(row.fit.lapse_at_boundary) : nlohmann::json(nullptr)},
+         {"step_not_identified", row.fit.step_not_identified},
+         {"nll", num(row.fit.nll)},
+         {"deviance", num(row.goodness.deviance)},
+         {"deviance_df", row.goodness.df},
+         {"deviance_p", num(row.goodness.p)},
+         {"dispersion", num(row.goodness.dispersion)},
+         {"overdispersed", row.goodness.overdispersed}});
   }
   nlohmann::json groups = nlohmann::json::array();
   for (const auto& g : a.groups) {

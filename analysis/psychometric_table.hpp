@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "analysis/psychometric_fit.hpp"
+#include "analysis/psychometric_goodness.hpp"
 #include "analysis/rm_anova.hpp"
 #include "framework/core/csv.hpp"
 
@@ -30,6 +31,7 @@ struct PsychometricRow {
   std::vector<double> thresholds;     ///< one per request probability
   std::vector<ThresholdInterval> ci;  ///< empty without bootstrap
   std::vector<double> x, y;           ///< the (transformed) trials, for plots
+  PsychometricGoodness goodness;      ///< deviance / overdispersion check of the fit
 };
 
 struct PsychometricGroup {
@@ -50,8 +52,10 @@ struct PsychometricAnalysis {
 PsychometricAnalysis analyze_psychometric(const CsvTable& table, const PsychometricRequest& request);
 
 /// {"fits": [{"subject", "by", "intercept", "slope", "thresholds": {"0.5": ...}, "ci": {...},
-///   "converged", "separated", "warning"}], "groups": [{"by", "n", "mean": {...}, "sd": {...}}],
-///   "anova": {...} or null}. Probabilities are keyed by their shortest text ("0.5", "0.05").
+///   "converged", "separated", "warning", "lapse", "lapse_fitted", "lapse_at_boundary",
+///   "step_not_identified", "nll", "deviance", "deviance_df", "deviance_p", "dispersion", "overdispersed"}],
+///   "groups": [{"by", "n", "mean": {...}, "sd": {...}}], "anova": {...} or null}. Probabilities are keyed by
+///   their shortest text ("0.5", "0.05").
 nlohmann::json psychometric_to_json(const PsychometricAnalysis& analysis);
 
 /// "0.5" for 0.5: the key used for a probability in JSON and tables.

@@ -2,12 +2,11 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <boost/math/distributions/chi_squared.hpp>
-#include <boost/math/distributions/fisher_f.hpp>
 #include <cmath>
 #include <sstream>
 #include <string>
 
+#include "analysis/sphericity.hpp"
 #include "framework/core/error.hpp"
 
 namespace crowdlab::analysis {
@@ -34,17 +33,8 @@ Eigen::MatrixXd kron(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return k;
 }
 
-double f_upper(double f, double df1, double df2) {
-  if (!(f > 0)) return 1.0;
-  return boost::math::cdf(boost::math::complement(boost::math::fisher_f_distribution<double>(df1, df2), f));
-}
+}  // namespace
 
-double chisq_upper(double x, double df) {
-  if (!(x > 0)) return 1.0;
-  return boost::math::cdf(boost::math::complement(boost::math::chi_squared_distribution<double>(df), x));
-}
-
-// Every non-empty subset of {0..k-1}, ordered by size then lexicographically (R's term order).
 std::vector<std::vector<size_t>> effect_subsets(size_t k) {
   std::vector<std::vector<size_t>> out;
   for (size_t mask = 1; mask < (size_t{1} << k); ++mask) {
@@ -59,7 +49,6 @@ std::vector<std::vector<size_t>> effect_subsets(size_t k) {
   });
   return out;
 }
-}  // namespace
 
 Eigen::MatrixXd effect_contrasts(const WithinDesign& design, const std::vector<size_t>& effect_factors) {
   Eigen::MatrixXd c = Eigen::MatrixXd::Ones(1, 1);
@@ -92,6 +81,8 @@ void require_enough_subjects(const WithinDesign& design) {
                      std::to_string(kMinSubjects) + " (with 2 the sphericity corrections are undefined)");
 }
 
+}  // namespace
+
 // F = MS_effect / MS_error is undefined (0/0, printed -nan) or infinite when the error term is zero:
 // a constant dependent variable, or every subject showing exactly the same differences between cells.
 // "Zero" is relative to the data's total variability, so rounding noise counts as zero too.
@@ -107,9 +98,22 @@ void require_error_variance(const WithinDesign& design, const RmAnovaEffect& e, 
                      "' has zero error variance (every subject shows the same differences between the "
                      "cells), so its F ratio is undefined");
 }
-}  // namespace
+
+void complete_effect(const WithinDesign& design, RmAnovaEffect& e, const Eigen::MatrixXd& error_ssp,
+                     double error_df, double ss_total) {
+  e.ss_error = error_ssp.trace();
+  e.ms = e.ss / e.df1;
+  e.ms_error = e.ss_error / e.df2;
+  require_error_variance(design, e, ss_total);
+  e.f = e.ms / e.ms_error;
+  e.p = f_upper_tail(e.f, e.df1, e.df2);
+  e.pes = e.ss / (e.ss + e.ss_error);
+  if (error_ssp.cols() > 1)
+    apply_sphericity(e, error_ssp, error_df, static_cast<double>(design.cell_means.cols()));
+}
 
 RmAnovaResult rm_anova(const WithinDesign& design) {
+  if (!design.between.empty()) return mixed_anova(design);
   require_enough_subjects(design);
   const Eigen::MatrixXd& y = design.cell_means;
   const auto n = static_cast<double>(y.rows());
@@ -133,46 +137,8 @@ RmAnovaResult rm_anova(const WithinDesign& design) {
     e.df1 = d;
     e.df2 = d * (n - 1.0);
     e.ss = n * zbar.squaredNorm();
-    e.ss_error = s.trace();
-    e.ms = e.ss / e.df1;
-    e.ms_error = e.ss_error / e.df2;
-    require_error_variance(design, e, ss_total);
-    e.f = e.ms / e.ms_error;
-    e.p = f_upper(e.f, e.df1, e.df2);
-    e.pes = e.ss / (e.ss + e.ss_error);
+    complete_effect(design, e, s, n - 1.0, ss_total);
     ss_error_total += e.ss_error;
-    if (z.cols() > 1) {
-      const double gg = s.trace() * s.trace() / (d * (s * s).trace());
-      const double hf = (n * d * gg - 2.0) / (d * (n - 1.0 - d * gg));
-      e.gg_eps = gg;
-      e.p_gg = f_upper(e.f, gg * e.df1, gg * e.df2);
-      // HF's denominator is <= 0 when n - 1 <= d eps_GG (few subjects for many cells): car then reports
-      // a negative epsilon and a NaN p; here both are left empty.
-      if (std::isfinite(hf) && hf > 0) {
-        e.hf_eps = hf;
-        const double hf_used = std::min(1.0, hf);
-        e.p_hf = f_upper(e.f, hf_used * e.df1, hf_used * e.df2);
-      }
-      if (n - 1.0 >= d) {
-        const Eigen::MatrixXd sigma = s / (n - 1.0);
-        const double det = sigma.determinant();
-        if (det > 0) {
-          const double log_w = std::log(det) - d * std::log(sigma.trace() / d);
-          const double rho = 1.0 - (2.0 * d * d + d + 2.0) / (6.0 * d * (n - 1.0));
-          // R's mauchly.test.SSD (used by car/afex) writes "3 * p" with p the number of cells, not d;
-          // kept for agreement (the term is O(1/n^2)).
-          const double cells = static_cast<double>(y.cols());
-          const double w2 = (d + 2.0) * (d - 1.0) * (d - 2.0) *
-                            (2.0 * d * d * d + 6.0 * d * d + 3.0 * cells + 2.0) /
-                            (288.0 * std::pow((n - 1.0) * d * rho, 2.0));
-          const double zstat = -(n - 1.0) * rho * log_w;
-          const double f = d * (d + 1.0) / 2.0 - 1.0;
-          const double q_f = chisq_upper(zstat, f);
-          e.mauchly_w = std::exp(log_w);
-          e.mauchly_p = q_f + w2 * (chisq_upper(zstat, f + 4.0) - q_f);
-        }
-      }
-    }
     result.effects.push_back(std::move(e));
   }
   for (auto& e : result.effects) e.ges = e.ss / (e.ss + result.ss_subjects + ss_error_total);

@@ -28,8 +28,9 @@
 namespace crowdlab::analysis {
 
 struct RmAnovaEffect {
-  std::string name;             ///< factor names joined with ':' in the design's factor order
+  std::string name;             ///< factor names joined with ':': between factors first (afex's order)
   std::vector<size_t> factors;  ///< indices into WithinDesign::factors
+  std::vector<size_t> between;  ///< indices into WithinDesign::between (mixed designs)
   double df1 = 0, df2 = 0;
   double ss = 0, ss_error = 0, ms = 0, ms_error = 0;
   double f = 0, p = 0;
@@ -41,7 +42,8 @@ struct RmAnovaEffect {
 struct RmAnovaResult {
   size_t subjects = 0;
   double ss_subjects = 0;              ///< between-subject SS (error of the intercept)
-  std::vector<RmAnovaEffect> effects;  ///< main effects first, then 2-way, ... (R's term order)
+  std::vector<RmAnovaEffect> effects;  ///< main effects first, then 2-way, ... (R's term order); with
+                                       ///< between factors, car/afex's order (see mixed_anova)
 };
 
 /// Runs the ANOVA on a design (see build_within_design). Mauchly's W and p are left empty when
@@ -50,6 +52,22 @@ struct RmAnovaResult {
 /// Throws InputError (naming the design's CSV and dv column) for fewer than 3 subjects, a constant dv,
 /// or an effect with zero error variance (its F would be 0/0 or infinite).
 RmAnovaResult rm_anova(const WithinDesign& design);
+
+/// Mixed (split-plot) or between-subjects ANOVA of a design with between factors (mixed_anova.cpp);
+/// rm_anova calls it for such designs. See the header comment of mixed_anova.cpp.
+RmAnovaResult mixed_anova(const WithinDesign& design);
+
+/// Every non-empty subset of {0..k-1}, ordered by size then lexicographically (R's term order).
+std::vector<std::vector<size_t>> effect_subsets(size_t k);
+
+/// Throws InputError (naming the design's CSV and dv) when ss_total is 0 (a constant dv) or the
+/// effect's error SS is zero relative to it (F would be 0/0 or infinite).
+void require_error_variance(const WithinDesign& design, const RmAnovaEffect& e, double ss_total);
+
+/// Fills an effect's error SS, mean squares, F, p, pes and (d > 1) sphericity from its error SSP
+/// matrix with `error_df` df; e.ss, df1 and df2 must be set. Throws as require_error_variance.
+void complete_effect(const WithinDesign& design, RmAnovaEffect& e, const Eigen::MatrixXd& error_ssp,
+                     double error_df, double ss_total);
 
 /// Orthonormal Helmert-type contrasts: l x (l-1), columns orthonormal and orthogonal to 1.
 Eigen::MatrixXd helmert_contrasts(size_t levels);

@@ -1,6 +1,7 @@
 #include "analysis/within_design.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <set>
 
@@ -83,17 +84,58 @@ void check_every_subject_has_every_cell(const std::string& source, const WithinD
 }
 }  // namespace
 
+namespace {
+void check_factor_names(const std::string& source, const std::vector<std::string>& within,
+                        const std::vector<std::string>& between) {
+  std::vector<std::string> all = within;
+  all.insert(all.end(), between.begin(), between.end());
+  for (size_t f = 0; f < all.size(); ++f)
+    for (size_t g = 0; g < f; ++g)
+      if (all[f] == all[g])
+        throw InputError(SourceLocation{source, 0, 0, f < within.size() ? "--within" : "--between"},
+                         "factor '" + all[f] + "' is named twice");
+}
+
+// Each subject's level of every between factor, from its first row; a later row naming another level
+// is an error at that row.
+void read_between_levels(const CsvTable& table, const std::vector<std::string>& between, size_t subject_col,
+                         WithinDesign& design, const std::map<std::string, size_t>& subject_map) {
+  design.between.resize(between.size());
+  std::vector<std::map<std::string, size_t>> level_maps(between.size());
+  design.subject_groups.assign(design.subjects.size(), std::vector<size_t>(between.size(), SIZE_MAX));
+  for (size_t f = 0; f < between.size(); ++f) {
+    design.between[f].name = between[f];
+    const size_t col = table.column(between[f]);
+    for (size_t r = 0; r < table.rows.size(); ++r) {
+      const auto& v = table.cell(r, col);
+      const SourceLocation where{table.source, table.line_numbers[r], 0, between[f]};
+      if (v.empty()) throw InputError(where, "empty factor level");
+      const size_t level = level_index(design.between[f].levels, level_maps[f], v);
+      const size_t s = subject_map.at(table.cell(r, subject_col));
+      size_t& known = design.subject_groups[s][f];
+      if (known == SIZE_MAX) known = level;
+      if (known != level)
+        throw InputError(where, "subject '" + design.subjects[s] + "' has rows in two levels of the " +
+                                    "between-subject factor ('" + design.between[f].levels[known] +
+                                    "' and '" + v + "'); is it a within-subject factor?");
+    }
+    if (design.between[f].levels.size() < 2)
+      throw InputError(table.source + ": factor '" + between[f] + "' has fewer than 2 levels");
+  }
+}
+}  // namespace
+
 WithinDesign build_within_design(const CsvTable& table, const std::string& dv, const std::string& subject,
-                                 const std::vector<std::string>& within, const DesignLimits& limits) {
-  if (within.empty()) throw InputError(table.source + ": no within-subject factor given");
+                                 const std::vector<std::string>& within, const DesignLimits& limits,
+                                 const std::vector<std::string>& between) {
+  if (within.empty() && between.empty()) throw InputError(table.source + ": no factor given");
   const size_t dv_col = table.column(dv);
   const size_t subject_col = table.column(subject);
   std::vector<size_t> factor_cols;
-  for (size_t f = 0; f < within.size(); ++f)
-    for (size_t g = 0; g < f; ++g)
-      if (within[f] == within[g])
-        throw InputError(SourceLocation{table.source, 0, 0, "--within"},
-                         "factor '" + within[f] + "' is named twice");
+  check_factor_names(table.source, within, between);
+  for (const auto& b : between)
+    if (b == subject || b == dv)
+      throw InputError(table.source + ": factor '" + b + "' is also the subject/dv");
   for (const auto& w : within) {
     if (w == subject || w == dv)
       throw InputError(table.source + ": factor '" + w + "' is also the subject/dv");
@@ -133,6 +175,8 @@ WithinDesign build_within_design(const CsvTable& table, const std::string& dv, c
   }
   if (design.subjects.size() < 2) throw InputError(table.source + ": fewer than 2 subjects");
   check_design_size(table.source, design.factors, limits);
+  read_between_levels(table, between, subject_col, design, subject_map);
+  check_design_size(table.source, design.between, limits);
   size_t cells = 1;
   for (const auto& f : design.factors) cells *= f.levels.size();
   check_every_subject_has_every_cell(table.source, design, rows, cells);

@@ -16,12 +16,7 @@
 suppressMessages(library(afex))
 args <- commandArgs(trailingOnly = TRUE)
 out <- if (length(args) > 0) args[1] else "tests/data/analysis"
-fmt <- function(x) ifelse(is.na(x), "", trimws(formatC(x, digits = 17, format = "g")))
-
-write_table <- function(df, file) {
-  for (n in names(df)) if (is.numeric(df[[n]])) df[[n]] <- fmt(df[[n]])
-  write.csv(df, file.path(out, file), row.names = FALSE, quote = FALSE)
-}
+source("scripts/reference_helpers.R")
 
 # ---- Maxwell & Delaney 12.1 data, from afex ------------------------------------------------------
 data(md_12.1, package = "afex")

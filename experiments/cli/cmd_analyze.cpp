@@ -8,6 +8,8 @@
 
 #include "analysis/analysis_json.hpp"
 #include "analysis/apa_format.hpp"
+#include "analysis/clmm_fit.hpp"
+#include "analysis/lmm_fit.hpp"
 #include "analysis/posthoc.hpp"
 #include "analysis/psychometric_table.hpp"
 #include "analysis/rm_anova.hpp"
@@ -28,17 +30,23 @@ std::vector<std::string> split_list(const std::string& text) {
 }
 
 struct DesignArgs {
-  std::string csv, dv, subject, within;
+  std::string csv, dv, subject, within, between;
   DesignLimits limits;
 };
 
-void add_design_options(CLI::App* cmd, DesignArgs& a) {
+void add_design_options(CLI::App* cmd, DesignArgs& a, bool with_between = false) {
   cmd->add_option("--csv", a.csv, "Tidy CSV: one row per trial (repetitions are averaged per cell)")
       ->required();
   cmd->add_option("--dv", a.dv, "Dependent-variable column (numeric)")->required();
   cmd->add_option("--subject", a.subject, "Subject (participant) column")->required();
-  cmd->add_option("--within", a.within, "Within-subject factor columns, comma-separated (e.g. A,B,C)")
-      ->required();
+  auto* within =
+      cmd->add_option("--within", a.within, "Within-subject factor columns, comma-separated (e.g. A,B,C)");
+  if (with_between)
+    cmd->add_option("--between", a.between,
+                    "Between-subject factor columns, comma-separated (e.g. group); groups may differ in size "
+                    "(Type III sums of squares, as afex)");
+  else
+    within->required();
   cmd->add_option(
          "--max-levels", a.limits.max_levels,
          "Refuse (exit 2) a factor with more levels than this, before any work (see docs/analysis.md)")
@@ -57,16 +65,54 @@ struct AnovaOptions {
 
 struct PosthocOptions {
   DesignArgs design;
-  std::string effect, method = "tukey";
+  std::string effect, method = "tukey", error = "classic";
   bool json = false, simple = false;
   size_t max_comparisons = kDefaultMaxComparisons;
 };
 
 struct PsychometricOptions {
   PsychometricRequest request;
-  std::string csv, probabilities = "0.5,0.05";
+  std::string csv, probabilities = "0.5,0.05", lapse = "fixed";
   bool json = false;
 };
+
+struct LmmOptions {
+  std::string csv, formula;
+  bool ml = false, reml = false, json = false;
+};
+
+void print_lmm(const LmmResult& r) {
+  std::printf("Linear mixed model (%s), %zu observations\n\nFixed effects:\n", r.reml ? "REML" : "ML",
+              r.observations);
+  for (const auto& f : r.fixed)
+    std::printf("  %-28s %12.6f  SE %10.6f  t %9.3f\n", f.term.c_str(), f.estimate, f.se, f.t);
+  std::printf("\nRandom effects:\n");
+  for (const auto& s : r.random_sd)
+    std::printf("  %-14s %-20s SD %.6f\n", s.group.c_str(), s.term.c_str(), s.sd);
+  for (const auto& c : r.random_corr)
+    std::printf("  %-14s corr(%s, %s) %.4f\n", c.group.c_str(), c.term1.c_str(), c.term2.c_str(), c.corr);
+  std::printf("  residual SD %.6f\n\n%s %.6f%s\n", r.residual_sd, r.reml ? "REML criterion" : "deviance",
+              r.criterion, r.converged ? "" : " (NOT converged)");
+  for (const auto& w : r.warnings) std::printf("WARNING: %s\n", w.c_str());
+}
+
+struct ClmmOptions {
+  std::string csv, formula, link = "logit";
+  bool json = false;
+};
+
+void print_clmm(const ClmmResult& r) {
+  std::printf("Cumulative link mixed model (%s link, Laplace), %zu observations, %zu groups\n\nThresholds:\n",
+              r.link.c_str(), r.observations, r.groups);
+  for (const auto& t : r.thresholds)
+    std::printf("  %-12s %10.5f  SE %8.5f\n", t.name.c_str(), t.estimate, t.se);
+  std::printf("\nFixed effects:\n");
+  for (const auto& f : r.fixed)
+    std::printf("  %-28s %10.5f  SE %8.5f  z %8.3f  p %.4g\n", f.name.c_str(), f.estimate, f.se, f.z, f.p);
+  std::printf("\nRandom intercept SD (%s): %.5f\nlog-likelihood %.6f%s\n", r.group.c_str(), r.random_sd,
+              r.loglik, r.converged ? "" : " (NOT converged)");
+  for (const auto& w : r.warnings) std::printf("WARNING: %s\n", w.c_str());
+}
 
 struct ReportOptions {
   std::string study_dir, spec_path, out_dir;
@@ -74,8 +120,9 @@ struct ReportOptions {
 
 WithinDesign load_design(const DesignArgs& a) {
   const auto within = split_list(a.within);
-  if (within.empty()) throw InputError("--within: no factor given");
-  return build_within_design(read_csv(a.csv), a.dv, a.subject, within, a.limits);
+  const auto between = split_list(a.between);
+  if (within.empty() && between.empty()) throw InputError("--within/--between: no factor given");
+  return build_within_design(read_csv(a.csv), a.dv, a.subject, within, a.limits, between);
 }
 
 const CommandRegistration kRegistration([](CLI::App& root) {
@@ -87,20 +134,24 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   auto anova_opt = std::make_shared<AnovaOptions>();
   auto* anova = analyze->add_subcommand(
       "anova",
-      "Repeated-measures ANOVA (all within-subject factors) with Mauchly's test, Greenhouse-Geisser and "
-      "Huynh-Feldt corrections, partial and generalised eta squared");
-  add_design_options(anova, anova_opt->design);
+      "Repeated-measures, mixed (split-plot) or between-subjects ANOVA (Type III with between factors, as "
+      "afex) with Mauchly's test, Greenhouse-Geisser and Huynh-Feldt corrections, partial and generalised "
+      "eta squared");
+  add_design_options(anova, anova_opt->design, true);
   anova->add_flag(
       "--json", anova_opt->json,
       "Print {\"effects\": [{\"effect\", \"df1\", \"df2\", \"F\", \"p\", \"pes\", \"ges\", \"mauchly_W\", "
       "\"mauchly_p\", \"gg_eps\", \"hf_eps\", \"p_gg\", \"p_hf\", ...}]} (null where not applicable)");
   anova->callback([o = anova_opt] {
-    const auto result = rm_anova(load_design(o->design));
+    const auto design = load_design(o->design);
+    const auto result = rm_anova(design);
+    const char* kind = design.between.empty()   ? "Repeated-measures ANOVA"
+                       : design.factors.empty() ? "Between-subjects ANOVA (Type III)"
+                                                : "Mixed ANOVA (Type III)";
     if (o->json)
       std::cout << anova_to_json(result).dump(2) << "\n";
     else
-      std::cout << "Repeated-measures ANOVA, " << result.subjects << " subjects\n\n"
-                << anova_text_table(result);
+      std::cout << kind << ", " << result.subjects << " subjects\n\n" << anova_text_table(result);
   });
 
   // ---- posthoc ----
@@ -111,6 +162,13 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   ph->add_option("--effect", ph_opt->effect, "Effect: a factor (A) or an interaction (A:B)")->required();
   ph->add_option("--method", ph_opt->method, "tukey (pooled-error Tukey HSD) or bonferroni (paired t-tests)")
       ->check(CLI::IsMember({"tukey", "bonferroni"}))
+      ->capture_default_str();
+  ph->add_option(
+        "--error", ph_opt->error,
+        "classic (Tukey with the effect's own error term, or paired t), pooled (emmeans' univariate "
+        "model: error strata pooled, Satterthwaite df) or separate (emmeans' multivariate model: each "
+        "contrast's own error); with pooled/separate the statistic is t and --method adjusts p")
+      ->check(CLI::IsMember({"classic", "pooled", "separate"}))
       ->capture_default_str();
   ph->add_flag("--simple", ph_opt->simple,
                "Only compare cells that differ in one factor (simple comparisons)");
@@ -123,7 +181,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     const auto design = load_design(o->design);
     const auto factors = parse_effect(design, o->effect);
     const auto method = o->method == "tukey" ? PosthocMethod::tukey : PosthocMethod::bonferroni;
-    const auto result = posthoc(design, factors, method, o->simple, o->max_comparisons);
+    const auto error = o->error == "pooled"     ? PosthocError::pooled
+                       : o->error == "separate" ? PosthocError::separate
+                                                : PosthocError::classic;
+    const auto result = posthoc(design, factors, method, o->simple, o->max_comparisons, error);
     if (o->json) {
       auto j = posthoc_to_json(result);
       if (factors.size() > 1) {
@@ -179,10 +240,28 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   psy->add_option("--guess", req.options.guess,
                   "Fixed guess rate (lower asymptote); thresholds are then points of "
                   "the underlying logistic (see analysis/psychometric_fit.hpp)");
-  psy->add_option("--lapse", req.options.lapse, "Fixed lapse rate (1 - upper asymptote)");
+  psy->add_option("--lapse", psy_opt->lapse,
+                  "fixed (at --lapse-rate), symmetric (fit guess = lapse = lambda in [0, 0.5) by maximum "
+                  "likelihood, per subject and condition; see analysis/psychometric_lapse.hpp), or a "
+                  "number: the fixed lapse rate")
+      ->capture_default_str();
+  psy->add_option("--lapse-rate", req.options.lapse,
+                  "Fixed lapse rate (1 - upper asymptote) for --lapse fixed")
+      ->capture_default_str();
   psy->add_flag("--json", psy_opt->json, "Print {\"fits\": [...], \"groups\": [...], \"anova\": ...}");
   psy->callback([o = psy_opt] {
     PsychometricRequest& pr = o->request;
+    if (o->lapse == "symmetric") {
+      pr.options.fit_symmetric_lapse = true;
+    } else if (o->lapse != "fixed") {
+      try {
+        size_t used = 0;
+        pr.options.lapse = std::stod(o->lapse, &used);
+        if (used != o->lapse.size()) throw InputError("");
+      } catch (const std::exception&) {
+        throw InputError("--lapse: expected fixed, symmetric or a number, got '" + o->lapse + "'");
+      }
+    }
     pr.probabilities.clear();
     for (const auto& s : split_list(o->probabilities)) {
       try {
@@ -199,6 +278,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     for (const auto& row : result.fits) {
       std::printf("%-10s %-12s intercept %9.4f slope %9.4f", row.subject.c_str(), row.by.c_str(),
                   row.fit.intercept, row.fit.slope);
+      if (row.fit.lapse_fitted)
+        std::printf(" lapse %.4f%s", row.fit.lapse, row.fit.lapse_at_boundary ? " (bound)" : "");
+      std::printf(" nll %.4f dev %.2f/%d%s", row.fit.nll, row.goodness.deviance, row.goodness.df,
+                  row.goodness.overdispersed ? " OVERDISPERSED" : "");
       for (size_t k = 0; k < pr.probabilities.size(); ++k) {
         std::printf("  x(%s) %.4f", probability_key(pr.probabilities[k]).c_str(), row.thresholds[k]);
         if (!row.ci.empty()) std::printf(" [%.4f, %.4f]", row.ci[k].lower, row.ci[k].upper);
@@ -206,6 +289,56 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       std::printf("%s\n", row.fit.warning.empty() ? "" : ("  WARNING: " + row.fit.warning).c_str());
     }
     std::cout << "\n" << psychometric_markdown_table(result, "");
+  });
+
+  // ---- lmm ----
+  auto lmm_opt = std::make_shared<LmmOptions>();
+  auto* lmm = analyze->add_subcommand(
+      "lmm",
+      "Linear mixed model as lme4::lmer: correlated random intercepts and slopes, crossed groups "
+      "(profiled deviance, sparse Cholesky, BOBYQA; see analysis/lmm_fit.hpp)");
+  lmm->add_option("--csv", lmm_opt->csv, "Tidy CSV: one row per observation")->required();
+  lmm->add_option("--formula", lmm_opt->formula,
+                  "lme4 formula, e.g. \"Y ~ a * b + (1 + b | S)\"; text columns are factors (treatment "
+                  "coding, levels sorted, the first the reference)")
+      ->required();
+  auto* reml_flag = lmm->add_flag("--reml", lmm_opt->reml, "Restricted maximum likelihood (the default)");
+  lmm->add_flag("--ml", lmm_opt->ml, "Maximum likelihood (for likelihood-ratio tests of fixed effects)")
+      ->excludes(reml_flag);
+  lmm->add_flag("--json", lmm_opt->json,
+                "Print {\"fixed\": [{term, estimate, se, t}], \"random\": [{group, term, sd} | {group, "
+                "term1, term2, corr}], \"residual_sd\", \"reml_criterion\" | \"deviance\", \"converged\", "
+                "\"singular\", \"warnings\", \"observations\"}");
+  lmm->callback([o = lmm_opt] {
+    const auto result = fit_lmm(read_csv(o->csv), o->formula, !o->ml);
+    if (o->json)
+      std::cout << lmm_to_json(result).dump(2) << "\n";
+    else
+      print_lmm(result);
+  });
+
+  // ---- clmm ----
+  auto clmm_opt = std::make_shared<ClmmOptions>();
+  auto* clmm = analyze->add_subcommand(
+      "clmm",
+      "Cumulative link mixed model for ordinal (Likert) answers as ordinal::clmm: flexible thresholds, "
+      "a random intercept, Laplace approximation (see analysis/clmm_fit.hpp)");
+  clmm->add_option("--csv", clmm_opt->csv, "Tidy CSV: one row per answer")->required();
+  clmm->add_option("--formula", clmm_opt->formula, "e.g. \"R ~ a * b + (1 | S)\": one random-intercept term")
+      ->required();
+  clmm->add_option("--link", clmm_opt->link, "logit or probit")
+      ->check(CLI::IsMember({"logit", "probit"}))
+      ->capture_default_str();
+  clmm->add_flag("--json", clmm_opt->json,
+                 "Print {\"thresholds\": [{name, estimate, se}], \"fixed\": [{term, estimate, se, z, p}], "
+                 "\"random\": [{group, sd}], \"loglik\", \"link\", \"converged\", \"observations\", "
+                 "\"warnings\"}");
+  clmm->callback([o = clmm_opt] {
+    const auto result = fit_clmm(read_csv(o->csv), o->formula, o->link);
+    if (o->json)
+      std::cout << clmm_to_json(result).dump(2) << "\n";
+    else
+      print_clmm(result);
   });
 
   // ---- report ----

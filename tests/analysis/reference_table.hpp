@@ -2,6 +2,7 @@
 // Reads the committed R reference tables in tests/data/analysis/ (see scripts/make_reference_stats.R).
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "framework/core/csv.hpp"
@@ -22,6 +23,12 @@ inline double ref_number(const CsvTable& t, size_t row, const std::string& col) 
 
 inline bool close_rel(double a, double b, double rel) {
   return std::abs(a - b) <= rel * std::max(std::abs(a), std::abs(b)) + 1e-300;
+}
+
+/// An optional statistic against an R cell: absent where R has NA, else equal to 1e-6 relative.
+inline bool optional_matches(const std::optional<double>& got, double want) {
+  if (std::isnan(want)) return !got.has_value();
+  return got.has_value() && close_rel(*got, want, 1e-6);
 }
 
 }  // namespace crowdlab::test

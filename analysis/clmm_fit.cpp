@@ -1,0 +1,301 @@
+#include "analysis/clmm_fit.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <boost/math/distributions/normal.hpp>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+
+#include "analysis/lmm_formula.hpp"
+#include "analysis/model_matrix.hpp"
+#include "analysis/nlopt_minimise.hpp"
+#include "framework/core/error.hpp"
+
+namespace crowdlab::analysis {
+namespace {
+struct Link {
+  bool logit = true;
+  double cdf(double t) const {
+    if (logit) return t >= 0 ? 1.0 / (1.0 + std::exp(-t)) : std::exp(t) / (1.0 + std::exp(t));
+    return 0.5 * std::erfc(-t / std::sqrt(2.0));
+  }
+  double pdf(double t) const {
+    if (logit) {
+      const double f = cdf(t);
+      return f * (1.0 - f);
+    }
+    return std::exp(-0.5 * t * t) / std::sqrt(2.0 * M_PI);
+  }
+  // d pdf / dt (the second derivative of the cdf)
+  double dpdf(double t) const {
+    if (logit) {
+      const double f = cdf(t);
+      return f * (1.0 - f) * (1.0 - 2.0 * f);
+    }
+    return -t * pdf(t);
+  }
+};
+
+struct Data {
+  Link link;
+  Eigen::MatrixXd x;                         ///< rows x fixed effects (no intercept)
+  std::vector<int> y;                        ///< response level 0..K-1
+  std::vector<size_t> group;                 ///< group of each row
+  std::vector<std::vector<size_t>> rows_of;  ///< rows of each group
+  int levels = 0;
+};
+
+// Parameters in the natural space: thresholds (K-1), beta (p), log sd.
+struct Params {
+  std::vector<double> theta;
+  Eigen::VectorXd beta;
+  double log_sd = 0;
+};
+
+Params unpack_natural(const Data& d, const double* v) {
+  Params p;
+  p.theta.assign(v, v + d.levels - 1);
+  p.beta = Eigen::Map<const Eigen::VectorXd>(v + d.levels - 1, d.x.cols());
+  p.log_sd = v[d.levels - 1 + d.x.cols()];
+  return p;
+}
+
+// log P(y | eta + b) and its first two derivatives in b.
+void row_terms(const Data& d, const Params& p, int y, double eta, double b, double& logp, double& d1,
+               double& d2) {
+  const double upper = y < d.levels - 1 ? p.theta[static_cast<size_t>(y)] - eta - b : HUGE_VAL;
+  const double lower = y > 0 ? p.theta[static_cast<size_t>(y - 1)] - eta - b : -HUGE_VAL;
+  const double fu = std::isfinite(upper) ? d.link.cdf(upper) : 1.0,
+               fl = std::isfinite(lower) ? d.link.cdf(lower) : 0.0;
+  const double gu = std::isfinite(upper) ? d.link.pdf(upper) : 0.0,
+               gl = std::isfinite(lower) ? d.link.pdf(lower) : 0.0;
+  const double hu = std::isfinite(upper) ? d.link.dpdf(upper) : 0.0,
+               hl = std::isfinite(lower) ? d.link.dpdf(lower) : 0.0;
+  const double prob = std::max(fu - fl, 1e-300);
+  logp = std::log(prob);
+  const double dp = -(gu - gl);  // d prob / db
+  const double ddp = hu - hl;    // d2 prob / db2
+  d1 = dp / prob;
+  d2 = ddp / prob - d1 * d1;
+}
+
+// Laplace approximation of the marginal log-likelihood (clmm's nAGQ = 1), on u = b / sd ~ N(0, 1).
+double laplace_loglik(const Data& d, const Params& p) {
+  const Eigen::VectorXd eta = d.x * p.beta;
+  const double sd = std::exp(p.log_sd);
+  double total = 0;
+  for (const auto& rows : d.rows_of) {
+    // Newton for the conditional mode of u (the log-posterior is concave for logit and probit).
+    double u = 0;
+    for (int it = 0; it < 50; ++it) {
+      double g = -u, h = -1.0;
+      for (size_t r : rows) {
+        double lp = 0, d1 = 0, d2 = 0;
+        row_terms(d, p, d.y[r], eta[static_cast<Eigen::Index>(r)], sd * u, lp, d1, d2);
+        g += sd * d1;
+        h += sd * sd * d2;
+      }
+      const double step = -g / h;
+      u += step;
+      if (std::abs(step) < 1e-12) break;
+    }
+    // Value and curvature at the mode.
+    double value_at = -0.5 * u * u, h = -1.0;
+    for (size_t r : rows) {
+      double lp = 0, d1 = 0, d2 = 0;
+      row_terms(d, p, d.y[r], eta[static_cast<Eigen::Index>(r)], sd * u, lp, d1, d2);
+      value_at += lp;
+      h += sd * sd * d2;
+    }
+    total += value_at - 0.5 * std::log(-h);
+  }
+  return total;
+}
+
+// Optimiser space: theta_1, log(theta_k - theta_{k-1}), beta, log sd.
+std::vector<double> to_natural(const Data& d, const double* v) {
+  std::vector<double> out(v, v + d.levels - 1 + d.x.cols() + 1);
+  for (int k = 1; k < d.levels - 1; ++k)
+    out[static_cast<size_t>(k)] = out[static_cast<size_t>(k - 1)] + std::exp(v[k]);
+  return out;
+}
+
+double objective(unsigned, const double* v, double*, void* data) {
+  const auto& d = *static_cast<const Data*>(data);
+  const auto natural = to_natural(d, v);
+  const double ll = laplace_loglik(d, unpack_natural(d, natural.data()));
+  return std::isfinite(ll) ? -ll : HUGE_VAL;
+}
+
+std::vector<std::string> response_levels(const CsvTable& table, size_t col) {
+  std::vector<std::string> levels;
+  for (size_t r = 0; r < table.rows.size(); ++r) levels.push_back(table.cell(r, col));
+  std::sort(levels.begin(), levels.end());
+  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+  const bool numeric = std::all_of(levels.begin(), levels.end(), [](const std::string& s) {
+    char* end = nullptr;
+    std::strtod(s.c_str(), &end);
+    return !s.empty() && end == s.c_str() + s.size();
+  });
+  if (numeric)
+    std::sort(levels.begin(), levels.end(),
+              [](const std::string& a, const std::string& b) { return std::stod(a) < std::stod(b); });
+  return levels;
+}
+
+Data build_data(const CsvTable& table, const LmmFormula& f, const std::string& link,
+                std::vector<std::string>& names, std::vector<std::string>& levels) {
+  if (f.random.size() != 1 || !f.random[0].terms.empty() || !f.random[0].intercept)
+    throw InputError(SourceLocation{"--formula", 0, 0, ""},
+                     "clmm supports exactly one random-intercept term (1 | group)");
+  Data d;
+  d.link.logit = link == "logit";
+  const size_t ycol = table.column(f.response);
+  levels = response_levels(table, ycol);
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    if (table.cell(r, ycol).empty())
+      throw InputError(SourceLocation{table.source, table.line_numbers[r], 0, f.response}, "empty cell");
+    d.y.push_back(
+        static_cast<int>(std::find(levels.begin(), levels.end(), table.cell(r, ycol)) - levels.begin()));
+  }
+  d.levels = static_cast<int>(levels.size());
+  if (d.levels < 3)
+    throw InputError(table.source + ": the response '" + f.response + "' has " + std::to_string(d.levels) +
+                     " levels; an ordinal model needs at least 3 (use a logistic model for 2)");
+  std::vector<std::string> vars;
+  for (const auto& t : f.fixed) vars.insert(vars.end(), t.begin(), t.end());
+  const auto variables = read_model_variables(table, vars);
+  const ModelMatrix mm = model_matrix(f.fixed, true, variables, table.rows.size());
+  d.x = mm.x.rightCols(mm.x.cols() - 1);  // the intercept is absorbed by the thresholds
+  names.assign(mm.names.begin() + 1, mm.names.end());
+  if (d.x.cols() > 0 && Eigen::ColPivHouseholderQR<Eigen::MatrixXd>(mm.x).rank() < mm.x.cols())
+    throw InputError(table.source +
+                     ": the fixed-effects model matrix is rank deficient (a level combination is "
+                     "missing or two predictors are collinear)");
+  const size_t gcol = table.column(f.random[0].group);
+  std::map<std::string, size_t> index;
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    const auto& g = table.cell(r, gcol);
+    if (g.empty())
+      throw InputError(SourceLocation{table.source, table.line_numbers[r], 0, f.random[0].group},
+                       "empty cell");
+    const size_t k = index.emplace(g, index.size()).first->second;
+    if (k == d.rows_of.size()) d.rows_of.emplace_back();
+    d.rows_of[k].push_back(r);
+    d.group.push_back(k);
+  }
+  if (d.rows_of.size() < 2)
+    throw InputError(table.source + ": grouping factor '" + f.random[0].group + "' has a single level");
+  return d;
+}
+
+// Negative Hessian of the Laplace log-likelihood in the natural parameters, by central differences.
+Eigen::MatrixXd information(const Data& d, const std::vector<double>& at) {
+  const auto n = static_cast<Eigen::Index>(at.size());
+  auto ll = [&](const std::vector<double>& v) { return laplace_loglik(d, unpack_natural(d, v.data())); };
+  Eigen::MatrixXd h(n, n);
+  const double f0 = ll(at);
+  std::vector<double> step(at.size());
+  for (size_t i = 0; i < at.size(); ++i) step[i] = 1e-4 * std::max(1.0, std::abs(at[i]));
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = i; j < n; ++j) {
+      auto v = at;
+      const auto si = static_cast<size_t>(i), sj = static_cast<size_t>(j);
+      double value = 0;
+      if (i == j) {
+        v[si] = at[si] + step[si];
+        const double fp = ll(v);
+        v[si] = at[si] - step[si];
+        value = (fp - 2.0 * f0 + ll(v)) / (step[si] * step[si]);
+      } else {
+        double s = 0;
+        for (int a : {1, -1})
+          for (int b : {1, -1}) {
+            v = at;
+            v[si] += a * step[si];
+            v[sj] += b * step[sj];
+            s += a * b * ll(v);
+          }
+        value = s / (4.0 * step[si] * step[sj]);
+      }
+      h(i, j) = h(j, i) = -value;
+    }
+  return h;
+}
+}  // namespace
+
+ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std::string& link) {
+  if (link != "logit" && link != "probit")
+    throw InputError("--link must be logit or probit, got '" + link + "'");
+  const LmmFormula f = parse_lmm_formula(formula);
+  std::vector<std::string> names, levels;
+  const Data d = build_data(table, f, link, names, levels);
+  const size_t k1 = static_cast<size_t>(d.levels - 1), p = static_cast<size_t>(d.x.cols());
+  // Start: thresholds at the link quantiles of the cumulative proportions, beta = 0, sd = 1.
+  std::vector<double> v(k1 + p + 1, 0.0);
+  std::vector<double> counts(static_cast<size_t>(d.levels), 0.0);
+  for (int y : d.y) counts[static_cast<size_t>(y)] += 1;
+  double cum = 0, prev = 0;
+  const boost::math::normal_distribution<double> normal;
+  for (size_t k = 0; k < k1; ++k) {
+    cum += counts[k] / static_cast<double>(d.y.size());
+    const double c = std::clamp(cum, 1e-3, 1 - 1e-3);
+    const double q = d.link.logit ? std::log(c / (1 - c)) : boost::math::quantile(normal, c);
+    v[k] = k == 0 ? q : std::log(std::max(q - prev, 1e-3));
+    prev = k == 0 ? q : prev + std::exp(v[k]);
+  }
+  const NloptOutcome opt = minimise_derivative_free(v, {}, objective, const_cast<Data*>(&d), 200000);
+  const double best = opt.value;
+  ClmmResult out;
+  out.link = link;
+  out.group = f.random[0].group;
+  out.observations = d.y.size();
+  out.groups = d.rows_of.size();
+  out.converged = opt.converged();
+  if (!out.converged)
+    out.warnings.push_back("the optimiser did not converge (NLopt status " + std::to_string(opt.status) +
+                           ")");
+  const auto natural = to_natural(d, v.data());
+  out.loglik = -best;
+  out.random_sd = std::exp(natural.back());
+  const Eigen::MatrixXd info = information(d, natural);
+  const Eigen::MatrixXd cov = info.inverse();
+  const boost::math::normal_distribution<double> z01;
+  for (size_t i = 0; i + 1 < natural.size(); ++i) {
+    ClmmCoefficient c;
+    c.estimate = natural[i];
+    c.se = std::sqrt(cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)));
+    c.z = c.estimate / c.se;
+    c.p = 2.0 * boost::math::cdf(boost::math::complement(z01, std::abs(c.z)));
+    if (i < k1) {
+      c.name = levels[i] + "|" + levels[i + 1];
+      out.thresholds.push_back(c);
+    } else {
+      c.name = names[i - k1];
+      out.fixed.push_back(c);
+    }
+  }
+  if (out.random_sd < 1e-4) out.warnings.push_back("the random-effect SD is (near) zero");
+  return out;
+}
+
+nlohmann::json clmm_to_json(const ClmmResult& r) {
+  auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json thresholds = nlohmann::json::array(), fixed = nlohmann::json::array();
+  for (const auto& t : r.thresholds)
+    thresholds.push_back({{"name", t.name}, {"estimate", t.estimate}, {"se", num(t.se)}});
+  for (const auto& f : r.fixed)
+    fixed.push_back(
+        {{"term", f.name}, {"estimate", f.estimate}, {"se", num(f.se)}, {"z", num(f.z)}, {"p", num(f.p)}});
+  return {{"thresholds", thresholds},
+          {"fixed", fixed},
+          {"random", nlohmann::json::array({{{"group", r.group}, {"sd", r.random_sd}}})},
+          {"loglik", r.loglik},
+          {"link", r.link},
+          {"converged", r.converged},
+          {"observations", r.observations},
+          {"warnings", r.warnings}};
+}
+
+}  // namespace crowdlab::analysis

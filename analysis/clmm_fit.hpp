@@ -1,0 +1,48 @@
+#pragma once
+// Cumulative link mixed model with random intercepts, as ordinal::clmm (Christensen 2019, "A Tutorial
+// on fitting Cumulative Link Mixed Models with clmm2 from the ordinal Package"; Agresti 2010,
+// Analysis of Ordinal Categorical Data, ch. 10):
+//   P(Y_i <= k | b) = F(theta_k - x_i' beta - b_g(i)),   b_g ~ N(0, sd_g^2),   F logistic or normal,
+// flexible thresholds theta_1 < ... < theta_{K-1} (named "1|2", ...), fixed effects without an
+// intercept (R's coding, as clmm drops the intercept column), one or more random-intercept terms
+// (1 | g) for distinct grouping factors, each group's effect integrated out by the Laplace
+// approximation (clmm's default nAGQ = 1). With several terms they must be nested in no way that
+// couples groups: crowdlab supports exactly one random-intercept term (the common design: participant).
+// The marginal log-likelihood is maximised by NLopt's BOBYQA over (theta_1, log increments of the
+// thresholds, beta, log sd); standard errors come from the inverse of the negative Hessian of the
+// Laplace log-likelihood in (theta, beta, log sd), by central differences, as clmm's Hess = TRUE.
+// Response levels: sorted numerically when every level is a number, else in byte order.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "framework/core/csv.hpp"
+
+namespace crowdlab::analysis {
+
+struct ClmmCoefficient {
+  std::string name;
+  double estimate = 0, se = 0, z = 0, p = 0;
+};
+
+struct ClmmResult {
+  std::string link;
+  std::vector<ClmmCoefficient> thresholds, fixed;
+  std::string group;
+  double random_sd = 0;
+  double loglik = 0;
+  bool converged = false;
+  size_t observations = 0, groups = 0;
+  std::vector<std::string> warnings;
+};
+
+/// `link`: "logit" or "probit". Throws InputError (exit 2) for formula errors, missing columns, empty or
+/// non-finite cells, fewer than 3 response levels, a grouping factor with one level, more than one
+/// random term or a random slope, or a rank-deficient fixed-effects matrix.
+ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std::string& link = "logit");
+
+/// {"thresholds": [{name, estimate, se}], "fixed": [{term, estimate, se, z, p}], "random": [{group, sd}],
+///  "loglik", "link", "converged", "observations", "warnings"}.
+nlohmann::json clmm_to_json(const ClmmResult& result);
+
+}  // namespace crowdlab::analysis

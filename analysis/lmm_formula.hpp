@@ -1,0 +1,37 @@
+#pragma once
+// lme4's model formula, the subset crowdlab fits (Bates, Maechler, Bolker & Walker 2015, J. Stat.
+// Softw. 67(1), section 2.1):  y ~ fixed + (random | group) + ...
+//   fixed:  terms joined by '+': a variable `a`, an interaction `a:b`, a crossing `a*b` (= a + b + a:b,
+//           also `a*b*c`), `1` (the intercept, implied) and `0` or `-1` (no intercept);
+//   random: `(1 | g)`, `(1 + x | g)`, `(x | g)` (the intercept implied), `(0 + x | g)`; each bar term
+//           has correlated effects within its group; several bar terms give crossed random effects.
+// Not supported (an error naming the piece): `||`, nested `g1/g2`, functions such as log(x), offsets.
+#include <string>
+#include <vector>
+
+namespace crowdlab::analysis {
+
+/// A model term: the variables it multiplies, in the order written (empty = the intercept).
+using ModelTerm = std::vector<std::string>;
+
+struct RandomTerm {
+  bool intercept = true;
+  std::vector<ModelTerm> terms;  ///< slopes (and their interactions), intercept excluded
+  std::string group;
+};
+
+struct LmmFormula {
+  std::string response;
+  bool intercept = true;
+  std::vector<ModelTerm> fixed;  ///< R's order: by number of variables, then as written
+  std::vector<RandomTerm> random;
+};
+
+/// Throws InputError naming the formula and the offending piece.
+LmmFormula parse_lmm_formula(const std::string& formula);
+
+/// The terms of a right-hand side without bars ("a * b + c"), expanded and in R's order; sets
+/// `intercept` false for 0 / -1.
+std::vector<ModelTerm> parse_fixed_terms(const std::string& rhs, bool& intercept, const std::string& formula);
+
+}  // namespace crowdlab::analysis

@@ -1,0 +1,39 @@
+#pragma once
+// R's model matrix for the terms of a formula (Chambers & Hastie 1992, Statistical Models in S, ch. 2;
+// R's model.matrix): a numeric column enters as itself; a categorical one (any cell that is not a
+// number) as treatment contrasts (R's default contr.treatment): levels sorted (byte order, R's C
+// locale), the first is the reference, a column per other level named variable + level
+// (`methodours`). A factor in a term is coded by contrasts when the term without it is in the model
+// (the intercept counts as the empty term), else by one indicator per level, as R does. Columns of an
+// interaction are products, the first variable varying fastest, named with ':' (`dens_c:methodours`).
+#include <Eigen/Core>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "analysis/lmm_formula.hpp"
+#include "framework/core/csv.hpp"
+
+namespace crowdlab::analysis {
+
+struct ModelVariable {
+  bool numeric = true;
+  std::vector<double> values;       ///< numeric: per row
+  std::vector<std::string> levels;  ///< categorical: sorted
+  std::vector<size_t> codes;        ///< categorical: level index per row
+};
+
+/// Reads the named columns. Throws InputError (file:line, column) for an empty cell or a non-finite
+/// number (NaN, inf): rows are never dropped silently.
+std::map<std::string, ModelVariable> read_model_variables(const CsvTable& table,
+                                                          const std::vector<std::string>& names);
+
+struct ModelMatrix {
+  Eigen::MatrixXd x;
+  std::vector<std::string> names;  ///< R's column names, "(Intercept)" first when present
+};
+
+ModelMatrix model_matrix(const std::vector<ModelTerm>& terms, bool intercept,
+                         const std::map<std::string, ModelVariable>& variables, size_t rows);
+
+}  // namespace crowdlab::analysis

@@ -1,0 +1,30 @@
+#!/usr/bin/env Rscript
+# Reference emmeans post-hocs for tests/analysis/ (issue 20): pairwise comparisons after afex::aov_ez on
+# Maxwell & Delaney's md_12.1 (tests/data/analysis/md_12.1.csv), for a main effect and the interaction
+# cells, with the univariate model (error strata pooled, Satterthwaite df: crowdlab's --error pooled)
+# and the multivariate model (each contrast's own error: --error separate); Tukey-adjusted p (emmeans'
+# default for pairs) and Bonferroni.
+# Run from the repository root:   Rscript scripts/make_reference_emmeans.R [OUT_DIR]
+# Needs Debian's r-base-core, r-cran-afex and r-cran-emmeans. Output: ref_emmeans_md_12.1.csv.
+suppressMessages({library(afex); library(emmeans)})
+args <- commandArgs(trailingOnly = TRUE)
+out <- if (length(args) > 0) args[1] else "tests/data/analysis"
+source("scripts/reference_helpers.R")
+d <- read.csv(file.path(out, "md_12.1.csv"), colClasses = "character")
+d$rt <- as.numeric(d$rt)
+a <- aov_ez("id", "rt", d, within = c("angle", "noise"), include_aov = TRUE)
+rows <- NULL
+for (model in c("univariate", "multivariate")) for (spec in c("angle", "angle:noise")) {
+  fs <- strsplit(spec, ":")[[1]]
+  em <- emmeans(a, fs, model = model)
+  for (adj in c("tukey", "bonferroni")) {
+    pr <- as.data.frame(summary(pairs(em), adjust = adj))
+    unadj <- as.data.frame(summary(pairs(em), adjust = "none"))
+    rows <- rbind(rows, data.frame(model = model, effect = spec, adjust = adj,
+                                   contrast = gsub("X([0-9])", "\\1", gsub(" ", ":", gsub(" - ", "|", pr$contrast))),
+                                   estimate = pr$estimate, se = pr$SE, df = pr$df, t = pr$t.ratio,
+                                   p = unadj$p.value, p_adjusted = pr$p.value))
+  }
+}
+write_table(rows, "ref_emmeans_md_12.1.csv")
+cat("wrote emmeans references to", out, "\n")

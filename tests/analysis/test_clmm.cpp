@@ -1,0 +1,76 @@
+// Cumulative link mixed models against ordinal::clmm (scripts/make_reference_clmm.R,
+// tests/data/analysis/ref_clmm.csv): thresholds, fixed effects and the random SD to 1e-4, the Laplace
+// log-likelihood to 1e-6 absolute; standard errors to 5e-3 (see docs/analysis.md: clmm's Hessian and
+// crowdlab's differ by up to 0.3 %); bad input.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "analysis/clmm_fit.hpp"
+#include "framework/core/error.hpp"
+#include "tests/analysis/reference_table.hpp"
+#include "tests/support/run_cli.hpp"
+
+using namespace crowdlab;
+using namespace crowdlab::analysis;
+using crowdlab::test::analysis_data;
+using crowdlab::test::run_cli;
+
+TEST_CASE("analysis: clmm agrees with ordinal::clmm (logit and probit)", "[analysis]") {
+  const auto t = read_csv(analysis_data("ref_clmm.csv"));
+  std::map<std::tuple<std::string, std::string, std::string>, double> ref;
+  for (size_t r = 0; r < t.rows.size(); ++r) ref[{t.cell(r, 0), t.cell(r, 1), t.cell(r, 2)}] = t.number(r, 3);
+  const auto data = read_csv(analysis_data("likert_sim.csv"));
+  const std::vector<std::pair<std::string, std::string>> models = {
+      {"logit", "rating ~ method * density + (1 | participant)"},
+      {"probit", "rating ~ method + density + (1 | participant)"}};
+  for (const auto& [link, formula] : models) {
+    INFO(link << ": " << formula);
+    const auto fit = fit_clmm(data, formula, link);
+    CHECK(fit.converged);
+    CHECK(fit.loglik == Approx(ref.at({link, "loglik", ""})).margin(1e-6));
+    CHECK(fit.random_sd == Approx(ref.at({link, "sd", "participant"})).epsilon(1e-4));
+    REQUIRE(fit.thresholds.size() == 4);
+    for (const auto& c : fit.thresholds) {
+      INFO(c.name);
+      CHECK(c.estimate == Approx(ref.at({link, "threshold", c.name})).epsilon(1e-4).margin(1e-5));
+      CHECK(c.se == Approx(ref.at({link, "threshold_se", c.name})).epsilon(5e-3));
+    }
+    size_t fixed = 0;
+    for (const auto& c : fit.fixed) {
+      INFO(c.name);
+      REQUIRE(ref.count({link, "estimate", c.name}));
+      ++fixed;
+      CHECK(c.estimate == Approx(ref.at({link, "estimate", c.name})).epsilon(1e-4).margin(1e-5));
+      CHECK(c.se == Approx(ref.at({link, "se", c.name})).epsilon(5e-3));
+    }
+    CHECK(fixed == (link == "logit" ? 5u : 3u));
+  }
+}
+
+TEST_CASE("analysis: analyze clmm --json and bad input (exit 2)", "[analysis][cli]") {
+  const auto r = run_cli({"analyze", "clmm", "--csv", analysis_data("likert_sim.csv"), "--formula",
+                          "rating ~ method + (1 | participant)", "--link", "probit", "--json"});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["thresholds"][0]["name"] == "1|2");
+  for (const char* key : {"term", "estimate", "se", "z", "p"}) CHECK(j["fixed"][0].contains(key));
+  CHECK(j["random"][0]["group"] == "participant");
+  CHECK(j.contains("loglik"));
+  const auto dir = test::scratch_dir("analyze_clmm_bad");
+  auto clmm = [&](const std::string& file, const std::string& text, const std::string& formula) {
+    std::ofstream((dir / file).string()) << text;
+    return run_cli({"analyze", "clmm", "--csv", (dir / file).string(), "--formula", formula});
+  };
+  const auto two = clmm("two.csv", "s,a,r\n1,x,1\n1,z,2\n2,x,2\n2,z,1\n", "r ~ a + (1 | s)");
+  CHECK(two.exit_code == 2);
+  CHECK(two.err.find("at least 3") != std::string::npos);
+  const auto slope = clmm("slope.csv", "s,a,r\n1,x,1\n1,z,2\n2,x,3\n2,z,1\n", "r ~ a + (1 + a | s)");
+  CHECK(slope.exit_code == 2);
+  const auto nan = clmm("nan.csv", "s,a,r\n1,x,1\n1,,2\n2,x,3\n2,z,1\n", "r ~ a + (1 | s)");
+  CHECK(nan.exit_code == 2);
+  CHECK(nan.err.find("nan.csv:3") != std::string::npos);
+}
