@@ -76,6 +76,15 @@ struct WindowPresenter::Impl {
       return true;
     }
   }
+  /// Drops every key and click the window system has queued (typed during the previous trial's
+  /// Next or while this clip loaded), so that only input made after the stimulus onset answers this
+  /// trial. Returns the onset: the moment the first frame has been handed over and the queue is empty.
+  Clock::time_point discard_pending_input() {
+    for (int i = 0; i < 1000 && cv::pollKey() != -1; ++i) {
+    }
+    clicks.clear();
+    return Clock::now();
+  }
   void snapshot(const cv::Mat& canvas, const std::string& name) const {
     if (options.snapshot_dir.empty()) return;
     std::filesystem::create_directories(options.snapshot_dir);
@@ -242,6 +251,7 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
       }
       cv::imshow(kWindow, canvas);
       redraw = false;
+      if (snap_onset) onset = m.discard_pending_input();
       if (snap_onset) m.snapshot(canvas, tag + "_onset"), snap_onset = false;
       if (snap_answered && state.all_answered() && !state.confirm_abort)
         m.snapshot(canvas, tag + "_answered"), snap_answered = false;

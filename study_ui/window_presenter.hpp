@@ -17,7 +17,9 @@
 //     the regular frame period, so a clip rendered to loop shows no seam.
 //   - loop_video = false (seed 001 §3.1.5: questions "after each trial"): the clip plays once, and the
 //     questions are enabled when it ends.
-//   - Response time: from stimulus onset (the first frame handed to the window) to each answer.
+//   - Response time: from stimulus onset to each answer. Onset: the first frame has been handed to
+//     the window (cv::imshow) and every key and click queued before it has been discarded, so input
+//     made during the previous trial's Next or while this clip loaded never answers this trial.
 // Text screens (instructions, consent, breaks) wait for a key; consent needs Y (agree) or N (decline);
 // keys pressed within 300 ms of a screen appearing are ignored (no accidental skip by key repeat).
 // snapshot_dir (optional): PNGs of what was drawn (trial onset, all-answered state, text screens),

@@ -241,12 +241,13 @@ TEST_CASE("participant test: the real window under Xvfb, driven by xdotool, kill
   const auto got = answers(dir / "out" / "W01.csv");
   CHECK(got.size() == 4 * 6);
   const CsvTable t = read_csv((dir / "out" / "W01.csv").string());
-  std::map<std::string, std::string> trial1, trial2;
+  std::map<std::string, std::string> trial1, trial2, trial4;
   std::set<std::string> sessions;
   for (size_t r = 0; r < t.rows.size(); ++r) {
     const std::string trial = t.cell(r, t.column("trial")), q = t.cell(r, t.column("question"));
     if (trial == "1") trial1[q] = t.cell(r, t.column("response"));
     if (trial == "2") trial2[q] = t.cell(r, t.column("response"));
+    if (trial == "4") trial4[q] = t.cell(r, t.column("response"));
     sessions.insert(t.cell(r, t.column("session")));
     CHECK(std::stod(t.cell(r, t.column("rt_ms"))) > 0.0);
   }
@@ -254,6 +255,9 @@ TEST_CASE("participant test: the real window under Xvfb, driven by xdotool, kill
                       {"Q1", "4"}, {"Q2", "2"}, {"Q3", "5"}, {"Q4", "1"}, {"Q5", "6"}, {"Q6", "3"}});
   CHECK(trial2 == std::map<std::string, std::string>{
                       {"Q1", "6"}, {"Q2", "1"}, {"Q3", "4"}, {"Q4", "2"}, {"Q5", "6"}, {"Q6", "1"}});
+  // The 3 typed before trial 4's onset answered nothing: trial 4 holds only the keys typed after it.
+  CHECK(trial4 == std::map<std::string, std::string>{
+                      {"Q1", "1"}, {"Q2", "6"}, {"Q3", "1"}, {"Q4", "6"}, {"Q5", "1"}, {"Q6", "6"}});
   CHECK(sessions == std::set<std::string>{"1", "2"});  // trials 3-4 answered after the resume
   const auto afc_rows = answers(dir / "out" / "A01.csv");
   CHECK(afc_rows.at({"1", "collision"}).ends_with("|1"));
