@@ -20,6 +20,12 @@ namespace crowdlab::study {
 namespace fs = std::filesystem;
 namespace {
 
+std::string ascii_lower(std::string s) {
+  for (char& c : s)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return s;
+}
+
 const std::vector<std::string> kFixedColumns = {"participant", "session",   "block",    "trial",
                                                 "stimulus",    "question",  "response", "reverse_coded",
                                                 "rt_ms",       "timestamp", "practice"};
@@ -78,13 +84,38 @@ std::vector<std::vector<std::string>> response_rows(const std::string& participa
 }
 
 void check_participant_id(const std::string& participant) {
-  bool ok = !participant.empty() && participant.size() <= 64;
-  for (char c : participant)
-    ok = ok &&
-         ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-');
+  auto alnum = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'); };
+  // A letter or digit first: an id never reads as a command-line option or a hidden file.
+  bool ok = !participant.empty() && participant.size() <= 64 && alnum(participant.front());
+  for (char c : participant) ok = ok && (alnum(c) || c == '_' || c == '-');
   if (!ok)
     throw InputError(SourceLocation{"", 0, 0, "--participant"},
-                     "participant id '" + participant + "' must be 1-64 characters of A-Z a-z 0-9 _ -");
+                     "participant id '" + participant +
+                         "' must be 1-64 characters of A-Z a-z 0-9 _ -, starting with a letter or digit");
+}
+
+void check_session_exists_as_asked(const std::string& out_dir, const std::string& participant, bool resume) {
+  const fs::path dir(out_dir);
+  const bool used = fs::exists(dir / (participant + ".csv")) || fs::exists(dir / (participant + ".json"));
+  if (used && !resume)
+    throw InputError(SourceLocation{"", 0, 0, "--participant"},
+                     "participant '" + participant + "' already has a session in " + out_dir +
+                         " (use --resume to continue it, or another id)");
+  if (!used && resume)
+    throw InputError(SourceLocation{"", 0, 0, "--resume"},
+                     "participant '" + participant + "' has no session in " + out_dir +
+                         " to resume (a typo? drop --resume to start a new session)");
+  if (used || !fs::is_directory(dir)) return;
+  // One id per person whatever the case: P01 and p01 are one file on a case-insensitive disk.
+  const std::string folded = ascii_lower(participant);
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const fs::path name = entry.path().filename();
+    const std::string ext = name.extension().string();
+    if ((ext == ".csv" || ext == ".json") && ascii_lower(name.stem().string()) == folded)
+      throw InputError(SourceLocation{"", 0, 0, "--participant"},
+                       "participant '" + participant + "' clashes with '" + name.stem().string() + "' in " +
+                           out_dir + ": ids differing only in case are one participant");
+  }
 }
 
 std::vector<std::string> response_header(const std::vector<std::string>& factor_names) {
@@ -108,15 +139,11 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
   if (opt.verify_files) verify_stimuli(manifest, opt.stimuli_dir);
 
   SessionResult result;
-  fs::create_directories(opt.out_dir);
   result.csv_path = (fs::path(opt.out_dir) / (opt.participant + ".csv")).string();
   result.json_path = (fs::path(opt.out_dir) / (opt.participant + ".json")).string();
   result.trials_total = static_cast<int>(trials.size());
-  const bool used = fs::exists(result.csv_path) || fs::exists(result.json_path);
-  if (used && !opt.resume)
-    throw InputError(SourceLocation{"", 0, 0, "--participant"},
-                     "participant '" + opt.participant + "' already has a session in " + opt.out_dir +
-                         " (use --resume to continue it, or another id)");
+  check_session_exists_as_asked(opt.out_dir, opt.participant, opt.resume);
+  fs::create_directories(opt.out_dir);
 
   nlohmann::json meta = read_metadata(result.json_path);
   if (meta.contains("spec_hash") && meta["spec_hash"] != spec.source_hash)

@@ -25,7 +25,7 @@
 namespace crowdlab::study {
 
 struct SessionOptions {
-  std::string participant;  ///< [A-Za-z0-9_-], 1..64 characters
+  std::string participant;  ///< [A-Za-z0-9][A-Za-z0-9_-]{0,63}
   std::string stimuli_dir;  ///< folder of manifest.csv (stimulus paths are relative to it)
   std::string out_dir;      ///< created when absent
   bool resume = false;      ///< continue a session that was interrupted
@@ -47,8 +47,13 @@ struct SessionResult {
   long frames_shown = 0;
 };
 
-/// Validates a participant id; throws InputError when it is empty, too long, or has other characters.
+/// Validates a participant id: 1-64 characters of [A-Za-z0-9_-], the first a letter or digit; throws
+/// InputError otherwise.
 void check_participant_id(const std::string& participant);
+
+/// Refuses (InputError) a used id without `resume`, `resume` of an id with no session in out_dir (a
+/// typo would otherwise start a new one), and a new id equal to a used one but for case.
+void check_session_exists_as_asked(const std::string& out_dir, const std::string& participant, bool resume);
 
 /// The response CSV header for a manifest's factor columns.
 std::vector<std::string> response_header(const std::vector<std::string>& factor_names);

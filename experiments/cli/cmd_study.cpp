@@ -65,6 +65,7 @@ void run_study(const StudyArgs& a) {
   opt.out_dir = a.out.empty() ? (std::filesystem::path(a.stimuli) / "responses").string() : a.out;
   opt.resume = a.resume;
   study::check_participant_id(a.participant);
+  study::check_session_exists_as_asked(opt.out_dir, opt.participant, opt.resume);  // before any window
   std::unique_ptr<study::Presenter> presenter;
   if (!a.responses.empty()) {
     auto scripted = std::make_unique<study::ScriptedPresenter>(a.responses, a.delay_ms);

@@ -117,6 +117,29 @@ TEST_CASE("crowdlab study --responses: a scripted session, used ids refused, cor
   resume.push_back("--resume");
   CHECK(test::run_cli(resume).exit_code == 0);
   CHECK(answers(dir / "out" / "P07.csv").size() == 4 * 6);
+  // --resume of an id with no session (a typo) is refused, and starts nothing.
+  auto typo = resume;
+  typo[3] = "P70";
+  r = test::run_cli(typo);
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("no session") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "out" / "P70.csv"));
+  CHECK_FALSE(fs::exists(dir / "out" / "P70.json"));
+  // Ids differing only in case clash (one file on case-insensitive disks, one person to a reader).
+  auto lower = base;
+  lower[3] = "p07";
+  r = test::run_cli(lower);
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("P07") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "out" / "p07.csv"));
+  // The id pattern: letters, digits, _ and -, starting with a letter or digit.
+  for (const std::string bad : {"../P1", "P 1", "P.1", "_P1", std::string(65, 'a')}) {
+    auto b = base;
+    b[3] = bad;
+    r = test::run_cli(b);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("--participant") != std::string::npos);
+  }
   // A truncated clip: refused before the session starts, nothing written.
   fs::resize_file(dir / "stimuli" / m.entries[2].file, 100);
   auto other = base;
