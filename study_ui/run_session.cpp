@@ -156,8 +156,9 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
                                     static_cast<int>(questions.size()), recovered, opt.durable));
     if (recovered.dropped_bytes > 0)
       spdlog::warn(
-          "{}: dropped {} byte(s) of an interrupted trial ({} complete row(s) of it); it will be asked again",
-          result.csv_path, recovered.dropped_bytes, recovered.dropped_rows);
+          "{}: cut {} byte(s) of an interrupted trial ({} complete row(s) of it; copied to {}.recovered); it "
+          "will be asked again",
+          result.csv_path, recovered.dropped_bytes, recovered.dropped_rows, result.csv_path);
   } else {
     log.emplace(ResponseLog::create(result.csv_path, header, opt.durable));
   }

@@ -205,6 +205,7 @@ TEST_CASE("SIGKILL during a session, then --resume: complete, no duplicates, sam
   REQUIRE(r.exit_code == 0);
   CHECK(answers(csv) == expected);
   CHECK(slurp(csv).back() == '\n');
+  CHECK(slurp(csv.string() + ".recovered").ends_with("P11,1,practi"));  // the cut bytes, kept aside
   const std::string meta = slurp(dir / "killed" / "P11.json");
   CHECK(meta.find("\"complete\"") != std::string::npos);
   CHECK(meta.find("\"interrupted\"") != std::string::npos);  // the killed run

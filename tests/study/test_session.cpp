@@ -138,14 +138,23 @@ TEST_CASE(
       std::ofstream f(cut_csv, std::ios::binary | std::ios::trunc);
       f << full.substr(0, cut);
     }
+    const fs::path recovered_path = cut_csv.string() + ".recovered";
+    fs::remove(recovered_path);
     RecoveredLog rec;
     { ResponseLog log = ResponseLog::reopen(cut_csv.string(), header, "trial", "session", 2, rec); }
+    // A trial whose last row lacks only its newline is complete: kept, the newline restored.
     size_t kept = header_end, complete = 0;
     for (size_t e : trial_ends)
-      if (e <= cut) kept = e, ++complete;
+      if (e <= cut + 1) kept = e, ++complete;
+    INFO("cut at byte " << cut);
     CHECK(rec.completed_trials.size() == complete);
     CHECK(fs::file_size(cut_csv) == kept);
     CHECK(slurp(cut_csv) == full.substr(0, kept));
+    // Every byte cut off was first copied beside the log.
+    if (cut > kept)
+      CHECK(slurp(recovered_path) == full.substr(kept, cut - kept));
+    else
+      CHECK_FALSE(fs::exists(recovered_path));
   }
   // ... and a resumed session from a few of them (mid-row, row end, mid-trial) completes the file
   // with no duplicate and no missing row.
@@ -194,6 +203,15 @@ TEST_CASE("the response log refuses a foreign header and an incomplete middle tr
     CHECK(rec.dropped_rows == 1);
     CHECK(rec.max_session == 1);
   }
+  std::ofstream(path, std::ios::app) << "P,2,3,a\nP,2,3,b";  // complete but for the last newline
+  {
+    ResponseLog log = ResponseLog::reopen(path, header, "trial", "session", 2, rec);
+    CHECK(rec.completed_trials == std::set<int>{1, 2, 3});
+    CHECK(rec.dropped_bytes == 0);
+    CHECK(rec.max_session == 2);
+  }
+  CHECK(slurp(path).ends_with("P,2,3,b\n"));
+  CHECK(slurp(path + ".recovered") == "P,2,3,a\n");  // the first cut (trial 3's first row), kept aside
   std::ofstream(path, std::ios::app) << "P,1,4,a\nP,1,5,a\nP,1,5,b\n";  // trial 4 incomplete mid-file
   CHECK_THROWS_AS(ResponseLog::reopen(path, header, "trial", "session", 2, rec), InputError);
 }
