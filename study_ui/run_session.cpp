@@ -28,7 +28,7 @@ std::string ascii_lower(std::string s) {
 
 const std::vector<std::string> kFixedColumns = {"participant", "session",   "block",    "trial",
                                                 "stimulus",    "question",  "response", "reverse_coded",
-                                                "rt_ms",       "timestamp", "practice"};
+                                                "rt_ms",       "timestamp", "practice", "simulated"};
 
 nlohmann::json read_metadata(const std::string& path) {
   std::ifstream in(path);
@@ -61,7 +61,7 @@ std::vector<std::vector<std::string>> response_rows(const std::string& participa
                                                     const Trial& trial,
                                                     const std::vector<std::string>& factor_names,
                                                     const std::vector<StudyQuestion>& questions,
-                                                    const std::vector<Answer>& answers) {
+                                                    const std::vector<Answer>& answers, bool simulated) {
   std::vector<std::vector<std::string>> rows;
   for (size_t i = 0; i < questions.size(); ++i) {
     const StudyQuestion& q = questions[i];
@@ -78,13 +78,16 @@ std::vector<std::vector<std::string>> response_rows(const std::string& participa
     row.push_back(csv_number(std::round(a.rt_ms * 10.0) / 10.0));
     row.push_back(a.timestamp_utc);
     row.push_back(trial.practice ? "1" : "0");
+    row.push_back(simulated ? "1" : "0");
     rows.push_back(std::move(row));
   }
   return rows;
 }
 
 void check_participant_id(const std::string& participant) {
-  auto alnum = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'); };
+  auto alnum = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+  };
   // A letter or digit first: an id never reads as a command-line option or a hidden file.
   bool ok = !participant.empty() && participant.size() <= 64 && alnum(participant.front());
   for (char c : participant) ok = ok && (alnum(c) || c == '_' || c == '-');
@@ -178,6 +181,7 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     meta["participant_seed"] = participant_seed(spec.seed, opt.participant);
     meta["crowdlab_version"] = CROWDLAB_VERSION;
     meta["protocol"] = spec.protocol.type;
+    meta["simulated"] = opt.simulated;
     meta["trials"] = trials.size();
     meta["questions"] = nlohmann::json::array();
     for (const auto& q : questions) meta["questions"].push_back({{"id", q.id}, {"reverse", q.reverse}});
@@ -263,8 +267,8 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     result.frames_dropped += outcome.frames_dropped;
     if (outcome.aborted) return abort_session();
     check_answers(outcome, questions, t);
-    log->append_trial(
-        response_rows(opt.participant, session, t, manifest.factor_names, questions, outcome.answers));
+    log->append_trial(response_rows(opt.participant, session, t, manifest.factor_names, questions,
+                                    outcome.answers, opt.simulated));
     ++result.trials_done_now;
     if (outcome.frames_dropped > 0)
       spdlog::info("trial {} ({}): {} of {} frame(s) dropped", t.index, t.stimulus.id, outcome.frames_dropped,

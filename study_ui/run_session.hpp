@@ -5,11 +5,12 @@
 // Files, per participant P in out_dir:
 //   P.csv   tidy responses, one row per answer (response_log.hpp for the durability rules):
 //           participant,session,block,trial,stimulus,<factor columns>,question,response,reverse_coded,
-//           rt_ms,timestamp,practice
+//           rt_ms,timestamp,practice,simulated
 //           session: 1 for the first run, +1 for each --resume; trial: 1-based index in this
 //           participant's order; response: raw (1..k, or 1 = yes / 0 = no); reverse_coded: (k+1) - raw
 //           for reverse-keyed items; rt_ms: stimulus onset to answer; timestamp: ISO 8601 UTC;
-//           practice: 1 for practice trials (never analysed).
+//           practice: 1 for practice trials (never analysed); simulated: 1 when a simulated observer
+//           answered (--simulate, simulate-study), 0 for a person (window, --responses, import-web).
 //   P.json  session metadata: spec name/hash/seed, crowdlab version, participant seed, trial count,
 //           manifest sha256, and one entry per run (start, end, status, screen, dropped frames).
 // Order of events: validate ids -> build trials -> verify every stimulus file -> refuse a used id
@@ -33,6 +34,7 @@ struct SessionOptions {
       "window";              ///< recorded in the metadata ("window", "scripted", "simulated:...")
   bool verify_files = true;  ///< check existence + sha256 of every stimulus before starting
   bool durable = true;       ///< fsync every trial; false only for regenerable synthetic data
+  bool simulated = false;    ///< a simulated observer answers: the rows' `simulated` column is 1
 };
 
 struct SessionResult {
@@ -64,7 +66,8 @@ std::vector<std::vector<std::string>> response_rows(const std::string& participa
                                                     const Trial& trial,
                                                     const std::vector<std::string>& factor_names,
                                                     const std::vector<StudyQuestion>& questions,
-                                                    const std::vector<Answer>& answers);
+                                                    const std::vector<Answer>& answers,
+                                                    bool simulated = false);
 
 SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& manifest,
                           const SessionOptions& options, Presenter& presenter);

@@ -2,6 +2,7 @@
 // The flags and the --json shapes are a stable interface for scripts (see analysis/analysis_json.hpp
 // and analysis/psychometric_table.hpp).
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include "analysis/posthoc.hpp"
 #include "analysis/psychometric_table.hpp"
 #include "analysis/rm_anova.hpp"
+#include "analysis/simulated_rows.hpp"
 #include "analysis/study_report.hpp"
 #include "experiments/cli/command_registry.hpp"
 #include "framework/core/error.hpp"
@@ -30,7 +32,33 @@ std::vector<std::string> split_list(const std::string& text) {
 struct DesignArgs {
   std::string csv, dv, subject, within;
   DesignLimits limits;
+  bool allow_simulated_mix = false;
 };
+
+constexpr const char* kAllowMixHelp =
+    "Analyse real and simulated rows (column `simulated`) together; refused by default (exit 2)";
+
+/// Reads a CSV and refuses a mix of real and simulated rows unless allowed.
+CsvTable read_unmixed_csv(const std::string& path, bool allow_mix) {
+  CsvTable table = read_csv(path);
+  SimulatedRows mix;
+  mix.add(table);
+  mix.check(allow_mix);
+  return table;
+}
+
+/// The same over every response CSV under a study folder (what `analyze report` reads).
+void check_study_dir_unmixed(const std::string& dir, bool allow_mix) {
+  namespace fs = std::filesystem;
+  if (!fs::is_directory(dir)) return;  // the report gives the error
+  SimulatedRows mix;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.is_regular_file() && entry.path().extension() == ".csv") {
+      const CsvTable table = read_csv(entry.path().string());
+      if (table.has_column("participant")) mix.add(table);  // a response log, not e.g. a manifest
+    }
+  mix.check(allow_mix);
+}
 
 void add_design_options(CLI::App* cmd, DesignArgs& a) {
   cmd->add_option("--csv", a.csv, "Tidy CSV: one row per trial (repetitions are averaged per cell)")
@@ -48,6 +76,7 @@ void add_design_options(CLI::App* cmd, DesignArgs& a) {
                   "Refuse (exit 2) a design with more cells (product of the levels) than this")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_flag("--allow-simulated-mix", a.allow_simulated_mix, kAllowMixHelp);
 }
 
 struct AnovaOptions {
@@ -65,17 +94,19 @@ struct PosthocOptions {
 struct PsychometricOptions {
   PsychometricRequest request;
   std::string csv, probabilities = "0.5,0.05";
-  bool json = false;
+  bool json = false, allow_simulated_mix = false;
 };
 
 struct ReportOptions {
   std::string study_dir, spec_path, out_dir;
+  bool allow_simulated_mix = false;
 };
 
 WithinDesign load_design(const DesignArgs& a) {
   const auto within = split_list(a.within);
   if (within.empty()) throw InputError("--within: no factor given");
-  return build_within_design(read_csv(a.csv), a.dv, a.subject, within, a.limits);
+  return build_within_design(read_unmixed_csv(a.csv, a.allow_simulated_mix), a.dv, a.subject, within,
+                             a.limits);
 }
 
 const CommandRegistration kRegistration([](CLI::App& root) {
@@ -180,6 +211,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                   "Fixed guess rate (lower asymptote); thresholds are then points of "
                   "the underlying logistic (see analysis/psychometric_fit.hpp)");
   psy->add_option("--lapse", req.options.lapse, "Fixed lapse rate (1 - upper asymptote)");
+  psy->add_flag("--allow-simulated-mix", psy_opt->allow_simulated_mix, kAllowMixHelp);
   psy->add_flag("--json", psy_opt->json, "Print {\"fits\": [...], \"groups\": [...], \"anova\": ...}");
   psy->callback([o = psy_opt] {
     PsychometricRequest& pr = o->request;
@@ -191,7 +223,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
         throw InputError("--p: not a number: '" + s + "'");
       }
     }
-    const auto result = analyze_psychometric(read_csv(o->csv), pr);
+    const auto result = analyze_psychometric(read_unmixed_csv(o->csv, o->allow_simulated_mix), pr);
     if (o->json) {
       std::cout << psychometric_to_json(result).dump(2) << "\n";
       return;
@@ -218,7 +250,9 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->required();
   report->add_option("--spec", report_opt->spec_path, "The experiment spec (YAML) the study ran")->required();
   report->add_option("--out", report_opt->out_dir, "Output folder (report.md, figures/)")->required();
+  report->add_flag("--allow-simulated-mix", report_opt->allow_simulated_mix, kAllowMixHelp);
   report->callback([o = report_opt] {
+    check_study_dir_unmixed(o->study_dir, o->allow_simulated_mix);
     const auto path = write_study_report(o->study_dir, o->spec_path, o->out_dir);
     std::cout << "wrote " << path << "\n";
   });

@@ -62,7 +62,10 @@ void run_study(const StudyArgs& a) {
   study::SessionOptions opt;
   opt.participant = a.participant;
   opt.stimuli_dir = a.stimuli;
-  opt.out_dir = a.out.empty() ? (std::filesystem::path(a.stimuli) / "responses").string() : a.out;
+  // Simulated answers default to their own folder, so that they never sit beside a real study's.
+  const char* default_out = a.simulate.empty() ? "responses" : "responses-simulated";
+  opt.out_dir = a.out.empty() ? (std::filesystem::path(a.stimuli) / default_out).string() : a.out;
+  opt.simulated = !a.simulate.empty();
   opt.resume = a.resume;
   study::check_participant_id(a.participant);
   study::check_session_exists_as_asked(opt.out_dir, opt.participant, opt.resume);  // before any window
@@ -113,7 +116,9 @@ const CommandRegistration kStudy([](CLI::App& root) {
   cmd->add_option("--stimuli", a->stimuli, "Stimulus folder holding manifest.csv")
       ->required()
       ->check(CLI::ExistingDirectory);
-  cmd->add_option("--out", a->out, "Response folder (default: STIMULI/responses)");
+  cmd->add_option(
+      "--out", a->out,
+      "Response folder (default: STIMULI/responses; with --simulate: STIMULI/responses-simulated)");
   cmd->add_flag(
       "--resume", a->resume,
       "Continue an interrupted session at the first unanswered trial (a used id is refused without it)");

@@ -151,6 +151,52 @@ TEST_CASE("crowdlab study --responses: a scripted session, used ids refused, cor
   CHECK(test::run_cli({"study", "--help"}).exit_code == 0);
 }
 
+TEST_CASE("--simulate answers go to their own folder with simulated = 1; analyze refuses a mix", "[study]") {
+  const auto dir = test::scratch_dir("study-simulated");
+  const auto m =
+      test::make_stimuli(dir / "stimuli", {{"method", {"baseline", "ours"}}, {"viewpoint", {"V1", "V3"}}});
+  const auto spec = write_text(dir / "spec.yaml", kLikertYaml);
+  const std::string stimuli = (dir / "stimuli").string();
+  auto r = test::run_cli(
+      {"-q", "study", spec.string(), "--participant", "S01", "--stimuli", stimuli, "--simulate", "default"});
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK_FALSE(fs::exists(dir / "stimuli" / "responses" / "S01.csv"));
+  const fs::path sim_csv = dir / "stimuli" / "responses-simulated" / "S01.csv";
+  const CsvTable sim = read_csv(sim_csv.string());
+  REQUIRE(sim.has_column("simulated"));
+  for (size_t i = 0; i < sim.rows.size(); ++i) CHECK(sim.cell(i, sim.column("simulated")) == "1");
+  r = test::run_cli({"-q", "study", spec.string(), "--participant", "P01", "--stimuli", stimuli,
+                     "--responses", likert_script(dir, m).string()});
+  REQUIRE(r.exit_code == 0);
+  const fs::path real_csv = dir / "stimuli" / "responses" / "P01.csv";
+  const CsvTable real = read_csv(real_csv.string());
+  for (size_t i = 0; i < real.rows.size(); ++i) CHECK(real.cell(i, real.column("simulated")) == "0");
+  // One CSV holding both (as a careless merge makes): refused, unless asked for.
+  std::string merged = slurp(real_csv);
+  const std::string sim_text = slurp(sim_csv);
+  merged += sim_text.substr(sim_text.find('\n') + 1);
+  const auto merged_csv = write_text(dir / "merged.csv", merged);
+  const std::vector<std::string> anova = {"analyze",  "anova",    "--csv",     merged_csv.string(),
+                                          "--dv",     "response", "--subject", "participant",
+                                          "--within", "method"};
+  r = test::run_cli(anova);
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("--allow-simulated-mix") != std::string::npos);
+  auto allowed = anova;
+  allowed.push_back("--allow-simulated-mix");
+  r = test::run_cli(allowed);
+  CHECK(r.err.find("--allow-simulated-mix") == std::string::npos);
+  // A report over a folder holding both response folders.
+  fs::copy(dir / "stimuli" / "responses", dir / "study" / "responses", fs::copy_options::recursive);
+  fs::copy(dir / "stimuli" / "responses-simulated", dir / "study" / "sim", fs::copy_options::recursive);
+  const std::vector<std::string> report = {"analyze",     "report", (dir / "study").string(), "--spec",
+                                           spec.string(), "--out",  (dir / "report").string()};
+  r = test::run_cli(report);
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("--allow-simulated-mix") != std::string::npos);
+}
+
 TEST_CASE("SIGKILL during a session, then --resume: complete, no duplicates, same answers", "[study]") {
   const auto dir = test::scratch_dir("study-kill");
   const auto m =
