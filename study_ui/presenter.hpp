@@ -14,6 +14,10 @@ namespace crowdlab::study {
 
 enum class ScreenKind { instructions, consent, practice_intro, block_intro, break_screen, finished };
 
+/// How the participant left a text screen: on to the next step, quit (Esc confirmed, window closed),
+/// or, on the consent screen only, declined to take part.
+enum class ScreenReply { proceed, abort, decline };
+
 /// One answer as given: the raw response and its response time from stimulus onset.
 struct Answer {
   std::string question_id;
@@ -48,9 +52,8 @@ class Presenter {
  public:
   virtual ~Presenter() = default;
   virtual ScreenInfo screen() const = 0;
-  /// Shows a text screen and waits for the participant. Returns false when they abort (Esc, confirmed)
-  /// or, for consent, decline.
-  virtual bool show_screen(ScreenKind kind, const std::string& title, const std::string& text) = 0;
+  /// Shows a text screen and waits for the participant.
+  virtual ScreenReply show_screen(ScreenKind kind, const std::string& title, const std::string& text) = 0;
   /// Plays the stimulus and collects one answer per question.
   virtual TrialOutcome run_trial(const TrialRequest& request) = 0;
 };

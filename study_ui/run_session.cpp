@@ -224,13 +224,26 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
                  result.trials_already_done + result.trials_done_now);
     return result;
   };
+  auto stopped = [&](ScreenKind kind, const std::string& title, const std::string& text) {
+    return presenter.show_screen(kind, title, text) != ScreenReply::proceed;
+  };
   const ProtocolSpec& p = spec.protocol;
-  if (!p.instructions.empty() &&
-      !presenter.show_screen(ScreenKind::instructions, "Instructions", p.instructions))
+  if (!p.instructions.empty() && stopped(ScreenKind::instructions, "Instructions", p.instructions))
     return abort_session();
-  if (result.trials_already_done == 0 && !p.consent.empty() &&
-      !presenter.show_screen(ScreenKind::consent, "Consent", p.consent))
-    return abort_session();
+  if (result.trials_already_done == 0 && !p.consent.empty()) {
+    const ScreenReply consent = presenter.show_screen(ScreenKind::consent, "Consent", p.consent);
+    if (consent == ScreenReply::abort) return abort_session();
+    // Given or declined, with when and in which run: part of the record a study must keep.
+    const bool given = consent == ScreenReply::proceed;
+    meta["consent"] = {{"given", given}, {"utc", iso8601_utc_now()}, {"session", session}};
+    if (!given) {
+      result.declined = true;
+      save_meta("declined");
+      spdlog::info("participant {}: declined to take part; no trial was shown", opt.participant);
+      return result;
+    }
+    save_meta("running");
+  }
 
   std::string current_block;
   bool in_practice = false;
@@ -243,14 +256,14 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
   for (const Trial& t : trials) {
     if (recovered.completed_trials.count(t.index)) continue;
     if (t.practice && !in_practice) {
-      if (!presenter.show_screen(ScreenKind::practice_intro, texts::kPracticeTitle, texts::kPracticeIntro))
+      if (stopped(ScreenKind::practice_intro, texts::kPracticeTitle, texts::kPracticeIntro))
         return abort_session();
     }
     if (!t.practice && (in_practice || t.block != current_block) && (multiple_blocks || in_practice)) {
       const std::string title = multiple_blocks ? texts::kPartTitlePrefix + std::to_string(t.block_number)
                                                 : std::string(texts::kMainPartTitle);
       const std::string body = in_practice ? texts::kAfterPractice : texts::kBlockIntro;
-      if (!presenter.show_screen(ScreenKind::block_intro, title, body)) return abort_session();
+      if (stopped(ScreenKind::block_intro, title, body)) return abort_session();
     }
     in_practice = t.practice;
     current_block = t.block;
@@ -277,8 +290,7 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     save_meta("running");  // progress and dropped frames survive a kill too
     const bool last = t.index == static_cast<int>(trials.size());
     if (!last && !t.practice && p.break_every > 0 && test_done % p.break_every == 0) {
-      if (!presenter.show_screen(ScreenKind::break_screen, texts::kBreakTitle, p.break_text))
-        return abort_session();
+      if (stopped(ScreenKind::break_screen, texts::kBreakTitle, p.break_text)) return abort_session();
     }
   }
   result.complete = true;

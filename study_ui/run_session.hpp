@@ -12,7 +12,9 @@
 //           practice: 1 for practice trials (never analysed); simulated: 1 when a simulated observer
 //           answered (--simulate, simulate-study), 0 for a person (window, --responses, import-web).
 //   P.json  session metadata: spec name/hash/seed, crowdlab version, participant seed, trial count,
-//           manifest sha256, and one entry per run (start, end, status, screen, dropped frames).
+//           manifest sha256, consent {given, utc, session} when the spec asks for it, and one entry
+//           per run (start, end, status, screen, dropped frames). Status: running, complete, aborted
+//           (Esc), declined (consent refused), interrupted (killed: found "running" by a resume).
 // Order of events: validate ids -> build trials -> verify every stimulus file -> refuse a used id
 // unless resume -> instructions, consent -> trials (practice intro, block intros, breaks every
 // protocol.break_every test trials) -> finished screen. Every trial's rows are on disk (fsync'd)
@@ -44,7 +46,8 @@ struct SessionResult {
   int trials_already_done = 0;  ///< completed before this run (resume)
   int trials_done_now = 0;
   bool complete = false;
-  bool aborted = false;
+  bool aborted = false;   ///< the participant quit (Esc confirmed): resume with --resume
+  bool declined = false;  ///< the participant declined consent: no trial shown, status "declined"
   long frames_dropped = 0;
   long frames_shown = 0;
 };

@@ -141,7 +141,7 @@ ScreenInfo WindowPresenter::screen() const {
   return {impl_->canvas_size.width, impl_->canvas_size.height, "window"};
 }
 
-bool WindowPresenter::show_screen(ScreenKind kind, const std::string& title, const std::string& body) {
+ScreenReply WindowPresenter::show_screen(ScreenKind kind, const std::string& title, const std::string& body) {
   Impl& m = *impl_;
   const bool consent = kind == ScreenKind::consent;
   const std::string hint =
@@ -156,10 +156,10 @@ bool WindowPresenter::show_screen(ScreenKind kind, const std::string& title, con
   m.clicks.clear();
   while (true) {
     const int key = cv::waitKeyEx(30);
-    if (m.window_closed()) return false;
+    if (m.window_closed()) return ScreenReply::abort;
     const bool debounced = ms_since(t0) > kDebounceMs;
     if (confirming && key != -1) {
-      if (key == 'y' || key == 'Y') return false;
+      if (key == 'y' || key == 'Y') return ScreenReply::abort;
       confirming = false;
       cv::imshow(kWindow, canvas);
       continue;
@@ -176,11 +176,11 @@ bool WindowPresenter::show_screen(ScreenKind kind, const std::string& title, con
       continue;
     }
     if (consent) {
-      if (key == 'y' || key == 'Y') return true;
-      if (key == 'n' || key == 'N') return false;
+      if (key == 'y' || key == 'Y') return ScreenReply::proceed;
+      if (key == 'n' || key == 'N') return ScreenReply::decline;
       continue;
     }
-    if (key != -1 || !m.clicks.empty()) return true;
+    if (key != -1 || !m.clicks.empty()) return ScreenReply::proceed;
   }
 }
 

@@ -49,7 +49,7 @@ class WindowPresenter final : public Presenter {
   WindowPresenter& operator=(const WindowPresenter&) = delete;
 
   ScreenInfo screen() const override;
-  bool show_screen(ScreenKind kind, const std::string& title, const std::string& text) override;
+  ScreenReply show_screen(ScreenKind kind, const std::string& title, const std::string& text) override;
   TrialOutcome run_trial(const TrialRequest& request) override;
 
  private:

@@ -95,6 +95,11 @@ void run_study(const StudyArgs& a) {
     opt.presenter_name = "window";
   }
   const study::SessionResult r = study::run_session(spec, manifest, opt, *presenter);
+  if (r.declined) {  // a legitimate end of a session, not a failure
+    std::printf("participant %s declined to take part: no trial shown (status \"declined\" in %s)\n",
+                a.participant.c_str(), r.json_path.c_str());
+    return;
+  }
   std::printf(
       "participant %s: %d/%d trials done (%d this run)%s, %ld frame(s) dropped\nresponses: %s\nmetadata:  "
       "%s\n",

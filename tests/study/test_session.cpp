@@ -272,11 +272,11 @@ class RecordingPresenter final : public Presenter {
  public:
   std::vector<ScreenKind> screens;
   std::vector<int> trial_indices;
-  bool accept_consent = true;
+  ScreenReply consent_reply = ScreenReply::proceed;
   ScreenInfo screen() const override { return {800, 600, "recording"}; }
-  bool show_screen(ScreenKind kind, const std::string&, const std::string&) override {
+  ScreenReply show_screen(ScreenKind kind, const std::string&, const std::string&) override {
     screens.push_back(kind);
-    return kind != ScreenKind::consent || accept_consent;
+    return kind == ScreenKind::consent ? consent_reply : ScreenReply::proceed;
   }
   TrialOutcome run_trial(const TrialRequest& r) override {
     trial_indices.push_back(r.trial->index);
@@ -300,17 +300,34 @@ TEST_CASE("screens: instructions, consent, practice and block intros, a break ev
   spec.protocol.break_every = 2;
   spec.protocol.block_by = "method";
   RecordingPresenter declines;
-  declines.accept_consent = false;
+  declines.consent_reply = ScreenReply::decline;
   SessionOptions opt{"P05", (dir / "stimuli").string(), (dir / "out").string(), false, "recording", true};
   const SessionResult refused = run_session(spec, m, opt, declines);
-  CHECK(refused.aborted);
+  CHECK(refused.declined);
+  CHECK_FALSE(refused.aborted);  // declining is not Esc
   CHECK(declines.trial_indices.empty());
   CHECK(read_csv(refused.csv_path).rows.empty());
+  const auto refused_meta = nlohmann::json::parse(slurp(refused.json_path));
+  CHECK(refused_meta["status"] == "declined");
+  CHECK(refused_meta["runs"].back()["status"] == "declined");
+  CHECK(refused_meta["consent"]["given"] == false);
+  CHECK(refused_meta["consent"]["utc"].get<std::string>().size() == 24);  // ISO 8601 with ms
+
+  RecordingPresenter quits;  // Esc at the consent screen: aborted, not declined
+  quits.consent_reply = ScreenReply::abort;
+  opt.participant = "P04";
+  const SessionResult quit = run_session(spec, m, opt, quits);
+  CHECK(quit.aborted);
+  CHECK_FALSE(quit.declined);
+  CHECK(nlohmann::json::parse(slurp(quit.json_path))["status"] == "aborted");
 
   RecordingPresenter p;
   opt.participant = "P06";
   const SessionResult r = run_session(spec, m, opt, p);
   CHECK(r.complete);
+  const auto meta = nlohmann::json::parse(slurp(r.json_path));
+  CHECK(meta["consent"]["given"] == true);
+  CHECK(meta["status"] == "complete");
   using K = ScreenKind;
   // practice (1 global trial), block 1 (2 trials), break after 2 test trials, block 2 (2 trials), end.
   const std::vector<K> expected = {K::instructions, K::consent,     K::practice_intro, K::block_intro,
