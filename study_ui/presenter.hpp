@@ -30,16 +30,26 @@ struct TrialRequest {
   const Trial* trial = nullptr;
   std::string video_path;  ///< absolute path of the stimulus file
   const std::vector<StudyQuestion>* questions = nullptr;
-  int trial_count = 0;     ///< total trials in the session (for "trial i of n")
-  bool loop_video = true;  ///< loop until answered; otherwise play once, then ask
-  double fps = 30.0;       ///< playback rate when the file does not say
+  int trial_count = 0;                          ///< total trials in the session (for "trial i of n")
+  bool loop_video = true;                       ///< loop until answered; otherwise play once, then ask
+  double fps = 30.0;                            ///< playback rate when the file does not say
+  std::string inter_trial_screen = "fixation";  ///< "blank" or "fixation", shown while the clip loads
+  double inter_trial_min_ms = 500.0;            ///< the inter-trial screen's minimum duration
+  double video_share = 0.0;                     ///< video's share of the screen height; 0 = automatic
+};
+
+/// What a presenter measured of one trial's presentation (headless presenters measure nothing).
+struct TrialTiming {
+  std::string onset_utc;       ///< wall-clock time of the stimulus onset, ISO 8601 UTC ("" = none)
+  double inter_trial_ms = -1;  ///< inter-trial screen shown -> stimulus onset (< 0: none)
+  long frames_shown = 0;
+  long frames_dropped = 0;
 };
 
 struct TrialOutcome {
   bool aborted = false;         ///< the participant confirmed Esc: stop the session, keep what is saved
   std::vector<Answer> answers;  ///< one per question, in question order (empty when aborted)
-  long frames_shown = 0;
-  long frames_dropped = 0;
+  TrialTiming timing;
 };
 
 struct ScreenInfo {

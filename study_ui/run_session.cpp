@@ -61,7 +61,8 @@ std::vector<std::vector<std::string>> response_rows(const std::string& participa
                                                     const Trial& trial,
                                                     const std::vector<std::string>& factor_names,
                                                     const std::vector<StudyQuestion>& questions,
-                                                    const std::vector<Answer>& answers, bool simulated) {
+                                                    const std::vector<Answer>& answers, bool simulated,
+                                                    const TrialTiming& timing) {
   std::vector<std::vector<std::string>> rows;
   for (size_t i = 0; i < questions.size(); ++i) {
     const StudyQuestion& q = questions[i];
@@ -77,6 +78,9 @@ std::vector<std::vector<std::string>> response_rows(const std::string& participa
     row.push_back(std::to_string(reverse_coded(q, a.raw)));
     row.push_back(csv_number(std::round(a.rt_ms * 10.0) / 10.0));
     row.push_back(a.timestamp_utc);
+    row.push_back(timing.onset_utc);
+    row.push_back(timing.inter_trial_ms < 0 ? ""
+                                            : csv_number(std::round(timing.inter_trial_ms * 10.0) / 10.0));
     row.push_back(trial.practice ? "1" : "0");
     row.push_back(simulated ? "1" : "0");
     rows.push_back(std::move(row));
@@ -275,17 +279,21 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     req.trial_count = static_cast<int>(trials.size());
     req.loop_video = p.loop_video;
     req.fps = spec.fps;
+    req.inter_trial_screen = p.inter_trial_screen;
+    req.inter_trial_min_ms = p.inter_trial_min_ms;
+    req.video_share = p.video_share;
     TrialOutcome outcome = presenter.run_trial(req);
-    result.frames_shown += outcome.frames_shown;
-    result.frames_dropped += outcome.frames_dropped;
+    result.frames_shown += outcome.timing.frames_shown;
+    result.frames_dropped += outcome.timing.frames_dropped;
     if (outcome.aborted) return abort_session();
     check_answers(outcome, questions, t);
     log->append_trial(response_rows(opt.participant, session, t, manifest.factor_names, questions,
                                     outcome.answers, opt.simulated));
     ++result.trials_done_now;
-    if (outcome.frames_dropped > 0)
-      spdlog::info("trial {} ({}): {} of {} frame(s) dropped", t.index, t.stimulus.id, outcome.frames_dropped,
-                   outcome.frames_shown + outcome.frames_dropped);
+    if (outcome.timing.frames_dropped > 0)
+      spdlog::info("trial {} ({}): {} of {} frame(s) dropped", t.index, t.stimulus.id,
+                   outcome.timing.frames_dropped,
+                   outcome.timing.frames_shown + outcome.timing.frames_dropped);
     if (!t.practice) ++test_done;
     save_meta("running");  // progress and dropped frames survive a kill too
     const bool last = t.index == static_cast<int>(trials.size());

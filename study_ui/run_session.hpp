@@ -5,10 +5,12 @@
 // Files, per participant P in out_dir:
 //   P.csv   tidy responses, one row per answer (response_log.hpp for the durability rules):
 //           participant,session,block,trial,stimulus,<factor columns>,question,response,reverse_coded,
-//           rt_ms,timestamp,practice,simulated
+//           rt_ms,timestamp,onset_utc,inter_trial_ms,practice,simulated
 //           session: 1 for the first run, +1 for each --resume; trial: 1-based index in this
 //           participant's order; response: raw (1..k, or 1 = yes / 0 = no); reverse_coded: (k+1) - raw
 //           for reverse-keyed items; rt_ms: stimulus onset to answer; timestamp: ISO 8601 UTC;
+//           onset_utc: the trial's stimulus onset (ISO 8601 UTC); inter_trial_ms: inter-trial screen
+//           shown -> onset (the real, measured gap); both empty for headless presenters;
 //           practice: 1 for practice trials (never analysed); simulated: 1 when a simulated observer
 //           answered (--simulate, simulate-study), 0 for a person (window, --responses, import-web).
 //   P.json  session metadata: spec name/hash/seed, crowdlab version, participant seed, trial count,
@@ -70,7 +72,7 @@ std::vector<std::vector<std::string>> response_rows(const std::string& participa
                                                     const std::vector<std::string>& factor_names,
                                                     const std::vector<StudyQuestion>& questions,
                                                     const std::vector<Answer>& answers,
-                                                    bool simulated = false);
+                                                    bool simulated = false, const TrialTiming& timing = {});
 
 SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& manifest,
                           const SessionOptions& options, Presenter& presenter);

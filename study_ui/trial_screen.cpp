@@ -208,6 +208,18 @@ void draw_text_screen(cv::Mat& img, const std::string& title, const std::string&
   draw_centered(img, text, hint, {0, H - H / 8, W, TextRenderer::line_height(body_px)}, body_px, kAccent);
 }
 
+void draw_inter_trial(cv::Mat& img, const TrialLayout& L, bool fixation) {
+  img.setTo(kBackground);
+  cv::rectangle(img, L.video_area, cv::Scalar(24, 24, 24), cv::FILLED);
+  if (!fixation) return;
+  const cv::Point c(L.video_area.x + L.video_area.width / 2, L.video_area.y + L.video_area.height / 2);
+  const int arm = std::max(6, L.canvas.height / 40), thickness = std::max(2, L.canvas.height / 300);
+  cv::line(img, c - cv::Point(arm, 0), c + cv::Point(arm, 0), cv::Scalar(230, 230, 230), thickness,
+           cv::LINE_AA);
+  cv::line(img, c - cv::Point(0, arm), c + cv::Point(0, arm), cv::Scalar(230, 230, 230), thickness,
+           cv::LINE_AA);
+}
+
 void draw_abort_confirmation(cv::Mat& img, const TextRenderer& text) {
   cv::Mat dark;
   img.convertTo(dark, -1, 0.45, 0);

@@ -76,6 +76,11 @@ std::optional<TrialLayout::Target> hit_test(const TrialLayout& layout, const Tri
 void draw_text_screen(cv::Mat& canvas, const std::string& title, const std::string& body,
                       const std::string& hint, const TextRenderer& text);
 
+/// The inter-trial screen, shown while the next clip loads: the background with the video area dark,
+/// and for `fixation` a light cross (5 % of the canvas height) at the video's centre, where the eyes
+/// should be at onset.
+void draw_inter_trial(cv::Mat& canvas, const TrialLayout& layout, bool fixation);
+
 /// Darkens the canvas and draws the "Quit the session?" box.
 void draw_abort_confirmation(cv::Mat& canvas, const TextRenderer& text);
 

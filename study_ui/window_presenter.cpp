@@ -85,6 +85,13 @@ struct WindowPresenter::Impl {
     clicks.clear();
     return Clock::now();
   }
+  /// Keeps the window responsive (events processed, input discarded later) until `t`.
+  void wait_until(Clock::time_point t) const {
+    while (Clock::now() < t) {
+      const double left_ms = std::chrono::duration<double, std::milli>(t - Clock::now()).count();
+      cv::waitKey(std::max(1, std::min(10, static_cast<int>(left_ms))));
+    }
+  }
   void snapshot(const cv::Mat& canvas, const std::string& name) const {
     if (options.snapshot_dir.empty()) return;
     std::filesystem::create_directories(options.snapshot_dir);
@@ -188,6 +195,17 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
   Impl& m = *impl_;
   const std::vector<StudyQuestion>& qs = *req.questions;
   const TrialLayout layout = layout_trial_screen(m.canvas_size, qs);
+  const std::string tag = "trial_" + std::to_string(req.trial->index);
+  // The inter-trial screen replaces the answered screen at once, and stays while the clip decodes
+  // and at least inter_trial_min_ms.
+  const Clock::time_point inter_trial_start = Clock::now();
+  {
+    cv::Mat blank(m.canvas_size, CV_8UC3);
+    draw_inter_trial(blank, layout, req.inter_trial_screen == "fixation");
+    cv::imshow(kWindow, blank);
+    cv::waitKey(1);
+    m.snapshot(blank, tag + "_inter_trial");
+  }
   VideoSource video(req.video_path, layout.video_area, req.fps, m.options.frame_cache_mb);
   TrialScreenState state;
   state.answers.assign(qs.size(), -1);
@@ -195,7 +213,6 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
   state.header = (req.trial->practice ? "Practice - trial " : "Trial ") + std::to_string(req.trial->index) +
                  " of " + std::to_string(req.trial_count);
   std::vector<Answer> answers(qs.size());
-  const std::string tag = "trial_" + std::to_string(req.trial->index);
 
   TrialOutcome out;
   cv::Mat static_panel(m.canvas_size, CV_8UC3), panel(m.canvas_size, CV_8UC3), canvas(m.canvas_size, CV_8UC3);
@@ -207,6 +224,8 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
   // The static panel (FreeType text, tens of ms) is drawn before onset, so it costs no frame.
   draw_trial_static(static_panel, layout, qs, state.header, state.questions_enabled, m.text);
   static_dirty = false;
+  m.wait_until(inter_trial_start +
+               std::chrono::microseconds(static_cast<long>(req.inter_trial_min_ms * 1000)));
   m.clicks.clear();
 
   auto answer = [&](int q, int value, double rt_ms) {
@@ -225,10 +244,10 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
     }
     const cv::Mat* frame = nullptr;
     if (due != shown) {
-      if (shown >= 0 && due > shown + 1) out.frames_dropped += due - shown - 1;
+      if (shown >= 0 && due > shown + 1) out.timing.frames_dropped += due - shown - 1;
       frame = &video.frame(due);
       shown = due;
-      ++out.frames_shown;
+      ++out.timing.frames_shown;
       redraw = true;
     }
     // 2. Compose: the panel only when answers changed, the video every frame.
@@ -251,7 +270,12 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
       }
       cv::imshow(kWindow, canvas);
       redraw = false;
-      if (snap_onset) onset = m.discard_pending_input();
+      if (snap_onset) {
+        onset = m.discard_pending_input();
+        out.timing.onset_utc = iso8601_utc_now();
+        out.timing.inter_trial_ms =
+            std::chrono::duration<double, std::milli>(onset - inter_trial_start).count();
+      }
       if (snap_onset) m.snapshot(canvas, tag + "_onset"), snap_onset = false;
       if (snap_answered && state.all_answered() && !state.confirm_abort)
         m.snapshot(canvas, tag + "_answered"), snap_answered = false;

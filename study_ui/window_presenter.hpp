@@ -2,6 +2,9 @@
 // WindowPresenter: the participant's screen, a native window through OpenCV highgui (GTK backend),
 // full screen by default, text drawn with FreeType (cv::freetype, DejaVu Sans).
 //
+// Between trials: the inter-trial screen (protocol.inter_trial: blank, or a fixation cross where the
+// video will appear) replaces the answered screen at once and stays while the next clip decodes and
+// for at least inter_trial.min_ms; the measured gap (inter-trial screen shown -> onset) is logged.
 // Trial screen: the video on top, the questions below (statement left, answer scale right), a
 // "Next" button bottom right that is enabled only when every question is answered.
 //   - Answers: mouse click on a scale point or yes/no button; number keys 1-9 (top row or keypad)

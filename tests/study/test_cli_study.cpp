@@ -33,6 +33,7 @@ protocol:
   type: likert
   scale: {points: 6, labels: ["I strongly disagree", "I fully agree"]}
   instructions: "You will watch short videos of crowds. Answer the six statements below each video, then press Next."
+  inter_trial: {screen: fixation, min_ms: 300}
   questions:
     - {id: Q1, text: "Contacts made by characters between them seem natural to me"}
     - {id: Q2, text: "Character bodies overlap, it is not physically realistic to me", reverse: true}
@@ -197,6 +198,30 @@ TEST_CASE("--simulate answers go to their own folder with simulated = 1; analyze
   CHECK(r.err.find("--allow-simulated-mix") != std::string::npos);
 }
 
+TEST_CASE("the study window's spec keys are validated with file, line and key", "[study]") {
+  const auto dir = test::scratch_dir("study-window-keys");
+  struct Bad {
+    std::string yaml, key;
+  };
+  const std::vector<Bad> bad = {{"  inter_trial: {screen: cross}\n", "protocol.inter_trial.screen"},
+                                {"  inter_trial: {min_ms: -5}\n", "protocol.inter_trial.min_ms"},
+                                {"  inter_trial: {wait: 3}\n", "protocol.inter_trial.wait"},
+                                {"  video_share: 0.1\n", "protocol.video_share"},
+                                {"  video_share: 0.97\n", "protocol.video_share"}};
+  for (const Bad& b : bad) {
+    const auto spec = write_text(dir / "spec.yaml", std::string(kAfcYaml) + b.yaml);
+    const auto r = test::run_cli({"validate", spec.string()});
+    INFO(b.yaml << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("spec.yaml:14") != std::string::npos);
+    CHECK(r.err.find(b.key) != std::string::npos);
+  }
+  const auto good = write_text(dir / "good.yaml", std::string(kAfcYaml) +
+                                                      "  inter_trial: {screen: blank, min_ms: 800}\n"
+                                                      "  video_share: 0.6\n");
+  CHECK(test::run_cli({"validate", good.string()}).exit_code == 0);
+}
+
 TEST_CASE("SIGKILL during a session, then --resume: complete, no duplicates, same answers", "[study]") {
   const auto dir = test::scratch_dir("study-kill");
   const auto m =
@@ -320,6 +345,9 @@ TEST_CASE("participant test: the real window under Xvfb, driven by xdotool, kill
     if (trial == "4") trial4[q] = t.cell(r, t.column("response"));
     sessions.insert(t.cell(r, t.column("session")));
     CHECK(std::stod(t.cell(r, t.column("rt_ms"))) > 0.0);
+    // The measured inter-trial gap respects the spec's minimum; the onset is logged.
+    CHECK(std::stod(t.cell(r, t.column("inter_trial_ms"))) >= 300.0);
+    CHECK(t.cell(r, t.column("onset_utc")).size() == 24);
   }
   CHECK(trial1 == std::map<std::string, std::string>{
                       {"Q1", "4"}, {"Q2", "2"}, {"Q3", "5"}, {"Q4", "1"}, {"Q5", "6"}, {"Q6", "3"}});
@@ -329,6 +357,7 @@ TEST_CASE("participant test: the real window under Xvfb, driven by xdotool, kill
   CHECK(trial4 == std::map<std::string, std::string>{
                       {"Q1", "1"}, {"Q2", "6"}, {"Q3", "1"}, {"Q4", "6"}, {"Q5", "1"}, {"Q6", "6"}});
   CHECK(sessions == std::set<std::string>{"1", "2"});  // trials 3-4 answered after the resume
+  CHECK(fs::exists(dir / "snap" / "W01" / "trial_2_inter_trial.png"));
   const auto afc_rows = answers(dir / "out" / "A01.csv");
   CHECK(afc_rows.at({"1", "collision"}).ends_with("|1"));
   CHECK(afc_rows.at({"1", "naturalness"}).ends_with("|5"));
