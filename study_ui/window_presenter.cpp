@@ -194,7 +194,7 @@ ScreenReply WindowPresenter::show_screen(ScreenKind kind, const std::string& tit
 TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
   Impl& m = *impl_;
   const std::vector<StudyQuestion>& qs = *req.questions;
-  const TrialLayout layout = layout_trial_screen(m.canvas_size, qs);
+  const TrialLayout layout = layout_trial_screen(m.canvas_size, qs, req.video_share);
   const std::string tag = "trial_" + std::to_string(req.trial->index);
   // The inter-trial screen replaces the answered screen at once, and stays while the clip decodes
   // and at least inter_trial_min_ms.

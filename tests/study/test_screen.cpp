@@ -12,41 +12,71 @@ using namespace crowdlab::study;
 TEST_CASE("trial screen layout: targets inside the canvas, disjoint, found by hit_test", "[study]") {
   ProtocolSpec likert, afc;
   afc.type = "2afc";
-  for (const auto* p : {&likert, &afc})
+  ProtocolSpec eleven;  // 11-point scales in the narrow cells of a 3-column grid
+  eleven.type = "rating";
+  eleven.questions = {{"A", "a", false, "scale", 11, {}},
+                      {"B", "b", false, "scale", 11, {}},
+                      {"C", "c", false, "scale", 11, {}},
+                      {"D", "d", false, "scale", 11, {}},
+                      {"E", "e", false, "scale", 11, {}}};
+  for (const auto* p : {&likert, &afc, &eleven})
     for (cv::Size size :
-         {cv::Size(1280, 720), cv::Size(1920, 1080), cv::Size(1024, 768), cv::Size(3840, 2160)}) {
-      const auto qs = resolve_questions(*p);
-      const TrialLayout L = layout_trial_screen(size, qs);
-      const cv::Rect canvas({0, 0}, size);
-      CHECK((L.video_area & canvas) == L.video_area);
-      CHECK(L.video_area.height >= size.height / 5);
-      TrialScreenState state;
-      state.answers.assign(qs.size(), -1);
-      for (size_t i = 0; i < L.targets.size(); ++i) {
-        const auto& t = L.targets[i];
-        CHECK((t.rect & canvas) == t.rect);
-        CHECK((t.rect & L.video_area).area() == 0);
-        for (size_t j = i + 1; j < L.targets.size(); ++j) CHECK((t.rect & L.targets[j].rect).area() == 0);
-        const cv::Point centre(t.rect.x + t.rect.width / 2, t.rect.y + t.rect.height / 2);
-        const auto hit = hit_test(L, state, centre);
-        if (t.question < 0) {
-          CHECK_FALSE(hit);  // Next is disabled until every question is answered
-        } else {
-          REQUIRE(hit);
-          CHECK(hit->question == t.question);
-          CHECK(hit->value == t.value);
-          CHECK(qs[static_cast<size_t>(t.question)].valid(t.value));
+         {cv::Size(1280, 720), cv::Size(1920, 1080), cv::Size(1024, 768), cv::Size(3840, 2160)})
+      for (double share : {0.0, 0.3, 0.5, 0.9}) {
+        const auto qs = resolve_questions(*p);
+        const TrialLayout L = layout_trial_screen(size, qs, share);
+        INFO(p->type << " " << size.width << "x" << size.height << " share " << share);
+        const cv::Rect canvas({0, 0}, size);
+        CHECK((L.video_area & canvas) == L.video_area);
+        CHECK(L.video_area.height >= size.height / 5);
+        TrialScreenState state;
+        state.answers.assign(qs.size(), -1);
+        for (size_t i = 0; i < L.targets.size(); ++i) {
+          const auto& t = L.targets[i];
+          CHECK((t.rect & canvas) == t.rect);
+          CHECK((t.rect & L.video_area).area() == 0);
+          for (size_t j = i + 1; j < L.targets.size(); ++j) CHECK((t.rect & L.targets[j].rect).area() == 0);
+          if (t.question >= 0) CHECK((t.rect & L.cells[static_cast<size_t>(t.question)]) == t.rect);
+          const cv::Point centre(t.rect.x + t.rect.width / 2, t.rect.y + t.rect.height / 2);
+          const auto hit = hit_test(L, state, centre);
+          if (t.question < 0) {
+            CHECK_FALSE(hit);  // Next is disabled until every question is answered
+          } else {
+            REQUIRE(hit);
+            CHECK(hit->question == t.question);
+            CHECK(hit->value == t.value);
+            CHECK(qs[static_cast<size_t>(t.question)].valid(t.value));
+          }
         }
+        for (size_t q = 0; q < qs.size(); ++q) state.answers[q] = qs[q].min_response();
+        CHECK(state.all_answered());
+        const cv::Point next(L.next_button.x + 5, L.next_button.y + 5);
+        REQUIRE(hit_test(L, state, next));
+        CHECK(hit_test(L, state, next)->question == -1);
+        state.questions_enabled = false;
+        const auto& first = L.targets.front();
+        CHECK_FALSE(hit_test(L, state, {first.rect.x + 1, first.rect.y + 1}));
       }
-      for (size_t q = 0; q < qs.size(); ++q) state.answers[q] = qs[q].min_response();
-      CHECK(state.all_answered());
-      const cv::Point next(L.next_button.x + 5, L.next_button.y + 5);
-      REQUIRE(hit_test(L, state, next));
-      CHECK(hit_test(L, state, next)->question == -1);
-      state.questions_enabled = false;
-      const auto& first = L.targets.front();
-      CHECK_FALSE(hit_test(L, state, {first.rect.x + 1, first.rect.y + 1}));
-    }
+}
+
+TEST_CASE("the video is as large as the questions allow; video_share sets its share", "[study]") {
+  const auto qs = resolve_questions(ProtocolSpec{});  // seed 000's six Likert statements
+  REQUIRE(qs.size() == 6);
+  const TrialLayout L = layout_trial_screen({1920, 1080}, qs);
+  const cv::Rect video = fit_rect({1920, 1080}, L.video_area);
+  CHECK(video.width >= 1280);
+  CHECK(video.height >= 720);
+  for (const cv::Rect& cell : L.cells) CHECK(cell.y >= L.video_area.y + L.video_area.height);
+  // Q1/Q2, Q3/Q4 and Q5/Q6 share a column (seed 000's item pairs).
+  for (size_t i = 0; i < 6; i += 2) CHECK(L.cells[i].x == L.cells[i + 1].x);
+  for (double share : {0.35, 0.5}) {
+    const TrialLayout S = layout_trial_screen({1920, 1080}, qs, share);
+    CHECK(std::abs(S.video_area.height - share * 1080) <= 2);
+    CHECK(S.body_px > L.body_px);  // the questions take the room the video leaves
+  }
+  // A share larger than the questions allow at their smallest is capped, never overlapping them.
+  const TrialLayout big = layout_trial_screen({1280, 720}, qs, 0.9);
+  for (const cv::Rect& cell : big.cells) CHECK(cell.y >= big.video_area.y + big.video_area.height);
 }
 
 TEST_CASE("fit_rect keeps the aspect ratio and centres", "[study]") {
