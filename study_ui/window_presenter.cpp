@@ -9,11 +9,13 @@
 #include <filesystem>
 #include <opencv2/highgui.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 
 #include "framework/core/error.hpp"
 #include "study_ui/text_renderer.hpp"
 #include "study_ui/trial_screen.hpp"
 #include "study_ui/video_source.hpp"
+#include "study_ui/x11_screen_size.hpp"
 
 namespace crowdlab::study {
 namespace {
@@ -54,6 +56,57 @@ const char* screen_name(ScreenKind kind) {
       return "finished";
   }
   return "screen";
+}
+
+/// Polls the window's image rectangle for up to `tries` x 50 ms until `done` holds (the window system
+/// applies full screen and resizes asynchronously).
+template <typename Done>
+cv::Rect poll_window_rect(int tries, Done done) {
+  cv::Rect r;
+  for (int i = 0; i < tries; ++i) {
+    cv::waitKey(50);
+    r = cv::getWindowImageRect(kWindow);
+    if (i >= 4 && done(r)) break;
+  }
+  return r;
+}
+
+/// Full screen: asks the window system; when it does not comply (a bare X server, no window manager)
+/// the window covers the X screen itself, undecorated at (0, 0) with the screen's size. Returns the
+/// canvas size; throws RuntimeError when the screen is not covered and options.require_fullscreen.
+cv::Size go_fullscreen(const WindowOptions& options) {
+  const std::optional<std::pair<int, int>> screen = x11_screen_size();
+  const cv::Size screen_size = screen ? cv::Size(screen->first, screen->second) : cv::Size(640, 480);
+  auto covers = [&](const cv::Rect& r) {
+    return screen ? r.width >= screen_size.width && r.height >= screen_size.height
+                  : r.width >= 800 && r.height >= 600;
+  };
+  // A canvas of the screen's size, so that the aspect-keeping window does not letterbox it.
+  cv::imshow(kWindow, cv::Mat(screen_size, CV_8UC3, cv::Scalar(236, 233, 230)));
+  cv::setWindowProperty(kWindow, cv::WND_PROP_FULLSCREEN, cv::WINDOW_FULLSCREEN);
+  cv::Rect r = poll_window_rect(60, covers);
+  if (!covers(r) && screen) {
+    cv::moveWindow(kWindow, 0, 0);
+    cv::resizeWindow(kWindow, screen_size.width, screen_size.height);
+    r = poll_window_rect(40, covers);
+    if (covers(r))
+      spdlog::info(
+          "the window system did not apply full screen (no window manager?): the window covers the "
+          "{}x{} X screen itself",
+          screen_size.width, screen_size.height);
+  }
+  if (covers(r)) return r.size();
+  const std::string screen_text =
+      screen ? std::to_string(screen_size.width) + "x" + std::to_string(screen_size.height)
+             : "of unknown size";
+  if (options.require_fullscreen)
+    throw RuntimeError("--require-fullscreen: the study window could not cover the screen (window " +
+                       std::to_string(r.width) + "x" + std::to_string(r.height) + ", screen " + screen_text +
+                       "); run on a desktop or an X server, or drop --require-fullscreen");
+  spdlog::warn("full screen was not applied (window {}x{}, screen {}); using a {}x{} window", r.width,
+               r.height, screen_text, options.width, options.height);
+  cv::resizeWindow(kWindow, options.width, options.height);
+  return {options.width, options.height};
 }
 
 }  // namespace
@@ -110,23 +163,7 @@ WindowPresenter::WindowPresenter(const WindowOptions& options) {
   // canvas fills the window and mouse coordinates are canvas coordinates.
   cv::namedWindow(kWindow, cv::WINDOW_NORMAL | cv::WINDOW_KEEPRATIO | cv::WINDOW_GUI_NORMAL);
   if (options.fullscreen) {
-    cv::setWindowProperty(kWindow, cv::WND_PROP_FULLSCREEN, cv::WINDOW_FULLSCREEN);
-    cv::imshow(kWindow, cv::Mat(480, 640, CV_8UC3, cv::Scalar(236, 233, 230)));
-    // The window system applies full screen asynchronously: poll the window size for up to 3 s.
-    cv::Rect r;
-    for (int i = 0; i < 60; ++i) {
-      cv::waitKey(50);
-      r = cv::getWindowImageRect(kWindow);
-      if (r.width >= 800 && r.height >= 600 && i >= 4) break;
-    }
-    if (r.width >= 800 && r.height >= 600) {
-      impl_->canvas_size = r.size();
-    } else {  // e.g. a bare X server with no window manager
-      spdlog::warn("full screen was not applied by the window system (window {}x{}); using {}x{}", r.width,
-                   r.height, options.width, options.height);
-      impl_->canvas_size = {options.width, options.height};
-      cv::resizeWindow(kWindow, options.width, options.height);
-    }
+    impl_->canvas_size = go_fullscreen(options);
   } else {
     impl_->canvas_size = {options.width, options.height};
     cv::resizeWindow(kWindow, options.width, options.height);

@@ -1,6 +1,9 @@
 #pragma once
-// WindowPresenter: the participant's screen, a native window through OpenCV highgui (GTK backend),
-// full screen by default, text drawn with FreeType (cv::freetype, DejaVu Sans).
+// WindowPresenter: the participant's screen, a native window through OpenCV highgui (Qt backend on
+// Debian), full screen by default, text drawn with FreeType (cv::freetype, DejaVu Sans). When the
+// window system does not apply full screen (an X server without a window manager) the window covers
+// the X screen itself (size from x11_screen_size); when it cannot, it falls back to a 1280x720 window
+// with a warning, or fails with require_fullscreen.
 //
 // Between trials: the inter-trial screen (protocol.inter_trial: blank, or a fixation cross where the
 // video will appear) replaces the answered screen at once and stays while the next clip decodes and
@@ -36,7 +39,8 @@ namespace crowdlab::study {
 
 struct WindowOptions {
   bool fullscreen = true;
-  int width = 1280;  ///< canvas size when not full screen
+  bool require_fullscreen = false;  ///< fail (RuntimeError) rather than fall back to a smaller window
+  int width = 1280;                 ///< canvas size when not full screen
   int height = 720;
   std::string font_path = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
   std::string snapshot_dir;

@@ -50,7 +50,7 @@ StimulusManifest load_manifest(const std::string& stimuli_dir) {
 
 struct StudyArgs {
   std::string spec, participant, stimuli, out, responses, simulate, windowed, snapshot_dir;
-  bool resume = false;
+  bool resume = false, require_fullscreen = false;
   int delay_ms = 0;
   std::uint64_t seed = 0;
   bool seed_given = false;
@@ -91,6 +91,7 @@ void run_study(const StudyArgs& a) {
       w.height = height;
     }
     w.snapshot_dir = a.snapshot_dir;
+    w.require_fullscreen = a.require_fullscreen;
     presenter = std::make_unique<study::WindowPresenter>(w);
     opt.presenter_name = "window";
   }
@@ -141,8 +142,14 @@ const CommandRegistration kStudy([](CLI::App& root) {
   cmd->add_option("--seed", a->seed,
                   "Simulated observer seed (default: derived from the spec seed and participant)")
       ->each([a](const std::string&) { a->seed_given = true; });
-  cmd->add_option("--windowed", a->windowed,
-                  "Window of WxH pixels instead of full screen (testing), e.g. 1280x720");
+  auto* windowed = cmd->add_option("--windowed", a->windowed,
+                                   "Window of WxH pixels instead of full screen (testing), e.g. 1280x720");
+  cmd->add_flag("--require-fullscreen", a->require_fullscreen,
+                "Fail (exit 1) when the window cannot cover the whole screen, instead of falling back to a "
+                "1280x720 window")
+      ->excludes(windowed)
+      ->excludes(responses)
+      ->excludes(simulate);
   cmd->add_option("--snapshot-dir", a->snapshot_dir, "Save the window's rendered screens as PNGs here");
   cmd->callback([a] { run_study(*a); });
 });

@@ -12,6 +12,8 @@
 #include <sstream>
 #include <thread>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "framework/core/csv.hpp"
 #include "study_ui/study_question.hpp"
 #include "study_ui/trial_screen.hpp"
@@ -362,4 +364,36 @@ TEST_CASE("participant test: the real window under Xvfb, driven by xdotool, kill
   CHECK(afc_rows.at({"1", "collision"}).ends_with("|1"));
   CHECK(afc_rows.at({"1", "naturalness"}).ends_with("|5"));
   (void)m;
+}
+
+TEST_CASE("full screen on an X server without a window manager covers the real screen", "[study][window]") {
+  if (!have_tool("Xvfb") || !have_tool("xdotool") || !have_tool("xwd")) {
+    WARN("skipping: Xvfb, xdotool or xwd not installed");
+    return;
+  }
+  const auto dir = test::scratch_dir("study-fullscreen");
+  test::make_stimuli(dir / "stimuli", {{"method", {"baseline", "ours"}}, {"viewpoint", {"V1", "V3"}}});
+  const auto spec = write_text(dir / "likert.yaml", kLikertYaml);
+  // 1600x900: neither the 1280x720 fallback nor anything the window would pick by itself.
+  const std::string cmd =
+      test::shell_quote((test::source_dir() / "tests/study/fullscreen_window.sh").string()) + " " +
+      test::shell_quote(test::crowdlab_exe().string()) + " " + spec.string() + " " +
+      (dir / "stimuli").string() + " " + (dir / "out").string() + " " + (dir / "snap").string() +
+      " 1600x900 > " + (dir / "drive.log").string() + " 2>&1";
+  const int rc = std::system(cmd.c_str());
+  INFO(slurp(dir / "drive.log"));
+  REQUIRE(rc == 0);
+  const std::string geometry = slurp(dir / "out" / "geometry.txt");
+  INFO(geometry);
+  CHECK(geometry.find("X=0\n") != std::string::npos);
+  CHECK(geometry.find("Y=0\n") != std::string::npos);
+  CHECK(geometry.find("WIDTH=1600\n") != std::string::npos);
+  CHECK(geometry.find("HEIGHT=900\n") != std::string::npos);
+  const cv::Mat first = cv::imread((dir / "snap" / "screen_instructions.png").string());
+  CHECK(first.cols == 1600);
+  CHECK(first.rows == 900);
+  // --require-fullscreen is for the window only.
+  CHECK(test::run_cli({"study", spec.string(), "--participant", "F02", "--stimuli",
+                       (dir / "stimuli").string(), "--require-fullscreen", "--windowed", "800x600"})
+            .exit_code == 2);
 }
