@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "study_ui/build_trial_list.hpp"
+#include "study_ui/frame_interval_stats.hpp"
 #include "study_ui/study_question.hpp"
 
 namespace crowdlab::study {
@@ -44,6 +45,7 @@ struct TrialTiming {
   double inter_trial_ms = -1;  ///< inter-trial screen shown -> stimulus onset (< 0: none)
   long frames_shown = 0;
   long frames_dropped = 0;
+  FrameIntervalStats intervals;  ///< between consecutive frames handed to the window
 };
 
 struct TrialOutcome {

@@ -26,9 +26,30 @@ std::string ascii_lower(std::string s) {
   return s;
 }
 
-const std::vector<std::string> kFixedColumns = {"participant", "session",   "block",    "trial",
-                                                "stimulus",    "question",  "response", "reverse_coded",
-                                                "rt_ms",       "timestamp", "practice", "simulated"};
+/// A duration in ms to 0.1 ms; negative (not measured) as an empty cell.
+std::string ms_text(double ms) {
+  return ms < 0 ? "" : csv_number(std::round(ms * 10.0) / 10.0);
+}
+
+const std::vector<std::string> kFixedColumns = {"participant",
+                                                "session",
+                                                "block",
+                                                "trial",
+                                                "stimulus",
+                                                "question",
+                                                "response",
+                                                "reverse_coded",
+                                                "rt_ms",
+                                                "timestamp",
+                                                "onset_utc",
+                                                "inter_trial_ms",
+                                                "frames_shown",
+                                                "frames_dropped",
+                                                "frame_interval_mean_ms",
+                                                "frame_interval_p99_ms",
+                                                "frame_interval_max_ms",
+                                                "practice",
+                                                "simulated"};
 
 nlohmann::json read_metadata(const std::string& path) {
   std::ifstream in(path);
@@ -79,8 +100,13 @@ std::vector<std::vector<std::string>> response_rows(const std::string& participa
     row.push_back(csv_number(std::round(a.rt_ms * 10.0) / 10.0));
     row.push_back(a.timestamp_utc);
     row.push_back(timing.onset_utc);
-    row.push_back(timing.inter_trial_ms < 0 ? ""
-                                            : csv_number(std::round(timing.inter_trial_ms * 10.0) / 10.0));
+    row.push_back(ms_text(timing.inter_trial_ms));
+    const bool measured = !timing.onset_utc.empty();
+    row.push_back(measured ? std::to_string(timing.frames_shown) : "");
+    row.push_back(measured ? std::to_string(timing.frames_dropped) : "");
+    row.push_back(ms_text(timing.intervals.mean_ms));
+    row.push_back(ms_text(timing.intervals.p99_ms));
+    row.push_back(ms_text(timing.intervals.max_ms));
     row.push_back(trial.practice ? "1" : "0");
     row.push_back(simulated ? "1" : "0");
     rows.push_back(std::move(row));

@@ -5,12 +5,15 @@
 // Files, per participant P in out_dir:
 //   P.csv   tidy responses, one row per answer (response_log.hpp for the durability rules):
 //           participant,session,block,trial,stimulus,<factor columns>,question,response,reverse_coded,
-//           rt_ms,timestamp,onset_utc,inter_trial_ms,practice,simulated
+//           rt_ms,timestamp,onset_utc,inter_trial_ms,frames_shown,frames_dropped,
+//           frame_interval_mean_ms,frame_interval_p99_ms,frame_interval_max_ms,practice,simulated
 //           session: 1 for the first run, +1 for each --resume; trial: 1-based index in this
 //           participant's order; response: raw (1..k, or 1 = yes / 0 = no); reverse_coded: (k+1) - raw
 //           for reverse-keyed items; rt_ms: stimulus onset to answer; timestamp: ISO 8601 UTC;
 //           onset_utc: the trial's stimulus onset (ISO 8601 UTC); inter_trial_ms: inter-trial screen
-//           shown -> onset (the real, measured gap); both empty for headless presenters;
+//           shown -> onset (the real, measured gap); frames_*: video frames handed to the window and
+//           skipped as late; frame_interval_*: between consecutive frames handed over (mean, p99,
+//           max); all empty for headless presenters;
 //           practice: 1 for practice trials (never analysed); simulated: 1 when a simulated observer
 //           answered (--simulate, simulate-study), 0 for a person (window, --responses, import-web).
 //   P.json  session metadata: spec name/hash/seed, crowdlab version, participant seed, trial count,

@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "framework/core/error.hpp"
+#include "study_ui/frame_interval_stats.hpp"
 #include "study_ui/text_renderer.hpp"
 #include "study_ui/trial_screen.hpp"
 #include "study_ui/video_source.hpp"
@@ -256,8 +257,9 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
   bool static_dirty = true, panel_dirty = true, redraw = true, snap_onset = true, snap_answered = true;
   const double period_ms = 1000.0 / video.fps();
   Clock::time_point onset;
+  std::vector<double> handover_ms;  // when each new frame was handed to the window, ms after onset
   long shown = -1;
-  bool video_done = false;
+  bool video_done = false, onset_pending = true;
   // The static panel (FreeType text, tens of ms) is drawn before onset, so it costs no frame.
   draw_trial_static(static_panel, layout, qs, state.header, state.questions_enabled, m.text);
   static_dirty = false;
@@ -280,7 +282,8 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
       if (!video_done) video_done = true, state.questions_enabled = true, static_dirty = panel_dirty = true;
     }
     const cv::Mat* frame = nullptr;
-    if (due != shown) {
+    const bool new_frame = due != shown;
+    if (new_frame) {
       if (shown >= 0 && due > shown + 1) out.timing.frames_dropped += due - shown - 1;
       frame = &video.frame(due);
       shown = due;
@@ -307,12 +310,14 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
       }
       cv::imshow(kWindow, canvas);
       redraw = false;
-      if (snap_onset) {
+      if (onset_pending) {  // the first frame is on its way: this is the stimulus onset
+        onset_pending = false;
         onset = m.discard_pending_input();
         out.timing.onset_utc = iso8601_utc_now();
         out.timing.inter_trial_ms =
             std::chrono::duration<double, std::milli>(onset - inter_trial_start).count();
       }
+      if (new_frame) handover_ms.push_back(ms_since(onset));
       if (snap_onset) m.snapshot(canvas, tag + "_onset"), snap_onset = false;
       if (snap_answered && state.all_answered() && !state.confirm_abort)
         m.snapshot(canvas, tag + "_answered"), snap_answered = false;
@@ -364,6 +369,7 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
     if (next && state.all_answered()) break;
   }
   out.answers = answers;
+  out.timing.intervals = frame_interval_stats(handover_ms);
   return out;
 }
 

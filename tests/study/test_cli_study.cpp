@@ -350,6 +350,15 @@ TEST_CASE("participant test: the real window under Xvfb, driven by xdotool, kill
     // The measured inter-trial gap respects the spec's minimum; the onset is logged.
     CHECK(std::stod(t.cell(r, t.column("inter_trial_ms"))) >= 300.0);
     CHECK(t.cell(r, t.column("onset_utc")).size() == 24);
+    // Playback timing per trial: frames and the intervals between them (30 fps clips: 33.3 ms).
+    CHECK(std::stol(t.cell(r, t.column("frames_shown"))) > 1);
+    CHECK(std::stol(t.cell(r, t.column("frames_dropped"))) >= 0);
+    const double mean = std::stod(t.cell(r, t.column("frame_interval_mean_ms")));
+    const double p99 = std::stod(t.cell(r, t.column("frame_interval_p99_ms")));
+    const double max = std::stod(t.cell(r, t.column("frame_interval_max_ms")));
+    CHECK(mean > 5.0);
+    CHECK(mean <= p99);
+    CHECK(p99 <= max);
   }
   CHECK(trial1 == std::map<std::string, std::string>{
                       {"Q1", "4"}, {"Q2", "2"}, {"Q3", "5"}, {"Q4", "1"}, {"Q5", "6"}, {"Q6", "3"}});

@@ -2,6 +2,7 @@
 // the Next rule, and that streamed and in-memory playback give the same frames.
 #include <opencv2/core.hpp>
 
+#include "study_ui/frame_interval_stats.hpp"
 #include "study_ui/trial_screen.hpp"
 #include "study_ui/video_source.hpp"
 #include "tests/study/study_fixture.hpp"
@@ -105,4 +106,21 @@ TEST_CASE("video source: streamed frames equal in-memory frames, looping", "[stu
     CHECK(cv::norm(a, b, cv::NORM_INF) == 0.0);
   }
   CHECK_THROWS(VideoSource((dir / "missing.mp4").string(), {0, 0, 320, 180}, 30.0, 512.0));
+}
+
+TEST_CASE("frame interval statistics: mean, nearest-rank p99 and max of consecutive differences", "[study]") {
+  CHECK(frame_interval_stats({}).mean_ms < 0);
+  CHECK(frame_interval_stats({5.0}).max_ms < 0);
+  const auto two = frame_interval_stats({0.0, 40.0});
+  CHECK(two.mean_ms == 40.0);
+  CHECK(two.p99_ms == 40.0);
+  CHECK(two.max_ms == 40.0);
+  // 200 intervals: 197 of 33 ms, then 50, 60 and 100 ms. Nearest rank: the 198th of 200 -> 50 ms.
+  std::vector<double> t = {0.0};
+  for (int i = 0; i < 197; ++i) t.push_back(t.back() + 33.0);
+  for (double d : {100.0, 50.0, 60.0}) t.push_back(t.back() + d);
+  const auto s = frame_interval_stats(t);
+  CHECK(s.mean_ms == Approx((197 * 33.0 + 210.0) / 200.0));
+  CHECK(s.p99_ms == 50.0);
+  CHECK(s.max_ms == 100.0);
 }
