@@ -492,7 +492,8 @@ TEST_CASE(
   // answered differently (an RM-ANOVA needs three participants, and error variance in every effect).
   for (const int lab : {1, 3}) {
     const std::string id = "P0" + std::to_string(lab);
-    const auto lab_script = write_script(dir / (id + "-script.csv"), scripted_answers(m, qs, lab), qs);
+    const auto lab_script =
+        write_script(dir / (id + "-script.csv"), scripted_answers(m, qs, lab), qs);
     REQUIRE(run_command(exe + " study " + spec_path + " --participant " + id + " --stimuli " +
                         (dir / "stimuli").string() + " --responses " + lab_script.string() + " --out " +
                         (dir / "web-responses").string() + " > " + (dir / "native.log").string()) == 0);
