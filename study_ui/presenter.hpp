@@ -31,7 +31,9 @@ struct TrialRequest {
   const Trial* trial = nullptr;
   std::string video_path;  ///< absolute path of the stimulus file
   const std::vector<StudyQuestion>* questions = nullptr;
-  int trial_count = 0;                          ///< total trials in the session (for "trial i of n")
+  int trial_count = 0;  ///< total trials in the session, practice included
+  int number = 0;       ///< 1-based position among the trials of its kind (test or practice), for the header
+  int count = 0;        ///< trials of its kind: "Trial 3 of 40" counts test trials only
   bool loop_video = true;                       ///< loop until answered; otherwise play once, then ask
   double fps = 30.0;                            ///< playback rate when the file does not say
   std::string inter_trial_screen = "fixation";  ///< "blank" or "fixation", shown while the clip loads
@@ -69,6 +71,9 @@ class Presenter {
   /// Plays the stimulus and collects one answer per question.
   virtual TrialOutcome run_trial(const TrialRequest& request) = 0;
 };
+
+/// The trial screen's header: "Trial k of N" (test trials only) or "Practice trial k of P".
+std::string trial_header(const TrialRequest& request);
 
 /// Current UTC time as ISO 8601 with milliseconds, e.g. 2026-11-22T02:13:07.123Z.
 std::string iso8601_utc_now();

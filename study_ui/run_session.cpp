@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -74,6 +75,21 @@ void check_answers(const TrialOutcome& outcome, const std::vector<StudyQuestion>
       throw RuntimeError("trial " + std::to_string(trial.index) + ": invalid answer to " + questions[i].id +
                          " (" + std::to_string(a.raw) + ")");
   }
+}
+
+int count_of_kind(const std::vector<Trial>& trials, bool practice) {
+  return static_cast<int>(
+      std::count_if(trials.begin(), trials.end(), [&](const Trial& t) { return t.practice == practice; }));
+}
+
+/// 1-based position of `trial` among the trials of its kind (test or practice), in session order.
+int position_of_kind(const std::vector<Trial>& trials, const Trial& trial) {
+  int k = 0;
+  for (const Trial& t : trials) {
+    k += t.practice == trial.practice;
+    if (t.index == trial.index) break;
+  }
+  return k;
 }
 
 }  // namespace
@@ -163,25 +179,43 @@ std::vector<std::string> response_header(const std::vector<std::string>& factor_
   return header;
 }
 
+void check_session_inputs(const ExperimentSpec& spec, const StimulusManifest& manifest,
+                          const SessionOptions& opt) {
+  check_participant_id(opt.participant);
+  resolve_questions(spec.protocol);
+  if (build_trial_list(spec.protocol, manifest, spec.seed, opt.participant).empty())
+    throw InputError(SourceLocation{"", 0, 0, "--stimuli"}, "the manifest holds no trial for this spec");
+  const std::string header_line = csv_line(response_header(manifest.factor_names));
+  if (opt.verify_files) verify_stimuli(manifest, opt.stimuli_dir);
+  check_session_exists_as_asked(opt.out_dir, opt.participant, opt.resume);
+  const fs::path dir(opt.out_dir);
+  const std::string json_path = (dir / (opt.participant + ".json")).string();
+  const nlohmann::json meta = read_metadata(json_path);
+  if (meta.contains("spec_hash") && meta["spec_hash"] != spec.source_hash)
+    throw InputError(json_path + ": this participant's session used another spec (hash " +
+                     meta["spec_hash"].get<std::string>() + "); refusing to mix data");
+  const fs::path csv_path = dir / (opt.participant + ".csv");
+  std::ifstream csv(csv_path, std::ios::binary);
+  std::string first_line;
+  if (csv && std::getline(csv, first_line) && first_line + "\n" != header_line)
+    throw InputError(SourceLocation{csv_path.string(), 1, 0, ""},
+                     "the response log's header differs from this spec and manifest (another study, or a "
+                     "log of an older crowdlab version)");
+}
+
 SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& manifest,
                           const SessionOptions& opt, Presenter& presenter) {
-  check_participant_id(opt.participant);
+  check_session_inputs(spec, manifest, opt);
   const std::vector<StudyQuestion> questions = resolve_questions(spec.protocol);
   const std::vector<Trial> trials = build_trial_list(spec.protocol, manifest, spec.seed, opt.participant);
   const std::vector<std::string> header = response_header(manifest.factor_names);
-  if (opt.verify_files) verify_stimuli(manifest, opt.stimuli_dir);
 
   SessionResult result;
   result.csv_path = (fs::path(opt.out_dir) / (opt.participant + ".csv")).string();
   result.json_path = (fs::path(opt.out_dir) / (opt.participant + ".json")).string();
   result.trials_total = static_cast<int>(trials.size());
-  check_session_exists_as_asked(opt.out_dir, opt.participant, opt.resume);
   fs::create_directories(opt.out_dir);
-
   nlohmann::json meta = read_metadata(result.json_path);
-  if (meta.contains("spec_hash") && meta["spec_hash"] != spec.source_hash)
-    throw InputError(result.json_path + ": this participant's session used another spec (hash " +
-                     meta["spec_hash"].get<std::string>() + "); refusing to mix data");
   RecoveredLog recovered;
   std::optional<ResponseLog> log;
   if (fs::exists(result.csv_path)) {
@@ -303,6 +337,8 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     req.video_path = stimulus_path(opt.stimuli_dir, t.stimulus);
     req.questions = &questions;
     req.trial_count = static_cast<int>(trials.size());
+    req.number = position_of_kind(trials, t);
+    req.count = count_of_kind(trials, t.practice);
     req.loop_video = p.loop_video;
     req.fps = spec.fps;
     req.inter_trial_screen = p.inter_trial_screen;

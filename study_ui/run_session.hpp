@@ -77,6 +77,13 @@ std::vector<std::vector<std::string>> response_rows(const std::string& participa
                                                     const std::vector<Answer>& answers,
                                                     bool simulated = false, const TrialTiming& timing = {});
 
+/// Every check a session makes before it shows anything or writes a file: the id, the questions,
+/// the trial list, the stimuli (existence and sha256, unless !options.verify_files), the id's use in
+/// out_dir (check_session_exists_as_asked), and a resumed session's spec hash and log header. Throws
+/// InputError. `crowdlab study` calls it before it opens the window; run_session calls it too.
+void check_session_inputs(const ExperimentSpec& spec, const StimulusManifest& manifest,
+                          const SessionOptions& options);
+
 SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& manifest,
                           const SessionOptions& options, Presenter& presenter);
 

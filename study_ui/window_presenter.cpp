@@ -13,6 +13,7 @@
 
 #include "framework/core/error.hpp"
 #include "study_ui/frame_interval_stats.hpp"
+#include "study_ui/scale_keys.hpp"
 #include "study_ui/text_renderer.hpp"
 #include "study_ui/trial_screen.hpp"
 #include "study_ui/video_source.hpp"
@@ -30,11 +31,11 @@ bool is_enter(int key) {
   return key == 13 || key == 10 || key == 0xff0d || key == 0xff8d || key == 32;
 }
 
-/// Digit 1..9 from the top row or the keypad, else 0.
+/// Digit 0..9 from the top row or the keypad, else -1.
 int digit_of(int key) {
-  if (key >= '1' && key <= '9') return key - '0';
-  if (key >= 0xffb1 && key <= 0xffb9) return key - 0xffb0;
-  return 0;
+  if (key >= '0' && key <= '9') return key - '0';
+  if (key >= 0xffb0 && key <= 0xffb9) return key - 0xffb0;
+  return -1;
 }
 
 double ms_since(Clock::time_point t0) {
@@ -248,8 +249,7 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
   TrialScreenState state;
   state.answers.assign(qs.size(), -1);
   state.questions_enabled = req.loop_video;
-  state.header = (req.trial->practice ? "Practice - trial " : "Trial ") + std::to_string(req.trial->index) +
-                 " of " + std::to_string(req.trial_count);
+  state.header = trial_header(req);
   std::vector<Answer> answers(qs.size());
 
   TrialOutcome out;
@@ -267,6 +267,7 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
                std::chrono::microseconds(static_cast<long>(req.inter_trial_min_ms * 1000)));
   m.clicks.clear();
 
+  DigitEntry digits;  // an open first digit on a 10- or 11-point scale
   auto answer = [&](int q, int value, double rt_ms) {
     state.answers[static_cast<size_t>(q)] = value;
     answers[static_cast<size_t>(q)] = Answer{qs[static_cast<size_t>(q)].id, value, rt_ms, iso8601_utc_now()};
@@ -347,6 +348,7 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
       continue;
     }
     bool next = false;
+    if (!m.clicks.empty()) digits = {};
     while (!m.clicks.empty()) {
       const cv::Point p = m.clicks.front();
       m.clicks.pop_front();
@@ -359,8 +361,11 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
     }
     if (state.questions_enabled && key != -1) {
       const int d = digit_of(key);
-      const int q = state.first_unanswered(qs, QuestionKind::scale);
-      if (d > 0 && q >= 0 && d <= qs[static_cast<size_t>(q)].points) answer(q, d, now_ms);
+      if (d >= 0) {
+        if (const auto a = enter_digit(digits, state, qs, d)) answer(a->first, a->second, now_ms);
+      } else {
+        digits = {};
+      }
       const int yn = state.first_unanswered(qs, QuestionKind::yesno);
       if (yn >= 0 && (key == 'y' || key == 'Y')) answer(yn, 1, now_ms);
       if (yn >= 0 && (key == 'n' || key == 'N')) answer(yn, 0, now_ms);

@@ -10,8 +10,9 @@
 // for at least inter_trial.min_ms; the measured gap (inter-trial screen shown -> onset) is logged.
 // Trial screen: the video on top, the questions below (statement left, answer scale right), a
 // "Next" button bottom right that is enabled only when every question is answered.
-//   - Answers: mouse click on a scale point or yes/no button; number keys 1-9 (top row or keypad)
-//     answer the first unanswered scale question; y / n answer the yes/no question. A click may
+//   - Answers: mouse click on a scale point or yes/no button; number keys (top row or keypad)
+//     answer the first unanswered scale question (10- and 11-point scales: two digits for 10 and 11,
+//     see scale_keys.hpp); y / n answer the yes/no question. A click may
 //     change an answer within the trial (its RT is then the time of the last change); there is no
 //     going back to an earlier trial. Enter or Space (or a click on Next) moves on.
 //   - Esc shows "Quit the session?"; only Y confirms, any other key resumes the trial.

@@ -67,8 +67,10 @@ void run_study(const StudyArgs& a) {
   opt.out_dir = a.out.empty() ? (std::filesystem::path(a.stimuli) / default_out).string() : a.out;
   opt.simulated = !a.simulate.empty();
   opt.resume = a.resume;
-  study::check_participant_id(a.participant);
-  study::check_session_exists_as_asked(opt.out_dir, opt.participant, opt.resume);  // before any window
+  // Everything the session will check, before any window opens (a participant never sees a window
+  // that then closes on an experimenter's mistake).
+  study::check_session_inputs(spec, manifest, opt);
+  opt.verify_files = false;  // verified just now
   std::unique_ptr<study::Presenter> presenter;
   if (!a.responses.empty()) {
     auto scripted = std::make_unique<study::ScriptedPresenter>(a.responses, a.delay_ms);

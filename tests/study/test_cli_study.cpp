@@ -151,6 +151,16 @@ TEST_CASE("crowdlab study --responses: a scripted session, used ids refused, cor
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("sha256 mismatch") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "out" / "P08.csv"));
+  // The same for a window session: refused before the window opens (here there is no display at
+  // all, so reaching the window would fail with "no display" instead).
+  const std::string window_cmd =
+      "env -u DISPLAY -u WAYLAND_DISPLAY " + test::shell_quote(test::crowdlab_exe().string()) + " study " +
+      spec.string() + " --participant P09 --stimuli " + (dir / "stimuli").string() + " --out " +
+      (dir / "out").string() + " 2> " + (dir / "window.err").string();
+  const int window_rc = std::system(window_cmd.c_str());
+  CHECK(WIFEXITED(window_rc));
+  CHECK(WEXITSTATUS(window_rc) == 2);
+  CHECK(slurp(dir / "window.err").find("sha256 mismatch") != std::string::npos);
   CHECK(test::run_cli({"study", "--help"}).exit_code == 0);
 }
 

@@ -3,6 +3,7 @@
 #include <opencv2/core.hpp>
 
 #include "study_ui/frame_interval_stats.hpp"
+#include "study_ui/scale_keys.hpp"
 #include "study_ui/trial_screen.hpp"
 #include "study_ui/video_source.hpp"
 #include "tests/study/study_fixture.hpp"
@@ -123,4 +124,39 @@ TEST_CASE("frame interval statistics: mean, nearest-rank p99 and max of consecut
   CHECK(s.mean_ms == Approx((197 * 33.0 + 210.0) / 200.0));
   CHECK(s.p99_ms == 50.0);
   CHECK(s.max_ms == 100.0);
+}
+
+TEST_CASE("keyboard answers reach every point of 10- and 11-point scales", "[study]") {
+  ProtocolSpec p;
+  p.type = "rating";
+  p.questions = {{"A", "a", false, "scale", 11, {}},
+                 {"B", "b", false, "scale", 10, {}},
+                 {"C", "c", false, "scale", 7, {}}};
+  const auto qs = resolve_questions(p);
+  // Types `keys` (digits, or '.' for any other key) and returns the answers.
+  auto type = [&](const std::string& keys) {
+    TrialScreenState state;
+    state.answers.assign(qs.size(), -1);
+    DigitEntry entry;
+    for (char c : keys) {
+      if (c == '.') {
+        entry = {};
+        continue;
+      }
+      if (const auto a = enter_digit(entry, state, qs, c - '0'))
+        state.answers[static_cast<size_t>(a->first)] = a->second;
+    }
+    return state.answers;
+  };
+  CHECK(type("11107") == std::vector<int>{11, 10, 7});
+  CHECK(type("1.17") == std::vector<int>{1, 1, 7});   // another key closes the open 1
+  CHECK(type("0101") == std::vector<int>{1, 1, -1});  // 01: an explicit single-digit answer
+  CHECK(type("9103") == std::vector<int>{9, 10, 3});
+  CHECK(type("1017") == std::vector<int>{10, 1, 7});
+  CHECK(type("12") == std::vector<int>{1, 2, -1});   // 12 > 11: the 2 answers the next question
+  CHECK(type("5558") == std::vector<int>{5, 5, 5});  // 8 > 7 points: ignored
+  for (int v = 1; v <= 11; ++v) {                    // every point of the 11-point scale
+    const std::string keys = (v < 10 ? "0" : "") + std::to_string(v);
+    CHECK(type(keys)[0] == v);
+  }
 }

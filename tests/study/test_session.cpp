@@ -272,6 +272,7 @@ class RecordingPresenter final : public Presenter {
  public:
   std::vector<ScreenKind> screens;
   std::vector<int> trial_indices;
+  std::vector<std::string> headers;
   ScreenReply consent_reply = ScreenReply::proceed;
   ScreenInfo screen() const override { return {800, 600, "recording"}; }
   ScreenReply show_screen(ScreenKind kind, const std::string&, const std::string&) override {
@@ -280,6 +281,7 @@ class RecordingPresenter final : public Presenter {
   }
   TrialOutcome run_trial(const TrialRequest& r) override {
     trial_indices.push_back(r.trial->index);
+    headers.push_back(trial_header(r));
     TrialOutcome out;
     for (const auto& q : *r.questions)
       out.answers.push_back({q.id, q.min_response(), 100.0, iso8601_utc_now()});
@@ -334,4 +336,7 @@ TEST_CASE("screens: instructions, consent, practice and block intros, a break ev
                                    K::break_screen, K::block_intro, K::finished};
   CHECK(p.screens == expected);
   CHECK(p.trial_indices == std::vector<int>{1, 2, 3, 4, 5});
+  // "Trial k of N" counts test trials only; the practice trial is counted apart.
+  CHECK(p.headers == std::vector<std::string>{"Practice trial 1 of 1", "Trial 1 of 4", "Trial 2 of 4",
+                                              "Trial 3 of 4", "Trial 4 of 4"});
 }
