@@ -350,7 +350,7 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     if (outcome.aborted) return abort_session();
     check_answers(outcome, questions, t);
     log->append_trial(response_rows(opt.participant, session, t, manifest.factor_names, questions,
-                                    outcome.answers, opt.simulated));
+                                    outcome.answers, opt.simulated, outcome.timing));
     ++result.trials_done_now;
     if (outcome.timing.frames_dropped > 0)
       spdlog::info("trial {} ({}): {} of {} frame(s) dropped", t.index, t.stimulus.id,

@@ -136,7 +136,8 @@ TEST_CASE("crowdlab study --responses: a scripted session, used ids refused, cor
   CHECK(r.err.find("P07") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "out" / "p07.csv"));
   // The id pattern: letters, digits, _ and -, starting with a letter or digit.
-  for (const std::string bad : {"../P1", "P 1", "P.1", "_P1", std::string(65, 'a')}) {
+  for (const std::string& bad :
+       std::vector<std::string>{"../P1", "P 1", "P.1", "_P1", std::string(65, 'a')}) {
     auto b = base;
     b[3] = bad;
     r = test::run_cli(b);
@@ -164,7 +165,7 @@ TEST_CASE("crowdlab study --responses: a scripted session, used ids refused, cor
   CHECK(test::run_cli({"study", "--help"}).exit_code == 0);
 }
 
-TEST_CASE("--simulate answers go to their own folder with simulated = 1; analyze refuses a mix", "[study]") {
+TEST_CASE("--simulate answers go to their own folder with simulated = 1, and analyze refuses a mix", "[study]") {
   const auto dir = test::scratch_dir("study-simulated");
   const auto m =
       test::make_stimuli(dir / "stimuli", {{"method", {"baseline", "ours"}}, {"viewpoint", {"V1", "V3"}}});
@@ -201,6 +202,7 @@ TEST_CASE("--simulate answers go to their own folder with simulated = 1; analyze
   r = test::run_cli(allowed);
   CHECK(r.err.find("--allow-simulated-mix") == std::string::npos);
   // A report over a folder holding both response folders.
+  fs::create_directories(dir / "study");
   fs::copy(dir / "stimuli" / "responses", dir / "study" / "responses", fs::copy_options::recursive);
   fs::copy(dir / "stimuli" / "responses-simulated", dir / "study" / "sim", fs::copy_options::recursive);
   const std::vector<std::string> report = {"analyze",     "report", (dir / "study").string(), "--spec",

@@ -61,7 +61,7 @@ TEST_CASE("trial screen layout: targets inside the canvas, disjoint, found by hi
       }
 }
 
-TEST_CASE("the video is as large as the questions allow; video_share sets its share", "[study]") {
+TEST_CASE("the video is as large as the questions allow, and video_share sets its share", "[study]") {
   const auto qs = resolve_questions(ProtocolSpec{});  // seed 000's six Likert statements
   REQUIRE(qs.size() == 6);
   const TrialLayout L = layout_trial_screen({1920, 1080}, qs);
