@@ -165,7 +165,9 @@ TEST_CASE("crowdlab study --responses: a scripted session, used ids refused, cor
   CHECK(test::run_cli({"study", "--help"}).exit_code == 0);
 }
 
-TEST_CASE("--simulate answers go to their own folder with simulated = 1, and analyze refuses a mix", "[study]") {
+TEST_CASE(
+    "simulated answers (--simulate) go to their own folder with simulated = 1, and analyze refuses a mix",
+    "[study]") {
   const auto dir = test::scratch_dir("study-simulated");
   const auto m =
       test::make_stimuli(dir / "stimuli", {{"method", {"baseline", "ours"}}, {"viewpoint", {"V1", "V3"}}});
