@@ -105,6 +105,11 @@ cv::Size go_fullscreen(const WindowOptions& options) {
     throw RuntimeError("--require-fullscreen: the study window could not cover the screen (window " +
                        std::to_string(r.width) + "x" + std::to_string(r.height) + ", screen " + screen_text +
                        "); run on a desktop or an X server, or drop --require-fullscreen");
+  if (r.width >= 800 && r.height >= 600) {  // e.g. a desktop that keeps its panels: usable, say so
+    spdlog::warn("the window does not cover the screen (window {}x{}, screen {}); using it as it is", r.width,
+                 r.height, screen_text);
+    return r.size();
+  }
   spdlog::warn("full screen was not applied (window {}x{}, screen {}); using a {}x{} window", r.width,
                r.height, screen_text, options.width, options.height);
   cv::resizeWindow(kWindow, options.width, options.height);
