@@ -12,7 +12,7 @@ build_pkgs=(
   libopencv-dev libopencv-contrib-dev libmeshoptimizer-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   libboost-dev libboost-math-dev libcli11-dev libspdlog-dev libfmt-dev libtbb-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
-  libplplot-dev plplot-driver-cairo libfreetype-dev fonts-dejavu-core
+  libplplot-dev plplot-driver-cairo libfreetype-dev fonts-dejavu-core libx11-dev
   libbenchmark-dev catch2 zlib1g-dev libzip-dev
   libnlopt-dev
 )

@@ -8,11 +8,16 @@
 #include <vector>
 
 #include "study_ui/build_trial_list.hpp"
+#include "study_ui/frame_interval_stats.hpp"
 #include "study_ui/study_question.hpp"
 
 namespace crowdlab::study {
 
 enum class ScreenKind { instructions, consent, practice_intro, block_intro, break_screen, finished };
+
+/// How the participant left a text screen: on to the next step, quit (Esc confirmed, window closed),
+/// or, on the consent screen only, declined to take part.
+enum class ScreenReply { proceed, abort, decline };
 
 /// One answer as given: the raw response and its response time from stimulus onset.
 struct Answer {
@@ -26,16 +31,29 @@ struct TrialRequest {
   const Trial* trial = nullptr;
   std::string video_path;  ///< absolute path of the stimulus file
   const std::vector<StudyQuestion>* questions = nullptr;
-  int trial_count = 0;     ///< total trials in the session (for "trial i of n")
-  bool loop_video = true;  ///< loop until answered; otherwise play once, then ask
-  double fps = 30.0;       ///< playback rate when the file does not say
+  int trial_count = 0;  ///< total trials in the session, practice included
+  int number = 0;       ///< 1-based position among the trials of its kind (test or practice), for the header
+  int count = 0;        ///< trials of its kind: "Trial 3 of 40" counts test trials only
+  bool loop_video = true;                       ///< loop until answered; otherwise play once, then ask
+  double fps = 30.0;                            ///< playback rate when the file does not say
+  std::string inter_trial_screen = "fixation";  ///< "blank" or "fixation", shown while the clip loads
+  double inter_trial_min_ms = 500.0;            ///< the inter-trial screen's minimum duration
+  double video_share = 0.0;                     ///< video's share of the screen height; 0 = automatic
+};
+
+/// What a presenter measured of one trial's presentation (headless presenters measure nothing).
+struct TrialTiming {
+  std::string onset_utc;       ///< wall-clock time of the stimulus onset, ISO 8601 UTC ("" = none)
+  double inter_trial_ms = -1;  ///< inter-trial screen shown -> stimulus onset (< 0: none)
+  long frames_shown = 0;
+  long frames_dropped = 0;
+  FrameIntervalStats intervals;  ///< between consecutive frames handed to the window
 };
 
 struct TrialOutcome {
   bool aborted = false;         ///< the participant confirmed Esc: stop the session, keep what is saved
   std::vector<Answer> answers;  ///< one per question, in question order (empty when aborted)
-  long frames_shown = 0;
-  long frames_dropped = 0;
+  TrialTiming timing;
 };
 
 struct ScreenInfo {
@@ -48,12 +66,14 @@ class Presenter {
  public:
   virtual ~Presenter() = default;
   virtual ScreenInfo screen() const = 0;
-  /// Shows a text screen and waits for the participant. Returns false when they abort (Esc, confirmed)
-  /// or, for consent, decline.
-  virtual bool show_screen(ScreenKind kind, const std::string& title, const std::string& text) = 0;
+  /// Shows a text screen and waits for the participant.
+  virtual ScreenReply show_screen(ScreenKind kind, const std::string& title, const std::string& text) = 0;
   /// Plays the stimulus and collects one answer per question.
   virtual TrialOutcome run_trial(const TrialRequest& request) = 0;
 };
+
+/// The trial screen's header: "Trial k of N" (test trials only) or "Practice trial k of P".
+std::string trial_header(const TrialRequest& request);
 
 /// Current UTC time as ISO 8601 with milliseconds, e.g. 2026-11-22T02:13:07.123Z.
 std::string iso8601_utc_now();

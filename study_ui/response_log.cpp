@@ -54,6 +54,35 @@ int parse_int(const std::string& cell, const std::string& path, int line, const 
   throw InputError(SourceLocation{path, line, 0, column}, "not an integer: '" + cell + "'");
 }
 
+/// True when `line` (no newline) holds every field of the header and a non-empty last one. The
+/// session log's last column is a one-character flag, so a cut inside the row leaves either fewer
+/// fields or an empty last field: such a line is complete but for its newline.
+bool is_complete_row(const std::string& header_line, const std::string& line, size_t columns) {
+  if (line.find('\n') != std::string::npos) return false;
+  try {
+    const CsvTable t = parse_csv(header_line + line + "\n", "");
+    return t.rows.size() == 1 && t.rows[0].size() == columns && !t.rows[0].back().empty();
+  } catch (const InputError&) {
+    return false;  // ragged or an open quote: torn
+  }
+}
+
+/// Appends the bytes about to be cut from `path` to `path`.recovered (fsync'd) so that nothing a
+/// participant answered is lost even if the recovery rule was wrong.
+void save_cut_bytes(const std::string& path, const std::string& bytes, bool durable) {
+  const std::string aside = path + ".recovered";
+  const int fd = ::open(aside.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (fd < 0) throw RuntimeError(aside + ": cannot create: " + errno_text());
+  try {
+    write_all(fd, bytes, aside);
+    if (durable) fsync_or_throw(fd, aside);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  ::close(fd);
+}
+
 }  // namespace
 
 void fsync_parent_directory(const std::string& path) {
@@ -111,13 +140,18 @@ ResponseLog ResponseLog::reopen(const std::string& path, const std::vector<std::
                                 const std::string& trial_column, const std::string& session_column,
                                 int rows_per_trial, RecoveredLog& recovered, bool durable) {
   recovered = RecoveredLog{};
-  const std::string text = read_all(path);
+  std::string text = read_all(path);
+  const size_t on_disk = text.size();
   const std::string header_line = csv_line(header);
   if (text.compare(0, header_line.size(), header_line) != 0)
     throw InputError(SourceLocation{path, 1, 0, ""},
                      "the response log's header differs from this spec and manifest (different study?)");
-  // 1. Drop a torn last line (no terminating newline).
+  // 1. A last line without its newline: complete rows get it back, torn ones are dropped.
   size_t keep = text.rfind('\n') + 1;  // header ends with '\n', so keep >= header size
+  if (keep < on_disk && is_complete_row(header_line, text.substr(keep), header.size())) {
+    text += '\n';
+    keep = text.size();
+  }
   // 2. Parse complete rows; the writer never emits embedded newlines, so row r is line r + 2.
   const CsvTable table = parse_csv(text.substr(0, keep), path);
   const size_t trial_col = table.column(trial_column);
@@ -158,14 +192,18 @@ ResponseLog ResponseLog::reopen(const std::string& path, const std::vector<std::
     recovered.max_session = std::max(recovered.max_session, session_of_row[r]);
   recovered.rows = static_cast<long>(rows_kept);
   keep = rows_kept == 0 ? header_line.size() : line_end[rows_kept - 1];
-  recovered.dropped_bytes = static_cast<long>(text.size() - keep);
+  recovered.dropped_bytes = keep < on_disk ? static_cast<long>(on_disk - keep) : 0;
 
   const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
   if (fd < 0) throw RuntimeError(path + ": cannot open for appending: " + errno_text());
   ResponseLog log(path, fd, header.size(), durable);
-  if (keep != text.size()) {
+  if (keep < on_disk) {
+    save_cut_bytes(path, text.substr(keep, on_disk - keep), durable);  // before anything is cut
     if (::ftruncate(fd, static_cast<off_t>(keep)) != 0)
       throw RuntimeError(path + ": cannot truncate the torn tail: " + errno_text());
+    fsync_or_throw(fd, path);
+  } else if (keep > on_disk) {  // the restored newline of a complete last row
+    write_all(fd, "\n", path);
     fsync_or_throw(fd, path);
   }
   return log;

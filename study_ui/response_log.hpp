@@ -8,9 +8,12 @@
 // the directory containing the file has also reached disk").
 //
 // Recovery (reopen()): after a crash or SIGKILL the file may end in a torn write: a last line without
-// its newline, or only some rows of the last trial. reopen() drops both (truncating the file to the
-// end of the last complete trial and fsyncing), so a resumed session re-asks exactly the trials that
-// are not completely on disk: no duplicate and no missing rows. Anything else that is inconsistent
+// its newline, or only some rows of the last trial. A last line that holds every field (the last one
+// non-empty) lacks only its newline: it is kept and the newline written. A torn line and the rows of
+// an incomplete last trial are dropped (truncating the file to the end of the last complete trial and
+// fsyncing), after the cut bytes have been appended to `<log>.recovered` beside it, so a resumed
+// session re-asks exactly the trials that are not completely on disk (no duplicate and no missing
+// rows) and no byte a participant produced is destroyed. Anything else that is inconsistent
 // (another header, a malformed complete row, an incomplete trial before the last one) is an
 // InputError: the file is then left untouched for a human to inspect.
 #include <set>

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -20,9 +21,36 @@ namespace crowdlab::study {
 namespace fs = std::filesystem;
 namespace {
 
-const std::vector<std::string> kFixedColumns = {"participant", "session",   "block",    "trial",
-                                                "stimulus",    "question",  "response", "reverse_coded",
-                                                "rt_ms",       "timestamp", "practice"};
+std::string ascii_lower(std::string s) {
+  for (char& c : s)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return s;
+}
+
+/// A duration in ms to 0.1 ms; negative (not measured) as an empty cell.
+std::string ms_text(double ms) {
+  return ms < 0 ? "" : csv_number(std::round(ms * 10.0) / 10.0);
+}
+
+const std::vector<std::string> kFixedColumns = {"participant",
+                                                "session",
+                                                "block",
+                                                "trial",
+                                                "stimulus",
+                                                "question",
+                                                "response",
+                                                "reverse_coded",
+                                                "rt_ms",
+                                                "timestamp",
+                                                "onset_utc",
+                                                "inter_trial_ms",
+                                                "frames_shown",
+                                                "frames_dropped",
+                                                "frame_interval_mean_ms",
+                                                "frame_interval_p99_ms",
+                                                "frame_interval_max_ms",
+                                                "practice",
+                                                "simulated"};
 
 nlohmann::json read_metadata(const std::string& path) {
   std::ifstream in(path);
@@ -49,13 +77,29 @@ void check_answers(const TrialOutcome& outcome, const std::vector<StudyQuestion>
   }
 }
 
+int count_of_kind(const std::vector<Trial>& trials, bool practice) {
+  return static_cast<int>(
+      std::count_if(trials.begin(), trials.end(), [&](const Trial& t) { return t.practice == practice; }));
+}
+
+/// 1-based position of `trial` among the trials of its kind (test or practice), in session order.
+int position_of_kind(const std::vector<Trial>& trials, const Trial& trial) {
+  int k = 0;
+  for (const Trial& t : trials) {
+    k += t.practice == trial.practice;
+    if (t.index == trial.index) break;
+  }
+  return k;
+}
+
 }  // namespace
 
 std::vector<std::vector<std::string>> response_rows(const std::string& participant, int session,
                                                     const Trial& trial,
                                                     const std::vector<std::string>& factor_names,
                                                     const std::vector<StudyQuestion>& questions,
-                                                    const std::vector<Answer>& answers) {
+                                                    const std::vector<Answer>& answers, bool simulated,
+                                                    const TrialTiming& timing) {
   std::vector<std::vector<std::string>> rows;
   for (size_t i = 0; i < questions.size(); ++i) {
     const StudyQuestion& q = questions[i];
@@ -71,20 +115,56 @@ std::vector<std::vector<std::string>> response_rows(const std::string& participa
     row.push_back(std::to_string(reverse_coded(q, a.raw)));
     row.push_back(csv_number(std::round(a.rt_ms * 10.0) / 10.0));
     row.push_back(a.timestamp_utc);
+    row.push_back(timing.onset_utc);
+    row.push_back(ms_text(timing.inter_trial_ms));
+    const bool measured = !timing.onset_utc.empty();
+    row.push_back(measured ? std::to_string(timing.frames_shown) : "");
+    row.push_back(measured ? std::to_string(timing.frames_dropped) : "");
+    row.push_back(ms_text(timing.intervals.mean_ms));
+    row.push_back(ms_text(timing.intervals.p99_ms));
+    row.push_back(ms_text(timing.intervals.max_ms));
     row.push_back(trial.practice ? "1" : "0");
+    row.push_back(simulated ? "1" : "0");
     rows.push_back(std::move(row));
   }
   return rows;
 }
 
 void check_participant_id(const std::string& participant) {
-  bool ok = !participant.empty() && participant.size() <= 64;
-  for (char c : participant)
-    ok = ok &&
-         ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-');
+  auto alnum = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+  };
+  // A letter or digit first: an id never reads as a command-line option or a hidden file.
+  bool ok = !participant.empty() && participant.size() <= 64 && alnum(participant.front());
+  for (char c : participant) ok = ok && (alnum(c) || c == '_' || c == '-');
   if (!ok)
     throw InputError(SourceLocation{"", 0, 0, "--participant"},
-                     "participant id '" + participant + "' must be 1-64 characters of A-Z a-z 0-9 _ -");
+                     "participant id '" + participant +
+                         "' must be 1-64 characters of A-Z a-z 0-9 _ -, starting with a letter or digit");
+}
+
+void check_session_exists_as_asked(const std::string& out_dir, const std::string& participant, bool resume) {
+  const fs::path dir(out_dir);
+  const bool used = fs::exists(dir / (participant + ".csv")) || fs::exists(dir / (participant + ".json"));
+  if (used && !resume)
+    throw InputError(SourceLocation{"", 0, 0, "--participant"},
+                     "participant '" + participant + "' already has a session in " + out_dir +
+                         " (use --resume to continue it, or another id)");
+  if (!used && resume)
+    throw InputError(SourceLocation{"", 0, 0, "--resume"},
+                     "participant '" + participant + "' has no session in " + out_dir +
+                         " to resume (a typo? drop --resume to start a new session)");
+  if (used || !fs::is_directory(dir)) return;
+  // One id per person whatever the case: P01 and p01 are one file on a case-insensitive disk.
+  const std::string folded = ascii_lower(participant);
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const fs::path name = entry.path().filename();
+    const std::string ext = name.extension().string();
+    if ((ext == ".csv" || ext == ".json") && ascii_lower(name.stem().string()) == folded)
+      throw InputError(SourceLocation{"", 0, 0, "--participant"},
+                       "participant '" + participant + "' clashes with '" + name.stem().string() + "' in " +
+                           out_dir + ": ids differing only in case are one participant");
+  }
 }
 
 std::vector<std::string> response_header(const std::vector<std::string>& factor_names) {
@@ -99,29 +179,43 @@ std::vector<std::string> response_header(const std::vector<std::string>& factor_
   return header;
 }
 
+void check_session_inputs(const ExperimentSpec& spec, const StimulusManifest& manifest,
+                          const SessionOptions& opt) {
+  check_participant_id(opt.participant);
+  resolve_questions(spec.protocol);
+  if (build_trial_list(spec.protocol, manifest, spec.seed, opt.participant).empty())
+    throw InputError(SourceLocation{"", 0, 0, "--stimuli"}, "the manifest holds no trial for this spec");
+  const std::string header_line = csv_line(response_header(manifest.factor_names));
+  if (opt.verify_files) verify_stimuli(manifest, opt.stimuli_dir);
+  check_session_exists_as_asked(opt.out_dir, opt.participant, opt.resume);
+  const fs::path dir(opt.out_dir);
+  const std::string json_path = (dir / (opt.participant + ".json")).string();
+  const nlohmann::json meta = read_metadata(json_path);
+  if (meta.contains("spec_hash") && meta["spec_hash"] != spec.source_hash)
+    throw InputError(json_path + ": this participant's session used another spec (hash " +
+                     meta["spec_hash"].get<std::string>() + "); refusing to mix data");
+  const fs::path csv_path = dir / (opt.participant + ".csv");
+  std::ifstream csv(csv_path, std::ios::binary);
+  std::string first_line;
+  if (csv && std::getline(csv, first_line) && first_line + "\n" != header_line)
+    throw InputError(SourceLocation{csv_path.string(), 1, 0, ""},
+                     "the response log's header differs from this spec and manifest (another study, or a "
+                     "log of an older crowdlab version)");
+}
+
 SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& manifest,
                           const SessionOptions& opt, Presenter& presenter) {
-  check_participant_id(opt.participant);
+  check_session_inputs(spec, manifest, opt);
   const std::vector<StudyQuestion> questions = resolve_questions(spec.protocol);
   const std::vector<Trial> trials = build_trial_list(spec.protocol, manifest, spec.seed, opt.participant);
   const std::vector<std::string> header = response_header(manifest.factor_names);
-  if (opt.verify_files) verify_stimuli(manifest, opt.stimuli_dir);
 
   SessionResult result;
-  fs::create_directories(opt.out_dir);
   result.csv_path = (fs::path(opt.out_dir) / (opt.participant + ".csv")).string();
   result.json_path = (fs::path(opt.out_dir) / (opt.participant + ".json")).string();
   result.trials_total = static_cast<int>(trials.size());
-  const bool used = fs::exists(result.csv_path) || fs::exists(result.json_path);
-  if (used && !opt.resume)
-    throw InputError(SourceLocation{"", 0, 0, "--participant"},
-                     "participant '" + opt.participant + "' already has a session in " + opt.out_dir +
-                         " (use --resume to continue it, or another id)");
-
+  fs::create_directories(opt.out_dir);
   nlohmann::json meta = read_metadata(result.json_path);
-  if (meta.contains("spec_hash") && meta["spec_hash"] != spec.source_hash)
-    throw InputError(result.json_path + ": this participant's session used another spec (hash " +
-                     meta["spec_hash"].get<std::string>() + "); refusing to mix data");
   RecoveredLog recovered;
   std::optional<ResponseLog> log;
   if (fs::exists(result.csv_path)) {
@@ -129,8 +223,9 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
                                     static_cast<int>(questions.size()), recovered, opt.durable));
     if (recovered.dropped_bytes > 0)
       spdlog::warn(
-          "{}: dropped {} byte(s) of an interrupted trial ({} complete row(s) of it); it will be asked again",
-          result.csv_path, recovered.dropped_bytes, recovered.dropped_rows);
+          "{}: cut {} byte(s) of an interrupted trial ({} complete row(s) of it; copied to {}.recovered); it "
+          "will be asked again",
+          result.csv_path, recovered.dropped_bytes, recovered.dropped_rows, result.csv_path);
   } else {
     log.emplace(ResponseLog::create(result.csv_path, header, opt.durable));
   }
@@ -150,6 +245,7 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     meta["participant_seed"] = participant_seed(spec.seed, opt.participant);
     meta["crowdlab_version"] = CROWDLAB_VERSION;
     meta["protocol"] = spec.protocol.type;
+    meta["simulated"] = opt.simulated;
     meta["trials"] = trials.size();
     meta["questions"] = nlohmann::json::array();
     for (const auto& q : questions) meta["questions"].push_back({{"id", q.id}, {"reverse", q.reverse}});
@@ -192,13 +288,26 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
                  result.trials_already_done + result.trials_done_now);
     return result;
   };
+  auto stopped = [&](ScreenKind kind, const std::string& title, const std::string& text) {
+    return presenter.show_screen(kind, title, text) != ScreenReply::proceed;
+  };
   const ProtocolSpec& p = spec.protocol;
-  if (!p.instructions.empty() &&
-      !presenter.show_screen(ScreenKind::instructions, "Instructions", p.instructions))
+  if (!p.instructions.empty() && stopped(ScreenKind::instructions, "Instructions", p.instructions))
     return abort_session();
-  if (result.trials_already_done == 0 && !p.consent.empty() &&
-      !presenter.show_screen(ScreenKind::consent, "Consent", p.consent))
-    return abort_session();
+  if (result.trials_already_done == 0 && !p.consent.empty()) {
+    const ScreenReply consent = presenter.show_screen(ScreenKind::consent, "Consent", p.consent);
+    if (consent == ScreenReply::abort) return abort_session();
+    // Given or declined, with when and in which run: part of the record a study must keep.
+    const bool given = consent == ScreenReply::proceed;
+    meta["consent"] = {{"given", given}, {"utc", iso8601_utc_now()}, {"session", session}};
+    if (!given) {
+      result.declined = true;
+      save_meta("declined");
+      spdlog::info("participant {}: declined to take part; no trial was shown", opt.participant);
+      return result;
+    }
+    save_meta("running");
+  }
 
   std::string current_block;
   bool in_practice = false;
@@ -211,14 +320,14 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
   for (const Trial& t : trials) {
     if (recovered.completed_trials.count(t.index)) continue;
     if (t.practice && !in_practice) {
-      if (!presenter.show_screen(ScreenKind::practice_intro, texts::kPracticeTitle, texts::kPracticeIntro))
+      if (stopped(ScreenKind::practice_intro, texts::kPracticeTitle, texts::kPracticeIntro))
         return abort_session();
     }
     if (!t.practice && (in_practice || t.block != current_block) && (multiple_blocks || in_practice)) {
       const std::string title = multiple_blocks ? texts::kPartTitlePrefix + std::to_string(t.block_number)
                                                 : std::string(texts::kMainPartTitle);
       const std::string body = in_practice ? texts::kAfterPractice : texts::kBlockIntro;
-      if (!presenter.show_screen(ScreenKind::block_intro, title, body)) return abort_session();
+      if (stopped(ScreenKind::block_intro, title, body)) return abort_session();
     }
     in_practice = t.practice;
     current_block = t.block;
@@ -228,25 +337,30 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     req.video_path = stimulus_path(opt.stimuli_dir, t.stimulus);
     req.questions = &questions;
     req.trial_count = static_cast<int>(trials.size());
+    req.number = position_of_kind(trials, t);
+    req.count = count_of_kind(trials, t.practice);
     req.loop_video = p.loop_video;
     req.fps = spec.fps;
+    req.inter_trial_screen = p.inter_trial_screen;
+    req.inter_trial_min_ms = p.inter_trial_min_ms;
+    req.video_share = p.video_share;
     TrialOutcome outcome = presenter.run_trial(req);
-    result.frames_shown += outcome.frames_shown;
-    result.frames_dropped += outcome.frames_dropped;
+    result.frames_shown += outcome.timing.frames_shown;
+    result.frames_dropped += outcome.timing.frames_dropped;
     if (outcome.aborted) return abort_session();
     check_answers(outcome, questions, t);
-    log->append_trial(
-        response_rows(opt.participant, session, t, manifest.factor_names, questions, outcome.answers));
+    log->append_trial(response_rows(opt.participant, session, t, manifest.factor_names, questions,
+                                    outcome.answers, opt.simulated, outcome.timing));
     ++result.trials_done_now;
-    if (outcome.frames_dropped > 0)
-      spdlog::info("trial {} ({}): {} of {} frame(s) dropped", t.index, t.stimulus.id, outcome.frames_dropped,
-                   outcome.frames_shown + outcome.frames_dropped);
+    if (outcome.timing.frames_dropped > 0)
+      spdlog::info("trial {} ({}): {} of {} frame(s) dropped", t.index, t.stimulus.id,
+                   outcome.timing.frames_dropped,
+                   outcome.timing.frames_shown + outcome.timing.frames_dropped);
     if (!t.practice) ++test_done;
     save_meta("running");  // progress and dropped frames survive a kill too
     const bool last = t.index == static_cast<int>(trials.size());
     if (!last && !t.practice && p.break_every > 0 && test_done % p.break_every == 0) {
-      if (!presenter.show_screen(ScreenKind::break_screen, texts::kBreakTitle, p.break_text))
-        return abort_session();
+      if (stopped(ScreenKind::break_screen, texts::kBreakTitle, p.break_text)) return abort_session();
     }
   }
   result.complete = true;

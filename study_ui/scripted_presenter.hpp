@@ -25,7 +25,9 @@ class ScriptedPresenter final : public Presenter {
   void check(const StimulusManifest& manifest, const std::vector<StudyQuestion>& questions) const;
 
   ScreenInfo screen() const override { return {0, 0, "scripted"}; }
-  bool show_screen(ScreenKind, const std::string&, const std::string&) override { return true; }
+  ScreenReply show_screen(ScreenKind, const std::string&, const std::string&) override {
+    return ScreenReply::proceed;
+  }
   TrialOutcome run_trial(const TrialRequest& request) override;
 
  private:

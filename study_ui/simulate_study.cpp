@@ -38,6 +38,7 @@ std::string simulate_study(const ExperimentSpec& spec, const StimulusManifest& m
     so.stimuli_dir = opt.stimuli_dir;
     so.out_dir = opt.out_dir;
     so.presenter_name = "simulated";
+    so.simulated = true;
     so.verify_files = false;  // verified once above
     so.durable = false;       // synthetic and regenerable from the seed: no per-trial fsync
     const SessionResult r = run_session(spec, manifest, so, presenter);

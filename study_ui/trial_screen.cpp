@@ -45,51 +45,95 @@ cv::Rect fit_rect(cv::Size frame, cv::Rect area) {
   return {area.x + (area.width - w) / 2, area.y + (area.height - h) / 2, w, h};
 }
 
-TrialLayout layout_trial_screen(cv::Size canvas, const std::vector<StudyQuestion>& questions) {
+namespace {
+
+/// Sizes of one question cell at scale s (1 = the default, relative to the canvas height H).
+struct CellMetrics {
+  int body_px, small_px, circle_d, cell_h;
+};
+
+CellMetrics cell_metrics(int H, int margin, double s) {
+  CellMetrics m;
+  m.body_px = std::max(11, static_cast<int>(H * 0.022 * s));
+  m.small_px = std::max(10, static_cast<int>(H * 0.017 * s));
+  m.circle_d = std::max(16, static_cast<int>(H * 0.034 * s));
+  // Two lines of statement, the answer row, one line of end labels, padding above and below.
+  m.cell_h = margin + 2 * TextRenderer::line_height(m.body_px) + margin / 4 + m.circle_d +
+             TextRenderer::line_height(m.small_px);
+  return m;
+}
+
+int grid_height(const CellMetrics& m, int rows, int margin) {
+  return rows * m.cell_h + (rows - 1) * (margin / 2);
+}
+
+/// The answer targets of question i inside its cell.
+void place_targets(TrialLayout& L, const StudyQuestion& q, int i, cv::Rect cell, int margin, int circle_d) {
+  const int answer_y = cell.y + margin / 2 + 2 * TextRenderer::line_height(L.body_px) + margin / 4;
+  if (q.kind == QuestionKind::yesno) {
+    const int bw = std::min(cell.width / 3, circle_d * 4);
+    const int x0 = cell.x + (cell.width - 2 * bw - circle_d) / 2;
+    L.targets.push_back({{x0, answer_y, bw, circle_d}, i, 1});
+    L.targets.push_back({{x0 + bw + circle_d, answer_y, bw, circle_d}, i, 0});
+    return;
+  }
+  const int k = q.points;
+  const int usable = cell.width - 2 * margin;
+  const int step = std::min(usable / k, circle_d * 2);
+  const int d = std::min(circle_d, step * 9 / 10);  // 11 points in a narrow cell: smaller circles
+  const int x0 = cell.x + (cell.width - step * k) / 2;
+  for (int v = 1; v <= k; ++v)
+    L.targets.push_back({{x0 + (v - 1) * step + (step - d) / 2, answer_y, d, d}, i, v});
+}
+
+}  // namespace
+
+TrialLayout layout_trial_screen(cv::Size canvas, const std::vector<StudyQuestion>& questions,
+                                double video_share) {
   TrialLayout L;
   L.canvas = canvas;
   const int W = canvas.width, H = canvas.height;
-  L.body_px = std::max(12, H * 26 / 1000);
-  L.small_px = std::max(10, H * 20 / 1000);
   const int margin = std::max(6, H / 60);
-  const int header_h = TextRenderer::line_height(L.small_px) + margin / 2;
   const int n = static_cast<int>(questions.size());
-  const int columns = n > 3 ? 2 : 1;
+  // A compact grid below the video: up to three columns, so six questions take two rows. With two
+  // rows the grid fills column by column, so that seed 000's item pairs (Q1/Q2, Q3/Q4, Q5/Q6) share
+  // a column; otherwise row by row.
+  const int columns = std::max(1, n <= 3 ? n : (n == 4 ? 2 : 3));
   const int rows = (n + columns - 1) / columns;
-  // A cell: two lines of statement, the answer row (circles), one line of end labels.
-  const int circle_d = std::max(18, H * 40 / 1000);
-  const int cell_h =
-      2 * TextRenderer::line_height(L.body_px) + circle_d + TextRenderer::line_height(L.small_px) + margin;
+  const bool column_major = rows == 2 && columns == 3;
+  const int next_w = std::max(110, W * 12 / 100);
   const int next_h = std::max(28, H * 55 / 1000);
-  const int grid_h = rows * (cell_h + margin / 2);
-  const int video_h = std::max(H / 5, H - header_h - grid_h - next_h - 3 * margin);
-  L.video_area = {margin, header_h, W - 2 * margin, video_h};
-  const int grid_top = header_h + video_h + margin;
-  const int col_w = (W - 2 * margin - (columns - 1) * margin) / columns;
-  for (int i = 0; i < n; ++i) {
-    const int r = i / columns, c = i % columns;
-    const cv::Rect cell(margin + c * (col_w + margin), grid_top + r * (cell_h + margin / 2), col_w, cell_h);
-    L.cells.push_back(cell);
-    const StudyQuestion& q = questions[static_cast<size_t>(i)];
-    const int answer_y = cell.y + margin / 2 + 2 * TextRenderer::line_height(L.body_px);
-    if (q.kind == QuestionKind::yesno) {
-      const int bw = std::min(col_w / 3, circle_d * 4);
-      const int gap = circle_d;
-      const int x0 = cell.x + (cell.width - 2 * bw - gap) / 2;
-      L.targets.push_back({{x0, answer_y, bw, circle_d}, i, 1});
-      L.targets.push_back({{x0 + bw + gap, answer_y, bw, circle_d}, i, 0});
-    } else {
-      const int k = q.points;
-      const int usable = cell.width - 2 * margin;
-      const int step = std::min(usable / k, circle_d * 2);
-      const int x0 = cell.x + (cell.width - step * k) / 2;
-      for (int v = 1; v <= k; ++v)
-        L.targets.push_back(
-            {{x0 + (v - 1) * step + (step - circle_d) / 2, answer_y, circle_d, circle_d}, i, v});
-    }
+  const int grid_w = W - 3 * margin - next_w;  // the Next button sits right of the grid
+  const int col_w = (grid_w - (columns - 1) * margin) / columns;
+  L.header_px = std::max(10, H * 17 / 1000);
+  const int header_h = TextRenderer::line_height(L.header_px) + margin / 2;
+  const int fixed_h = header_h + margin + margin / 2;  // header, video-grid gap, bottom margin
+  // Scale of the question cells: 1 by default (the video takes the rest); with a video share, the
+  // largest scale in [0.6, 1.6] whose grid fits beside the requested video height.
+  double s = 1.0;
+  const int wanted_video_h = static_cast<int>(video_share * H);
+  if (video_share > 0.0) {
+    s = 1.6;
+    while (s > 0.6 && grid_height(cell_metrics(H, margin, s), rows, margin) > H - fixed_h - wanted_video_h)
+      s -= 0.05;
   }
-  const int next_w = std::max(120, W * 16 / 100);
-  L.next_button = {W - margin - next_w, H - margin - next_h, next_w, next_h};
+  const CellMetrics m = cell_metrics(H, margin, s);
+  L.body_px = m.body_px;
+  L.small_px = m.small_px;
+  const int grid_h = grid_height(m, rows, margin);
+  int video_h = std::max(H / 5, H - fixed_h - grid_h);
+  if (video_share > 0.0) video_h = std::max(H / 5, std::min(video_h, wanted_video_h));
+  L.video_area = {margin, header_h, W - 2 * margin, video_h};
+  const int grid_top = H - margin / 2 - grid_h;
+  for (int i = 0; i < n; ++i) {
+    const int r = column_major ? i % rows : i / columns, c = column_major ? i / rows : i % columns;
+    const cv::Rect cell(margin + c * (col_w + margin), grid_top + r * (m.cell_h + margin / 2), col_w,
+                        m.cell_h);
+    L.cells.push_back(cell);
+    place_targets(L, questions[static_cast<size_t>(i)], i, cell, margin, m.circle_d);
+  }
+  L.next_button = {W - margin - next_w, H - margin / 2 - std::min(next_h, grid_h), next_w,
+                   std::min(next_h, grid_h)};
   L.targets.push_back({L.next_button, -1, 0});
   return L;
 }
@@ -98,7 +142,7 @@ void draw_trial_static(cv::Mat& img, const TrialLayout& L, const std::vector<Stu
                        const std::string& header, bool enabled, const TextRenderer& text) {
   img.setTo(kBackground);
   const int margin = std::max(6, L.canvas.height / 60);
-  text.draw(img, header, {margin, margin / 4}, L.small_px, kMuted);
+  text.draw(img, header, {margin, margin / 4}, L.header_px, kMuted);
   cv::rectangle(img, L.video_area, cv::Scalar(24, 24, 24), cv::FILLED);
   for (size_t i = 0; i < questions.size(); ++i) {
     const StudyQuestion& q = questions[i];
@@ -206,6 +250,18 @@ void draw_text_screen(cv::Mat& img, const std::string& title, const std::string&
     y += TextRenderer::line_height(body_px);
   }
   draw_centered(img, text, hint, {0, H - H / 8, W, TextRenderer::line_height(body_px)}, body_px, kAccent);
+}
+
+void draw_inter_trial(cv::Mat& img, const TrialLayout& L, bool fixation) {
+  img.setTo(kBackground);
+  cv::rectangle(img, L.video_area, cv::Scalar(24, 24, 24), cv::FILLED);
+  if (!fixation) return;
+  const cv::Point c(L.video_area.x + L.video_area.width / 2, L.video_area.y + L.video_area.height / 2);
+  const int arm = std::max(6, L.canvas.height / 40), thickness = std::max(2, L.canvas.height / 300);
+  cv::line(img, c - cv::Point(arm, 0), c + cv::Point(arm, 0), cv::Scalar(230, 230, 230), thickness,
+           cv::LINE_AA);
+  cv::line(img, c - cv::Point(0, arm), c + cv::Point(0, arm), cv::Scalar(230, 230, 230), thickness,
+           cv::LINE_AA);
 }
 
 void draw_abort_confirmation(cv::Mat& img, const TextRenderer& text) {

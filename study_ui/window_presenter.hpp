@@ -1,11 +1,18 @@
 #pragma once
-// WindowPresenter: the participant's screen, a native window through OpenCV highgui (GTK backend),
-// full screen by default, text drawn with FreeType (cv::freetype, DejaVu Sans).
+// WindowPresenter: the participant's screen, a native window through OpenCV highgui (Qt backend on
+// Debian), full screen by default, text drawn with FreeType (cv::freetype, DejaVu Sans). When the
+// window system does not apply full screen (an X server without a window manager) the window covers
+// the X screen itself (size from x11_screen_size); when it cannot, it falls back to a 1280x720 window
+// with a warning, or fails with require_fullscreen.
 //
+// Between trials: the inter-trial screen (protocol.inter_trial: blank, or a fixation cross where the
+// video will appear) replaces the answered screen at once and stays while the next clip decodes and
+// for at least inter_trial.min_ms; the measured gap (inter-trial screen shown -> onset) is logged.
 // Trial screen: the video on top, the questions below (statement left, answer scale right), a
 // "Next" button bottom right that is enabled only when every question is answered.
-//   - Answers: mouse click on a scale point or yes/no button; number keys 1-9 (top row or keypad)
-//     answer the first unanswered scale question; y / n answer the yes/no question. A click may
+//   - Answers: mouse click on a scale point or yes/no button; number keys (top row or keypad)
+//     answer the first unanswered scale question (10- and 11-point scales: two digits for 10 and 11,
+//     see scale_keys.hpp); y / n answer the yes/no question. A click may
 //     change an answer within the trial (its RT is then the time of the last change); there is no
 //     going back to an earlier trial. Enter or Space (or a click on Next) moves on.
 //   - Esc shows "Quit the session?"; only Y confirms, any other key resumes the trial.
@@ -17,7 +24,9 @@
 //     the regular frame period, so a clip rendered to loop shows no seam.
 //   - loop_video = false (seed 001 §3.1.5: questions "after each trial"): the clip plays once, and the
 //     questions are enabled when it ends.
-//   - Response time: from stimulus onset (the first frame handed to the window) to each answer.
+//   - Response time: from stimulus onset to each answer. Onset: the first frame has been handed to
+//     the window (cv::imshow) and every key and click queued before it has been discarded, so input
+//     made during the previous trial's Next or while this clip loaded never answers this trial.
 // Text screens (instructions, consent, breaks) wait for a key; consent needs Y (agree) or N (decline);
 // keys pressed within 300 ms of a screen appearing are ignored (no accidental skip by key repeat).
 // snapshot_dir (optional): PNGs of what was drawn (trial onset, all-answered state, text screens),
@@ -31,7 +40,8 @@ namespace crowdlab::study {
 
 struct WindowOptions {
   bool fullscreen = true;
-  int width = 1280;  ///< canvas size when not full screen
+  bool require_fullscreen = false;  ///< fail (RuntimeError) rather than fall back to a smaller window
+  int width = 1280;                 ///< canvas size when not full screen
   int height = 720;
   std::string font_path = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
   std::string snapshot_dir;
@@ -47,7 +57,7 @@ class WindowPresenter final : public Presenter {
   WindowPresenter& operator=(const WindowPresenter&) = delete;
 
   ScreenInfo screen() const override;
-  bool show_screen(ScreenKind kind, const std::string& title, const std::string& text) override;
+  ScreenReply show_screen(ScreenKind kind, const std::string& title, const std::string& text) override;
   TrialOutcome run_trial(const TrialRequest& request) override;
 
  private:

@@ -2,6 +2,7 @@
 // The flags and the --json shapes are a stable interface for scripts (see analysis/analysis_json.hpp
 // and analysis/psychometric_table.hpp).
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include "analysis/posthoc.hpp"
 #include "analysis/psychometric_table.hpp"
 #include "analysis/rm_anova.hpp"
+#include "analysis/simulated_rows.hpp"
 #include "analysis/study_report.hpp"
 #include "experiments/cli/command_registry.hpp"
 #include "framework/core/error.hpp"
@@ -32,7 +34,33 @@ std::vector<std::string> split_list(const std::string& text) {
 struct DesignArgs {
   std::string csv, dv, subject, within, between;
   DesignLimits limits;
+  bool allow_simulated_mix = false;
 };
+
+constexpr const char* kAllowMixHelp =
+    "Analyse real and simulated rows (column `simulated`) together; refused by default (exit 2)";
+
+/// Reads a CSV and refuses a mix of real and simulated rows unless allowed.
+CsvTable read_unmixed_csv(const std::string& path, bool allow_mix) {
+  CsvTable table = read_csv(path);
+  SimulatedRows mix;
+  mix.add(table);
+  mix.check(allow_mix);
+  return table;
+}
+
+/// The same over every response CSV under a study folder (what `analyze report` reads).
+void check_study_dir_unmixed(const std::string& dir, bool allow_mix) {
+  namespace fs = std::filesystem;
+  if (!fs::is_directory(dir)) return;  // the report gives the error
+  SimulatedRows mix;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.is_regular_file() && entry.path().extension() == ".csv") {
+      const CsvTable table = read_csv(entry.path().string());
+      if (table.has_column("participant")) mix.add(table);  // a response log, not e.g. a manifest
+    }
+  mix.check(allow_mix);
+}
 
 void add_design_options(CLI::App* cmd, DesignArgs& a, bool with_between = false) {
   cmd->add_option("--csv", a.csv, "Tidy CSV: one row per trial (repetitions are averaged per cell)")
@@ -56,6 +84,7 @@ void add_design_options(CLI::App* cmd, DesignArgs& a, bool with_between = false)
                   "Refuse (exit 2) a design with more cells (product of the levels) than this")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_flag("--allow-simulated-mix", a.allow_simulated_mix, kAllowMixHelp);
 }
 
 struct AnovaOptions {
@@ -73,12 +102,12 @@ struct PosthocOptions {
 struct PsychometricOptions {
   PsychometricRequest request;
   std::string csv, probabilities = "0.5,0.05", lapse = "fixed";
-  bool json = false;
+  bool json = false, allow_simulated_mix = false;
 };
 
 struct LmmOptions {
   std::string csv, formula;
-  bool ml = false, reml = false, json = false;
+  bool ml = false, reml = false, json = false, allow_simulated_mix = false;
 };
 
 void print_lmm(const LmmResult& r) {
@@ -98,7 +127,7 @@ void print_lmm(const LmmResult& r) {
 
 struct ClmmOptions {
   std::string csv, formula, link = "logit";
-  bool json = false;
+  bool json = false, allow_simulated_mix = false;
 };
 
 void print_clmm(const ClmmResult& r) {
@@ -116,13 +145,15 @@ void print_clmm(const ClmmResult& r) {
 
 struct ReportOptions {
   std::string study_dir, spec_path, out_dir;
+  bool allow_simulated_mix = false;
 };
 
 WithinDesign load_design(const DesignArgs& a) {
   const auto within = split_list(a.within);
   const auto between = split_list(a.between);
   if (within.empty() && between.empty()) throw InputError("--within/--between: no factor given");
-  return build_within_design(read_csv(a.csv), a.dv, a.subject, within, a.limits, between);
+  return build_within_design(read_unmixed_csv(a.csv, a.allow_simulated_mix), a.dv, a.subject, within,
+                             a.limits, between);
 }
 
 const CommandRegistration kRegistration([](CLI::App& root) {
@@ -248,6 +279,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   psy->add_option("--lapse-rate", req.options.lapse,
                   "Fixed lapse rate (1 - upper asymptote) for --lapse fixed")
       ->capture_default_str();
+  psy->add_flag("--allow-simulated-mix", psy_opt->allow_simulated_mix, kAllowMixHelp);
   psy->add_flag("--json", psy_opt->json, "Print {\"fits\": [...], \"groups\": [...], \"anova\": ...}");
   psy->callback([o = psy_opt] {
     PsychometricRequest& pr = o->request;
@@ -270,7 +302,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
         throw InputError("--p: not a number: '" + s + "'");
       }
     }
-    const auto result = analyze_psychometric(read_csv(o->csv), pr);
+    const auto result = analyze_psychometric(read_unmixed_csv(o->csv, o->allow_simulated_mix), pr);
     if (o->json) {
       std::cout << psychometric_to_json(result).dump(2) << "\n";
       return;
@@ -309,8 +341,9 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                 "Print {\"fixed\": [{term, estimate, se, t}], \"random\": [{group, term, sd} | {group, "
                 "term1, term2, corr}], \"residual_sd\", \"reml_criterion\" | \"deviance\", \"converged\", "
                 "\"singular\", \"warnings\", \"observations\"}");
+  lmm->add_flag("--allow-simulated-mix", lmm_opt->allow_simulated_mix, kAllowMixHelp);
   lmm->callback([o = lmm_opt] {
-    const auto result = fit_lmm(read_csv(o->csv), o->formula, !o->ml);
+    const auto result = fit_lmm(read_unmixed_csv(o->csv, o->allow_simulated_mix), o->formula, !o->ml);
     if (o->json)
       std::cout << lmm_to_json(result).dump(2) << "\n";
     else
@@ -333,8 +366,9 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                  "Print {\"thresholds\": [{name, estimate, se}], \"fixed\": [{term, estimate, se, z, p}], "
                  "\"random\": [{group, sd}], \"loglik\", \"link\", \"converged\", \"observations\", "
                  "\"warnings\"}");
+  clmm->add_flag("--allow-simulated-mix", clmm_opt->allow_simulated_mix, kAllowMixHelp);
   clmm->callback([o = clmm_opt] {
-    const auto result = fit_clmm(read_csv(o->csv), o->formula, o->link);
+    const auto result = fit_clmm(read_unmixed_csv(o->csv, o->allow_simulated_mix), o->formula, o->link);
     if (o->json)
       std::cout << clmm_to_json(result).dump(2) << "\n";
     else
@@ -351,7 +385,9 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->required();
   report->add_option("--spec", report_opt->spec_path, "The experiment spec (YAML) the study ran")->required();
   report->add_option("--out", report_opt->out_dir, "Output folder (report.md, figures/)")->required();
+  report->add_flag("--allow-simulated-mix", report_opt->allow_simulated_mix, kAllowMixHelp);
   report->callback([o = report_opt] {
+    check_study_dir_unmixed(o->study_dir, o->allow_simulated_mix);
     const auto path = write_study_report(o->study_dir, o->spec_path, o->out_dir);
     std::cout << "wrote " << path << "\n";
   });

@@ -50,7 +50,7 @@ StimulusManifest load_manifest(const std::string& stimuli_dir) {
 
 struct StudyArgs {
   std::string spec, participant, stimuli, out, responses, simulate, windowed, snapshot_dir;
-  bool resume = false;
+  bool resume = false, require_fullscreen = false;
   int delay_ms = 0;
   std::uint64_t seed = 0;
   bool seed_given = false;
@@ -62,9 +62,15 @@ void run_study(const StudyArgs& a) {
   study::SessionOptions opt;
   opt.participant = a.participant;
   opt.stimuli_dir = a.stimuli;
-  opt.out_dir = a.out.empty() ? (std::filesystem::path(a.stimuli) / "responses").string() : a.out;
+  // Simulated answers default to their own folder, so that they never sit beside a real study's.
+  const char* default_out = a.simulate.empty() ? "responses" : "responses-simulated";
+  opt.out_dir = a.out.empty() ? (std::filesystem::path(a.stimuli) / default_out).string() : a.out;
+  opt.simulated = !a.simulate.empty();
   opt.resume = a.resume;
-  study::check_participant_id(a.participant);
+  // Everything the session will check, before any window opens (a participant never sees a window
+  // that then closes on an experimenter's mistake).
+  study::check_session_inputs(spec, manifest, opt);
+  opt.verify_files = false;  // verified just now
   std::unique_ptr<study::Presenter> presenter;
   if (!a.responses.empty()) {
     auto scripted = std::make_unique<study::ScriptedPresenter>(a.responses, a.delay_ms);
@@ -87,10 +93,16 @@ void run_study(const StudyArgs& a) {
       w.height = height;
     }
     w.snapshot_dir = a.snapshot_dir;
+    w.require_fullscreen = a.require_fullscreen;
     presenter = std::make_unique<study::WindowPresenter>(w);
     opt.presenter_name = "window";
   }
   const study::SessionResult r = study::run_session(spec, manifest, opt, *presenter);
+  if (r.declined) {  // a legitimate end of a session, not a failure
+    std::printf("participant %s declined to take part: no trial shown (status \"declined\" in %s)\n",
+                a.participant.c_str(), r.json_path.c_str());
+    return;
+  }
   std::printf(
       "participant %s: %d/%d trials done (%d this run)%s, %ld frame(s) dropped\nresponses: %s\nmetadata:  "
       "%s\n",
@@ -112,7 +124,9 @@ const CommandRegistration kStudy([](CLI::App& root) {
   cmd->add_option("--stimuli", a->stimuli, "Stimulus folder holding manifest.csv")
       ->required()
       ->check(CLI::ExistingDirectory);
-  cmd->add_option("--out", a->out, "Response folder (default: STIMULI/responses)");
+  cmd->add_option(
+      "--out", a->out,
+      "Response folder (default: STIMULI/responses; with --simulate: STIMULI/responses-simulated)");
   cmd->add_flag(
       "--resume", a->resume,
       "Continue an interrupted session at the first unanswered trial (a used id is refused without it)");
@@ -130,8 +144,14 @@ const CommandRegistration kStudy([](CLI::App& root) {
   cmd->add_option("--seed", a->seed,
                   "Simulated observer seed (default: derived from the spec seed and participant)")
       ->each([a](const std::string&) { a->seed_given = true; });
-  cmd->add_option("--windowed", a->windowed,
-                  "Window of WxH pixels instead of full screen (testing), e.g. 1280x720");
+  auto* windowed = cmd->add_option("--windowed", a->windowed,
+                                   "Window of WxH pixels instead of full screen (testing), e.g. 1280x720");
+  cmd->add_flag("--require-fullscreen", a->require_fullscreen,
+                "Fail (exit 1) when the window cannot cover the whole screen, instead of falling back to a "
+                "1280x720 window")
+      ->excludes(windowed)
+      ->excludes(responses)
+      ->excludes(simulate);
   cmd->add_option("--snapshot-dir", a->snapshot_dir, "Save the window's rendered screens as PNGs here");
   cmd->callback([a] { run_study(*a); });
 });

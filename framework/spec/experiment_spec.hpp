@@ -123,6 +123,13 @@ struct ProtocolSpec {
   std::string consent;
   std::string break_text = "Take a short break. Press any key to continue.";
   bool loop_video = true;  ///< loop until answered (Likert)
+  /// Between trials, while the next clip loads (protocol.inter_trial): "blank" (background only) or
+  /// "fixation" (a cross where the video will be), shown for at least inter_trial_min_ms.
+  std::string inter_trial_screen = "fixation";
+  double inter_trial_min_ms = 500.0;
+  /// Share of the screen height given to the video (protocol.video_share); 0 = as large as the
+  /// questions allow.
+  double video_share = 0.0;
   /// Online studies (export-web): where the end screen sends the participant, e.g. a panel's
   /// completion link ("" = no redirect). http(s) only.
   std::string completion_url;

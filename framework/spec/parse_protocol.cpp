@@ -164,6 +164,19 @@ void parse_practice(YamlSection& protocol, ExperimentSpec& spec) {
   }
 }
 
+/// The native study window's keys: the inter-trial screen and the video's share of the screen.
+void parse_study_window(YamlSection& s, ProtocolSpec& p) {
+  YamlSection iti = s.section("inter_trial");
+  iti.allow_keys({"screen", "min_ms"});
+  iti.choice("screen", p.inter_trial_screen, {"blank", "fixation"});
+  iti.number("min_ms", p.inter_trial_min_ms, Range::non_negative(10000.0));
+  s.number("video_share", p.video_share, Range{0.0, 0.9});
+  if (p.video_share > 0.0 && p.video_share < 0.3)
+    s.diagnostics().error(s.get("video_share"), s.child_path("video_share"),
+                          "expected 0 (as large as the questions allow) or a share in [0.3, 0.9], got " +
+                              format_number(p.video_share));
+}
+
 }  // namespace
 
 void parse_protocol(YamlSection s, ExperimentSpec& spec) {
@@ -171,7 +184,8 @@ void parse_protocol(YamlSection s, ExperimentSpec& spec) {
   SpecDiagnostics& diag = s.diagnostics();
   if (!s.present()) return;  // no study: crowds and stimuli only
   s.allow_keys({"type", "scale", "questions", "composites", "practice", "block_by", "block_order",
-                "break_every", "instructions", "consent", "break_text", "loop_video", "completion_url"});
+                "break_every", "instructions", "consent", "break_text", "loop_video", "completion_url",
+                "inter_trial", "video_share"});
   s.choice("type", p.type, {"likert", "2afc", "rating"});
   YamlSection scale = s.section("scale");
   scale.allow_keys({"points", "labels"});
@@ -203,6 +217,7 @@ void parse_protocol(YamlSection s, ExperimentSpec& spec) {
   s.string("consent", p.consent);
   s.string("break_text", p.break_text);
   s.boolean("loop_video", p.loop_video);
+  parse_study_window(s, p);
   if (s.has("completion_url")) {
     s.string("completion_url", p.completion_url);
     if (!is_web_url(p.completion_url))

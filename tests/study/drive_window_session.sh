@@ -91,7 +91,8 @@ sleep 0.3
 key n           # any key but Y continues
 key 2 2 2 5 5 5
 wait_file "$SNAP/W01/trial_3_answered.png"
-key Return
+log "Next, and a 3 typed 100 ms later, before trial 4's clip is on screen: it must not answer trial 4"
+xdotool key --delay 100 Return 3
 wait_file "$SNAP/W01/trial_4_onset.png"
 key 1 6 1 6 1 6 Return
 wait_file "$SNAP/W01/screen_finished.png"

@@ -138,14 +138,23 @@ TEST_CASE(
       std::ofstream f(cut_csv, std::ios::binary | std::ios::trunc);
       f << full.substr(0, cut);
     }
+    const fs::path recovered_path = cut_csv.string() + ".recovered";
+    fs::remove(recovered_path);
     RecoveredLog rec;
     { ResponseLog log = ResponseLog::reopen(cut_csv.string(), header, "trial", "session", 2, rec); }
+    // A trial whose last row lacks only its newline is complete: kept, the newline restored.
     size_t kept = header_end, complete = 0;
     for (size_t e : trial_ends)
-      if (e <= cut) kept = e, ++complete;
+      if (e <= cut + 1) kept = e, ++complete;
+    INFO("cut at byte " << cut);
     CHECK(rec.completed_trials.size() == complete);
     CHECK(fs::file_size(cut_csv) == kept);
     CHECK(slurp(cut_csv) == full.substr(0, kept));
+    // Every byte cut off was first copied beside the log.
+    if (cut > kept)
+      CHECK(slurp(recovered_path) == full.substr(kept, cut - kept));
+    else
+      CHECK_FALSE(fs::exists(recovered_path));
   }
   // ... and a resumed session from a few of them (mid-row, row end, mid-trial) completes the file
   // with no duplicate and no missing row.
@@ -194,6 +203,15 @@ TEST_CASE("the response log refuses a foreign header and an incomplete middle tr
     CHECK(rec.dropped_rows == 1);
     CHECK(rec.max_session == 1);
   }
+  std::ofstream(path, std::ios::app) << "P,2,3,a\nP,2,3,b";  // complete but for the last newline
+  {
+    ResponseLog log = ResponseLog::reopen(path, header, "trial", "session", 2, rec);
+    CHECK(rec.completed_trials == std::set<int>{1, 2, 3});
+    CHECK(rec.dropped_bytes == 0);
+    CHECK(rec.max_session == 2);
+  }
+  CHECK(slurp(path).ends_with("P,2,3,b\n"));
+  CHECK(slurp(path + ".recovered") == "P,2,3,a\n");  // the first cut (trial 3's first row), kept aside
   std::ofstream(path, std::ios::app) << "P,1,4,a\nP,1,5,a\nP,1,5,b\n";  // trial 4 incomplete mid-file
   CHECK_THROWS_AS(ResponseLog::reopen(path, header, "trial", "session", 2, rec), InputError);
 }
@@ -254,14 +272,16 @@ class RecordingPresenter final : public Presenter {
  public:
   std::vector<ScreenKind> screens;
   std::vector<int> trial_indices;
-  bool accept_consent = true;
+  std::vector<std::string> headers;
+  ScreenReply consent_reply = ScreenReply::proceed;
   ScreenInfo screen() const override { return {800, 600, "recording"}; }
-  bool show_screen(ScreenKind kind, const std::string&, const std::string&) override {
+  ScreenReply show_screen(ScreenKind kind, const std::string&, const std::string&) override {
     screens.push_back(kind);
-    return kind != ScreenKind::consent || accept_consent;
+    return kind == ScreenKind::consent ? consent_reply : ScreenReply::proceed;
   }
   TrialOutcome run_trial(const TrialRequest& r) override {
     trial_indices.push_back(r.trial->index);
+    headers.push_back(trial_header(r));
     TrialOutcome out;
     for (const auto& q : *r.questions)
       out.answers.push_back({q.id, q.min_response(), 100.0, iso8601_utc_now()});
@@ -282,21 +302,41 @@ TEST_CASE("screens: instructions, consent, practice and block intros, a break ev
   spec.protocol.break_every = 2;
   spec.protocol.block_by = "method";
   RecordingPresenter declines;
-  declines.accept_consent = false;
+  declines.consent_reply = ScreenReply::decline;
   SessionOptions opt{"P05", (dir / "stimuli").string(), (dir / "out").string(), false, "recording", true};
   const SessionResult refused = run_session(spec, m, opt, declines);
-  CHECK(refused.aborted);
+  CHECK(refused.declined);
+  CHECK_FALSE(refused.aborted);  // declining is not Esc
   CHECK(declines.trial_indices.empty());
   CHECK(read_csv(refused.csv_path).rows.empty());
+  const auto refused_meta = nlohmann::json::parse(slurp(refused.json_path));
+  CHECK(refused_meta["status"] == "declined");
+  CHECK(refused_meta["runs"].back()["status"] == "declined");
+  CHECK(refused_meta["consent"]["given"] == false);
+  CHECK(refused_meta["consent"]["utc"].get<std::string>().size() == 24);  // ISO 8601 with ms
+
+  RecordingPresenter quits;  // Esc at the consent screen: aborted, not declined
+  quits.consent_reply = ScreenReply::abort;
+  opt.participant = "P04";
+  const SessionResult quit = run_session(spec, m, opt, quits);
+  CHECK(quit.aborted);
+  CHECK_FALSE(quit.declined);
+  CHECK(nlohmann::json::parse(slurp(quit.json_path))["status"] == "aborted");
 
   RecordingPresenter p;
   opt.participant = "P06";
   const SessionResult r = run_session(spec, m, opt, p);
   CHECK(r.complete);
+  const auto meta = nlohmann::json::parse(slurp(r.json_path));
+  CHECK(meta["consent"]["given"] == true);
+  CHECK(meta["status"] == "complete");
   using K = ScreenKind;
   // practice (1 global trial), block 1 (2 trials), break after 2 test trials, block 2 (2 trials), end.
   const std::vector<K> expected = {K::instructions, K::consent,     K::practice_intro, K::block_intro,
                                    K::break_screen, K::block_intro, K::finished};
   CHECK(p.screens == expected);
   CHECK(p.trial_indices == std::vector<int>{1, 2, 3, 4, 5});
+  // "Trial k of N" counts test trials only; the practice trial is counted apart.
+  CHECK(p.headers == std::vector<std::string>{"Practice trial 1 of 1", "Trial 1 of 4", "Trial 2 of 4",
+                                              "Trial 3 of 4", "Trial 4 of 4"});
 }
