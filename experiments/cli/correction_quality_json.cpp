@@ -15,6 +15,7 @@ nlohmann::json correction_quality_json(const CorrectionQuality& q) {
           {"contact_frames", f.contact_frames},
           {"foot_pops", f.foot_pops},
           {"foot_pop_excess_max_m", f.pop_excess_max_m},
+          {"foot_pop_frames", f.pop_frames},
           {"foot_ground_penetration_max_m", f.ground_penetration_max_m},
           {"foot_ground_penetration_p99_m", f.ground_penetration_p99_m},
           {"foot_float_p99_m", f.float_p99_m},

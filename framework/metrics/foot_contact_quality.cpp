@@ -56,7 +56,10 @@ void measure_character(const CharacterAnimation& in, const CharacterAnimation& o
         const double moved_in = (pin[j] - prev_in[j]).norm();
         const double excess = (pout[j] - prev_out[j]).norm() - moved_in;
         q.pop_excess_max_m = std::max(q.pop_excess_max_m, excess);
-        if (excess > kPopExcess_m) ++q.foot_pops;
+        if (excess > kPopExcess_m) {
+          ++q.foot_pops;
+          q.pop_frames.push_back(f);
+        }
         const bool now = moved_in < kContactSpeed_mps * dt && pin[j].y() < kContactHeight_m;
         if (now && !contact[k]) landing[k] = prev_out[j];
         contact[k] = now;
@@ -90,6 +93,8 @@ FootContactQuality measure_foot_contact_quality(const CrowdAnimation& input, con
   const double dt = input.meta.fps > 0.0 ? 1.0 / input.meta.fps : 0.0;
   for (size_t c = 0; c < input.characters.size(); ++c)
     measure_character(input.characters[c], corrected.characters[c], std::max(0, first_frame), dt, q, s);
+  std::sort(q.pop_frames.begin(), q.pop_frames.end());
+  q.pop_frames.erase(std::unique(q.pop_frames.begin(), q.pop_frames.end()), q.pop_frames.end());
   q.stance_drift_p99_m = nearest_rank_quantile(s.drift, 0.99);
   q.stance_drift_max_m = max_of(s.drift);
   q.ground_penetration_p99_m = nearest_rank_quantile(s.penetration, 0.99);

@@ -20,11 +20,14 @@
 //                                frame exceeds the input's displacement for that joint and frame by
 //                                more than kPopExcess_m = 5 cm (a foot jumping in one frame)
 //   pop_excess_max_m             the largest such excess (any frame, also below the threshold)
+//   pop_frames                   the frames on which some foot joint popped
 //   ground_penetration_max_m     deepest any foot capsule (ankle and ball bones) goes below y = 0
 //   ground_penetration_p99_m     99th percentile of the positive per-foot per-frame depths
 //   float_p99_m, float_max_m     per contact frame of a foot (either of its joints in contact), how much
 //                                higher the corrected sole (lowest point of the foot capsules) is than
 //                                the input's; 99th percentile and maximum
+#include <vector>
+
 #include "framework/core/crowd_animation.hpp"
 
 namespace crowdlab {
@@ -38,6 +41,7 @@ struct FootContactQuality {
   double stance_drift_max_m = 0.0;
   long contact_frames = 0;  ///< foot-joint frames in contact in the input
   int foot_pops = 0;
+  std::vector<int> pop_frames;  ///< the frames with a pop, ascending, each once (to look at them)
   double pop_excess_max_m = 0.0;
   double ground_penetration_max_m = 0.0;
   double ground_penetration_p99_m = 0.0;

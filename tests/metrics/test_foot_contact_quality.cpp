@@ -77,6 +77,7 @@ TEST_CASE("a foot jumping 8 cm in one frame is a pop on each foot joint; 4 cm is
   const FootContactQuality jump =
       measure_foot_contact_quality(in, standing([](int f) { return f >= 20 ? 0.08 : 0.0; }, zero));
   CHECK(jump.foot_pops == 4);
+  CHECK(jump.pop_frames == std::vector<int>{20});
   CHECK(jump.pop_excess_max_m == Approx(0.08));
   CHECK(jump.stance_drift_max_m == Approx(0.08));
   const FootContactQuality small =
