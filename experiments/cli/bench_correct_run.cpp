@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "experiments/cli/correction_quality_json.hpp"
 #include "experiments/cli/timing.hpp"
 #include "framework/core/error.hpp"
 #include "framework/correction/corrector.hpp"
@@ -127,12 +128,7 @@ nlohmann::json correct_bench_json(const CorrectBenchResult& r) {
     j["overlap_corrected_l"] = r.overlap_corrected_l;
     j["overlap_reduction"] =
         r.overlap_baseline_l > 0 ? 1.0 - r.overlap_corrected_l / r.overlap_baseline_l : 0.0;
-    j["depth_p99_m"] = q.depth_p99_m;
-    j["depth_max_m"] = q.depth_max_m;
-    j["rotation_dev_mean_deg"] = q.rotation_dev_mean_deg;
-    j["rotation_dev_p99_deg"] = q.rotation_dev_p99_deg;
-    j["foot_skate_max_m"] = q.foot_skate_max_m;
-    j["joint_speed_max_mps"] = q.joint_speed_max_mps;
+    j.update(correction_quality_json(q));
   }
   return j;
 }

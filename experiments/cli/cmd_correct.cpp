@@ -35,6 +35,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--contact-stiffness", opt->params.contact_stiffness, "Collision penalty k_delta (N/m)")
       ->capture_default_str();
+  cmd->add_option("--foot-pop-budget", opt->params.foot_pop_budget_m,
+                  "How much farther than its input a foot joint may move per step (m, 0 = off)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->callback([opt] {
     const CrowdAnimation in = read_crowd_glb(opt->in_path);
     Progress progress("correcting " + opt->in_path, static_cast<std::size_t>(in.frame_count()));

@@ -5,7 +5,10 @@
 // DIR/overlap_vs_density_{stationary,corridor}.png|svg, and the correction-quality measures of the
 // corrected animations (framework/metrics/correction_quality.hpp) in DIR/correction_quality.csv
 // (scenario,characters,density,overlap_reduction,depth_p99_m,depth_max_m,rotation_dev_mean_deg,
-// rotation_dev_p99_deg,foot_skate_max_m,joint_speed_max_mps,cg_iterations_mean,rejected_steps).
+// rotation_dev_p99_deg,foot_skate_max_m,joint_speed_max_mps,cg_iterations_mean,rejected_steps,
+// stance_foot_drift_p99_m,stance_foot_drift_max_m,foot_pops,foot_pop_excess_max_m,
+// foot_ground_penetration_max_m,foot_float_p99_m; the foot measures are defined in
+// framework/metrics/foot_contact_quality.hpp).
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -83,25 +86,26 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
     const CrowdAnimation ours = correct_crowd(baseline, params, &progress, &report);
     progress.finish();
     const int n = static_cast<int>(baseline.characters.size());
-    rows.push_back({scenario, n, density_per_m2, "baseline",
-                    measure_crowd(baseline).mean_character_overlap_l});
     rows.push_back(
-        {scenario, n, density_per_m2, "ours", measure_crowd(ours).mean_character_overlap_l});
+        {scenario, n, density_per_m2, "baseline", measure_crowd(baseline).mean_character_overlap_l});
+    rows.push_back({scenario, n, density_per_m2, "ours", measure_crowd(ours).mean_character_overlap_l});
     std::printf("%-10s %3d characters (%.2f/m2): baseline %.3f L, ours %.3f L per character\n",
                 scenario.c_str(), n, density_per_m2, rows[rows.size() - 2].mean_overlap_l,
                 rows.back().mean_overlap_l);
-    QualityRow qr{scenario, n, density_per_m2, 0.0, measure_correction_quality(baseline, ours),
-                  report};
+    QualityRow qr{scenario, n, density_per_m2, 0.0, measure_correction_quality(baseline, ours), report};
     const double base_l = rows[rows.size() - 2].mean_overlap_l;
     qr.overlap_reduction = base_l > 0.0 ? 1.0 - rows.back().mean_overlap_l / base_l : 0.0;
     std::printf(
         "%-10s %3d characters: overlap -%.1f %%, p99 depth %.1f mm (max %.1f), rotation deviation mean %.2f "
         "deg "
-        "(p99 %.2f), foot skate %.1f mm, max joint speed %.1f m/s, CG %.1f, rejected %d\n",
+        "(p99 %.2f), stance-foot drift p99 %.1f mm (max %.1f), foot pops %d (worst excess %.1f cm), max "
+        "joint "
+        "speed %.1f m/s, CG %.1f, rejected %d\n",
         scenario.c_str(), n, 100 * qr.overlap_reduction, 1000 * qr.quality.depth_p99_m,
         1000 * qr.quality.depth_max_m, qr.quality.rotation_dev_mean_deg, qr.quality.rotation_dev_p99_deg,
-        1000 * qr.quality.foot_skate_max_m, qr.quality.joint_speed_max_mps, report.cg_iterations_mean,
-        report.rejected_steps);
+        1000 * qr.quality.feet.stance_drift_p99_m, 1000 * qr.quality.feet.stance_drift_max_m,
+        qr.quality.feet.foot_pops, 100 * qr.quality.feet.pop_excess_max_m, qr.quality.joint_speed_max_mps,
+        report.cg_iterations_mean, report.rejected_steps);
     quality.push_back(qr);
   }
 }
@@ -115,14 +119,18 @@ void run(const Options& o) {
   std::string qcsv =
       csv_line({"scenario", "characters", "density", "overlap_reduction", "depth_p99_m", "depth_max_m",
                 "rotation_dev_mean_deg", "rotation_dev_p99_deg", "foot_skate_max_m", "joint_speed_max_mps",
-                "cg_iterations_mean", "rejected_steps"});
+                "cg_iterations_mean", "rejected_steps", "stance_foot_drift_p99_m", "stance_foot_drift_max_m",
+                "foot_pops", "foot_pop_excess_max_m", "foot_ground_penetration_max_m", "foot_float_p99_m"});
   for (const QualityRow& r : quality)
-    qcsv += csv_line({r.scenario, std::to_string(r.characters), csv_number(r.density),
-                      csv_number(r.overlap_reduction), csv_number(r.quality.depth_p99_m),
-                      csv_number(r.quality.depth_max_m), csv_number(r.quality.rotation_dev_mean_deg),
-                      csv_number(r.quality.rotation_dev_p99_deg), csv_number(r.quality.foot_skate_max_m),
-                      csv_number(r.quality.joint_speed_max_mps), csv_number(r.report.cg_iterations_mean),
-                      std::to_string(r.report.rejected_steps)});
+    qcsv += csv_line(
+        {r.scenario, std::to_string(r.characters), csv_number(r.density), csv_number(r.overlap_reduction),
+         csv_number(r.quality.depth_p99_m), csv_number(r.quality.depth_max_m),
+         csv_number(r.quality.rotation_dev_mean_deg), csv_number(r.quality.rotation_dev_p99_deg),
+         csv_number(r.quality.foot_skate_max_m), csv_number(r.quality.joint_speed_max_mps),
+         csv_number(r.report.cg_iterations_mean), std::to_string(r.report.rejected_steps),
+         csv_number(r.quality.feet.stance_drift_p99_m), csv_number(r.quality.feet.stance_drift_max_m),
+         std::to_string(r.quality.feet.foot_pops), csv_number(r.quality.feet.pop_excess_max_m),
+         csv_number(r.quality.feet.ground_penetration_max_m), csv_number(r.quality.feet.float_p99_m)});
   write_file_atomic(fs::path(o.out) / "correction_quality.csv", qcsv);
   std::printf(
       "wrote %s/overlap_vs_density.csv, correction_quality.csv and "

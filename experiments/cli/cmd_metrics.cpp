@@ -1,15 +1,21 @@
 // `crowdlab metrics CROWD.glb [--json]`: every interpenetration measure of a crowd animation on its
 // capsule bodies (framework/metrics/measure_crowd.hpp): per-character mean overlap (seed 000 Fig. 3,
 // litres), V (seed 001 Eq. 1), maximum penetration depth, collision events, per pair and per frame.
+// With `--input BASE.glb` (the animation the crowd was corrected from) also the correction-quality
+// measures (framework/metrics/correction_quality.hpp): inter-body depth p99 / max, joint deviation,
+// stance-foot drift, foot pops, ground penetration and floating of the feet.
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/correction_quality_json.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/io/read_crowd_glb.hpp"
+#include "framework/metrics/correction_quality.hpp"
 #include "framework/metrics/measure_crowd.hpp"
 #include "framework/pipeline/metrics_json.hpp"
 
@@ -18,6 +24,7 @@ namespace {
 
 struct MetricsArgs {
   std::string path;
+  std::string input;  ///< the uncorrected animation, for the correction-quality measures
   bool json = false;
   bool per_frame = false;
   bool pair_volumes = true;
@@ -53,6 +60,22 @@ void print_text(const CrowdMetrics& m, const std::string& path, bool per_frame) 
   }
 }
 
+void print_quality(const CorrectionQuality& q) {
+  const FootContactQuality& f = q.feet;
+  std::printf(
+      "  against the input: p99 / max inter-body depth %.1f / %.1f mm, mean / p99 joint deviation "
+      "%.2f / %.2f deg\n",
+      1000 * q.depth_p99_m, 1000 * q.depth_max_m, q.rotation_dev_mean_deg, q.rotation_dev_p99_deg);
+  std::printf(
+      "  stance-foot drift p99 / max %.1f / %.1f mm over %ld contact frames; foot pops %d (worst "
+      "excess %.1f cm)\n",
+      1000 * f.stance_drift_p99_m, 1000 * f.stance_drift_max_m, f.contact_frames, f.foot_pops,
+      100 * f.pop_excess_max_m);
+  std::printf("  feet below the ground: max %.1f mm (p99 %.1f); floating in stance: p99 %.1f mm (max %.1f)\n",
+              1000 * f.ground_penetration_max_m, 1000 * f.ground_penetration_p99_m, 1000 * f.float_p99_m,
+              1000 * f.float_max_m);
+}
+
 void run(const MetricsArgs& args) {
   const CrowdAnimation crowd = read_crowd_glb(args.path);
   MetricsOptions options;
@@ -63,10 +86,15 @@ void run(const MetricsArgs& args) {
   options.on_frame_done = [&progress] { progress.advance(); };
   const CrowdMetrics m = measure_crowd(crowd, options);
   progress.finish();
+  std::optional<CorrectionQuality> quality;
+  if (!args.input.empty()) quality = measure_correction_quality(read_crowd_glb(args.input), crowd);
   if (args.json) {
-    std::printf("%s\n", crowd_metrics_json(m, args.per_frame).dump().c_str());
+    nlohmann::json j = crowd_metrics_json(m, args.per_frame);
+    if (quality) j["correction_quality"] = correction_quality_json(*quality);
+    std::printf("%s\n", j.dump().c_str());
   } else {
     print_text(m, args.path, args.per_frame);
+    if (quality) print_quality(*quality);
   }
 }
 
@@ -78,6 +106,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       "(litres), V (mean cube root of overlap volume), max penetration depth, collision events");
   cmd->add_option("crowd", args->path, "Crowd animation (.glb written by crowdlab)")
       ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--input", args->input,
+                  "The uncorrected animation CROWD was corrected from: adds depth p99, joint deviation, "
+                  "stance-foot drift, foot pops, ground penetration and floating of the feet")
       ->check(CLI::ExistingFile);
   cmd->add_flag("--json", args->json, "Print one JSON object");
   cmd->add_flag("--per-frame", args->per_frame, "Also print the per-frame series");

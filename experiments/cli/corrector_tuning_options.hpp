@@ -7,8 +7,9 @@
 
 namespace crowdlab::cli {
 
-/// Adds --contact-stiffness, --cg-tolerance, --active-set-passes, --depenetration-passes and
-/// --depenetration-tolerance to `cmd`, writing into `params` (which must outlive the parse).
+/// Adds --contact-stiffness, --cg-tolerance, --active-set-passes, --depenetration-passes,
+/// --depenetration-tolerance and --foot-pop-budget to `cmd`, writing into `params` (which must outlive the
+/// parse).
 inline void add_corrector_tuning_options(CLI::App* cmd, CorrectorParams& params) {
   cmd->add_option("--contact-stiffness", params.contact_stiffness, "Collision penalty k_delta (N/m)")
       ->capture_default_str();
@@ -25,6 +26,11 @@ inline void add_corrector_tuning_options(CLI::App* cmd, CorrectorParams& params)
   cmd->add_option("--depenetration-tolerance", params.depenetration_tolerance_m,
                   "Depth (m) above which the depenetration pass separates a capsule pair")
       ->check(CLI::Range(0.0, 0.1))
+      ->capture_default_str();
+  cmd->add_option("--foot-pop-budget", params.foot_pop_budget_m,
+                  "How much farther than its input a foot joint may move per step in the "
+                  "depenetration pass (m, 0 = off)")
+      ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
 }
 

@@ -26,6 +26,7 @@ void validate_corrector_params(const CorrectorParams& p) {
   check(p.foot_plant_speed_mps, "foot_plant_speed_mps", 0.0);
   check(p.foot_plant_height_m, "foot_plant_height_m", 0.0);
   check(p.foot_hold_tolerance_m, "foot_hold_tolerance_m", 0.0);
+  check(p.foot_pop_budget_m, "foot_pop_budget_m", 0.0);
   check(p.joint_stiffness, "joint_stiffness", 0.0);
   check(p.contact_stiffness, "contact_stiffness", 0.0);
   check(p.intra_body_contact_stiffness, "intra_body_contact_stiffness", 0.0);

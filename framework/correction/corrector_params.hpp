@@ -184,6 +184,17 @@ struct CorrectorParams {
   /// the issue's 1 cm p99 target and invisible at the stimuli's viewing distances; 2 mm cost 50 % more
   /// solves for the same p99.
   double depenetration_tolerance_m = 0.005;
+  /// Foot motion budget (m per step) in the depenetration pass (stage_depenetrate.cpp, issue 18): a
+  /// foot joint (ankle, ball) may move in one step at most this much farther than its input moved;
+  /// beyond it, it becomes a row of the pass's least-energy solve that pulls it back onto the budget,
+  /// and the rest of the two bodies is moved instead. The foot-pop measure flags 5 cm
+  /// (metrics/foot_contact_quality.hpp). Measured on gomez2024 at 6.66 /m^2 (4 s, corridor): 0 (off)
+  /// -> 69 foot pops, worst excess 19.9 cm, p99 depth 5.3 mm; 3 cm -> 1 pop (5.4 cm), 7.6 mm; 2 cm ->
+  /// 0 pops (worst 3.7 cm), 6.3 mm, the same mean deviation (7.3 deg); 4 cm -> 1 pop, 7.3 mm. Runs are
+  /// chaotic: on a 2 s clip of another crowd 2 / 3 / 4 cm left 1 / 3 / 1 pops of 78 with procedural
+  /// bodies (p99 depth 19.9 / 12.4 / 11.5 mm against 10.7 without) and 2 of 12 with MPFB2 bodies at 2 cm.
+  /// 0 = off.
+  double foot_pop_budget_m = 0.02;
 };
 
 /// Throws InputError naming the field when a parameter is out of range or not finite.

@@ -76,6 +76,9 @@ struct FootHold {
   bool held() const { return ankle || ball; }
 };
 
+/// The foot joints, in the order of CorrectorState::foot_start_m (4 per character).
+inline constexpr std::array<int, 4> kFootJointOrder = {kLeftAnkle, kRightAnkle, kLeftFoot, kRightFoot};
+
 /// Capsule pairs (local bone indices of the pair's first and second character) near each other.
 using NearCapsulePairs = std::vector<std::pair<std::uint8_t, std::uint8_t>>;
 
@@ -150,7 +153,10 @@ struct CorrectorState {
   std::vector<Vec3> target_origin_m, target_origin_old_m;
   /// Per character and foot (2c = left, 2c+1 = right): where planted feet are held.
   std::vector<FootHold> foot_holds;
-  bool foot_holds_enabled = true;  ///< Corrector::set_foot_holds (off while an offline run settles)
+  bool foot_holds_enabled = true;
+  /// Per character, the world positions (m) of its foot joints in the last output (kFootJointOrder):
+  /// where this step's foot motion is measured from (the depenetration pass's foot budget).
+  std::vector<Vec3> foot_start_m;  ///< Corrector::set_foot_holds (off while an offline run settles)
 
   // ---- contact-free prediction (stage_predict): the step every body would take if nothing touched it
   std::vector<Vec6> dq_free;        ///< per bone increment (dx m, dtheta rad), solution of T dq = b

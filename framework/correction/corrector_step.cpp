@@ -49,6 +49,7 @@ CorrectorState make_corrector_state(const CorrectorModel& model) {
   s.target_origin_m.assign(bones, Vec3::Zero());
   s.target_origin_old_m.assign(bones, Vec3::Zero());
   s.foot_holds.assign(2 * n, FootHold{});
+  s.foot_start_m.assign(4 * n, Vec3::Zero());
   s.dq_free.assign(bones, Vec6::Zero());
   s.pred_com_m.assign(bones, Vec3::Zero());
   s.pred_rotation.assign(bones, Quat::Identity());
@@ -90,6 +91,12 @@ Pose pose_from_bones(const CorrectorModel& model, int c, const std::vector<Vec3>
   return pose_from_bone_transforms(bones);
 }
 
+void record_foot_start(const CorrectorModel& model, CorrectorState& state, int c) {
+  for (size_t k = 0; k < kFootJointOrder.size(); ++k)
+    state.foot_start_m[4 * static_cast<size_t>(c) + k] =
+        bone_origin(model, state, c * kJointCount + kFootJointOrder[k]);
+}
+
 void stage_targets(const CorrectorModel& model, CorrectorState& state, const std::vector<Pose>& targets) {
   if (targets.size() != static_cast<size_t>(model.characters()))
     throw InputError("corrector: got " + std::to_string(targets.size()) + " target poses for " +
@@ -111,6 +118,7 @@ void stage_targets(const CorrectorModel& model, CorrectorState& state, const std
     for (size_t g = 0; g < state.com_m.size(); ++g)
       state.target_origin_m[g] = bone_origin(model, state, static_cast<int>(g));
     state.target_origin_old_m = state.target_origin_m;
+    for (int c = 0; c < model.characters(); ++c) record_foot_start(model, state, c);
     for (auto* v : {&state.velocity_mps, &state.omega_radps, &state.target_velocity_mps,
                     &state.target_omega_radps, &state.target_accel_mps2, &state.target_alpha_radps2})
       std::fill(v->begin(), v->end(), Vec3::Zero());
@@ -143,6 +151,7 @@ void stage_targets(const CorrectorModel& model, CorrectorState& state, const std
       state.target_origin_m[g] = bones[j].translation;
     }
     update_foot_holds(model, state, c, old_foot_rotation);
+    record_foot_start(model, state, c);
   });
 }
 

@@ -72,6 +72,9 @@ struct FootGoal {
   Quat rotation = Quat::Identity();
 };
 FootGoal foot_goal(const CorrectorModel& model, const CorrectorState& state, int c, int side);
+/// Stores character c's foot joint positions of the current bone state (the last output) in
+/// state.foot_start_m, before the step moves them (stage_targets).
+void record_foot_start(const CorrectorModel& model, CorrectorState& state, int c);
 
 /// The unit quaternion of a rotation vector (axis * angle).
 Quat rotation_from_vector(const Vec3& v);

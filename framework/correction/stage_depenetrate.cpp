@@ -24,6 +24,13 @@
 //                     min 1/2 sum_j k_j |w_j|^2 + 1/2 k_root |dr|^2
 //                     s.t. n . J_p [dr; w] = share * delta   for each of its contacts,
 //                          e . J_q [dr; w] = 0               for the x and z of each held foot joint,
+//                          u . J_f [dr; w] = allowed - moved for each foot joint f over its budget,
+//                 the foot motion budget (foot_pop_budget_m, issue 18): a foot joint that moved since
+//                 the last output farther than its input moved plus the budget is pulled back along its
+//                 direction of motion u, so legs pressed together are separated by the rest of the
+//                 bodies and no foot jumps (without it, 69 foot joints of the corridor at 6.66 /m^2
+//                 jumped 5-20 cm more than their input in one frame over 4 s). A character with no deep
+//                 contact but a foot over budget is solved too;
 //                 where w_j is a world-frame rotation about joint j, dr the root translation, k_j the
 //                 joint's control spring (CorrectorBody::rot_stiffness, the per-inertia gains of Eq. 4,
 //                 pelvis and feet stiffer; floored at k_root kMinLever_m^2) and k_root the root's
@@ -43,6 +50,7 @@
 // Work is split over body pairs and characters (TBB) with per-index outputs and fixed-order gathers:
 // the result does not depend on the number of threads.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <tbb/parallel_for.h>
@@ -72,8 +80,8 @@ constexpr double kMinLever_m = 0.2;
 /// step; 1e-4 left p99 56 mm where 1e-2 left 16 mm (stationary 5.55 /m^2, 3 passes of 0.1 rad); 1e-3
 /// with 6 passes of 0.2 rad left 7.4 mm there and 7.5 mm in the corridor at 3.33 /m^2.
 constexpr double kRegularisation = 1e-3;
-/// At most this many rows per character and pass (contacts, deepest kept, plus 8 held-foot rows), so
-/// the dense system stays on the stack.
+/// At most this many rows per character and pass (contacts, deepest kept, plus up to 8 held-foot
+/// and 4 foot-budget rows), so the dense system stays on the stack.
 constexpr int kMaxRows = 40;
 
 constexpr int kVariables = kPoseChangeVariables;  // dr, then w_j per joint
@@ -134,21 +142,49 @@ void find_deep_contacts(const DepenetrationScratch& w, int ci, int cj, const Nea
   }
 }
 
+/// Rows pulling character c's foot joints back onto their motion budget: a joint that moved
+/// farther since the last output (foot_start_m) than its input did plus `budget` gets the row
+/// u . J_x dq = allowed - moved along its direction of motion u (see foot_pop_budget_m).
+struct FootRows {
+  std::array<Row, 4> row;
+  std::array<double, 4> r{};
+  int count = 0;
+};
+FootRows foot_budget_rows(const CorrectorState& s, int c, double budget, const BoneTransforms& bones) {
+  FootRows out;
+  if (!(budget > 0.0)) return out;
+  const auto cc = static_cast<size_t>(c);
+  for (size_t k = 0; k < kFootJointOrder.size(); ++k) {
+    const int joint = kFootJointOrder[k];
+    const size_t g = cc * kJointCount + static_cast<size_t>(joint);
+    const double allowed = (s.target_origin_m[g] - s.target_origin_old_m[g]).norm() + budget;
+    const Vec3& x = bones[static_cast<size_t>(joint)].translation;
+    const Vec3 d = x - s.foot_start_m[4 * cc + k];
+    const double moved = d.norm();
+    if (!(moved > allowed)) continue;
+    const auto i = static_cast<size_t>(out.count++);
+    out.row[i] = point_row(bones, kJointParent[static_cast<size_t>(joint)], x, d / moved);
+    out.r[i] = allowed - moved;
+  }
+  return out;
+}
+
 /// Rows of the constraint system of character c: its contacts (the deepest, if more than fit), then
-/// the x and z of its held foot joints.
+/// the x and z of its held foot joints, then its foot joints over budget.
 void constraint_rows(const CorrectorState& s, int c, const BoneTransforms& bones,
-                     std::vector<const DeepContact*>& contacts, RowBlock& J, SmallVector& r) {
+                     std::vector<const DeepContact*>& contacts, const FootRows& feet, RowBlock& J,
+                     SmallVector& r) {
   int held_rows = 0;
   for (int f = 2 * c; f < 2 * c + 2; ++f)
     held_rows += 2 * (int{s.foot_holds[static_cast<size_t>(f)].ankle} +
                       int{s.foot_holds[static_cast<size_t>(f)].ball});
-  const int room = kMaxRows - held_rows;
+  const int room = kMaxRows - held_rows - feet.count;
   if (static_cast<int>(contacts.size()) > room) {
     std::stable_sort(contacts.begin(), contacts.end(),
                      [](const DeepContact* x, const DeepContact* y) { return x->depth_m > y->depth_m; });
     contacts.resize(static_cast<size_t>(room));
   }
-  const int m = static_cast<int>(contacts.size()) + held_rows;
+  const int m = static_cast<int>(contacts.size()) + held_rows + feet.count;
   J.resize(m, kVariables);
   r.resize(m);
   int i = 0;
@@ -171,6 +207,10 @@ void constraint_rows(const CorrectorState& s, int c, const BoneTransforms& bones
         r(i++) = 0.0;
       }
     }
+  }
+  for (int k = 0; k < feet.count; ++k) {
+    J.row(i) = feet.row[static_cast<size_t>(k)];
+    r(i++) = feet.r[static_cast<size_t>(k)];
   }
 }
 
@@ -302,7 +342,12 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
         ++found;
       }
     if (pass == 0) s.stats.deep_contacts = found;
-    if (found == 0) break;
+    // Characters re-posed by this pass whose feet went over budget are solved too.
+    for (int c : w.posing)
+      if (w.mine[static_cast<size_t>(c)].empty() &&
+          foot_budget_rows(s, c, p.foot_pop_budget_m, w.bones[static_cast<size_t>(c)]).count > 0)
+        w.solved.push_back(c);
+    if (w.solved.empty()) break;
     ++s.stats.depenetration_passes;
     std::sort(w.solved.begin(), w.solved.end());
     // 3-4. Per character: the least-energy pose change, then held feet re-planted exactly.
@@ -310,7 +355,8 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
       const auto cc = static_cast<size_t>(c);
       RowBlock J;
       SmallVector r;
-      constraint_rows(s, c, w.bones[cc], w.mine[cc], J, r);
+      constraint_rows(s, c, w.bones[cc], w.mine[cc], foot_budget_rows(s, c, p.foot_pop_budget_m, w.bones[cc]),
+                      J, r);
       Weights dq;
       w.moved[cc] = 0;
       if (!least_energy_change(J, r, w.inverse_weights[cc], dq)) return;

@@ -66,32 +66,19 @@ CorrectionQuality measure_correction_quality(const CrowdAnimation& input, const 
         deviations.push_back(a);
         sum += a;
       }
-    // Foot skate and joint speed need consecutive frames.
-    std::array<Vec3, kJointCount> prev_in, prev_out, run_start;
-    prev_in.fill(Vec3::Zero());
+    // Joint speed needs consecutive frames.
+    std::array<Vec3, kJointCount> prev_out;
     prev_out.fill(Vec3::Zero());
-    run_start.fill(Vec3::Zero());
-    std::array<bool, kJointCount> planted{};
     for (int f = std::max(0, first_frame); f < frames; ++f) {
-      const auto pin = joint_positions(in.shape, in.frames[static_cast<size_t>(f)]);
       const auto pout = joint_positions(out.shape, out.frames[static_cast<size_t>(f)]);
-      if (f > std::max(0, first_frame)) {
+      if (f > std::max(0, first_frame))
         for (size_t j = 0; j < kJointCount; ++j)
           q.joint_speed_max_mps = std::max(q.joint_speed_max_mps, (pout[j] - prev_out[j]).norm() * fps);
-        for (int jj : {kLeftAnkle, kRightAnkle, kLeftFoot, kRightFoot}) {
-          const auto j = static_cast<size_t>(jj);
-          const bool still = (pin[j] - prev_in[j]).norm() < 1e-3 && pin[j].y() < 0.15;
-          if (still && !planted[j]) run_start[j] = prev_out[j];
-          planted[j] = still;
-          if (still)
-            q.foot_skate_max_m = std::max(q.foot_skate_max_m, std::hypot(pout[j].x() - run_start[j].x(),
-                                                                         pout[j].z() - run_start[j].z()));
-        }
-      }
-      prev_in = pin;
       prev_out = pout;
     }
   }
+  q.feet = measure_foot_contact_quality(input, corrected, first_frame);
+  q.foot_skate_max_m = q.feet.stance_drift_max_m;
   q.rotation_dev_mean_deg = deviations.empty() ? 0.0 : sum / static_cast<double>(deviations.size());
   q.rotation_dev_p99_deg = nearest_rank_quantile(deviations, 0.99);
   return q;

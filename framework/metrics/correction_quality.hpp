@@ -7,13 +7,14 @@
 //                              penetration depth r_a + r_b - axis distance (m), over all frames
 //   rotation_dev_mean_deg      mean over characters, frames and the 24 joints of the angle between the
 //   rotation_dev_p99_deg       input and corrected local rotations (degrees); and its 99th percentile
-//   foot_skate_max_m           largest horizontal slide (m) of a foot joint (ankles, feet) while the
-//                              input holds it planted: a run of frames in which the input joint moves
-//                              less than 1 mm per frame and stays below 15 cm; the slide is the
-//                              corrected joint's horizontal distance from where it was at the run start
+//   foot_skate_max_m           largest horizontal slide (m) of a foot joint while the input holds it
+//                              planted: feet.stance_drift_max_m (kept under its old name for the csv)
+//   feet                       stance-foot drift, foot pops, ground penetration and floating of the
+//                              feet (foot_contact_quality.hpp, where the contact rule is defined)
 //   joint_speed_max_mps        largest joint speed of the corrected animation (m/s, finite differences)
 // Frames are taken from first_frame on (0 = all), every `frame_stride`-th for the depths.
 #include "framework/core/crowd_animation.hpp"
+#include "framework/metrics/foot_contact_quality.hpp"
 
 namespace crowdlab {
 
@@ -25,6 +26,7 @@ struct CorrectionQuality {
   double rotation_dev_p99_deg = 0.0;
   double foot_skate_max_m = 0.0;
   double joint_speed_max_mps = 0.0;
+  FootContactQuality feet;
 };
 
 /// Throws InputError when the two animations differ in characters or frames.

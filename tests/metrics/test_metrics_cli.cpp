@@ -5,6 +5,7 @@
 
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/io/write_crowd_glb.hpp"
+#include "framework/metrics/correction_quality.hpp"
 #include "framework/metrics/measure_crowd.hpp"
 #include "tests/support/run_cli.hpp"
 
@@ -54,6 +55,41 @@ TEST_CASE("crowdlab metrics prints the library's measures as JSON") {
   const test::CliResult text = test::run_cli({"-q", "metrics", path});
   CHECK(text.exit_code == 0);
   CHECK(text.out.find("mean per-character overlap") != std::string::npos);
+}
+
+TEST_CASE("crowdlab metrics --input adds the correction-quality measures against the input") {
+  // The "corrected" crowd is the input with the standing character's feet jumping 8 cm on frame 3 (the
+  // whole body moved), so the library's foot pops and drift are known and nonzero.
+  const auto dir = test::scratch_dir("metrics-cli-input");
+  const std::string in_path = (dir / "in.glb").string(), out_path = (dir / "out.glb").string();
+  const CrowdAnimation in = approaching_pair();
+  CrowdAnimation out = in;
+  for (size_t f = 3; f < out.characters[0].frames.size(); ++f)
+    out.characters[0].frames[f].root_position_m.z() += 0.08;
+  write_crowd_glb(in, in_path);
+  write_crowd_glb(out, out_path);
+  const CorrectionQuality expected =
+      measure_correction_quality(read_crowd_glb(in_path), read_crowd_glb(out_path));
+  REQUIRE(expected.feet.foot_pops == 4);  // four foot joints of the standing character, once
+  const test::CliResult r = test::run_cli({"-q", "metrics", out_path, "--input", in_path, "--json"});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const nlohmann::json q = nlohmann::json::parse(r.out).at("correction_quality");
+  CHECK(q.at("foot_pops").get<int>() == expected.feet.foot_pops);
+  CHECK(q.at("stance_foot_drift_max_m").get<double>() == Approx(expected.feet.stance_drift_max_m));
+  CHECK(q.at("stance_foot_drift_p99_m").get<double>() == Approx(expected.feet.stance_drift_p99_m));
+  CHECK(q.at("depth_p99_m").get<double>() == Approx(expected.depth_p99_m));
+  CHECK(q.at("foot_ground_penetration_max_m").get<double>() ==
+        Approx(expected.feet.ground_penetration_max_m));
+  const test::CliResult text = test::run_cli({"-q", "metrics", out_path, "--input", in_path});
+  CHECK(text.exit_code == 0);
+  CHECK(text.out.find("foot pops 4") != std::string::npos);
+  // An input that does not match the crowd is bad input (exit code 2).
+  CrowdAnimation shorter = in;
+  for (auto& c : shorter.characters) c.frames.pop_back();
+  const std::string short_path = (dir / "short.glb").string();
+  write_crowd_glb(shorter, short_path);
+  CHECK(test::run_cli({"-q", "metrics", out_path, "--input", short_path}).exit_code == 2);
 }
 
 TEST_CASE("crowdlab metrics rejects a missing or corrupt file with exit code 2") {

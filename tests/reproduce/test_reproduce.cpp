@@ -63,7 +63,14 @@ TEST_CASE("reproduce gomez2024 --quick: Fig. 3, Fig. 4, timing and study within 
                                     "fig3.stationary.baseline_growth", "fig3.corridor.baseline_growth"};
   for (const char* scenario : {"stationary", "corridor"})
     for (const char* d : {"2.22", "3.33", "4.44", "5.55", "6.66"})
-      expected.insert(std::string("fig3.") + scenario + ".reduction@" + d);
+      for (const char* check :
+           {"fig3.{s}.reduction@{d}", "quality.{s}@{d}.foot_pops", "quality.{s}@{d}.stance_drift_p99_m",
+            "quality.{s}@{d}.rotation_dev_mean_deg"}) {
+        std::string id = check;
+        id.replace(id.find("{s}"), 3, scenario);
+        id.replace(id.find("{d}"), 3, d);
+        expected.insert(id);
+      }
   for (const char* q : {"Q_CR", "Q_CA", "Q_OR"}) {
     expected.insert(std::string("study.") + q + ".method_p");
     expected.insert(std::string("study.") + q + ".ours_minus_baseline");

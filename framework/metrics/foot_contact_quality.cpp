@@ -1,0 +1,106 @@
+#include "framework/metrics/foot_contact_quality.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "framework/core/forward_kinematics.hpp"
+#include "framework/metrics/correction_quality.hpp"
+
+namespace crowdlab {
+namespace {
+
+constexpr std::array<int, 4> kFootJoints = {kLeftAnkle, kRightAnkle, kLeftFoot, kRightFoot};
+constexpr std::array<std::array<int, 2>, 2> kSideJoints = {
+    {{kLeftAnkle, kLeftFoot}, {kRightAnkle, kRightFoot}}};
+
+/// Lowest point (m) of one foot: its ankle bone's and ball bone's capsules.
+double sole_height(const WorldCapsules& caps, int side) {
+  double y = 1e9;
+  for (int b : kSideJoints[static_cast<size_t>(side)]) {
+    const Capsule& c = caps[static_cast<size_t>(b)];
+    y = std::min(y, std::min(c.a.y(), c.b.y()) - c.radius_m);
+  }
+  return y;
+}
+
+double horizontal(const Vec3& v) {
+  return std::hypot(v.x(), v.z());
+}
+
+/// Samples of one character, appended to the crowd-wide lists.
+struct Samples {
+  std::vector<double> drift, penetration, floating;
+};
+
+void measure_character(const CharacterAnimation& in, const CharacterAnimation& out, int first, double dt,
+                       FootContactQuality& q, Samples& s) {
+  std::array<Vec3, kJointCount> prev_in{}, prev_out{};
+  std::array<Vec3, 4> landing{};
+  std::array<bool, 4> contact{};
+  const int frames = static_cast<int>(in.frames.size());
+  for (int f = first; f < frames; ++f) {
+    const Pose& pin_pose = in.frames[static_cast<size_t>(f)];
+    const Pose& pout_pose = out.frames[static_cast<size_t>(f)];
+    const auto pin = joint_positions(in.shape, pin_pose);
+    const auto pout = joint_positions(out.shape, pout_pose);
+    const WorldCapsules caps_out = world_capsules(out.shape, pout_pose);
+    std::array<bool, 2> side_contact{};
+    for (int side = 0; side < 2; ++side) {
+      const double depth = -sole_height(caps_out, side);
+      if (depth > 0.0) s.penetration.push_back(depth);
+      q.ground_penetration_max_m = std::max(q.ground_penetration_max_m, depth);
+    }
+    if (f > first) {
+      for (size_t k = 0; k < kFootJoints.size(); ++k) {
+        const auto j = static_cast<size_t>(kFootJoints[k]);
+        const double moved_in = (pin[j] - prev_in[j]).norm();
+        const double excess = (pout[j] - prev_out[j]).norm() - moved_in;
+        q.pop_excess_max_m = std::max(q.pop_excess_max_m, excess);
+        if (excess > kPopExcess_m) {
+          ++q.foot_pops;
+          q.pop_frames.push_back(f);
+        }
+        const bool now = moved_in < kContactSpeed_mps * dt && pin[j].y() < kContactHeight_m;
+        if (now && !contact[k]) landing[k] = prev_out[j];
+        contact[k] = now;
+        if (!now) continue;
+        ++q.contact_frames;
+        s.drift.push_back(horizontal(pout[j] - landing[k]));
+        side_contact[k % 2] = true;
+      }
+      for (int side = 0; side < 2; ++side) {
+        if (!side_contact[static_cast<size_t>(side)]) continue;
+        const double lift =
+            sole_height(caps_out, side) - sole_height(world_capsules(in.shape, pin_pose), side);
+        s.floating.push_back(std::max(0.0, lift));
+      }
+    }
+    prev_in = pin;
+    prev_out = pout;
+  }
+}
+
+double max_of(const std::vector<double>& v) {
+  return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
+}
+
+}  // namespace
+
+FootContactQuality measure_foot_contact_quality(const CrowdAnimation& input, const CrowdAnimation& corrected,
+                                                int first_frame) {
+  FootContactQuality q;
+  Samples s;
+  const double dt = input.meta.fps > 0.0 ? 1.0 / input.meta.fps : 0.0;
+  for (size_t c = 0; c < input.characters.size(); ++c)
+    measure_character(input.characters[c], corrected.characters[c], std::max(0, first_frame), dt, q, s);
+  std::sort(q.pop_frames.begin(), q.pop_frames.end());
+  q.pop_frames.erase(std::unique(q.pop_frames.begin(), q.pop_frames.end()), q.pop_frames.end());
+  q.stance_drift_p99_m = nearest_rank_quantile(s.drift, 0.99);
+  q.stance_drift_max_m = max_of(s.drift);
+  q.ground_penetration_p99_m = nearest_rank_quantile(s.penetration, 0.99);
+  q.float_p99_m = nearest_rank_quantile(s.floating, 0.99);
+  q.float_max_m = max_of(s.floating);
+  return q;
+}
+
+}  // namespace crowdlab

@@ -1,0 +1,112 @@
+// Stance-foot drift, foot pops, ground penetration and floating of the feet
+// (framework/metrics/foot_contact_quality.hpp) on hand-made animations whose answers are known.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <functional>
+
+#include "framework/core/forward_kinematics.hpp"
+#include "framework/metrics/correction_quality.hpp"
+#include "framework/metrics/foot_contact_quality.hpp"
+
+using namespace crowdlab;
+
+namespace {
+
+constexpr int kFrames = 40;
+
+/// One character standing still in its rest pose (both feet planted), with the root at
+/// root_x(f) along x and raised by lift(f) on frame f.
+CrowdAnimation standing(const std::function<double(int)>& root_x, const std::function<double(int)>& lift) {
+  CrowdAnimation crowd;
+  crowd.meta.fps = 30.0;
+  CharacterAnimation c;
+  c.name = "c000";
+  c.shape = make_procedural_body({Sex::kFemale, 1.65, 1.0});
+  for (int f = 0; f < kFrames; ++f) {
+    Pose p = Pose::rest(c.shape);
+    p.root_position_m = Vec3(root_x(f), c.shape.pelvis_height_m() + lift(f), 0.0);
+    c.frames.push_back(p);
+  }
+  crowd.characters.push_back(c);
+  return crowd;
+}
+
+double zero(int) {
+  return 0.0;
+}
+
+/// Lowest point of the rest pose's foot capsules (m).
+double rest_sole(const CharacterAnimation& c) {
+  const WorldCapsules caps = world_capsules(c.shape, c.frames[0]);
+  double y = 1e9;
+  for (int b : {kLeftAnkle, kRightAnkle, kLeftFoot, kRightFoot}) {
+    const Capsule& k = caps[static_cast<size_t>(b)];
+    y = std::min(y, std::min(k.a.y(), k.b.y()) - k.radius_m);
+  }
+  return y;
+}
+
+}  // namespace
+
+TEST_CASE("a copy of the input has no drift, pops, floating or extra ground penetration") {
+  const CrowdAnimation in = standing(zero, zero);
+  const FootContactQuality q = measure_foot_contact_quality(in, in);
+  CHECK(q.contact_frames == 4 * (kFrames - 1));  // four foot joints, planted from frame 1 on
+  CHECK(q.stance_drift_max_m == 0.0);
+  CHECK(q.foot_pops == 0);
+  CHECK(q.pop_excess_max_m == Approx(0.0).margin(1e-12));
+  CHECK(q.float_max_m == 0.0);
+  CHECK(q.ground_penetration_max_m == Approx(std::max(0.0, -rest_sole(in.characters[0]))));
+}
+
+TEST_CASE("a planted foot sliding 2 mm per frame drifts by the slide; a slow slide is no pop") {
+  const CrowdAnimation in = standing(zero, zero);
+  const CrowdAnimation out = standing([](int f) { return 0.002 * std::clamp(f - 10, 0, 10); }, zero);
+  const FootContactQuality q = measure_foot_contact_quality(in, out);
+  CHECK(q.stance_drift_max_m == Approx(0.020));
+  // 4 joints x 39 contact frames, of which 4 x 19 are 20 mm away: the p99 is the full slide.
+  CHECK(q.stance_drift_p99_m == Approx(0.020));
+  CHECK(q.foot_pops == 0);
+  CHECK(q.pop_excess_max_m == Approx(0.002));
+  // The whole-clip measure reports the same under its old name.
+  CHECK(measure_correction_quality(in, out).foot_skate_max_m == Approx(0.020));
+}
+
+TEST_CASE("a foot jumping 8 cm in one frame is a pop on each foot joint; 4 cm is not") {
+  const CrowdAnimation in = standing(zero, zero);
+  const FootContactQuality jump =
+      measure_foot_contact_quality(in, standing([](int f) { return f >= 20 ? 0.08 : 0.0; }, zero));
+  CHECK(jump.foot_pops == 4);
+  CHECK(jump.pop_frames == std::vector<int>{20});
+  CHECK(jump.pop_excess_max_m == Approx(0.08));
+  CHECK(jump.stance_drift_max_m == Approx(0.08));
+  const FootContactQuality small =
+      measure_foot_contact_quality(in, standing([](int f) { return f >= 20 ? 0.04 : 0.0; }, zero));
+  CHECK(small.foot_pops == 0);
+  CHECK(small.pop_excess_max_m == Approx(0.04));
+}
+
+TEST_CASE("a pop is measured against the input's own motion: a walking input is not a pop") {
+  // The input's root moves 6 cm per frame (1.8 m/s), the output's too: no excess, no contact.
+  const auto walk = [](int f) { return 0.06 * f; };
+  const CrowdAnimation in = standing(walk, zero);
+  const FootContactQuality same = measure_foot_contact_quality(in, in);
+  CHECK(same.foot_pops == 0);
+  CHECK(same.contact_frames == 0);
+  // The output stands still while the input walks: it moves less, which is no pop either.
+  CHECK(measure_foot_contact_quality(in, standing(zero, zero)).foot_pops == 0);
+}
+
+TEST_CASE("feet lowered into the ground and lifted during stance are measured") {
+  const CrowdAnimation in = standing(zero, zero);
+  const double sole = rest_sole(in.characters[0]);
+  const FootContactQuality sunk = measure_foot_contact_quality(in, standing(zero, [](int) { return -0.05; }));
+  CHECK(sunk.ground_penetration_max_m == Approx(0.05 - sole));
+  CHECK(sunk.ground_penetration_p99_m == Approx(0.05 - sole));
+  CHECK(sunk.float_max_m == 0.0);
+  const FootContactQuality lifted =
+      measure_foot_contact_quality(in, standing(zero, [](int f) { return f >= 30 ? 0.03 : 0.0; }));
+  CHECK(lifted.float_max_m == Approx(0.03));
+  CHECK(lifted.float_p99_m == Approx(0.03));
+  CHECK(lifted.ground_penetration_max_m == Approx(std::max(0.0, -sole)));
+}
