@@ -59,7 +59,7 @@ TEST_CASE("a copy of the input has no drift, pops, floating or extra ground pene
   CHECK(q.ground_penetration_max_m == Approx(std::max(0.0, -rest_sole(in.characters[0]))));
 }
 
-TEST_CASE("a planted foot sliding 2 mm per frame drifts by the slide; a slow slide is no pop") {
+TEST_CASE("a planted foot sliding 2 mm per frame drifts by the slide, a slow slide is no pop") {
   const CrowdAnimation in = standing(zero, zero);
   const CrowdAnimation out = standing([](int f) { return 0.002 * std::clamp(f - 10, 0, 10); }, zero);
   const FootContactQuality q = measure_foot_contact_quality(in, out);
@@ -72,7 +72,7 @@ TEST_CASE("a planted foot sliding 2 mm per frame drifts by the slide; a slow sli
   CHECK(measure_correction_quality(in, out).foot_skate_max_m == Approx(0.020));
 }
 
-TEST_CASE("a foot jumping 8 cm in one frame is a pop on each foot joint; 4 cm is not") {
+TEST_CASE("a foot jumping 8 cm in one frame is a pop on each foot joint, 4 cm is not") {
   const CrowdAnimation in = standing(zero, zero);
   const FootContactQuality jump =
       measure_foot_contact_quality(in, standing([](int f) { return f >= 20 ? 0.08 : 0.0; }, zero));
