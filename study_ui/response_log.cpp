@@ -67,20 +67,25 @@ bool is_complete_row(const std::string& header_line, const std::string& line, si
   }
 }
 
-/// Appends the bytes about to be cut from `path` to `path`.recovered (fsync'd) so that nothing a
-/// participant answered is lost even if the recovery rule was wrong.
-void save_cut_bytes(const std::string& path, const std::string& bytes, bool durable) {
-  const std::string aside = path + ".recovered";
-  const int fd = ::open(aside.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  if (fd < 0) throw RuntimeError(aside + ": cannot create: " + errno_text());
+/// Opens (creating) `path` with `mode` (O_APPEND or O_TRUNC), writes `bytes`, fsyncs when `durable`, and
+/// closes the descriptor whatever fails.
+void write_whole(const std::string& path, int mode, const std::string& bytes, bool durable) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | mode | O_CLOEXEC, 0644);
+  if (fd < 0) throw RuntimeError(path + ": cannot create: " + errno_text());
   try {
-    write_all(fd, bytes, aside);
-    if (durable) fsync_or_throw(fd, aside);
+    write_all(fd, bytes, path);
+    if (durable) fsync_or_throw(fd, path);
   } catch (...) {
     ::close(fd);
     throw;
   }
   ::close(fd);
+}
+
+/// Appends the bytes about to be cut from `path` to `path`.recovered (fsync'd) so that nothing a
+/// participant answered is lost even if the recovery rule was wrong.
+void save_cut_bytes(const std::string& path, const std::string& bytes, bool durable) {
+  write_whole(path + ".recovered", O_APPEND, bytes, durable);
 }
 
 }  // namespace
@@ -96,16 +101,7 @@ void fsync_parent_directory(const std::string& path) {
 
 void write_file_atomically(const std::string& path, const std::string& text, bool durable) {
   const std::string tmp = path + ".tmp";
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw RuntimeError(tmp + ": cannot create: " + errno_text());
-  try {
-    write_all(fd, text, tmp);
-    if (durable) fsync_or_throw(fd, tmp);
-  } catch (...) {
-    ::close(fd);
-    throw;
-  }
-  ::close(fd);
+  write_whole(tmp, O_TRUNC, text, durable);
   if (std::rename(tmp.c_str(), path.c_str()) != 0)
     throw RuntimeError(path + ": rename failed: " + errno_text());
   if (durable) fsync_parent_directory(path);
