@@ -11,27 +11,8 @@
 # synchronise with the window). Exit status 0 when every step succeeded.
 set -euo pipefail
 CROWDLAB=$1 LIKERT=$2 STIMULI=$3 AFC=$4 AFC_STIMULI=$5 OUT=$6 SNAP=$7 TARGETS=$8 DNUM=${9:-}
-# A free display number chosen by Xvfb itself (-displayfd) unless one is given: other users of the
-# machine may run their own Xvfb.
-XLOG=$(mktemp) DFILE=$(mktemp)
-if [[ -n "$DNUM" ]]; then
-  Xvfb ":$DNUM" -screen 0 1280x720x24 -nolisten tcp >"$XLOG" 2>&1 &
-else
-  Xvfb -displayfd 3 -screen 0 1280x720x24 -nolisten tcp 3>"$DFILE" >"$XLOG" 2>&1 &
-fi
-XVFB_PID=$!
-APP_PID=""
-cleanup() {
-  [[ -n "$APP_PID" ]] && kill "$APP_PID" 2>/dev/null || true
-  kill "$XVFB_PID" 2>/dev/null || true
-  rm -f "$XLOG" "$DFILE"
-}
-trap cleanup EXIT
-for _ in $(seq 300); do [[ -n "$DNUM" || -s "$DFILE" ]] && break; sleep 0.1; done
-[[ -n "$DNUM" ]] || DNUM=$(head -1 "$DFILE" | tr -d '[:space:]')
-export DISPLAY=:$DNUM
-for _ in $(seq 300); do xdotool getdisplaygeometry >/dev/null 2>&1 && break; sleep 0.1; done
-xdotool getdisplaygeometry >/dev/null || { echo "[drive] Xvfb did not start:"; cat "$XLOG"; exit 1; }
+source "$(dirname "$0")/xvfb_session.sh"
+start_xvfb 1280x720 "$DNUM"
 
 log() { echo "[drive] $*"; }
 wait_file() {  # wait_file PATH [seconds]

@@ -6,19 +6,8 @@
 # (the whole X screen); quits the session with Esc, Y. Exit status 0 when every step succeeded.
 set -euo pipefail
 CROWDLAB=$1 SPEC=$2 STIMULI=$3 OUT=$4 SNAP=$5 SIZE=$6
-XLOG=$(mktemp) DFILE=$(mktemp)
-Xvfb -displayfd 3 -screen 0 "${SIZE}x24" -nolisten tcp 3>"$DFILE" >"$XLOG" 2>&1 &
-XVFB_PID=$!
-APP_PID=""
-cleanup() {
-  [[ -n "$APP_PID" ]] && kill "$APP_PID" 2>/dev/null || true
-  kill "$XVFB_PID" 2>/dev/null || true
-  rm -f "$XLOG" "$DFILE"
-}
-trap cleanup EXIT
-for _ in $(seq 300); do [[ -s "$DFILE" ]] && break; sleep 0.1; done
-export DISPLAY=:$(head -1 "$DFILE" | tr -d '[:space:]')
-for _ in $(seq 300); do xdotool getdisplaygeometry >/dev/null 2>&1 && break; sleep 0.1; done
+source "$(dirname "$0")/xvfb_session.sh"
+start_xvfb "$SIZE"
 mkdir -p "$OUT" "$SNAP"
 "$CROWDLAB" -q study "$SPEC" --participant F01 --stimuli "$STIMULI" --out "$OUT" --require-fullscreen \
   --snapshot-dir "$SNAP" &
