@@ -37,6 +37,7 @@ mixed_ref <- function(name, id, dv, between, within, file = paste0("ref_mixed_",
   a <- aov_ez(id, dv, d, between = between, within = within, fun_aggregate = mean, type = 3,
               anova_table = list(correction = "none", es = c("pes", "ges")))
   tab <- a$anova_table
+  s <- NULL  # between-only: no sphericity tests
   if (is.null(within)) {
     u <- a$Anova
     eff <- setdiff(rownames(u), c("(Intercept)", "Residuals"))
@@ -51,18 +52,7 @@ mixed_ref <- function(name, id, dv, between, within, file = paste0("ref_mixed_",
   }
   res$pes <- tab[eff, "pes"]
   res$ges <- tab[eff, "ges"]
-  res$mauchly_W <- NA_real_; res$mauchly_p <- NA_real_; res$gg_eps <- NA_real_; res$hf_eps <- NA_real_
-  res$p_gg <- NA_real_; res$p_hf <- NA_real_
-  if (!is.null(within) && !is.null(s$sphericity.tests) && nrow(s$sphericity.tests) > 0) {
-    sp <- s$sphericity.tests
-    adj <- s$pval.adjustments
-    for (e in rownames(sp)) {
-      i <- which(res$effect == e)
-      res$mauchly_W[i] <- sp[e, "Test statistic"]; res$mauchly_p[i] <- sp[e, "p-value"]
-      res$gg_eps[i] <- adj[e, "GG eps"]; res$hf_eps[i] <- adj[e, "HF eps"]
-      res$p_gg[i] <- adj[e, "Pr(>F[GG])"]; res$p_hf[i] <- adj[e, "Pr(>F[HF])"]
-    }
-  }
+  res <- add_sphericity(res, s)
   write_table(res, file)
 }
 mixed_ref("obk_long", "id", "value", c("treatment", "gender"), c("phase", "hour"))

@@ -51,17 +51,7 @@ anova_ref <- function(name, id, dv, within) {
   tab <- a$anova_table
   res$pes <- tab[eff, "pes"]
   res$ges <- tab[eff, "ges"]
-  res$mauchly_W <- NA; res$mauchly_p <- NA; res$gg_eps <- NA; res$hf_eps <- NA; res$p_gg <- NA; res$p_hf <- NA
-  if (!is.null(s$sphericity.tests) && nrow(s$sphericity.tests) > 0) {
-    sp <- s$sphericity.tests
-    adj <- s$pval.adjustments
-    for (e in rownames(sp)) {
-      i <- which(res$effect == e)
-      res$mauchly_W[i] <- sp[e, "Test statistic"]; res$mauchly_p[i] <- sp[e, "p-value"]
-      res$gg_eps[i] <- adj[e, "GG eps"]; res$hf_eps[i] <- adj[e, "HF eps"]
-      res$p_gg[i] <- adj[e, "Pr(>F[GG])"]; res$p_hf[i] <- adj[e, "Pr(>F[HF])"]
-    }
-  }
+  res <- add_sphericity(res, s)
   write_table(res, paste0("ref_anova_", name, ".csv"))
 }
 anova_ref("rm_anova2", "Subject", "Performance", c("Time", "Metric"))
