@@ -95,4 +95,18 @@ std::string posthoc_markdown_table(const PosthocResult& result) {
   return s;
 }
 
+std::string clmm_markdown_table(const ClmmResult& result) {
+  std::string s =
+      "| Term | Estimate | SE | z | p | |\n"
+      "|---|---|---|---|---|---|\n";
+  for (const auto& f : result.fixed)
+    s += "| " + f.name + " | " + fixed(f.estimate, 2) + " | " + fixed(f.se, 2) + " | " + fixed(f.z, 2) +
+         " | " + apa_p(f.p) + " | " + significance_stars(f.p) + " |\n";
+  s += "\nRandom intercept SD (" + result.group + ") = " + fixed(result.random_sd, 2) +
+       ", log-likelihood = " + fixed(result.loglik, 2) + ", " + std::to_string(result.observations) +
+       " answers, " + std::to_string(result.groups) + " " + result.group + "s" +
+       (result.converged ? "" : " (the optimiser did NOT converge)") + ".\n";
+  return s;
+}
+
 }  // namespace crowdlab::analysis

@@ -5,6 +5,7 @@
 // Greenhouse-Geisser corrected dfs and p are reported (seed 000 section 4.4.3).
 #include <string>
 
+#include "analysis/clmm_fit.hpp"
 #include "analysis/posthoc.hpp"
 #include "analysis/rm_anova.hpp"
 
@@ -20,5 +21,8 @@ std::string anova_markdown_table(const RmAnovaResult& result);
 std::string anova_text_table(const RmAnovaResult& result);
 /// Markdown table of pairwise comparisons.
 std::string posthoc_markdown_table(const PosthocResult& result);
+/// Markdown table of a CLMM's fixed effects: Term | Estimate (log cumulative odds, or probit units) |
+/// SE | z | p | sig., then a line with the random-intercept SD and the log-likelihood.
+std::string clmm_markdown_table(const ClmmResult& result);
 
 }  // namespace crowdlab::analysis

@@ -44,6 +44,7 @@ struct Data {
   std::vector<size_t> group;                 ///< group of each row
   std::vector<std::vector<size_t>> rows_of;  ///< rows of each group
   int levels = 0;
+  mutable std::vector<double> modes;  ///< each group's last conditional mode: Newton's next start
 };
 
 // Parameters in the natural space: thresholds (K-1), beta (p), log sd.
@@ -61,45 +62,63 @@ Params unpack_natural(const Data& d, const double* v) {
   return p;
 }
 
+// F, F' and F'' at t (F' = pdf, F'' its derivative); t = +-inf at the open ends of the scale. One exp
+// per call for the logit link.
+struct LinkValues {
+  double cdf = 0, pdf = 0, dpdf = 0;
+};
+LinkValues link_values(const Link& link, double t) {
+  if (!std::isfinite(t)) return {t > 0 ? 1.0 : 0.0, 0.0, 0.0};
+  if (link.logit) {
+    const double f = link.cdf(t), g = f * (1.0 - f);
+    return {f, g, g * (1.0 - 2.0 * f)};
+  }
+  const double g = link.pdf(t);
+  return {link.cdf(t), g, -t * g};
+}
+
 // log P(y | eta + b) and its first two derivatives in b.
 void row_terms(const Data& d, const Params& p, int y, double eta, double b, double& logp, double& d1,
                double& d2) {
   const double upper = y < d.levels - 1 ? p.theta[static_cast<size_t>(y)] - eta - b : HUGE_VAL;
   const double lower = y > 0 ? p.theta[static_cast<size_t>(y - 1)] - eta - b : -HUGE_VAL;
-  const double fu = std::isfinite(upper) ? d.link.cdf(upper) : 1.0,
-               fl = std::isfinite(lower) ? d.link.cdf(lower) : 0.0;
-  const double gu = std::isfinite(upper) ? d.link.pdf(upper) : 0.0,
-               gl = std::isfinite(lower) ? d.link.pdf(lower) : 0.0;
-  const double hu = std::isfinite(upper) ? d.link.dpdf(upper) : 0.0,
-               hl = std::isfinite(lower) ? d.link.dpdf(lower) : 0.0;
-  const double prob = std::max(fu - fl, 1e-300);
+  const LinkValues u = link_values(d.link, upper), l = link_values(d.link, lower);
+  const double prob = std::max(u.cdf - l.cdf, 1e-300);
   logp = std::log(prob);
-  const double dp = -(gu - gl);  // d prob / db
-  const double ddp = hu - hl;    // d2 prob / db2
+  const double dp = -(u.pdf - l.pdf);  // d prob / db
+  const double ddp = u.dpdf - l.dpdf;  // d2 prob / db2
   d1 = dp / prob;
   d2 = ddp / prob - d1 * d1;
 }
 
-// Laplace approximation of the marginal log-likelihood (clmm's nAGQ = 1), on u = b / sd ~ N(0, 1).
+// Laplace approximation of the marginal log-likelihood (clmm's nAGQ = 1), on u = b / sd ~ N(0, 1):
+// each group's conditional mode by Newton's method converged to rounding (|step| < 1e-12), the
+// curvature taken at that mode. Newton starts from the modes of the previous call (d.modes), which
+// changes the value by far less than rounding and saves most iterations in the optimiser's and the
+// Hessian's nearby evaluations.
 double laplace_loglik(const Data& d, const Params& p) {
   const Eigen::VectorXd eta = d.x * p.beta;
   const double sd = std::exp(p.log_sd);
   double total = 0;
-  for (const auto& rows : d.rows_of) {
-    // Newton for the conditional mode of u (the log-posterior is concave for logit and probit).
-    double u = 0;
+  d.modes.resize(d.rows_of.size(), 0.0);
+  for (size_t g = 0; g < d.rows_of.size(); ++g) {
+    const auto& rows = d.rows_of[g];
+    double u = std::isfinite(d.modes[g]) ? d.modes[g] : 0.0;
     for (int it = 0; it < 50; ++it) {
-      double g = -u, h = -1.0;
+      double grad = -u, h = -1.0;
       for (size_t r : rows) {
         double lp = 0, d1 = 0, d2 = 0;
         row_terms(d, p, d.y[r], eta[static_cast<Eigen::Index>(r)], sd * u, lp, d1, d2);
-        g += sd * d1;
+        grad += sd * d1;
         h += sd * sd * d2;
       }
-      const double step = -g / h;
+      // The log-posterior is strictly concave (h <= -1); a bounded step keeps Newton from overshooting
+      // where its curvature changes fast (far from the mode, or from a poor warm start).
+      const double step = std::clamp(-grad / h, -2.0, 2.0);
       u += step;
       if (std::abs(step) < 1e-12) break;
     }
+    d.modes[g] = u;
     // Value and curvature at the mode.
     double value_at = -0.5 * u * u, h = -1.0;
     for (size_t r : rows) {
@@ -145,7 +164,8 @@ std::vector<std::string> response_levels(const CsvTable& table, size_t col) {
 }
 
 Data build_data(const CsvTable& table, const LmmFormula& f, const std::string& link,
-                std::vector<std::string>& names, std::vector<std::string>& levels) {
+                const std::set<std::string>& categorical, std::vector<std::string>& names,
+                std::vector<std::string>& levels) {
   if (f.random.size() != 1 || !f.random[0].terms.empty() || !f.random[0].intercept)
     throw InputError(SourceLocation{"--formula", 0, 0, ""},
                      "clmm supports exactly one random-intercept term (1 | group)");
@@ -165,7 +185,7 @@ Data build_data(const CsvTable& table, const LmmFormula& f, const std::string& l
                      " levels; an ordinal model needs at least 3 (use a logistic model for 2)");
   std::vector<std::string> vars;
   for (const auto& t : f.fixed) vars.insert(vars.end(), t.begin(), t.end());
-  const auto variables = read_model_variables(table, vars);
+  const auto variables = read_model_variables(table, vars, categorical);
   const ModelMatrix mm = model_matrix(f.fixed, true, variables, table.rows.size());
   d.x = mm.x.rightCols(mm.x.cols() - 1);  // the intercept is absorbed by the thresholds
   names.assign(mm.names.begin() + 1, mm.names.end());
@@ -225,12 +245,13 @@ Eigen::MatrixXd information(const Data& d, const std::vector<double>& at) {
 }
 }  // namespace
 
-ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std::string& link) {
+ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std::string& link,
+                    const std::set<std::string>& categorical) {
   if (link != "logit" && link != "probit")
     throw InputError("--link must be logit or probit, got '" + link + "'");
   const LmmFormula f = parse_lmm_formula(formula);
   std::vector<std::string> names, levels;
-  const Data d = build_data(table, f, link, names, levels);
+  const Data d = build_data(table, f, link, categorical, names, levels);
   const size_t k1 = static_cast<size_t>(d.levels - 1), p = static_cast<size_t>(d.x.cols());
   // Start: thresholds at the link quantiles of the cumulative proportions, beta = 0, sd = 1.
   std::vector<double> v(k1 + p + 1, 0.0);

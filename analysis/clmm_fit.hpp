@@ -10,9 +10,11 @@
 // couples groups: crowdlab supports exactly one random-intercept term (the common design: participant).
 // The marginal log-likelihood is maximised by NLopt's BOBYQA over (theta_1, log increments of the
 // thresholds, beta, log sd); standard errors come from the inverse of the negative Hessian of the
-// Laplace log-likelihood in (theta, beta, log sd), by central differences, as clmm's Hess = TRUE.
+// Laplace log-likelihood in (theta, beta, log sd), by central differences, the quantity clmm's Hess =
+// TRUE approximates (clmm's own differences carry up to ~1 % of numerical noise: docs/analysis.md).
 // Response levels: sorted numerically when every level is a number, else in byte order.
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -39,7 +41,9 @@ struct ClmmResult {
 /// `link`: "logit" or "probit". Throws InputError (exit 2) for formula errors, missing columns, empty or
 /// non-finite cells, fewer than 3 response levels, a grouping factor with one level, more than one
 /// random term or a random slope, or a rank-deficient fixed-effects matrix.
-ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std::string& link = "logit");
+/// Columns named in `categorical` are factors even when their cells are numbers (R's factor(x)).
+ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std::string& link = "logit",
+                    const std::set<std::string>& categorical = {});
 
 /// {"thresholds": [{name, estimate, se}], "fixed": [{term, estimate, se, z, p}], "random": [{group, sd}],
 ///  "loglik", "link", "converged", "observations", "warnings"}.

@@ -10,6 +10,7 @@
 
 #include "analysis/model_matrix.hpp"
 #include "analysis/nlopt_minimise.hpp"
+#include "analysis/satterthwaite.hpp"
 #include "framework/core/error.hpp"
 
 namespace crowdlab::analysis {
@@ -40,6 +41,7 @@ struct Problem {
 // What one theta gives: the profiled deviance and what the final estimates need.
 struct Profile {
   double deviance = INFINITY, r2 = 0;
+  double logdet_l = 0, logdet_rx = 0;  ///< log det(L L'), log det(R_X' R_X)
   Eigen::VectorXd beta;
   Eigen::MatrixXd rxtrx;
 };
@@ -81,15 +83,40 @@ Profile profile(const Problem& pr, const double* theta) {
   out.beta = rx.solve(rhs);
   out.r2 = pr.yty - cu.squaredNorm() - cb.squaredNorm();
   if (!(out.r2 > 0)) return out;
-  const double logdet_l = ldlt.vectorD().array().log().sum();
+  out.logdet_l = ldlt.vectorD().array().log().sum();
+  out.logdet_rx = 2.0 * rx.matrixLLT().diagonal().array().log().sum();
   const auto n = static_cast<double>(pr.n), p = static_cast<double>(pr.p);
-  if (pr.reml) {
-    const double logdet_rx = 2.0 * rx.matrixLLT().diagonal().array().log().sum();
-    out.deviance = logdet_l + logdet_rx + (n - p) * (1.0 + std::log(kTwoPi * out.r2 / (n - p)));
-  } else {
-    out.deviance = logdet_l + n * (1.0 + std::log(kTwoPi * out.r2 / n));
-  }
+  if (pr.reml)
+    out.deviance = out.logdet_l + out.logdet_rx + (n - p) * (1.0 + std::log(kTwoPi * out.r2 / (n - p)));
+  else
+    out.deviance = out.logdet_l + n * (1.0 + std::log(kTwoPi * out.r2 / n));
   return out;
+}
+
+// The deviance at (theta, sigma) without profiling sigma out (lmerTest's devfun_vp): ML
+// log det(L L') + pwrss / sigma^2 + n log(2 pi sigma^2); REML adds log det(R_X' R_X) - p log(2 pi sigma^2).
+double deviance_at(const Problem& pr, const std::vector<double>& varpar) {
+  const Profile at = profile(pr, varpar.data());
+  const double sigma2 = varpar.back() * varpar.back();
+  const auto n = static_cast<double>(pr.n), p = static_cast<double>(pr.p);
+  const double ml = at.logdet_l + at.r2 / sigma2 + n * std::log(kTwoPi * sigma2);
+  return pr.reml ? ml + at.logdet_rx - p * std::log(kTwoPi * sigma2) : ml;
+}
+
+// vcov(beta) = sigma^2 (R_X' R_X)^-1 at (theta, sigma).
+Eigen::MatrixXd vcov_at(const Problem& pr, const std::vector<double>& varpar) {
+  return varpar.back() * varpar.back() * profile(pr, varpar.data()).rxtrx.inverse();
+}
+
+// Satterthwaite df of each fixed effect (satterthwaite.hpp) at the optimum; theta steps scaled by
+// max(|theta|, 0.01) (theta is relative to sigma, so unit-free), sigma's by sigma itself.
+SatterthwaiteResult fixed_effect_df(const Problem& pr, const std::vector<double>& theta, double sigma) {
+  std::vector<double> varpar = theta, scale;
+  varpar.push_back(sigma);
+  for (double v : theta) scale.push_back(std::max(std::abs(v), 0.01));
+  scale.push_back(sigma);
+  return satterthwaite_df([&](const std::vector<double>& v) { return deviance_at(pr, v); },
+                          [&](const std::vector<double>& v) { return vcov_at(pr, v); }, varpar, scale);
 }
 
 double objective(unsigned, const double* theta, double*, void* data) {
@@ -230,10 +257,13 @@ LmmResult fit_lmm(const CsvTable& table, const std::string& formula, bool reml) 
   const double dof = static_cast<double>(reml ? pr.n - pr.p : pr.n);
   out.residual_sd = std::sqrt(fin.r2 / dof);
   const Eigen::MatrixXd vcov = out.residual_sd * out.residual_sd * fin.rxtrx.inverse();
+  const SatterthwaiteResult satterthwaite = fixed_effect_df(pr, theta, out.residual_sd);
   for (Eigen::Index j = 0; j < pr.p; ++j) {
-    const double se = std::sqrt(vcov(j, j));
-    out.fixed.push_back({fixed_names[static_cast<size_t>(j)], fin.beta[j], se, fin.beta[j] / se});
+    const double se = std::sqrt(vcov(j, j)), t = fin.beta[j] / se;
+    const double df = satterthwaite.df[static_cast<size_t>(j)];
+    out.fixed.push_back({fixed_names[static_cast<size_t>(j)], fin.beta[j], se, t, df, t_test_p(t, df)});
   }
+  out.warnings.insert(out.warnings.end(), satterthwaite.warnings.begin(), satterthwaite.warnings.end());
   fill_random(pr, theta, out.residual_sd, out);
   for (unsigned k = 0; k < m; ++k)
     out.singular = out.singular || (pr.diagonal[k] && theta[k] < kSingularTolerance);
@@ -248,7 +278,12 @@ nlohmann::json lmm_to_json(const LmmResult& r) {
   auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   nlohmann::json fixed = nlohmann::json::array(), random = nlohmann::json::array();
   for (const auto& f : r.fixed)
-    fixed.push_back({{"term", f.term}, {"estimate", f.estimate}, {"se", num(f.se)}, {"t", num(f.t)}});
+    fixed.push_back({{"term", f.term},
+                     {"estimate", f.estimate},
+                     {"se", num(f.se)},
+                     {"t", num(f.t)},
+                     {"df", num(f.df)},
+                     {"p", num(f.p)}});
   for (const auto& s : r.random_sd)
     random.push_back({{"group", s.group}, {"term", s.term}, {"sd", num(s.sd)}});
   for (const auto& c : r.random_corr)

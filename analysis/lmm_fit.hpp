@@ -12,7 +12,8 @@
 // not grow with the number of rows.
 // Outputs as lme4: fixed effects with vcov = sigma^2 (R_X' R_X)^-1, random-effect SDs and correlations
 // (VarCorr), the residual SD, REMLcrit or deviance, and lme4's singularity check (a diagonal theta
-// element below 1e-4: isSingular's default tolerance) as a warning.
+// element below 1e-4: isSingular's default tolerance) as a warning, and lmerTest's Satterthwaite df and
+// p of each fixed effect (satterthwaite.hpp).
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -25,6 +26,7 @@ namespace crowdlab::analysis {
 struct LmmFixed {
   std::string term;
   double estimate = 0, se = 0, t = 0;
+  double df = 0, p = 0;  ///< Satterthwaite df and two-sided p, as lmerTest (satterthwaite.hpp)
 };
 
 struct LmmRandomSd {
@@ -57,7 +59,7 @@ struct LmmResult {
 /// fixed-effect model matrix, more random effects per level than a group can identify.
 LmmResult fit_lmm(const CsvTable& table, const std::string& formula, bool reml = true);
 
-/// {"fixed": [{term, estimate, se, t}], "random": [{group, term, sd} | {group, term1, term2, corr}],
+/// {"fixed": [{term, estimate, se, t, df, p}], "random": [{group, term, sd} | {group, term1, term2, corr}],
 ///  "residual_sd", "reml_criterion" | "deviance", "converged", "singular", "warnings", "observations"}.
 nlohmann::json lmm_to_json(const LmmResult& result);
 

@@ -46,7 +46,8 @@ bool has_term(const std::vector<ModelTerm>& terms, bool intercept, const std::se
 }  // namespace
 
 std::map<std::string, ModelVariable> read_model_variables(const CsvTable& table,
-                                                          const std::vector<std::string>& names) {
+                                                          const std::vector<std::string>& names,
+                                                          const std::set<std::string>& categorical) {
   std::map<std::string, ModelVariable> out;
   for (const auto& name : names) {
     if (out.count(name)) continue;
@@ -59,6 +60,8 @@ std::map<std::string, ModelVariable> read_model_variables(const CsvTable& table,
         throw InputError(SourceLocation{table.source, table.line_numbers[r], 0, name}, "empty cell");
       if (!parses_as_number(cell, value)) v.numeric = false;
     }
+    const bool numeric_cells = v.numeric;
+    v.numeric = v.numeric && !categorical.count(name);
     if (v.numeric) {
       for (size_t r = 0; r < table.rows.size(); ++r) {
         parses_as_number(table.cell(r, col), value);
@@ -71,9 +74,16 @@ std::map<std::string, ModelVariable> read_model_variables(const CsvTable& table,
       std::set<std::string> levels;
       for (size_t r = 0; r < table.rows.size(); ++r) levels.insert(table.cell(r, col));
       v.levels.assign(levels.begin(), levels.end());
-      for (size_t r = 0; r < table.rows.size(); ++r)
-        v.codes.push_back(static_cast<size_t>(
-            std::lower_bound(v.levels.begin(), v.levels.end(), table.cell(r, col)) - v.levels.begin()));
+      if (numeric_cells)
+        std::stable_sort(v.levels.begin(), v.levels.end(), [](const std::string& a, const std::string& b) {
+          double x = 0, y = 0;
+          parses_as_number(a, x);
+          parses_as_number(b, y);
+          return x < y;
+        });
+      std::map<std::string, size_t> code_of;
+      for (size_t l = 0; l < v.levels.size(); ++l) code_of.emplace(v.levels[l], l);
+      for (size_t r = 0; r < table.rows.size(); ++r) v.codes.push_back(code_of.at(table.cell(r, col)));
     }
     out.emplace(name, std::move(v));
   }

@@ -8,6 +8,7 @@
 // interaction are products, the first variable varying fastest, named with ':' (`dens_c:methodours`).
 #include <Eigen/Core>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -24,9 +25,12 @@ struct ModelVariable {
 };
 
 /// Reads the named columns. Throws InputError (file:line, column) for an empty cell or a non-finite
-/// number (NaN, inf): rows are never dropped silently.
+/// number (NaN, inf): rows are never dropped silently. A column named in `categorical` is a factor
+/// even when every cell is a number (R's factor(x)); its levels are then sorted numerically, as
+/// factor() sorts a numeric vector.
 std::map<std::string, ModelVariable> read_model_variables(const CsvTable& table,
-                                                          const std::vector<std::string>& names);
+                                                          const std::vector<std::string>& names,
+                                                          const std::set<std::string>& categorical = {});
 
 struct ModelMatrix {
   Eigen::MatrixXd x;

@@ -9,6 +9,7 @@
 
 #include "analysis/analysis_json.hpp"
 #include "analysis/apa_format.hpp"
+#include "analysis/clmm_fit.hpp"
 #include "analysis/kolmogorov_smirnov.hpp"
 #include "analysis/plot_interaction.hpp"
 #include "analysis/plot_psychometric.hpp"
@@ -150,6 +151,33 @@ void interaction_plots(Context& ctx, const WithinDesign& design, const std::stri
               " at each x level (* p < .05, ** p < .01, *** p < .001).\n\n";
 }
 
+// The ordinal model beside the ANOVA (issue 20; Liddell & Kruschke 2018, J. Exp. Soc. Psychol. 79): a
+// cumulative link mixed model (logit link, clmm's default) of one Likert item's answers per trial
+// (reverse-coded, as the ANOVA's), the varying spec factors crossed as categorical fixed effects and a
+// random intercept per participant: R's clmm(factor(value) ~ f1 * f2 + (1 | participant)). A model
+// that cannot be fitted (fewer than 3 answer levels used, a missing factor combination) is reported as
+// such; the rest of the report stands.
+void clmm_section(Context& ctx, const std::string& item, nlohmann::json& stats) {
+  const CsvTable t = measure_table(ctx, {item}, item);
+  std::string formula = "value ~ ";
+  for (size_t f = 0; f < ctx.factors.size(); ++f) formula += (f ? " * " : "") + ctx.factors[f];
+  formula += " + (1 | participant)";
+  ctx.md += "Ordinal model of " + item +
+            " (cumulative link mixed model, logit link, Laplace approximation, as R's `ordinal::clmm`; `" +
+            formula + "`, factors categorical; estimates in log cumulative odds of a higher answer):\n\n";
+  try {
+    const auto fit = fit_clmm(t, formula, "logit", {ctx.factors.begin(), ctx.factors.end()});
+    ctx.md += clmm_markdown_table(fit) + "\n";
+    for (const auto& w : fit.warnings) ctx.md += "Warning: " + w + ".\n\n";
+    auto j = clmm_to_json(fit);
+    j["item"] = item;
+    j["formula"] = formula;
+    stats["clmm"].push_back(j);
+  } catch (const InputError& e) {
+    ctx.md += "Not fitted: " + std::string(e.what()) + "\n\n";
+  }
+}
+
 void measure_section(Context& ctx, const std::string& name, const std::vector<std::string>& items) {
   ctx.md += "### " + name + "\n\n";
   if (items.size() > 1)
@@ -184,8 +212,11 @@ void measure_section(Context& ctx, const std::string& name, const std::vector<st
     qq << normal.theoretical[i] << "," << normal.sample[i] << "\n";
   ctx.md += "Normality of residuals: Kolmogorov-Smirnov D = " + fmt(normal.ks.statistic, 3) +
             ", p = " + apa_p(normal.ks.p) + " (Q-Q data: stats/qq_" + safe_name(name) + ".csv).\n\n";
-  nlohmann::json stats = {
-      {"measure", name}, {"anova", anova_to_json(anova)}, {"posthoc", nlohmann::json::array()}};
+  nlohmann::json stats = {{"measure", name},
+                          {"anova", anova_to_json(anova)},
+                          {"posthoc", nlohmann::json::array()},
+                          {"clmm", nlohmann::json::array()}};
+  for (const auto& item : items) clmm_section(ctx, item, stats);
   for (const auto& e : anova.effects) {
     const double p = (e.mauchly_p && *e.mauchly_p < 0.05) ? *e.p_gg : e.p;
     if (p >= 0.05) continue;
@@ -324,7 +355,8 @@ std::string write_study_report(const std::string& study_dir, const std::string& 
   ctx.md +=
       "- Method: repeated-measures ANOVA on per-participant cell means (repetitions averaged); α = .05; "
       "Mauchly's test, Greenhouse-Geisser correction where sphericity is violated; Tukey HSD post-hocs. "
-      "Results are mean ± SD.\n\n";
+      "Beside it, each Likert item's answers as ordinal data: a cumulative link mixed model (logit, "
+      "random intercept per participant; Liddell & Kruschke 2018). Results are mean ± SD.\n\n";
   std::set<std::string> in_composite;
   ctx.md += "## Rating measures\n\n";
   for (const auto& comp : ctx.spec.protocol.composites) {

@@ -6,9 +6,11 @@
 //    scale questions in no composite are analysed on their own;
 //  - for every such measure, the RM-ANOVA over the spec factors that vary in the data (APA table and
 //    sentences, Mauchly, GG/HF), a Kolmogorov-Smirnov check of the residuals (Q-Q data written as CSV),
-//    Tukey post-hocs of the significant effects, and interaction plots (x = each factor, one line per
-//    level of the last factor, ±1 SD error bars, stars from the simple effect of the last factor at
-//    each x level);
+//    a cumulative link mixed model of each Likert item beside it (ordinal::clmm's model, logit link,
+//    the factors categorical, a random intercept per participant; its table and stats/<measure>.json
+//    "clmm"), Tukey post-hocs of the significant effects, and interaction plots (x = each factor, one line
+//    per level of the last factor, ±1 SD error bars, stars from the simple effect of the last factor at each
+//    x level);
 //  - for yes/no questions with a numeric factor (distance, or the first numeric factor with >= 3
 //    levels): per-participant psychometric fits by condition (the other factors), seed 001 Table 1,
 //    the RM-ANOVA of the 50 % thresholds and psychometric curves (seed 001 Figure 5 style).

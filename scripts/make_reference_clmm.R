@@ -4,7 +4,20 @@
 #   Rscript scripts/make_reference_clmm.R [OUT_DIR]
 # Needs Debian's r-base-core and r-cran-ordinal. Inputs written here: likert_sim.csv (30 participants,
 # method baseline/ours x density low/mid/high, 3 repetitions, a 5-point rating). Output: ref_clmm.csv
-# (model, quantity, name, value): thresholds, fixed effects (estimate, se), random sd, logLik.
+# (model, quantity, name, value): thresholds, fixed effects (estimate, se), random sd, logLik, and
+# `laplace_se` / `laplace_threshold_se`: the standard errors from the Hessian of the exact Laplace
+# log-likelihood (below).
+#
+# Why a second set of SEs: clmm's own SEs (Hess = TRUE) are ordinal:::deriv12, central differences with
+# an absolute step of 1e-4, of getNLA.ssr, whose inner Newton iteration (C function NRalgv3) stops
+# once max|gradient| < gradTol and returns the curvature D of the iterate *before* its last step. The
+# objective is therefore not smooth at the 1e-9 level (the iterate count changes between neighbouring
+# parameter values), and second differences with step 1e-4 amplify that by 1e8: moving clmm's own
+# optimum by 1e-6 changes its SEs by up to 1.3 % (logit model here), and the default gradTol = 1e-4
+# changes them by 0.3 %. laplace_nll computes the same Laplace approximation with the conditional
+# modes converged to rounding and D at the mode (the quantity clmm's Hessian approximates); it agrees
+# with clmm's log-likelihood at clmm's optimum to 1e-9, is re-minimised from there, and its Hessian is
+# numDeriv::hessian's Richardson extrapolation (stable to 1e-5 across steps and 1e-5 shifts).
 suppressMessages(library(ordinal))
 args <- commandArgs(trailingOnly = TRUE)
 out <- if (length(args) > 0) args[1] else "tests/data/analysis"
@@ -17,15 +30,44 @@ eta <- b[d$participant] + 1.1 * (d$method == "ours") - 0.5 * (d$density == "high
 cut <- c(-1.5, -0.4, 0.6, 1.7)
 d$rating <- sapply(eta + rlogis(nrow(d)), function(v) 1 + sum(v > cut))
 d$participant <- paste0("p", d$participant)
+# Negative Laplace log-likelihood in clmm's parameters (thresholds, beta, log sd): -sum log P(y | u) +
+# sum u^2 / 2 + sum log(D) / 2 with D = 1 + sd^2 * (-d2 log P / db2) at each group's mode u.
+laplace_nll <- function(par, X, y, g, K, link) {
+  pf <- if (link == "logit") plogis else pnorm
+  df <- if (link == "logit") dlogis else dnorm
+  ddf <- if (link == "logit") function(t) { p <- plogis(t); p * (1 - p) * (1 - 2 * p) } else
+    function(t) ifelse(is.finite(t), -t * dnorm(t), 0)
+  th <- c(-Inf, par[1:(K - 1)], Inf); beta <- par[K:(K - 1 + ncol(X))]; sd <- exp(par[length(par)])
+  eta <- drop(X %*% beta)
+  terms <- function(u) {
+    b <- sd * u[g]; up <- th[y + 1] - eta - b; lo <- th[y] - eta - b
+    P <- pf(up) - pf(lo); d1 <- df(up) - df(lo); d2 <- ddf(up) - ddf(lo)
+    list(lp = log(P), s = rowsum(-sd * d1 / P, g)[, 1], h = rowsum(sd^2 * (d2 / P - (d1 / P)^2), g)[, 1])
+  }
+  u <- rep(0, max(g))
+  for (it in 1:200) {
+    t <- terms(u); step <- (t$s - u) / (t$h - 1)
+    if (any(!is.finite(step))) return(Inf)
+    u <- u - step
+    if (max(abs(step)) < 1e-14) break
+  }
+  t <- terms(u)
+  -(sum(t$lp) - sum(u^2) / 2 - 0.5 * sum(log(1 - t$h)))
+}
 write.csv(d[, c("participant", "method", "density", "rep", "rating")], file.path(out, "likert_sim.csv"),
           row.names = FALSE, quote = FALSE)
+# "categorical": the numeric column rep as a factor (R's factor(rep); crowdlab's `categorical`), as
+# `analyze report` fits its spec factors.
 models <- list(list(name = "logit", formula = "rating ~ method * density + (1 | participant)", link = "logit"),
-               list(name = "probit", formula = "rating ~ method + density + (1 | participant)", link = "probit"))
+               list(name = "probit", formula = "rating ~ method + density + (1 | participant)", link = "probit"),
+               list(name = "categorical", formula = "rating ~ method + rep + (1 | participant)", link = "logit",
+                    factors = "rep"))
 rows <- NULL
 add <- function(model, quantity, name, value) rows <<- rbind(rows, data.frame(model = model, quantity = quantity, name = name, value = fmt(value)))
 for (m in models) {
   dd <- read.csv(file.path(out, "likert_sim.csv"))
   dd$rating <- factor(dd$rating, ordered = TRUE)
+  for (f in m$factors) dd[[f]] <- factor(dd[[f]])
   fit <- clmm(as.formula(m$formula), data = dd, link = m$link, Hess = TRUE,
               control = clmm.control(method = "nlminb", gradTol = 1e-10, innerCtrl = "noWarn",
                                      rel.tol = 1e-14, x.tol = 1e-12, eval.max = 5000, iter.max = 5000))
@@ -34,6 +76,14 @@ for (m in models) {
   for (t in names(fit$beta)) { add(m$name, "estimate", t, co[t, "Estimate"]); add(m$name, "se", t, co[t, "Std. Error"]) }
   add(m$name, "sd", "participant", attr(VarCorr(fit)$participant, "stddev"))
   add(m$name, "loglik", "", as.numeric(logLik(fit)))
+  X <- model.matrix(as.formula(sub("\\+ \\(1 \\| participant\\)", "", m$formula)), dd)[, -1, drop = FALSE]
+  y <- as.integer(dd$rating); g <- as.integer(factor(dd$participant)); K <- nlevels(dd$rating)
+  nll <- function(p) laplace_nll(p, X, y, g, K, m$link)
+  stopifnot(abs(nll(fit$optRes$par) + as.numeric(logLik(fit))) < 1e-8)
+  o <- nlminb(fit$optRes$par, nll, control = list(rel.tol = 1e-15, x.tol = 1e-15, eval.max = 5000, iter.max = 5000))
+  se <- sqrt(diag(solve(numDeriv::hessian(nll, o$par))))
+  for (i in seq_along(fit$alpha)) add(m$name, "laplace_threshold_se", names(fit$alpha)[i], se[i])
+  for (i in seq_along(fit$beta)) add(m$name, "laplace_se", names(fit$beta)[i], se[length(fit$alpha) + i])
 }
 write_table(rows, "ref_clmm.csv")
 cat("wrote CLMM references to", out, "\n")

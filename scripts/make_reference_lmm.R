@@ -1,7 +1,7 @@
 #!/usr/bin/env Rscript
 # Reference linear mixed models for tests/analysis/ (issue 20), fitted by lme4::lmer.
 # Run from the repository root:   Rscript scripts/make_reference_lmm.R [OUT_DIR]
-# Needs Debian's r-base-core and r-cran-lme4. crowdlab never depends on R: the outputs are committed.
+# Needs Debian's r-base-core, r-cran-lme4 and r-cran-lmertest. crowdlab never depends on R: the outputs are committed.
 # lmer runs with a tight optimiser (minqa's BOBYQA, rhoend = 1e-12) so that the reference is the
 # optimum itself, not lme4's default stopping point (nloptwrap's defaults stop ~1e-8 short in deviance,
 # which moves the SEs by ~1e-5).
@@ -9,7 +9,9 @@
 #   2 repetitions; a correlated random intercept and method slope, and a stimulus intercept) and
 #   lmm_flat.csv (a random slope with no variance: lme4's singular fit).
 # Outputs: ref_lmm.csv: one row per (model, quantity, name): fixed estimate/se/t, random sd/corr,
-#   residual_sd, criterion (REMLcrit or deviance), singular.
+#   residual_sd, criterion (REMLcrit or deviance), singular, and lmerTest's Satterthwaite df and p of
+#   each fixed term (lmerTest::as_lmerModLmerTest on the same fit: numDeriv's Richardson Hessian of the
+#   deviance in (theta, sigma) and Jacobian of vcov(beta)).
 suppressMessages(library(lme4))
 args <- commandArgs(trailingOnly = TRUE)
 out <- if (length(args) > 0) args[1] else "tests/data/analysis"
@@ -57,6 +59,8 @@ for (m in models) {
   }
   add(m$name, "criterion", if (m$reml) "REML" else "deviance", if (m$reml) REMLcrit(fit) else deviance(fit))
   add(m$name, "singular", "", as.numeric(isSingular(fit)))
+  satt <- suppressWarnings(summary(lmerTest::as_lmerModLmerTest(fit))$coefficients)
+  for (t in rownames(satt)) { add(m$name, "df", t, satt[t, "df"]); add(m$name, "p", t, satt[t, "Pr(>|t|)"]) }
 }
 write.csv(rows, file.path(out, "ref_lmm.csv"), row.names = FALSE, quote = FALSE)
 models_tab <- do.call(rbind, lapply(models, function(m) data.frame(model = m$name, data = m$data, formula = m$formula, reml = m$reml)))

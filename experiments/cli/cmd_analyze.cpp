@@ -114,7 +114,8 @@ void print_lmm(const LmmResult& r) {
   std::printf("Linear mixed model (%s), %zu observations\n\nFixed effects:\n", r.reml ? "REML" : "ML",
               r.observations);
   for (const auto& f : r.fixed)
-    std::printf("  %-28s %12.6f  SE %10.6f  t %9.3f\n", f.term.c_str(), f.estimate, f.se, f.t);
+    std::printf("  %-28s %12.6f  SE %10.6f  t %9.3f  df %9.2f  p %.4g\n", f.term.c_str(), f.estimate, f.se,
+                f.t, f.df, f.p);
   std::printf("\nRandom effects:\n");
   for (const auto& s : r.random_sd)
     std::printf("  %-14s %-20s SD %.6f\n", s.group.c_str(), s.term.c_str(), s.sd);
@@ -338,7 +339,8 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   lmm->add_flag("--ml", lmm_opt->ml, "Maximum likelihood (for likelihood-ratio tests of fixed effects)")
       ->excludes(reml_flag);
   lmm->add_flag("--json", lmm_opt->json,
-                "Print {\"fixed\": [{term, estimate, se, t}], \"random\": [{group, term, sd} | {group, "
+                "Print {\"fixed\": [{term, estimate, se, t, df, p}] (Satterthwaite df, as lmerTest), "
+                "\"random\": [{group, term, sd} | {group, "
                 "term1, term2, corr}], \"residual_sd\", \"reml_criterion\" | \"deviance\", \"converged\", "
                 "\"singular\", \"warnings\", \"observations\"}");
   lmm->add_flag("--allow-simulated-mix", lmm_opt->allow_simulated_mix, kAllowMixHelp);

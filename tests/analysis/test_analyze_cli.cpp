@@ -183,6 +183,16 @@ TEST_CASE("analysis: analyze report writes a Markdown report with figures", "[an
        {"### Q_CR", "### Q_CA", "### Q_OR", "Cronbach", "| method |", "density:viewpoint:method",
         "Kolmogorov-Smirnov", "Tukey", "figures/interaction_Q_CR_density.png"})
     CHECK(md.find(needle) != std::string::npos);
+  // Issue 20: each Likert item also as ordinal data (a CLMM table beside the ANOVA, and in the stats).
+  for (const char* needle : {"Ordinal model of Q1", "Ordinal model of Q2", "| methodours |",
+                             "| density6.66:viewpointV3:methodours |", "Random intercept SD (participant)"})
+    CHECK(md.find(needle) != std::string::npos);
+  CHECK(md.find("Not fitted") == std::string::npos);
+  const auto stats = nlohmann::json::parse(slurp(base / "out1" / "stats" / "Q_CR.json"));
+  REQUIRE(stats["clmm"].size() == 2);
+  CHECK(stats["clmm"][0]["item"] == "Q1");
+  CHECK(stats["clmm"][0]["fixed"].size() == 7);
+  CHECK(stats["clmm"][0]["converged"] == true);
   for (const char* fig :
        {"interaction_Q_CR_density.png", "interaction_Q_CR_density.svg", "interaction_Q_OR_viewpoint.png"})
     CHECK(std::filesystem::file_size(base / "out1" / "figures" / fig) > 1000);

@@ -1,6 +1,6 @@
 // Linear mixed models against lme4::lmer (scripts/make_reference_lmm.R, tests/data/analysis/ref_lmm.csv):
-// fixed effects and SEs to 1e-5, variance components to 1e-4, the criterion to 1e-6; R's term names;
-// the singular fit; bad input.
+// fixed effects and SEs to 1e-5, variance components to 1e-4, the criterion to 1e-6, lmerTest's
+// Satterthwaite df to 1e-5 and p to 1e-4; R's term names; the singular fit; bad input.
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -50,6 +50,10 @@ TEST_CASE("analysis: lmm agrees with lme4::lmer (REML, ML, random slopes, crosse
       CHECK(close_rel(f.estimate, ref.at({name, "estimate", f.term}), 1e-5));
       CHECK(close_rel(f.se, ref.at({name, "se", f.term}), 1e-5));
       CHECK(close_rel(f.t, ref.at({name, "t", f.term}), 1e-5));
+      // lmerTest's Satterthwaite df (both numerical derivatives agree to ~2e-6) and p (a df error
+      // moves p ~50x more at p ~ 1e-19).
+      CHECK(close_rel(f.df, ref.at({name, "df", f.term}), 1e-5));
+      CHECK(close_rel(f.p, ref.at({name, "p", f.term}), 1e-4));
     }
     size_t want_fixed = 0;
     for (const auto& [key, v] : ref)
@@ -93,7 +97,7 @@ TEST_CASE("analysis: analyze lmm --json and bad input (exit 2)", "[analysis][cli
   const auto j = nlohmann::json::parse(r.out);
   REQUIRE(j["fixed"].size() == 4);
   CHECK(j["fixed"][3]["term"] == "dens_c:methodours");
-  for (const char* key : {"term", "estimate", "se", "t"}) CHECK(j["fixed"][0].contains(key));
+  for (const char* key : {"term", "estimate", "se", "t", "df", "p"}) CHECK(j["fixed"][0].contains(key));
   REQUIRE(j["random"].size() == 3);
   CHECK(j["random"][2]["term2"] == "methodours");
   CHECK(j.contains("reml_criterion"));
