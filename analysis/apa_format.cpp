@@ -84,14 +84,16 @@ std::string anova_text_table(const RmAnovaResult& result) {
 
 std::string posthoc_markdown_table(const PosthocResult& result) {
   const bool tukey = result.method == PosthocMethod::tukey;
-  std::string s = std::string("| Comparison | Mean A | Mean B | Difference | SE | df | ") +
-                  (tukey ? "q" : "t") + " | p" + (tukey ? " (Tukey)" : " (Bonferroni)") +
+  // Classic Tukey reports q; the other tests (and emmeans' models, --error pooled|separate) report t.
+  const bool q = tukey && result.error == PosthocError::classic;
+  std::string s = std::string("| Comparison | Mean A | Mean B | Difference | SE | df | ") + (q ? "q" : "t") +
+                  " | p" + (tukey ? " (Tukey)" : " (Bonferroni)") +
                   " | |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& p : result.pairs)
     s += "| " + p.level_a + " vs " + p.level_b + " | " + fixed(p.mean_a, 2) + " | " + fixed(p.mean_b, 2) +
-         " | " + fixed(p.difference, 2) + " | " + fixed(p.se, 3) + " | " + fixed(p.df, 0) + " | " +
-         fixed(p.statistic, 2) + " | " + apa_p(p.p_adjusted) + " | " + significance_stars(p.p_adjusted) +
-         " |\n";
+         " | " + fixed(p.difference, 2) + " | " + fixed(p.se, 3) + " | " +
+         fixed(p.df, p.df == std::round(p.df) ? 0 : 2) + " | " + fixed(p.statistic, 2) + " | " +
+         apa_p(p.p_adjusted) + " | " + significance_stars(p.p_adjusted) + " |\n";
   return s;
 }
 

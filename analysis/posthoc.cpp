@@ -124,12 +124,32 @@ void compare_with_error(const WithinDesign& design, const std::vector<size_t>& e
     if (k == b) c[static_cast<Eigen::Index>(cell)] = -1.0 / per_mean;
   }
   std::tie(pc.se, pc.df) = contrast_error(design, strata, c, error);
+  complete_t_comparison(pc, method, means);
+}
+}  // namespace
+
+PairwiseComparison compare_means(const PosthocResult& res, size_t a, size_t b, size_t differing) {
+  PairwiseComparison pc;
+  pc.simple = differing == 1;
+  pc.level_a = res.levels[a];
+  pc.level_b = res.levels[b];
+  pc.mean_a = res.means[a];
+  pc.mean_b = res.means[b];
+  pc.difference = pc.mean_a - pc.mean_b;
+  return pc;
+}
+
+void complete_t_comparison(PairwiseComparison& pc, PosthocMethod method, size_t means) {
   pc.statistic = pc.difference / pc.se;
   pc.p = t_two_sided(pc.statistic, pc.df);
   if (method == PosthocMethod::tukey)
     pc.p_adjusted = 1.0 - ptukey(std::abs(pc.statistic) * std::sqrt(2.0), static_cast<int>(means), pc.df);
 }
-}  // namespace
+
+void adjust_family(PosthocResult& res) {
+  if (res.method == PosthocMethod::bonferroni)
+    for (auto& pc : res.pairs) pc.p_adjusted = std::min(1.0, pc.p * static_cast<double>(res.pairs.size()));
+}
 
 PosthocResult posthoc(const WithinDesign& design, const std::vector<size_t>& effect_factors,
                       PosthocMethod method, bool simple_only, size_t max_comparisons, PosthocError error) {
@@ -178,14 +198,8 @@ PosthocResult posthoc(const WithinDesign& design, const std::vector<size_t>& eff
                  lb = effect_levels_of(design, effect_factors, b);
       size_t differing = 0;
       for (size_t i = 0; i < la.size(); ++i) differing += la[i] != lb[i];
-      PairwiseComparison pc;
-      pc.simple = differing == 1;
-      if (simple_only && !pc.simple) continue;
-      pc.level_a = res.levels[a];
-      pc.level_b = res.levels[b];
-      pc.mean_a = res.means[a];
-      pc.mean_b = res.means[b];
-      pc.difference = pc.mean_a - pc.mean_b;
+      if (simple_only && differing != 1) continue;
+      PairwiseComparison pc = compare_means(res, a, b, differing);
       if (error != PosthocError::classic) {
         compare_with_error(design, effect_factors, strata, a, b, m, method, error, pc);
       } else if (method == PosthocMethod::bonferroni) {
@@ -208,8 +222,7 @@ PosthocResult posthoc(const WithinDesign& design, const std::vector<size_t>& eff
       }
       res.pairs.push_back(pc);
     }
-  if (method == PosthocMethod::bonferroni)
-    for (auto& pc : res.pairs) pc.p_adjusted = std::min(1.0, pc.p * static_cast<double>(res.pairs.size()));
+  adjust_family(res);
   return res;
 }
 

@@ -77,6 +77,35 @@ PosthocResult posthoc(const WithinDesign& design, const std::vector<size_t>& eff
                       size_t max_comparisons = kDefaultMaxComparisons,
                       PosthocError error = PosthocError::classic);
 
+/// Pair a < b of `res`'s means: levels, means and difference filled in, `simple` from `differing` (the
+/// number of factors in which the two cells differ); the test's fields are left to the caller.
+PairwiseComparison compare_means(const PosthocResult& res, size_t a, size_t b, size_t differing);
+
+/// t = difference / se, its two-sided p with pc.df, and Tukey's adjustment for a family of `means` means
+/// (ptukey(|t| sqrt 2, means, df), emmeans' default for pairs) when `method` is Tukey.
+void complete_t_comparison(PairwiseComparison& pc, PosthocMethod method, size_t means);
+
+/// Bonferroni: p_adjusted = min(1, p x family size) for every pair (no-op for Tukey).
+void adjust_family(PosthocResult& res);
+
+/// An effect of a design with between-subject factors: indices into WithinDesign::between and ::factors.
+struct MixedEffect {
+  std::vector<size_t> between, within;
+};
+
+/// `effect` names within and between factors joined with ':' ("A", "G", "A:G"); throws InputError when a
+/// name is unknown or repeated.
+MixedEffect parse_mixed_effect(const WithinDesign& design, const std::string& effect);
+
+/// Pairwise comparisons of an effect's cells in a design with between factors, as emmeans compares an
+/// afex model's cells (posthoc_mixed.cpp): `separate` = the multivariate model (df = subjects - groups),
+/// `pooled` = the univariate model (strata pooled, Satterthwaite df); `classic` is refused (InputError).
+/// Cells are labelled between levels first ("lab:low"), as afex names effects. The family size is
+/// checked against max_comparisons before any work.
+PosthocResult posthoc_mixed(const WithinDesign& design, const MixedEffect& effect, PosthocMethod method,
+                            bool simple_only = false, size_t max_comparisons = kDefaultMaxComparisons,
+                            PosthocError error = PosthocError::separate);
+
 /// One simple effect: the ANOVA of the effect's other factors at one level of `at_factor`.
 struct SimpleEffect {
   std::string at;        ///< "B=b1"

@@ -62,7 +62,11 @@ void check_study_dir_unmixed(const std::string& dir, bool allow_mix) {
   mix.check(allow_mix);
 }
 
-void add_design_options(CLI::App* cmd, DesignArgs& a, bool with_between = false) {
+void add_design_options(
+    CLI::App* cmd, DesignArgs& a, bool with_between = false,
+    const std::string& between_help =
+        "Between-subject factor columns, comma-separated (e.g. group); groups may differ in "
+        "size (Type III sums of squares, as afex)") {
   cmd->add_option("--csv", a.csv, "Tidy CSV: one row per trial (repetitions are averaged per cell)")
       ->required();
   cmd->add_option("--dv", a.dv, "Dependent-variable column (numeric)")->required();
@@ -70,9 +74,7 @@ void add_design_options(CLI::App* cmd, DesignArgs& a, bool with_between = false)
   auto* within =
       cmd->add_option("--within", a.within, "Within-subject factor columns, comma-separated (e.g. A,B,C)");
   if (with_between)
-    cmd->add_option("--between", a.between,
-                    "Between-subject factor columns, comma-separated (e.g. group); groups may differ in size "
-                    "(Type III sums of squares, as afex)");
+    cmd->add_option("--between", a.between, between_help);
   else
     within->required();
   cmd->add_option(
@@ -190,7 +192,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   auto ph_opt = std::make_shared<PosthocOptions>();
   auto* ph =
       analyze->add_subcommand("posthoc", "Pairwise comparisons for a main effect or an interaction's cells");
-  add_design_options(ph, ph_opt->design);
+  add_design_options(ph, ph_opt->design, true,
+                     "Between-subject factor columns, comma-separated (e.g. group): --effect may then name "
+                     "them too (G, A:G), compared as emmeans compares an afex model's cells; needs --error "
+                     "pooled or separate");
   ph->add_option("--effect", ph_opt->effect, "Effect: a factor (A) or an interaction (A:B)")->required();
   ph->add_option("--method", ph_opt->method, "tukey (pooled-error Tukey HSD) or bonferroni (paired t-tests)")
       ->check(CLI::IsMember({"tukey", "bonferroni"}))
@@ -211,11 +216,24 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   ph->add_flag("--json", ph_opt->json, "Print JSON");
   ph->callback([o = ph_opt] {
     const auto design = load_design(o->design);
-    const auto factors = parse_effect(design, o->effect);
     const auto method = o->method == "tukey" ? PosthocMethod::tukey : PosthocMethod::bonferroni;
     const auto error = o->error == "pooled"     ? PosthocError::pooled
                        : o->error == "separate" ? PosthocError::separate
                                                 : PosthocError::classic;
+    if (!design.between.empty()) {
+      const auto result = posthoc_mixed(design, parse_mixed_effect(design, o->effect), method, o->simple,
+                                        o->max_comparisons, error);
+      if (o->json)
+        std::cout << posthoc_to_json(result).dump(2) << "\n";
+      else
+        std::cout << "Post-hoc comparisons for " << result.effect << " (emmeans' "
+                  << (error == PosthocError::pooled ? "univariate" : "multivariate") << " model, "
+                  << (method == PosthocMethod::tukey ? "Tukey" : "Bonferroni") << "-adjusted p)\n\n"
+                  << posthoc_markdown_table(result);
+      return;
+    }
+    if (split_list(o->design.within).empty()) throw InputError("--within: no within-subject factor given");
+    const auto factors = parse_effect(design, o->effect);
     const auto result = posthoc(design, factors, method, o->simple, o->max_comparisons, error);
     if (o->json) {
       auto j = posthoc_to_json(result);
