@@ -202,6 +202,26 @@ PosthocResult posthoc_mixed(const WithinDesign& design, const MixedEffect& effec
     throw InputError(
         "posthoc with --between: use --error separate (emmeans' multivariate model, afex's default) or "
         "--error pooled (the univariate model); classic Tukey has no single error term across strata");
+  std::string name;
+  std::vector<double> sizes;
+  for (size_t f : effect.between) {
+    name += (name.empty() ? "" : ":") + design.between[f].name;
+    sizes.push_back(static_cast<double>(design.between[f].levels.size()));
+  }
+  for (size_t f : effect.within) {
+    name += (name.empty() ? "" : ":") + design.factors[f].name;
+    sizes.push_back(static_cast<double>(design.factors[f].levels.size()));
+  }
+  // The family's size from the level counts alone, before any work (as posthoc_comparison_count).
+  double means = 1, simple_pairs = 0;
+  for (double l : sizes) means *= l;
+  for (double l : sizes) simple_pairs += l * (l - 1.0) / 2.0 * (means / l);
+  if (const double count = simple_only ? simple_pairs : means * (means - 1.0) / 2.0;
+      count > static_cast<double>(max_comparisons))
+    throw InputError(SourceLocation{design.source, 0, 0, name},
+                     "post-hoc family of " + std::to_string(std::llround(count)) +
+                         " comparisons, more than the limit of " + std::to_string(max_comparisons) +
+                         " (--max-comparisons)");
   const EffectCells cells = effect_cells(design, effect);
   const size_t m = cells.labels.size();
   auto differing = [&](size_t a, size_t b) {
@@ -210,17 +230,6 @@ PosthocResult posthoc_mixed(const WithinDesign& design, const MixedEffect& effec
     for (size_t i = 0; i < cells.within[a].size(); ++i) d += cells.within[a][i] != cells.within[b][i];
     return d;
   };
-  std::string name;
-  for (size_t f : effect.between) name += (name.empty() ? "" : ":") + design.between[f].name;
-  for (size_t f : effect.within) name += (name.empty() ? "" : ":") + design.factors[f].name;
-  double count = 0;  // from the cell list alone, before any work
-  for (size_t a = 0; a < m; ++a)
-    for (size_t b = a + 1; b < m; ++b) count += !simple_only || differing(a, b) == 1;
-  if (count > static_cast<double>(max_comparisons))
-    throw InputError(SourceLocation{design.source, 0, 0, name},
-                     "post-hoc family of " + std::to_string(std::llround(count)) +
-                         " comparisons, more than the limit of " + std::to_string(max_comparisons) +
-                         " (--max-comparisons)");
   const Groups g = build_groups(design);
   const std::vector<Stratum> strata =
       error == PosthocError::pooled ? mixed_strata(design) : std::vector<Stratum>{};

@@ -287,6 +287,43 @@ TEST_CASE("analysis: analyze refuses designs past --max-levels, --max-cells and 
   CHECK(unique.err.find("unique.csv: A: factor has 3000 levels") != std::string::npos);
   CHECK(unique.err.find("--max-levels") != std::string::npos);
 
+  // posthoc on a balanced 3000-level factor (3 subjects): it ran over 300 s (issue 21). Refused from the
+  // level count, and with the level and cell limits raised, from the family's size (3000 * 2999 / 2
+  // pairs), both before any work; the same for a between factor with a level per subject.
+  {
+    std::ofstream out((dir / "many.csv").string());
+    out << "subj,G,A,y\n";
+    for (int s = 0; s < 3; ++s)
+      for (int i = 0; i < 3000; ++i) out << "s" << s << ",g" << s << ",a" << i << "," << (i + s) % 7 << "\n";
+  }
+  const std::vector<std::string> many = {"analyze",  "posthoc", "--csv",     (dir / "many.csv").string(),
+                                         "--dv",     "y",       "--subject", "subj",
+                                         "--within", "A",       "--effect",  "A"};
+  const auto many_levels = run_cli(many);
+  CHECK(many_levels.exit_code == 2);
+  CHECK(many_levels.err.find("many.csv: A: factor has 3000 levels") != std::string::npos);
+  auto raised = many;
+  raised.insert(raised.end(), {"--max-levels", "5000", "--max-cells", "5000"});
+  const auto many_pairs = run_cli(raised);
+  INFO(many_pairs.err);
+  CHECK(many_pairs.exit_code == 2);
+  CHECK(many_pairs.err.find("many.csv: A: post-hoc family of 4498500 comparisons") != std::string::npos);
+  {
+    std::ofstream out((dir / "groups.csv").string());
+    out << "subj,G,A,y\n";
+    for (int s = 0; s < 3000; ++s)
+      for (int a = 0; a < 2; ++a)
+        out << "s" << s << ",g" << s << ",a" << a << "," << (s * 7 + a * 3) % 11 << "\n";
+  }
+  const auto group_pairs = run_cli({"analyze",      "posthoc", "--csv",       (dir / "groups.csv").string(),
+                                    "--dv",         "y",       "--subject",   "subj",
+                                    "--within",     "A",       "--between",   "G",
+                                    "--effect",     "G",       "--error",     "separate",
+                                    "--max-levels", "5000",    "--max-cells", "5000"});
+  INFO(group_pairs.err);
+  CHECK(group_pairs.exit_code == 2);
+  CHECK(group_pairs.err.find("groups.csv: G: post-hoc family of 4498500 comparisons") != std::string::npos);
+
   // A balanced 3 x 60 x 60 design: within --max-levels, past --max-cells; 60 levels make 1770 pairs.
   {
     std::ofstream out((dir / "wide.csv").string());
