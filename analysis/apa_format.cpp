@@ -104,9 +104,17 @@ std::string clmm_markdown_table(const ClmmResult& result) {
   for (const auto& f : result.fixed)
     s += "| " + f.name + " | " + fixed(f.estimate, 2) + " | " + fixed(f.se, 2) + " | " + fixed(f.z, 2) +
          " | " + apa_p(f.p) + " | " + significance_stars(f.p) + " |\n";
-  s += "\nRandom intercept SD (" + result.group + ") = " + fixed(result.random_sd, 2) +
-       ", log-likelihood = " + fixed(result.loglik, 2) + ", " + std::to_string(result.observations) +
-       " answers, " + std::to_string(result.groups) + " " + result.group + "s" +
+  std::string sds, counts;
+  for (const auto& r : result.random) {
+    sds += (sds.empty() ? "" : ", ") + r.group + " " + fixed(r.sd, 2);
+    counts += ", " + std::to_string(r.levels) + " " + r.group + "s";
+  }
+  if (result.random.size() == 1)
+    sds = "Random intercept SD (" + result.random[0].group + ") = " + fixed(result.random[0].sd, 2);
+  else
+    sds = "Random intercept SDs: " + sds;
+  s += "\n" + sds + ", log-likelihood = " + fixed(result.loglik, 2) + ", " +
+       std::to_string(result.observations) + " answers" + counts +
        (result.converged ? "" : " (the optimiser did NOT converge)") + ".\n";
   return s;
 }

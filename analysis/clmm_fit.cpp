@@ -1,6 +1,8 @@
 #include "analysis/clmm_fit.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
@@ -37,28 +39,38 @@ struct Link {
   }
 };
 
-struct Data {
-  Link link;
-  Eigen::MatrixXd x;                         ///< rows x fixed effects (no intercept)
-  std::vector<int> y;                        ///< response level 0..K-1
-  std::vector<size_t> group;                 ///< group of each row
-  std::vector<std::vector<size_t>> rows_of;  ///< rows of each group
-  int levels = 0;
-  mutable std::vector<double> modes;  ///< each group's last conditional mode: Newton's next start
+// One random-intercept term (1 | group): its levels and each row's level.
+struct InterceptTerm {
+  std::string group;
+  std::vector<std::string> levels;           ///< in order of first appearance
+  std::vector<size_t> code;                  ///< level of each row
+  std::vector<std::vector<size_t>> rows_of;  ///< rows of each level
+  size_t offset = 0;                         ///< first index of its effects in u
 };
 
-// Parameters in the natural space: thresholds (K-1), beta (p), log sd.
+struct Data {
+  Link link;
+  Eigen::MatrixXd x;   ///< rows x fixed effects (no intercept)
+  std::vector<int> y;  ///< response level 0..K-1
+  std::vector<InterceptTerm> terms;
+  size_t q = 0;  ///< random effects in all
+  int levels = 0;
+  mutable std::vector<double> modes;  ///< the last conditional modes: Newton's next start
+};
+
+// Parameters in the natural space: thresholds (K-1), beta (p), log sd of each random term.
 struct Params {
   std::vector<double> theta;
   Eigen::VectorXd beta;
-  double log_sd = 0;
+  std::vector<double> log_sd;
 };
 
 Params unpack_natural(const Data& d, const double* v) {
   Params p;
-  p.theta.assign(v, v + d.levels - 1);
-  p.beta = Eigen::Map<const Eigen::VectorXd>(v + d.levels - 1, d.x.cols());
-  p.log_sd = v[d.levels - 1 + d.x.cols()];
+  const auto k1 = static_cast<size_t>(d.levels - 1), np = static_cast<size_t>(d.x.cols());
+  p.theta.assign(v, v + k1);
+  p.beta = Eigen::Map<const Eigen::VectorXd>(v + k1, d.x.cols());
+  p.log_sd.assign(v + k1 + np, v + k1 + np + d.terms.size());
   return p;
 }
 
@@ -96,13 +108,14 @@ void row_terms(const Data& d, const Params& p, int y, double eta, double b, doub
 // curvature taken at that mode. Newton starts from the modes of the previous call (d.modes), which
 // changes the value by far less than rounding and saves most iterations in the optimiser's and the
 // Hessian's nearby evaluations.
-double laplace_loglik(const Data& d, const Params& p) {
+double laplace_loglik_nested(const Data& d, const Params& p) {
   const Eigen::VectorXd eta = d.x * p.beta;
-  const double sd = std::exp(p.log_sd);
+  const double sd = std::exp(p.log_sd[0]);
+  const auto& term = d.terms[0];
   double total = 0;
-  d.modes.resize(d.rows_of.size(), 0.0);
-  for (size_t g = 0; g < d.rows_of.size(); ++g) {
-    const auto& rows = d.rows_of[g];
+  d.modes.resize(d.q, 0.0);
+  for (size_t g = 0; g < term.rows_of.size(); ++g) {
+    const auto& rows = term.rows_of[g];
     double u = std::isfinite(d.modes[g]) ? d.modes[g] : 0.0;
     for (int it = 0; it < 50; ++it) {
       double grad = -u, h = -1.0;
@@ -132,9 +145,69 @@ double laplace_loglik(const Data& d, const Params& p) {
   return total;
 }
 
-// Optimiser space: theta_1, log(theta_k - theta_{k-1}), beta, log sd.
+// The same with several random-intercept terms (crossed, e.g. participants and stimuli): the joint
+// conditional mode of u = (u_1, ..., u_T) by Newton's method, each step solving the sparse system
+// (I + sum_r w_r z_r z_r') step = gradient (Eigen's SimplicialLDLT; z_r holds sd_t at each term's
+// level of row r, w_r = -d2 log P), the step bounded to 2 in every coordinate; then
+// log L = sum_r log P(y_r | eta_r + z_r'u) - |u|^2 / 2 - log det(I + sum_r w_r z_r z_r') / 2 at the mode.
+double laplace_loglik_crossed(const Data& d, const Params& p) {
+  const Eigen::VectorXd eta = d.x * p.beta;
+  std::vector<double> sd;
+  for (double l : p.log_sd) sd.push_back(std::exp(l));
+  d.modes.resize(d.q, 0.0);
+  Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(d.modes.data(), static_cast<Eigen::Index>(d.q));
+  if (!u.allFinite()) u.setZero();
+  const auto q = static_cast<Eigen::Index>(d.q);
+  auto index = [&](size_t t, size_t r) {
+    return static_cast<Eigen::Index>(d.terms[t].offset + d.terms[t].code[r]);
+  };
+  // At u: sum of log P, the gradient of the log posterior and the factor of its negative Hessian.
+  auto evaluate = [&](double& loglik, Eigen::VectorXd& grad,
+                      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& ldlt) {
+    loglik = 0;
+    grad = -u;
+    std::vector<Eigen::Triplet<double>> h;
+    for (Eigen::Index j = 0; j < q; ++j) h.emplace_back(j, j, 1.0);
+    for (size_t r = 0; r < d.y.size(); ++r) {
+      double b = 0;
+      for (size_t t = 0; t < d.terms.size(); ++t) b += sd[t] * u[index(t, r)];
+      double lp = 0, d1 = 0, d2 = 0;
+      row_terms(d, p, d.y[r], eta[static_cast<Eigen::Index>(r)], b, lp, d1, d2);
+      loglik += lp;
+      for (size_t t = 0; t < d.terms.size(); ++t) {
+        grad[index(t, r)] += sd[t] * d1;
+        for (size_t t2 = 0; t2 < d.terms.size(); ++t2)
+          h.emplace_back(index(t, r), index(t2, r), -sd[t] * sd[t2] * d2);
+      }
+    }
+    Eigen::SparseMatrix<double> a(q, q);
+    a.setFromTriplets(h.begin(), h.end());
+    ldlt.compute(a);
+    return ldlt.info() == Eigen::Success;
+  };
+  double loglik = 0;
+  Eigen::VectorXd grad;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  for (int it = 0; it < 50; ++it) {
+    if (!evaluate(loglik, grad, ldlt)) return -HUGE_VAL;
+    Eigen::VectorXd step = ldlt.solve(grad);
+    const double largest = step.cwiseAbs().maxCoeff();
+    if (largest > 2.0) step *= 2.0 / largest;
+    u += step;
+    if (largest < 1e-12) break;
+  }
+  if (!evaluate(loglik, grad, ldlt)) return -HUGE_VAL;
+  std::copy(u.data(), u.data() + q, d.modes.begin());
+  return loglik - 0.5 * u.squaredNorm() - 0.5 * ldlt.vectorD().array().log().sum();
+}
+
+double laplace_loglik(const Data& d, const Params& p) {
+  return d.terms.size() == 1 ? laplace_loglik_nested(d, p) : laplace_loglik_crossed(d, p);
+}
+
+// Optimiser space: theta_1, log(theta_k - theta_{k-1}), beta, log sd of each term.
 std::vector<double> to_natural(const Data& d, const double* v) {
-  std::vector<double> out(v, v + d.levels - 1 + d.x.cols() + 1);
+  std::vector<double> out(v, v + d.levels - 1 + d.x.cols() + static_cast<Eigen::Index>(d.terms.size()));
   for (int k = 1; k < d.levels - 1; ++k)
     out[static_cast<size_t>(k)] = out[static_cast<size_t>(k - 1)] + std::exp(v[k]);
   return out;
@@ -166,9 +239,20 @@ std::vector<std::string> response_levels(const CsvTable& table, size_t col) {
 Data build_data(const CsvTable& table, const LmmFormula& f, const std::string& link,
                 const std::set<std::string>& categorical, std::vector<std::string>& names,
                 std::vector<std::string>& levels) {
-  if (f.random.size() != 1 || !f.random[0].terms.empty() || !f.random[0].intercept)
+  if (f.random.empty())
     throw InputError(SourceLocation{"--formula", 0, 0, ""},
-                     "clmm supports exactly one random-intercept term (1 | group)");
+                     "clmm needs a random-intercept term (1 | group); for no random effects use an ordinal "
+                     "regression (clm)");
+  for (const auto& r : f.random)
+    if (!r.terms.empty() || !r.intercept)
+      throw InputError(SourceLocation{"--formula", 0, 0, ""},
+                       "clmm supports random-intercept terms (1 | group) only, not random slopes (group '" +
+                           r.group + "')");
+  for (size_t i = 0; i < f.random.size(); ++i)
+    for (size_t j = i + 1; j < f.random.size(); ++j)
+      if (f.random[i].group == f.random[j].group)
+        throw InputError(SourceLocation{"--formula", 0, 0, ""},
+                         "grouping factor '" + f.random[i].group + "' has two random-intercept terms");
   Data d;
   d.link.logit = link == "logit";
   const size_t ycol = table.column(f.response);
@@ -193,20 +277,18 @@ Data build_data(const CsvTable& table, const LmmFormula& f, const std::string& l
     throw InputError(table.source +
                      ": the fixed-effects model matrix is rank deficient (a level combination is "
                      "missing or two predictors are collinear)");
-  const size_t gcol = table.column(f.random[0].group);
-  std::map<std::string, size_t> index;
-  for (size_t r = 0; r < table.rows.size(); ++r) {
-    const auto& g = table.cell(r, gcol);
-    if (g.empty())
-      throw InputError(SourceLocation{table.source, table.line_numbers[r], 0, f.random[0].group},
-                       "empty cell");
-    const size_t k = index.emplace(g, index.size()).first->second;
-    if (k == d.rows_of.size()) d.rows_of.emplace_back();
-    d.rows_of[k].push_back(r);
-    d.group.push_back(k);
+  for (const auto& random : f.random) {
+    InterceptTerm term;
+    term.group = random.group;
+    term.offset = d.q;
+    term.code = grouping_codes(table, random.group, term.levels);
+    term.rows_of.resize(term.levels.size());
+    for (size_t r = 0; r < term.code.size(); ++r) term.rows_of[term.code[r]].push_back(r);
+    if (term.rows_of.size() < 2)
+      throw InputError(table.source + ": grouping factor '" + random.group + "' has a single level");
+    d.q += term.rows_of.size();
+    d.terms.push_back(std::move(term));
   }
-  if (d.rows_of.size() < 2)
-    throw InputError(table.source + ": grouping factor '" + f.random[0].group + "' has a single level");
   return d;
 }
 
@@ -254,7 +336,8 @@ ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std
   const Data d = build_data(table, f, link, categorical, names, levels);
   const size_t k1 = static_cast<size_t>(d.levels - 1), p = static_cast<size_t>(d.x.cols());
   // Start: thresholds at the link quantiles of the cumulative proportions, beta = 0, sd = 1.
-  std::vector<double> v(k1 + p + 1, 0.0);
+  const size_t nt = d.terms.size();
+  std::vector<double> v(k1 + p + nt, 0.0);
   std::vector<double> counts(static_cast<size_t>(d.levels), 0.0);
   for (int y : d.y) counts[static_cast<size_t>(y)] += 1;
   double cum = 0, prev = 0;
@@ -270,20 +353,22 @@ ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std
   const double best = opt.value;
   ClmmResult out;
   out.link = link;
-  out.group = f.random[0].group;
   out.observations = d.y.size();
-  out.groups = d.rows_of.size();
   out.converged = opt.converged();
   if (!out.converged)
     out.warnings.push_back("the optimiser did not converge (NLopt status " + std::to_string(opt.status) +
                            ")");
   const auto natural = to_natural(d, v.data());
   out.loglik = -best;
-  out.random_sd = std::exp(natural.back());
+  for (size_t t = 0; t < nt; ++t) {
+    out.random.push_back({d.terms[t].group, std::exp(natural[k1 + p + t]), d.terms[t].rows_of.size()});
+    if (out.random.back().sd < 1e-4)
+      out.warnings.push_back("the random-effect SD of '" + d.terms[t].group + "' is (near) zero");
+  }
   const Eigen::MatrixXd info = information(d, natural);
   const Eigen::MatrixXd cov = info.inverse();
   const boost::math::normal_distribution<double> z01;
-  for (size_t i = 0; i + 1 < natural.size(); ++i) {
+  for (size_t i = 0; i < k1 + p; ++i) {
     ClmmCoefficient c;
     c.estimate = natural[i];
     c.se = std::sqrt(cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)));
@@ -297,7 +382,6 @@ ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std
       out.fixed.push_back(c);
     }
   }
-  if (out.random_sd < 1e-4) out.warnings.push_back("the random-effect SD is (near) zero");
   return out;
 }
 
@@ -309,9 +393,11 @@ nlohmann::json clmm_to_json(const ClmmResult& r) {
   for (const auto& f : r.fixed)
     fixed.push_back(
         {{"term", f.name}, {"estimate", f.estimate}, {"se", num(f.se)}, {"z", num(f.z)}, {"p", num(f.p)}});
+  nlohmann::json random = nlohmann::json::array();
+  for (const auto& g : r.random) random.push_back({{"group", g.group}, {"sd", g.sd}});
   return {{"thresholds", thresholds},
           {"fixed", fixed},
-          {"random", nlohmann::json::array({{{"group", r.group}, {"sd", r.random_sd}}})},
+          {"random", random},
           {"loglik", r.loglik},
           {"link", r.link},
           {"converged", r.converged},

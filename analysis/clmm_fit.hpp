@@ -5,9 +5,9 @@
 //   P(Y_i <= k | b) = F(theta_k - x_i' beta - b_g(i)),   b_g ~ N(0, sd_g^2),   F logistic or normal,
 // flexible thresholds theta_1 < ... < theta_{K-1} (named "1|2", ...), fixed effects without an
 // intercept (R's coding, as clmm drops the intercept column), one or more random-intercept terms
-// (1 | g) for distinct grouping factors, each group's effect integrated out by the Laplace
-// approximation (clmm's default nAGQ = 1). With several terms they must be nested in no way that
-// couples groups: crowdlab supports exactly one random-intercept term (the common design: participant).
+// (1 | g) for distinct grouping factors (several give crossed effects, e.g. participants and stimuli),
+// the random effects integrated out by the Laplace approximation (clmm's default nAGQ = 1): per group
+// in closed form for one term, jointly through a sparse Cholesky factor for several.
 // The marginal log-likelihood is maximised by NLopt's BOBYQA over (theta_1, log increments of the
 // thresholds, beta, log sd); standard errors come from the inverse of the negative Hessian of the
 // Laplace log-likelihood in (theta, beta, log sd), by central differences, the quantity clmm's Hess =
@@ -27,20 +27,25 @@ struct ClmmCoefficient {
   double estimate = 0, se = 0, z = 0, p = 0;
 };
 
+struct ClmmRandomIntercept {
+  std::string group;
+  double sd = 0;
+  size_t levels = 0;
+};
+
 struct ClmmResult {
   std::string link;
   std::vector<ClmmCoefficient> thresholds, fixed;
-  std::string group;
-  double random_sd = 0;
+  std::vector<ClmmRandomIntercept> random;  ///< one per (1 | group) term, in formula order
   double loglik = 0;
   bool converged = false;
-  size_t observations = 0, groups = 0;
+  size_t observations = 0;
   std::vector<std::string> warnings;
 };
 
 /// `link`: "logit" or "probit". Throws InputError (exit 2) for formula errors, missing columns, empty or
-/// non-finite cells, fewer than 3 response levels, a grouping factor with one level, more than one
-/// random term or a random slope, or a rank-deficient fixed-effects matrix.
+/// non-finite cells, fewer than 3 response levels, a grouping factor with one level, no random term, a
+/// random slope, a grouping factor in two terms, or a rank-deficient fixed-effects matrix.
 /// Columns named in `categorical` are factors even when their cells are numbers (R's factor(x)).
 ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std::string& link = "logit",
                     const std::set<std::string>& categorical = {});

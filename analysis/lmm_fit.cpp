@@ -142,15 +142,9 @@ RandomBlock random_block(const CsvTable& table, const RandomTerm& term, const Mo
   b.group = term.group;
   b.names = zk.names;
   b.q = zk.x.cols();
-  const size_t col = table.column(term.group);
-  std::map<std::string, size_t> index;
-  for (size_t r = 0; r < table.rows.size(); ++r) {
-    const auto& cell = table.cell(r, col);
-    if (cell.empty())
-      throw InputError(SourceLocation{table.source, table.line_numbers[r], 0, term.group}, "empty cell");
-    b.codes.push_back(index.emplace(cell, index.size()).first->second);
-  }
-  b.levels = static_cast<Eigen::Index>(index.size());
+  std::vector<std::string> levels;
+  b.codes = grouping_codes(table, term.group, levels);
+  b.levels = static_cast<Eigen::Index>(levels.size());
   const auto n = static_cast<Eigen::Index>(table.rows.size());
   if (b.levels < 2)
     refuse(table, "grouping factor '" + term.group + "' has a single level; a random effect needs >= 2");

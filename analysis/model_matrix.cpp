@@ -90,6 +90,23 @@ std::map<std::string, ModelVariable> read_model_variables(const CsvTable& table,
   return out;
 }
 
+std::vector<size_t> grouping_codes(const CsvTable& table, const std::string& column,
+                                   std::vector<std::string>& levels) {
+  const size_t col = table.column(column);
+  std::map<std::string, size_t> index;
+  std::vector<size_t> codes;
+  levels.clear();
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    const auto& cell = table.cell(r, col);
+    if (cell.empty())
+      throw InputError(SourceLocation{table.source, table.line_numbers[r], 0, column}, "empty cell");
+    const auto [it, added] = index.emplace(cell, index.size());
+    if (added) levels.push_back(cell);
+    codes.push_back(it->second);
+  }
+  return codes;
+}
+
 ModelMatrix model_matrix(const std::vector<ModelTerm>& terms, bool intercept,
                          const std::map<std::string, ModelVariable>& variables, size_t rows) {
   std::vector<std::vector<double>> columns;

@@ -32,6 +32,12 @@ std::map<std::string, ModelVariable> read_model_variables(const CsvTable& table,
                                                           const std::vector<std::string>& names,
                                                           const std::set<std::string>& categorical = {});
 
+/// A grouping factor (the `g` of a random term `(... | g)`): each row's level index, levels numbered in
+/// order of first appearance (their names in `levels`). Throws InputError (file:line, column) for an
+/// empty cell.
+std::vector<size_t> grouping_codes(const CsvTable& table, const std::string& column,
+                                   std::vector<std::string>& levels);
+
 struct ModelMatrix {
   Eigen::MatrixXd x;
   std::vector<std::string> names;  ///< R's column names, "(Intercept)" first when present

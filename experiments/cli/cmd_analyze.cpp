@@ -134,15 +134,17 @@ struct ClmmOptions {
 };
 
 void print_clmm(const ClmmResult& r) {
-  std::printf("Cumulative link mixed model (%s link, Laplace), %zu observations, %zu groups\n\nThresholds:\n",
-              r.link.c_str(), r.observations, r.groups);
+  std::printf("Cumulative link mixed model (%s link, Laplace), %zu observations\n\nThresholds:\n",
+              r.link.c_str(), r.observations);
   for (const auto& t : r.thresholds)
     std::printf("  %-12s %10.5f  SE %8.5f\n", t.name.c_str(), t.estimate, t.se);
   std::printf("\nFixed effects:\n");
   for (const auto& f : r.fixed)
     std::printf("  %-28s %10.5f  SE %8.5f  z %8.3f  p %.4g\n", f.name.c_str(), f.estimate, f.se, f.z, f.p);
-  std::printf("\nRandom intercept SD (%s): %.5f\nlog-likelihood %.6f%s\n", r.group.c_str(), r.random_sd,
-              r.loglik, r.converged ? "" : " (NOT converged)");
+  std::printf("\n");
+  for (const auto& g : r.random)
+    std::printf("Random intercept SD (%s, %zu levels): %.5f\n", g.group.c_str(), g.levels, g.sd);
+  std::printf("log-likelihood %.6f%s\n", r.loglik, r.converged ? "" : " (NOT converged)");
   for (const auto& w : r.warnings) std::printf("WARNING: %s\n", w.c_str());
 }
 
@@ -375,9 +377,12 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   auto* clmm = analyze->add_subcommand(
       "clmm",
       "Cumulative link mixed model for ordinal (Likert) answers as ordinal::clmm: flexible thresholds, "
-      "a random intercept, Laplace approximation (see analysis/clmm_fit.hpp)");
+      "random intercepts (one grouping factor or crossed ones), Laplace approximation (see "
+      "analysis/clmm_fit.hpp)");
   clmm->add_option("--csv", clmm_opt->csv, "Tidy CSV: one row per answer")->required();
-  clmm->add_option("--formula", clmm_opt->formula, "e.g. \"R ~ a * b + (1 | S)\": one random-intercept term")
+  clmm->add_option(
+          "--formula", clmm_opt->formula,
+          "e.g. \"R ~ a * b + (1 | S)\" or \"R ~ a + (1 | S) + (1 | stimulus)\": random-intercept terms")
       ->required();
   clmm->add_option("--link", clmm_opt->link, "logit or probit")
       ->check(CLI::IsMember({"logit", "probit"}))

@@ -1,4 +1,5 @@
-// Cumulative link mixed models against ordinal::clmm (scripts/make_reference_clmm.R,
+// Cumulative link mixed models against ordinal::clmm (scripts/make_reference_clmm.R, one random term
+// and crossed participant and stimulus terms,
 // tests/data/analysis/ref_clmm.csv): thresholds, fixed effects and the random SD to 1e-4, the Laplace
 // log-likelihood to 1e-6 absolute; standard errors to 1e-4 against the Hessian of the exact Laplace
 // log-likelihood computed in R (`laplace_se`), and to 5e-3 against clmm's printed SEs, whose
@@ -24,23 +25,34 @@ TEST_CASE("analysis: clmm agrees with ordinal::clmm (logit and probit)", "[analy
   const auto t = read_csv(analysis_data("ref_clmm.csv"));
   std::map<std::tuple<std::string, std::string, std::string>, double> ref;
   for (size_t r = 0; r < t.rows.size(); ++r) ref[{t.cell(r, 0), t.cell(r, 1), t.cell(r, 2)}] = t.number(r, 3);
-  const auto data = read_csv(analysis_data("likert_sim.csv"));
   struct Model {
     std::string name, link, formula;
     std::set<std::string> categorical;
     size_t fixed;
+    std::string data = "likert_sim.csv";
   };
   // "categorical": the numeric column rep as a factor, as R's factor(rep) and `analyze report`.
   const std::vector<Model> models = {
       {"logit", "logit", "rating ~ method * density + (1 | participant)", {}, 5},
       {"probit", "probit", "rating ~ method + density + (1 | participant)", {}, 3},
-      {"categorical", "logit", "rating ~ method + rep + (1 | participant)", {"rep"}, 3}};
-  for (const auto& [name, link, formula, categorical, fixed_terms] : models) {
+      {"categorical", "logit", "rating ~ method + rep + (1 | participant)", {"rep"}, 3},
+      // Crossed random intercepts: 30 participants x 12 stimuli (the joint Laplace approximation).
+      {"crossed",
+       "logit",
+       "rating ~ method + (1 | participant) + (1 | stimulus)",
+       {},
+       1,
+       "likert_crossed.csv"}};
+  for (const auto& [name, link, formula, categorical, fixed_terms, file] : models) {
     INFO(name << ": " << formula);
-    const auto fit = fit_clmm(data, formula, link, categorical);
+    const auto fit = fit_clmm(read_csv(analysis_data(file)), formula, link, categorical);
     CHECK(fit.converged);
     CHECK(fit.loglik == Approx(ref.at({name, "loglik", ""})).margin(1e-6));
-    CHECK(fit.random_sd == Approx(ref.at({name, "sd", "participant"})).epsilon(1e-4));
+    REQUIRE(fit.random.size() == (name == "crossed" ? 2u : 1u));
+    for (const auto& g : fit.random) {
+      INFO(g.group);
+      CHECK(g.sd == Approx(ref.at({name, "sd", g.group})).epsilon(1e-4));
+    }
     REQUIRE(fit.thresholds.size() == 4);
     for (const auto& c : fit.thresholds) {
       INFO(c.name);
@@ -81,6 +93,11 @@ TEST_CASE("analysis: analyze clmm --json and bad input (exit 2)", "[analysis][cl
   CHECK(two.err.find("at least 3") != std::string::npos);
   const auto slope = clmm("slope.csv", "s,a,r\n1,x,1\n1,z,2\n2,x,3\n2,z,1\n", "r ~ a + (1 + a | s)");
   CHECK(slope.exit_code == 2);
+  const auto twice = clmm("twice.csv", "s,a,r\n1,x,1\n1,z,2\n2,x,3\n2,z,1\n", "r ~ a + (1 | s) + (1 | s)");
+  CHECK(twice.exit_code == 2);
+  CHECK(twice.err.find("two random-intercept terms") != std::string::npos);
+  const auto none = clmm("none.csv", "s,a,r\n1,x,1\n1,z,2\n2,x,3\n2,z,1\n", "r ~ a");
+  CHECK(none.exit_code == 2);
   const auto nan = clmm("nan.csv", "s,a,r\n1,x,1\n1,,2\n2,x,3\n2,z,1\n", "r ~ a + (1 | s)");
   CHECK(nan.exit_code == 2);
   CHECK(nan.err.find("nan.csv:3") != std::string::npos);
