@@ -21,7 +21,8 @@ using namespace crowdlab::analysis;
 using crowdlab::test::analysis_data;
 using crowdlab::test::run_cli;
 
-TEST_CASE("analysis: clmm agrees with ordinal::clmm (logit and probit)", "[analysis]") {
+TEST_CASE("analysis: clmm agrees with ordinal::clmm (logit, probit, a factor column, crossed intercepts)",
+          "[analysis]") {
   const auto t = read_csv(analysis_data("ref_clmm.csv"));
   std::map<std::tuple<std::string, std::string, std::string>, double> ref;
   for (size_t r = 0; r < t.rows.size(); ++r) ref[{t.cell(r, 0), t.cell(r, 1), t.cell(r, 2)}] = t.number(r, 3);
