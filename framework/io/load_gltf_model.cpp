@@ -21,18 +21,22 @@ std::string read_bytes(const std::filesystem::path& path) {
   return bytes.str();
 }
 
-/// Where the JSON text is not JSON: "syntax error at byte N (line L, column C): ..." from nlohmann's
-/// parser (tinygltf's own message carries no position), or "" when it parses. `offset` is where the
-/// JSON starts in the file, so the byte given is the file's.
+/// Where the JSON text is not JSON, from nlohmann's parser (tinygltf's own message carries no position,
+/// or one within the JSON chunk only): "the JSON is not valid at byte N of the file (line L, column C
+/// of the JSON): <what>", or "" when it parses. `offset` is where the JSON starts in the file.
 std::string json_syntax_error(std::string_view json, std::size_t offset) {
   try {
     const nlohmann::json parsed = nlohmann::json::parse(json.begin(), json.end());
     (void)parsed;
   } catch (const nlohmann::json::parse_error& e) {
-    std::string what = e.what();  // "[json.exception.parse_error.101] parse error at line 1, column 5: ..."
-    if (const std::size_t colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
-    return "the JSON is not valid: byte " + std::to_string(offset + e.byte - (e.byte > 0 ? 1 : 0)) +
-           " of the file: " + what;
+    // what(): "[json.exception.parse_error.101] parse error at line 1, column 5: syntax error ..."
+    const std::string what = e.what();
+    const std::size_t at = what.find(" at line "), colon = what.find(": ", at == std::string::npos ? 0 : at);
+    const std::string line_column = at == std::string::npos || colon == std::string::npos
+                                        ? ""
+                                        : " (" + what.substr(at + 4, colon - at - 4) + " of the JSON)";
+    return "the JSON is not valid at byte " + std::to_string(offset + e.byte - (e.byte > 0 ? 1 : 0)) +
+           " of the file" + line_column + ": " + (colon == std::string::npos ? what : what.substr(colon + 2));
   }
   return "";
 }

@@ -256,3 +256,39 @@ TEST_CASE("mutated analysis CSVs through analyze anova end in exit 0 or 2 with a
       });
   c.report();
 }
+
+TEST_CASE("the fuzz harness reports a signal, a hang, memory over the cap and a silent exit 2", "[fuzz]") {
+  // Without this the campaigns above could pass by never seeing a failure.
+  const fs::path err = scratch_dir("fuzz_harness") / "err.txt";
+  const auto violation = [&](const std::function<int()>& body, double limit_s = 20.0) {
+    return run_limited(body, limit_s, err).violation();
+  };
+  CHECK_THAT(violation([] { return 0; }), Catch::Equals(""));
+  CHECK_THAT(violation([] {
+               std::fprintf(stderr, "crowdlab: error: f.yaml:1:1: bad\n");
+               return 2;
+             }),
+             Catch::Equals(""));
+  CHECK_THAT(violation([] { return 2; }), Catch::Contains("without an error message"));
+  CHECK_THAT(violation([] { return 1; }), Catch::Contains("exited with code 1"));
+  CHECK_THAT(violation([] {
+               raise(SIGSEGV);
+               return 0;
+             }),
+             Catch::Contains("signal 11"));
+  CHECK_THAT(violation(
+                 [] {
+                   pause();
+                   return 0;
+                 },
+                 0.5),
+             Catch::Contains("time limit"));
+  // Touching 1.5 GB: over the resident cap (in Release RLIMIT_AS may stop it first, as std::bad_alloc).
+  const std::string memory = violation([] {
+    std::vector<char> big(std::size_t{1536} << 20);
+    for (std::size_t i = 0; i < big.size(); i += 4096) big[i] = 1;
+    return big[4096] == 1 ? 0 : 3;
+  });
+  CHECK_THAT(memory, Catch::Contains("memory cap") || Catch::Contains("exited with code 1") ||
+                         Catch::Contains("signal"));
+}

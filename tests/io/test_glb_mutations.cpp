@@ -108,7 +108,9 @@ TEST_CASE("hand-mutated GLBs exit 2 from correct, metrics and export-csv, saying
   b[colon] = ';';
   write_bytes(dir / "json_syntax.glb", b);
   check_refused(dir / "json_syntax.glb",
-                {"cannot read glTF", "the JSON is not valid: byte " + std::to_string(colon) + " of the file",
+                {"cannot read glTF",
+                 "the JSON is not valid at byte " + std::to_string(colon) + " of the file (line 1, column " +
+                     std::to_string(colon - 20 + 1) + " of the JSON)",
                  "syntax error", "expected ':'"});
 
   // Inside well-formed JSON: a bufferView beyond its buffer, and an accessor longer than its bufferView.
