@@ -23,6 +23,7 @@
 #include "framework/io/write_crowd_glb.hpp"
 #include "tests/fuzz/limited_run.hpp"
 #include "tests/fuzz/mutator.hpp"
+#include "tests/support/glb_bytes.hpp"
 
 using namespace crowdlab;
 using namespace crowdlab::test;
@@ -136,24 +137,6 @@ std::string repeat(const std::string& s, int n) {
   return out;
 }
 
-std::uint32_t u32_at(const std::string& b, std::size_t at) {
-  std::uint32_t v = 0;
-  std::memcpy(&v, b.data() + at, 4);
-  return v;
-}
-
-/// A GLB rebuilt around a new JSON text (padded with spaces), keeping the binary chunk: mutations of the
-/// JSON then reach the glTF reader instead of stopping at the container's lengths.
-std::string with_json(const std::string& glb, std::string json) {
-  while (json.size() % 4) json.push_back(' ');
-  const std::string bin = glb.substr(20 + u32_at(glb, 12));
-  std::string out = glb.substr(0, 20);
-  const auto put = [&](std::size_t at, std::uint32_t v) { std::memcpy(out.data() + at, &v, 4); };
-  put(8, static_cast<std::uint32_t>(20 + json.size() + bin.size()));
-  put(12, static_cast<std::uint32_t>(json.size()));
-  return out + json + bin;
-}
-
 }  // namespace
 
 TEST_CASE("mutated specs through validate end in exit 0 or 2 with a message", "[fuzz]") {
@@ -206,7 +189,7 @@ TEST_CASE("mutated crowd GLBs through correct, metrics, export-csv and the motio
   write_crowd_glb(crowd, c.input_path(-1).string());
   const std::string valid = slurp(c.input_path(-1));
   REQUIRE(valid.size() > 20);
-  const std::string json = valid.substr(20, u32_at(valid, 12));
+  const std::string json = glb_json(valid);
   const std::string deep = std::string(30000, '[') + std::string(30000, ']') + ",";
   c.run(
       fuzz_cases(kSanitized ? 25 : 50),
@@ -214,7 +197,7 @@ TEST_CASE("mutated crowd GLBs through correct, metrics, export-csv and the motio
         // Half the cases mutate the container's bytes, half the JSON inside a well-formed container.
         if (m.below(2) == 0) return m.mutate(valid, deep, mutations);
         std::string inner;
-        const std::string bytes = with_json(valid, m.mutate(json, deep, inner));
+        const std::string bytes = glb_with_json(valid, m.mutate(json, deep, inner));
         mutations = "json:" + inner;
         return bytes;
       },

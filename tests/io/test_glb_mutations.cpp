@@ -4,12 +4,14 @@
 #include <tiny_gltf.h>
 
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 
 #include "framework/correction/swaying_crowd_fixture.hpp"
 #include "framework/io/write_crowd_glb.hpp"
+#include "tests/support/glb_bytes.hpp"
 #include "tests/support/run_cli.hpp"
 
 using namespace crowdlab;
@@ -17,16 +19,6 @@ using namespace crowdlab::test;
 namespace fs = std::filesystem;
 
 namespace {
-
-void put_u32(std::string& bytes, std::size_t at, std::uint32_t v) {
-  std::memcpy(bytes.data() + at, &v, 4);
-}
-
-std::uint32_t u32_at(const std::string& bytes, std::size_t at) {
-  std::uint32_t v = 0;
-  std::memcpy(&v, bytes.data() + at, 4);
-  return v;
-}
 
 void write_bytes(const fs::path& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
@@ -69,7 +61,7 @@ TEST_CASE("hand-mutated GLBs exit 2 from correct, metrics and export-csv, saying
   const fs::path good = dir / "good.glb";
   write_crowd_glb(make_swaying_crowd_fixture(o), good.string());
   const std::string bytes = slurp(good);
-  const std::uint32_t json_length = u32_at(bytes, 12);
+  const std::uint32_t json_length = glb_u32(bytes, 12);
   REQUIRE(bytes.size() > 20 + json_length + 8);
 
   std::string b = bytes;
@@ -79,7 +71,7 @@ TEST_CASE("hand-mutated GLBs exit 2 from correct, metrics and export-csv, saying
                 {"cannot read glTF: not a valid GLB file", "bytes 0-3 are 'gLTF', not the magic 'glTF'"});
 
   b = bytes;
-  put_u32(b, 4, 1);
+  put_glb_u32(b, 4, 1);
   write_bytes(dir / "version.glb", b);
   check_refused(dir / "version.glb", {"container version 1, expected 2"});
 
@@ -89,7 +81,7 @@ TEST_CASE("hand-mutated GLBs exit 2 from correct, metrics and export-csv, saying
                  "the file has " + std::to_string(bytes.size() - 100) + " (truncated?)"});
 
   b = bytes;
-  put_u32(b, 12, 0x7FFFFFF0u);
+  put_glb_u32(b, 12, 0x7FFFFFF0u);
   write_bytes(dir / "json_length.glb", b);
   check_refused(dir / "json_length.glb",
                 {"the JSON chunk (byte 12) gives a length of 2147483632 bytes", "past the total length"});
@@ -122,4 +114,46 @@ TEST_CASE("hand-mutated GLBs exit 2 from correct, metrics and export-csv, saying
       if (a.bufferView == 0) a.count = 100000000;
   });
   check_refused(count, {"accessor", "100000000 elements do not fit in bufferView 0"});
+}
+
+TEST_CASE("bodies no human has exit 2 from correct and metrics at once, not after minutes of voxelising") {
+  // The second joint's (left_hip's) offset or the first capsule's radius is changed. Issue 21: joint offsets
+  // of 65535 m or 1e300 m, or a capsule radius of 1e6 m, kept `correct` in union_fraction() (a 2.5 cm grid
+  // over the body's box) for over 300 s; at 1e300 its x += 0.025 never advanced.
+  const fs::path dir = scratch_dir("glb_implausible_bodies");
+  SwayingCrowdOptions o;
+  o.characters = 2;
+  o.frames = 3;
+  const fs::path good = dir / "good.glb";
+  write_crowd_glb(make_swaying_crowd_fixture(o), good.string());
+  const std::string bytes = slurp(good), json = glb_json(bytes);
+  // Replaces the first number after `key` (after `anchor`) in the JSON by `value`.
+  const auto with_number = [&](const std::string& anchor, const std::string& key, const std::string& value) {
+    std::string j = json;
+    const std::size_t start = j.find_first_of("-0123456789", j.find(key, j.find(anchor)) + key.size());
+    j.replace(start, j.find_first_of(",]}", start) - start, value);
+    return glb_with_json(bytes, j);
+  };
+  const struct {
+    const char* name;
+    std::string bytes;
+    const char* expected;
+  } cases[] = {
+      {"offset_65535", with_number("\"joint_offsets_m\"", "],[", "65535"), "more than the limit of 4 m"},
+      {"offset_1e300", with_number("\"joint_offsets_m\"", "],[", "1e300"), "more than the limit of 4 m"},
+      {"radius_1e6", with_number("\"capsules\"", "\"radius_m\":", "1e6"), "more than the limit of 1 m"}};
+  for (const auto& c : cases) {
+    const fs::path file = dir / (std::string(c.name) + ".glb");
+    write_bytes(file, c.bytes);
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"correct", file.string(), "--out", (dir / "out.glb").string()},
+          std::vector<std::string>{"metrics", file.string()}}) {
+      const auto start = std::chrono::steady_clock::now();
+      const CliResult r = run_cli(args);
+      INFO(args[0] << " " << c.name << ": " << r.err);
+      CHECK(r.exit_code == 2);
+      CHECK_THAT(r.err, Catch::Contains(file.string()) && Catch::Contains(c.expected));
+      CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(30));
+    }
+  }
 }
