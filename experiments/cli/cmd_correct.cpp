@@ -8,6 +8,7 @@
 #include "experiments/cli/command_registry.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/correction/correct_crowd.hpp"
+#include "framework/correction/environment_point_tree.hpp"
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/io/write_crowd_glb.hpp"
 
@@ -39,8 +40,14 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                   "How much farther than its input a foot joint may move per step (m, 0 = off)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  cmd->add_option("--max-environment-points", opt->params.max_environment_points,
+                  "Refuse an environment that samples into more points than this (about 40 bytes each)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->callback([opt] {
     const CrowdAnimation in = read_crowd_glb(opt->in_path);
+    check_environment_sampling(in.environment, opt->params.environment_sample_spacing_m,
+                               opt->params.max_environment_points, opt->in_path);
     Progress progress("correcting " + opt->in_path, static_cast<std::size_t>(in.frame_count()));
     CorrectionReport report;
     const CrowdAnimation out = correct_crowd(in, opt->params, &progress, &report);

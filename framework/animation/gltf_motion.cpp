@@ -4,13 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <map>
 #include <set>
 
 #include "framework/animation/rotation_helpers.hpp"
 #include "framework/core/error.hpp"
 #include "framework/io/gltf_accessor_reader.hpp"
+#include "framework/io/gltf_node_parents.hpp"
 #include "framework/io/load_gltf_model.hpp"
 
 namespace crowdlab {
@@ -101,14 +101,8 @@ BvhMotion import_gltf_animation(const std::filesystem::path& path, int animation
   const tinygltf::Animation& anim = m.animations[static_cast<size_t>(animation_index)];
   const std::string anim_where = "animations[" + std::to_string(animation_index) + "]";
 
-  // Parents of all nodes.
-  std::vector<int> parent(m.nodes.size(), -1);
-  for (size_t i = 0; i < m.nodes.size(); ++i)
-    for (int c : m.nodes[i].children) {
-      if (c < 0 || c >= static_cast<int>(m.nodes.size()))
-        fail(path, "nodes[" + std::to_string(i) + "]", "child index out of range");
-      parent[static_cast<size_t>(c)] = static_cast<int>(i);
-    }
+  // Parents of all nodes, checked to form trees (the walks below go up and down them).
+  const std::vector<int> parent = gltf_node_parents(m, path.string());
 
   // Joint set.
   std::set<int> joint_set;
@@ -121,30 +115,43 @@ BvhMotion import_gltf_animation(const std::filesystem::path& path, int animation
       joint_set.insert(j);
     }
   } else {
-    for (const auto& ch : anim.channels)
-      for (int n = ch.target_node; n >= 0; n = parent[static_cast<size_t>(n)]) joint_set.insert(n);
+    for (size_t c = 0; c < anim.channels.size(); ++c) {
+      const int target = anim.channels[c].target_node;
+      if (target < 0 || target >= static_cast<int>(m.nodes.size()))
+        fail(path, anim_where + ".channels[" + std::to_string(c) + "]",
+             "target node " + std::to_string(target) + " does not exist (" + std::to_string(m.nodes.size()) +
+                 " nodes)");
+      for (int n = target; n >= 0; n = parent[static_cast<size_t>(n)]) joint_set.insert(n);
+    }
   }
   if (joint_set.empty()) fail(path, anim_where, "no skeleton joints");
 
-  // Parents-first order (DFS from the skeleton roots).
+  // Parents-first order (depth-first from the skeleton roots, children in file order), with an explicit
+  // stack: a parent->child chain of any length must not recurse on the call stack.
   BvhMotion out;
   out.source = path.string();
   std::map<int, int> index_of;
   std::vector<int> node_of;
-  std::function<void(int, int)> visit = [&](int node, int parent_joint) {
-    const int idx = static_cast<int>(out.joints.size());
-    index_of[node] = idx;
-    node_of.push_back(node);
-    BvhJoint j;
-    j.name = m.nodes[static_cast<size_t>(node)].name.empty() ? "node" + std::to_string(node)
-                                                             : m.nodes[static_cast<size_t>(node)].name;
-    j.parent = parent_joint;
-    out.joints.push_back(j);
-    for (int c : m.nodes[static_cast<size_t>(node)].children)
-      if (joint_set.count(c)) visit(c, idx);
+  const auto visit = [&](int root) {
+    std::vector<std::pair<int, int>> pending{{root, -1}};  // (node, its parent's joint index)
+    while (!pending.empty()) {
+      const auto [node, parent_joint] = pending.back();
+      pending.pop_back();
+      const int idx = static_cast<int>(out.joints.size());
+      index_of[node] = idx;
+      node_of.push_back(node);
+      BvhJoint j;
+      j.name = m.nodes[static_cast<size_t>(node)].name.empty() ? "node" + std::to_string(node)
+                                                               : m.nodes[static_cast<size_t>(node)].name;
+      j.parent = parent_joint;
+      out.joints.push_back(j);
+      const std::vector<int>& children = m.nodes[static_cast<size_t>(node)].children;
+      for (auto c = children.rbegin(); c != children.rend(); ++c)
+        if (joint_set.count(*c)) pending.emplace_back(*c, idx);
+    }
   };
   for (int n : joint_set)
-    if (parent[static_cast<size_t>(n)] < 0 || !joint_set.count(parent[static_cast<size_t>(n)])) visit(n, -1);
+    if (parent[static_cast<size_t>(n)] < 0 || !joint_set.count(parent[static_cast<size_t>(n)])) visit(n);
 
   // Bake non-joint ancestors into the roots: world transform of the root's parent chain.
   std::vector<Trs> base(out.joints.size());  // rest local TRS per joint (roots include ancestors)
@@ -216,7 +223,14 @@ BvhMotion import_gltf_animation(const std::filesystem::path& path, int animation
   if (t0 > t1) fail(path, anim_where, "animation has no translation or rotation channel on the skeleton");
 
   out.frame_time_s = 1.0 / fps;
-  out.frame_count = static_cast<int>(std::floor((t1 - t0) * fps + 1e-9)) + 1;
+  const double frames = std::floor((t1 - t0) * fps + 1e-9) + 1;
+  if (frames * out.channel_count > kMaxGltfClipValues)
+    fail(path, anim_where,
+         "sampling its " + std::to_string(t1 - t0) + " s at " + std::to_string(fps) + " fps gives " +
+             std::to_string(frames) + " frames x " + std::to_string(out.channel_count) +
+             " channels, more than the limit of " + std::to_string(kMaxGltfClipValues) +
+             " values (kMaxGltfClipValues; key times not in seconds?)");
+  out.frame_count = static_cast<int>(frames);
   out.values.resize(static_cast<size_t>(out.frame_count) * static_cast<size_t>(out.channel_count));
   for (int f = 0; f < out.frame_count; ++f) {
     const double t = t0 + f / fps;

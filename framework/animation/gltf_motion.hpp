@@ -11,13 +11,19 @@
 // are ignored); LINEAR (slerp for rotations), STEP and CUBICSPLINE samplers (CUBICSPLINE keys are
 // interpolated linearly between their values, ignoring tangents: exact at the keys). Sampled at `fps`
 // from the earliest to the latest key time.
-// Errors (unreadable file, bad JSON, missing skin/animation, accessors of the wrong type or size)
-// throw InputError naming the file and the glTF element ("animations[0].channels[3]", "nodes[5]").
+// Errors (unreadable file, bad JSON, missing skin/animation, accessors of the wrong type or size, a node
+// hierarchy that is not a forest, a clip beyond kMaxGltfClipValues) throw InputError naming the file and the
+// glTF element ("animations[0].channels[3]", "nodes[5]").
 #include <filesystem>
 
 #include "framework/animation/bvh.hpp"
 
 namespace crowdlab {
+
+/// Most values (frames x 6 channels per joint) a clip may be sampled into: 20 million doubles, 160 MB,
+/// e.g. 100 joints over 18 minutes at 30 fps. Key times in milliseconds, or a fuzzed time of 1e7 s,
+/// would otherwise allocate without bound (issue 21).
+inline constexpr double kMaxGltfClipValues = 2e7;
 
 BvhMotion import_gltf_animation(const std::filesystem::path& path, int animation_index = 0,
                                 int skin_index = 0, double fps = 30.0);

@@ -34,6 +34,7 @@ void validate_corrector_params(const CorrectorParams& p) {
   check(p.ground_stiffness, "ground_stiffness", 0.0);
   check(p.environment_stiffness, "environment_stiffness", 0.0);
   check(p.environment_sample_spacing_m, "environment_sample_spacing_m", 1e-4);
+  check(p.max_environment_points, "max_environment_points", 0.0);
   check(p.body_density_kg_m3, "body_density_kg_m3", 1.0);
   check(p.gravity_mps2, "gravity_mps2", 0.0);
   check(p.cg_tolerance, "cg_tolerance", 1e-14);
@@ -179,7 +180,8 @@ CorrectorModel make_corrector_model(std::vector<BodyShape> shapes, const Correct
     validate_body_shape(shapes[c], "corrector: character " + std::to_string(c));
     model.bodies.push_back(make_body(std::move(shapes[c]), params));
   }
-  model.environment = EnvironmentPointTree(env, params.environment_sample_spacing_m);
+  model.environment =
+      EnvironmentPointTree(env, params.environment_sample_spacing_m, params.max_environment_points);
   return model;
 }
 

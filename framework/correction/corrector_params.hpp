@@ -118,6 +118,11 @@ struct CorrectorParams {
   double environment_stiffness = 3.0e4;
   /// Point spacing (m) used to sample static environment boxes and meshes (seed 000 §3.4).
   double environment_sample_spacing_m = 0.03;
+  /// Most environment sample points the correction may make; more is refused before sampling, with the
+  /// estimate (environment_point_tree.hpp). 10 million points take about 400 MB with their tree and
+  /// cover the faces of a 60 x 60 x 3 m box at 3 cm; a 1000 m wide box would have taken a billion
+  /// (issue 21: `correct` used 3.1 GB and ran out). `crowdlab correct --max-environment-points`.
+  double max_environment_points = 1e7;
 
   // ---- Inertia and gravity
   /// Whole-body density (kg/m^3). Adult whole-body density measured by hydrostatic weighing lies in

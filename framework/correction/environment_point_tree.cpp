@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "framework/core/error.hpp"
@@ -22,11 +23,63 @@ void sample_patch(const Vec3& origin, const Vec3& e1, const Vec3& e2, double spa
     }
 }
 
+// Grid points sample_patch visits for edges of these lengths (in double: a fuzzed 1e300 m box overflows
+// int). Non-finite geometry counts 0: the sampler refuses it with its own message.
+double patch_grid_points(double e1_m, double e2_m, double spacing) {
+  if (!std::isfinite(e1_m) || !std::isfinite(e2_m)) return 0.0;
+  return (std::max(1.0, std::ceil(e1_m / spacing)) + 1) * (std::max(1.0, std::ceil(e2_m / spacing)) + 1);
+}
+
+// A count or a size for messages: whole numbers below ten million in full, others to 4 digits.
+std::string number(double v) {
+  char s[32];
+  std::snprintf(s, sizeof s, v == std::floor(v) && std::abs(v) < 1e7 ? "%.0f" : "%.4g", v);
+  return s;
+}
+
 }  // namespace
 
-EnvironmentPointTree::EnvironmentPointTree(const Environment& env, double spacing_m) {
+void check_environment_sampling(const Environment& env, double spacing_m, double max_points,
+                                const std::string& context) {
   if (!(spacing_m > 0.0) || !std::isfinite(spacing_m))
-    throw InputError("environment sample spacing must be > 0, got " + std::to_string(spacing_m));
+    throw InputError(context + ": environment sample spacing must be > 0, got " + std::to_string(spacing_m));
+  double total = 0.0, largest = -1.0;
+  std::string largest_name;
+  for (size_t b = 0; b < env.boxes.size(); ++b) {
+    const Vec3 size = 2.0 * env.boxes[b].half_extents_m;
+    double points = 0.0;
+    for (int axis = 0; axis < 3; ++axis)
+      points += 2.0 * patch_grid_points(size[(axis + 1) % 3], size[(axis + 2) % 3], spacing_m);
+    total += points;
+    if (points > largest) {
+      largest = points;
+      largest_name = "box " + std::to_string(b) + " (" + number(size.x()) + " x " + number(size.y()) + " x " +
+                     number(size.z()) + " m)";
+    }
+  }
+  for (const TriangleMesh& mesh : env.meshes) {
+    double points = 0.0;
+    for (const Eigen::Vector3i& t : mesh.triangles) {
+      if ((t.array() < 0).any() || (t.array() >= static_cast<int>(mesh.vertices_m.size())).any()) continue;
+      const Vec3& a = mesh.vertices_m[static_cast<size_t>(t[0])];
+      points += patch_grid_points((mesh.vertices_m[static_cast<size_t>(t[1])] - a).norm(),
+                                  (mesh.vertices_m[static_cast<size_t>(t[2])] - a).norm(), spacing_m);
+    }
+    total += points;
+    if (points > largest) {
+      largest = points;
+      largest_name = "mesh '" + mesh.name + "'";
+    }
+  }
+  if (total > max_points)
+    throw InputError(context + ": sampling the environment every " + number(spacing_m * 100.0) +
+                     " cm would make up to " + number(total) + " points (about " +
+                     number(total * kEnvironmentBytesPerPoint / 1e9) + " GB), more than the limit of " +
+                     number(max_points) + " (--max-environment-points); the largest part is " + largest_name);
+}
+
+EnvironmentPointTree::EnvironmentPointTree(const Environment& env, double spacing_m, double max_points) {
+  check_environment_sampling(env, spacing_m, max_points, "environment");
   for (size_t b = 0; b < env.boxes.size(); ++b) {
     const Box& box = env.boxes[b];
     if (!box.center_m.allFinite() || !box.half_extents_m.allFinite() || !box.rotation.coeffs().allFinite() ||

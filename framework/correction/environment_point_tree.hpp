@@ -9,6 +9,7 @@
 // A capsule wholly inside a closed obstacle touches no surface point and is not pushed out: the
 // correction starts from animations that are, at worst, shallowly inside the environment.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "framework/core/capsule_box.hpp"
@@ -17,14 +18,25 @@
 
 namespace crowdlab {
 
+/// Memory per sample point: the point (24 B) and its share of the tree (2 nodes of 64 B per 8 points).
+inline constexpr double kEnvironmentBytesPerPoint = 40.0;
+
+/// Upper bound on the points sampling `env` at `spacing_m` makes (the sampling grid of every box face
+/// and every triangle's parallelogram), computed without sampling. Throws InputError "<context>: ..."
+/// with the estimate, its memory and the largest contributor when it passes `max_points`, or when the
+/// spacing is not > 0.
+void check_environment_sampling(const Environment& env, double spacing_m, double max_points,
+                                const std::string& context);
+
 class EnvironmentPointTree {
  public:
   static constexpr int kLeafSize = 8;
 
   EnvironmentPointTree() = default;
   /// Samples env.boxes and env.meshes (the ground plane is handled analytically elsewhere).
-  /// Throws InputError for non-finite geometry or a spacing <= 0.
-  EnvironmentPointTree(const Environment& env, double spacing_m);
+  /// Throws InputError for non-finite geometry, a spacing <= 0, or more than `max_points` points
+  /// (check_environment_sampling).
+  EnvironmentPointTree(const Environment& env, double spacing_m, double max_points);
 
   bool empty() const { return points_.empty(); }
   const std::vector<Vec3>& points() const { return points_; }

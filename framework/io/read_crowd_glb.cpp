@@ -65,7 +65,11 @@ std::string string_from(const json& obj, const char* key, const std::string& wha
 CharacterAnimation character_from_extras(const json& e, const std::string& what) {
   CharacterAnimation ch;
   ch.name = string_from(e, "name", what);
-  ch.palette = static_cast<int>(number_from(e, "palette", what));
+  const double palette = number_from(e, "palette", what);
+  // Checked before the cast: converting a fuzzed 1e300 to int is undefined behaviour.
+  if (!(palette >= 0.0 && palette <= 2147483647.0) || palette != std::floor(palette))
+    throw InputError(what + ": 'palette' must be a whole number in [0, 2147483647]");
+  ch.palette = static_cast<int>(palette);
   const std::string sex = string_from(e, "sex", what);
   if (sex != "female" && sex != "male")
     throw InputError(what + ": 'sex' must be female or male, got '" + sex + "'");

@@ -3,6 +3,7 @@
 // SpecError. The key reference, with defaults, ranges and units, is docs/spec-reference.md.
 #include "framework/spec/load_experiment_spec.hpp"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -20,6 +21,7 @@
 #include "framework/core/viewpoint_catalogue.hpp"
 #include "framework/spec/parse_factor.hpp"
 #include "framework/spec/parse_protocol.hpp"
+#include "framework/spec/yaml_flow_nesting.hpp"
 #include "framework/spec/yaml_section.hpp"
 
 namespace crowdlab {
@@ -316,6 +318,18 @@ size_t second_document_start(const std::string& text) {
   return std::string::npos;
 }
 
+// yaml-cpp refuses lists and maps nested deeper than its limit with "bad file", at a position that for
+// flow collections is the end of the nest or the start of the file: point at the nest instead.
+void report_deep_nesting(SpecDiagnostics& diag, const std::string& text, const YAML::DeepRecursion& e) {
+  // Any flow nest of 100 levels is pathological (a spec needs fewer than 10); without one, the nest is
+  // in block style, where yaml-cpp's own mark is right.
+  constexpr std::size_t kPathologicalFlowDepth = 100;
+  const std::size_t start = deep_flow_nesting_start(text, kPathologicalFlowDepth);
+  diag.error(start == std::string::npos ? e.mark : mark_at(text, start), "",
+             "nesting too deep: lists and maps nest more than " + std::to_string(kYamlParserDepthLimit) +
+                 " levels from here (the YAML parser's limit; a spec needs fewer than 10)");
+}
+
 // A spec is UTF-8 text (a UTF-8 byte-order mark is allowed). UTF-16 and Latin-1 files would otherwise be
 // misread or accepted with garbled names.
 void check_encoding(SpecDiagnostics& diag, const std::string& text) {
@@ -419,6 +433,8 @@ ExperimentSpec load_experiment_spec_text(const std::string& yaml_text, const std
       diag.error(
           mark_at(yaml_text, second), "",
           "a second YAML document starts here; a spec is one document (only the first was read before)");
+  } catch (const YAML::DeepRecursion& e) {
+    report_deep_nesting(diag, yaml_text, e);
   } catch (const YAML::Exception& e) {
     diag.error(e.mark, "", "YAML syntax error: " + e.msg);
   }

@@ -136,3 +136,61 @@ TEST_CASE("glTF animation import: errors name the file and the element") {
                     Catch::Contains("skeleton.gltf") && Catch::Contains("animations[3]"));
   CHECK_THROWS_AS(import_gltf_animation(dir / "missing.glb"), InputError);
 }
+
+namespace {
+// A .gltf whose only animation turns node `target` (LINEAR, key times `t0`, `t1` seconds), with `nodes`
+// given as JSON text; its buffer lies beside it.
+std::filesystem::path write_node_clip(const std::filesystem::path& dir, const std::string& name,
+                                      const std::string& nodes, int target, float t1 = 1.0f) {
+  const float data[10] = {0.0f, t1, 0, 0, 0, 1, 0.6f, 0, 0, 0.8f};
+  std::ofstream(dir / (name + ".bin"), std::ios::binary)
+      .write(reinterpret_cast<const char*>(data), sizeof data);
+  const std::string json =
+      R"({"asset":{"version":"2.0"},"buffers":[{"uri":")" + name +
+      R"(.bin","byteLength":40}],)"
+      R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":8},{"buffer":0,"byteOffset":8,"byteLength":32}],)"
+      R"("accessors":[{"bufferView":0,"componentType":5126,"count":2,"type":"SCALAR"},)"
+      R"({"bufferView":1,"componentType":5126,"count":2,"type":"VEC4"}],)"
+      R"("animations":[{"samplers":[{"input":0,"output":1}],"channels":[{"sampler":0,"target":{"node":)" +
+      std::to_string(target) + R"(,"path":"rotation"}}]}],"nodes":)" + nodes + "}";
+  const auto file = dir / (name + ".gltf");
+  std::ofstream(file) << json;
+  return file;
+}
+}  // namespace
+
+TEST_CASE("glTF animation import: a 100,000-node chain imports without recursing, and cycles are refused") {
+  // Issue 21: the recursive skeleton walk overflowed the stack (SIGSEGV) on a fuzzed parent->child chain,
+  // and the walk up to the roots never ended on a cycle.
+  const auto dir = test::scratch_dir("gltf_motion_chain");
+  constexpr int kNodes = 100000;
+  std::string chain = "[";
+  for (int i = 0; i + 1 < kNodes; ++i) chain += R"({"children":[)" + std::to_string(i + 1) + "]},";
+  chain += R"({"name":"tip"}])";
+  const BvhMotion m = import_gltf_animation(write_node_clip(dir, "chain", chain, kNodes - 1), 0, 0, 1.0);
+  REQUIRE(m.joints.size() == static_cast<size_t>(kNodes));
+  CHECK(m.joints.back().name == "tip");
+  CHECK(m.joints.back().parent == kNodes - 2);
+  CHECK(m.frame_count == 2);
+  CHECK(Eigen::AngleAxisd(m.local_transform(kNodes - 1, 1).rotation).angle() ==
+        Approx(2 * std::atan2(0.6, 0.8)).margin(1e-5));
+
+  const auto cycle =
+      write_node_clip(dir, "cycle", R"([{"children":[1]},{"children":[2]},{"children":[0]}])", 2);
+  CHECK_THROWS_WITH(import_gltf_animation(cycle), Catch::Contains("cycle.gltf") &&
+                                                      Catch::Contains("own ancestor") &&
+                                                      Catch::Contains("cycle"));
+  const auto two_parents =
+      write_node_clip(dir, "two_parents", R"([{"children":[2]},{"children":[2]},{}])", 2);
+  CHECK_THROWS_WITH(import_gltf_animation(two_parents),
+                    Catch::Contains("nodes[2] is a child of both nodes[0] and nodes[1]"));
+  const auto no_target = write_node_clip(dir, "no_target", "[{}]", 7);
+  CHECK_THROWS_WITH(import_gltf_animation(no_target), Catch::Contains("no_target.gltf") &&
+                                                          Catch::Contains("animations[0].channels[0]") &&
+                                                          Catch::Contains("target node 7 does not exist"));
+  // A key time of 1e7 s would be sampled into 300 million frames.
+  const auto long_clip = write_node_clip(dir, "long", "[{}]", 0, 1e7f);
+  CHECK_THROWS_WITH(import_gltf_animation(long_clip), Catch::Contains("long.gltf") &&
+                                                          Catch::Contains("animations[0]") &&
+                                                          Catch::Contains("kMaxGltfClipValues"));
+}

@@ -76,3 +76,38 @@ TEST_CASE("correction cli: experiment damping writes the Fig. 4 series", "[corre
     CHECK(std::filesystem::file_size(dir / name) > 1000);
   }
 }
+
+TEST_CASE("correction cli: an environment too large to sample is refused with the estimate, exit 2",
+          "[correction][cli]") {
+  // Issue 21: a box 1000 m wide, sampled every 3 cm, took 3.1 GB before `correct` ran out of memory.
+  const auto dir = test::scratch_dir("correction_cli_big_box");
+  SwayingCrowdOptions o;
+  o.characters = 2;
+  o.frames = 3;
+  CrowdAnimation crowd = make_swaying_crowd_fixture(o);
+  Box box;
+  box.center_m = Vec3(0, -1, 0);
+  box.half_extents_m = Vec3(500, 0.5, 500);
+  crowd.environment.boxes.push_back(box);
+  const auto big = dir / "big_box.glb";
+  write_crowd_glb(crowd, big.string());
+  auto r = test::run_cli({"correct", big.string(), "--out", (dir / "out.glb").string()});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains(big.string()) && Catch::Contains("2.227e+09 points") &&
+                        Catch::Contains("GB") && Catch::Contains("limit of 1e+07") &&
+                        Catch::Contains("--max-environment-points") &&
+                        Catch::Contains("box 0 (1000 x 1 x 1000 m)"));
+  CHECK_FALSE(std::filesystem::exists(dir / "out.glb"));
+  // A 2 m cube makes 6 x 68 x 68 = 27,744 points: within the default, beyond a limit of 10,000.
+  crowd.environment.boxes.back().half_extents_m = Vec3(1, 1, 1);
+  crowd.environment.boxes.back().center_m = Vec3(10, 1, 10);
+  const auto cube = dir / "cube.glb";
+  write_crowd_glb(crowd, cube.string());
+  r = test::run_cli(
+      {"correct", cube.string(), "--out", (dir / "out.glb").string(), "--max-environment-points", "10000"});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("27744 points"));
+  r = test::run_cli({"correct", cube.string(), "--out", (dir / "out.glb").string()});
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+}

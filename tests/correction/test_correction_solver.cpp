@@ -166,7 +166,7 @@ TEST_CASE("correction: environment boxes push capsules out", "[correction]") {
   wall.half_extents_m = Vec3(0.5, 1.0, 1.0);
   env.boxes.push_back(wall);
   Corrector corrector({body}, {}, env, 30);
-  const EnvironmentPointTree points(env, 0.03);
+  const EnvironmentPointTree points(env, 0.03, CorrectorParams{}.max_environment_points);
   auto deepest = [&](const Pose& pose) {
     const auto caps = world_capsules(body, pose);
     double d = 0.0;

@@ -101,3 +101,28 @@ TEST_CASE("spec: UTF-16, invalid UTF-8, several documents and control characters
   CHECK_THAT(errors_of(ansi),
              Catch::Contains("name") && Catch::Contains("control character (0x1b at byte 1)"));
 }
+
+TEST_CASE("spec: lists nested thousands deep are refused with the line and the limit, not 'bad file'") {
+  const std::string header = kHeader + "factors:\n  density: [2]\n" + kLikert;
+  // Flow style, on line 13 after a comment that holds brackets and a quoted value that holds them too:
+  // yaml-cpp's own position for this is the end of the nest.
+  const std::string flow =
+      header + "# [[[ not a list\ndescription: '[[ {{'\nscenario: {extras: " + std::string(100000, '[') +
+      std::string(100000, ']') + "}\n";
+  std::string errors = errors_of(flow);
+  CHECK_THAT(errors, Catch::Contains("t.yaml:13:11") && Catch::Contains("nesting too deep") &&
+                         Catch::Contains("more than 500 levels"));
+  CHECK_THAT(errors, !Catch::Contains("bad file"));
+  // Block style: a line of 2,000 "- " opens 2,000 nested lists.
+  std::string dashes = header + "description:\n";
+  for (int i = 0; i < 2000; ++i) dashes += "- ";
+  errors = errors_of(dashes + "x\n");
+  CHECK_THAT(errors, Catch::Contains("t.yaml:12:") && Catch::Contains("nesting too deep"));
+  // Through the CLI: exit 2 with the file named.
+  const auto dir = test::scratch_dir("spec_deep_yaml");
+  const auto path = dir / "deep.yaml";
+  std::ofstream(path) << flow;
+  const test::CliResult r = test::run_cli({"validate", path.string()});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains(path.string() + ":13:11") && Catch::Contains("nesting too deep"));
+}

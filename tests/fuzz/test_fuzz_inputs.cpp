@@ -1,0 +1,277 @@
+// Seeded mutation fuzzing of every loader (issue 21, "done means"): a few hundred mutations of a valid
+// spec (through `validate`), BVH clip (the BVH importer and the retargeting, in a child process: no
+// subcommand reads a clip alone), crowd GLB (through `correct`, `metrics`, `export-csv`, and the glTF
+// motion importer) and analysis CSV (through `analyze anova`). Every run must end in exit 0, or exit 2
+// with a message: never a signal, a hang, memory beyond the cap (limited_run.hpp), another exit code
+// or a sanitizer report.
+//
+// Reproducing a failure: the message gives the seed, the case number, the mutations, the command and
+// the input file, which is kept under build/test-scratch/fuzz_<kind>/. Run that command on that file,
+// or rerun the test with CROWDLAB_FUZZ_SEED=<seed>. CROWDLAB_FUZZ_CASES=<n> changes the number of
+// cases per input kind (for a longer run by hand).
+#include <catch2/catch.hpp>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+
+#include "framework/animation/bvh.hpp"
+#include "framework/animation/gltf_motion.hpp"
+#include "framework/animation/retarget.hpp"
+#include "framework/core/error.hpp"
+#include "framework/correction/swaying_crowd_fixture.hpp"
+#include "framework/io/write_crowd_glb.hpp"
+#include "tests/fuzz/limited_run.hpp"
+#include "tests/fuzz/mutator.hpp"
+#include "tests/support/glb_bytes.hpp"
+
+using namespace crowdlab;
+using namespace crowdlab::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::uint64_t kDefaultSeed = 2021;
+
+std::uint64_t fuzz_seed() {
+  const char* s = std::getenv("CROWDLAB_FUZZ_SEED");
+  return s && *s ? std::strtoull(s, nullptr, 10) : kDefaultSeed;
+}
+
+int fuzz_cases(int default_cases) {
+  const char* s = std::getenv("CROWDLAB_FUZZ_CASES");
+  return s && *s ? std::atoi(s) : default_cases;
+}
+
+/// Per-run wall-clock limit: the slowest valid run is under 1 s in Release on a loaded two-core machine.
+double run_limit_s() {
+  return kSanitized ? 90.0 : 20.0;
+}
+
+void write_file(const fs::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+/// One input kind's campaign: the cases, what became of them, and the violations with how to reproduce.
+struct Campaign {
+  std::string kind;
+  std::string extension;
+  fs::path dir;
+  std::uint64_t seed;
+  int accepted = 0, refused = 0;
+  double slowest_s = 0.0;
+  long peak_rss_mb = 0;
+  std::vector<std::string> violations;
+
+  Campaign(std::string kind_name, std::string ext)
+      : kind(std::move(kind_name)),
+        extension(std::move(ext)),
+        dir(scratch_dir("fuzz_" + kind)),
+        seed(fuzz_seed()) {}
+
+  /// Case -1 is the unmutated input.
+  fs::path input_path(int index) const {
+    return dir / ((index < 0 ? std::string("unmutated") : "case-" + std::to_string(index)) + extension);
+  }
+
+  void record(int index, const std::string& mutations, const std::string& what, const LimitedRun& r) {
+    slowest_s = std::max(slowest_s, r.seconds);
+    peak_rss_mb = std::max(peak_rss_mb, r.peak_rss_mb);
+    if (const std::string v = r.violation(); !v.empty()) {
+      violations.push_back("fuzz seed " + std::to_string(seed) + ", " + kind + " case " +
+                           std::to_string(index) + " (" + mutations + "): " + what + " " + v +
+                           "; input kept at " + input_path(index).string() +
+                           "\n  stderr: " + r.err.substr(0, 600));
+      return;
+    }
+    ++(r.exit_code == 0 ? accepted : refused);
+  }
+
+  /// Runs the unmutated input, written at input_path(-1) (it must be accepted: the runs below then reach past
+  /// the loaders' first checks), then `cases` mutations of it. `check(i, input_path, mutations)` runs one
+  /// input and records each of its runs.
+  void run(int cases, const std::function<std::string(Mutator&, std::string&)>& mutate,
+           const std::function<void(int, const std::string&)>& check) {
+    check(-1, "unmutated");
+    INFO("the unmutated " << kind
+                          << " input must be accepted: " << (violations.empty() ? "" : violations[0]));
+    REQUIRE((violations.empty() && refused == 0));
+    Mutator m(seed);
+    for (int i = 0; i < cases; ++i) {
+      std::string mutations;
+      write_file(input_path(i), mutate(m, mutations));
+      check(i, mutations);
+    }
+  }
+
+  void report() const {
+    std::printf(
+        "fuzz %s: seed %llu, %d runs accepted, %d refused with exit 2, %zu violations; slowest run "
+        "%.2f s, peak resident %ld MB\n",
+        kind.c_str(), static_cast<unsigned long long>(seed), accepted, refused, violations.size(), slowest_s,
+        peak_rss_mb);
+    std::string all;
+    for (const std::string& v : violations) all += v + "\n";
+    INFO(all);
+    CHECK(violations.empty());
+  }
+};
+
+/// The exit code a CLI would give for what `body` throws, with the message on stderr.
+int exit_code_of(const std::function<void()>& body) {
+  try {
+    body();
+    return 0;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "crowdlab: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "crowdlab: error: %s\n", e.what());
+    return 1;
+  }
+}
+
+std::string repeat(const std::string& s, int n) {
+  std::string out;
+  for (int i = 0; i < n; ++i) out += s;
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("mutated specs through validate end in exit 0 or 2 with a message", "[fuzz]") {
+  Campaign c("spec", ".yaml");
+  const std::string valid = slurp(tiny_spec());
+  REQUIRE(!valid.empty());
+  write_file(c.input_path(-1), valid);
+  const std::string deep = "\nextras: " + std::string(20000, '[') + std::string(20000, ']') + "\n";
+  c.run(
+      fuzz_cases(kSanitized ? 50 : 100),
+      [&](Mutator& m, std::string& mutations) { return m.mutate(valid, deep, mutations); },
+      [&](int i, const std::string& mutations) {
+        const std::string in = c.input_path(i).string();
+        c.record(i, mutations, "`crowdlab validate " + in + "`",
+                 run_crowdlab_limited({"validate", in}, run_limit_s(), c.dir / "err.txt"));
+      });
+  c.report();
+}
+
+TEST_CASE("mutated BVH clips through the importer and retargeting end in success or InputError", "[fuzz]") {
+  Campaign c("bvh", ".bvh");
+  const std::string valid = slurp(source_dir() / "tests/data/fuzz/walk.bvh");
+  REQUIRE(!valid.empty());
+  write_file(c.input_path(-1), valid);
+  const std::string deep =
+      repeat("JOINT j\n{\nOFFSET 0 1 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n", 30000) +
+      std::string(30000, '}');
+  const BodyShape body = make_procedural_body({Sex::kFemale, 1.65, 1.0});
+  c.run(
+      fuzz_cases(200), [&](Mutator& m, std::string& mutations) { return m.mutate(valid, deep, mutations); },
+      [&](int i, const std::string& mutations) {
+        const fs::path path = c.input_path(i);
+        const auto import = [&] { return exit_code_of([&] { (void)retarget_bvh(import_bvh(path), body); }); };
+        c.record(i, mutations, "import_bvh + retarget_bvh",
+                 run_limited(import, run_limit_s(), c.dir / "err.txt"));
+      });
+  c.report();
+}
+
+TEST_CASE("mutated crowd GLBs through correct, metrics, export-csv and the motion importer", "[fuzz]") {
+  Campaign c("glb", ".glb");
+  SwayingCrowdOptions o;
+  o.characters = 2;
+  o.frames = 4;
+  CrowdAnimation crowd = make_swaying_crowd_fixture(o);
+  Box stage;
+  stage.center_m = Vec3(0, -0.5, 0);
+  stage.half_extents_m = Vec3(2, 0.5, 2);
+  crowd.environment.boxes.push_back(stage);
+  write_crowd_glb(crowd, c.input_path(-1).string());
+  const std::string valid = slurp(c.input_path(-1));
+  REQUIRE(valid.size() > 20);
+  const std::string json = glb_json(valid);
+  const std::string deep = std::string(30000, '[') + std::string(30000, ']') + ",";
+  c.run(
+      fuzz_cases(kSanitized ? 25 : 50),
+      [&](Mutator& m, std::string& mutations) {
+        // Half the cases mutate the container's bytes, half the JSON inside a well-formed container.
+        if (m.below(2) == 0) return m.mutate(valid, deep, mutations);
+        std::string inner;
+        const std::string bytes = glb_with_json(valid, m.mutate(json, deep, inner));
+        mutations = "json:" + inner;
+        return bytes;
+      },
+      [&](int i, const std::string& mutations) {
+        const fs::path path = c.input_path(i);
+        const std::string in = path.string(), out_glb = (c.dir / "out.glb").string(),
+                          out_csv = (c.dir / "out.csv").string();
+        for (const std::vector<std::string>& args :
+             {std::vector<std::string>{"correct", in, "--out", out_glb},
+              std::vector<std::string>{"metrics", in},
+              std::vector<std::string>{"export-csv", in, "--out", out_csv}}) {
+          std::string command = "`crowdlab";
+          for (const std::string& a : args) command += " " + a;
+          c.record(i, mutations, command + "`", run_crowdlab_limited(args, run_limit_s(), c.dir / "err.txt"));
+        }
+        const auto import = [&] { return exit_code_of([&] { (void)import_gltf_animation(path); }); };
+        c.record(i, mutations, "import_gltf_animation",
+                 run_limited(import, run_limit_s(), c.dir / "err.txt"));
+      });
+  c.report();
+}
+
+TEST_CASE("mutated analysis CSVs through analyze anova end in exit 0 or 2 with a message", "[fuzz]") {
+  Campaign c("csv", ".csv");
+  const std::string valid = slurp(source_dir() / "tests/data/analysis/ez_2x3x2.csv");
+  REQUIRE(!valid.empty());
+  write_file(c.input_path(-1), valid);
+  const std::string deep = "\n" + std::string(100000, ',') + "\n\"" + std::string(1000, 'x');
+  c.run(
+      fuzz_cases(kSanitized ? 40 : 80),
+      [&](Mutator& m, std::string& mutations) { return m.mutate(valid, deep, mutations); },
+      [&](int i, const std::string& mutations) {
+        const std::string in = c.input_path(i).string();
+        c.record(i, mutations,
+                 "`crowdlab analyze anova --csv " + in + " --dv DV --subject id --within A,B,D`",
+                 run_crowdlab_limited(
+                     {"analyze", "anova", "--csv", in, "--dv", "DV", "--subject", "id", "--within", "A,B,D"},
+                     run_limit_s(), c.dir / "err.txt"));
+      });
+  c.report();
+}
+
+TEST_CASE("the fuzz harness reports a signal, a hang, memory over the cap and a silent exit 2", "[fuzz]") {
+  // Without this the campaigns above could pass by never seeing a failure.
+  const fs::path err = scratch_dir("fuzz_harness") / "err.txt";
+  const auto violation = [&](const std::function<int()>& body, double limit_s = 20.0) {
+    return run_limited(body, limit_s, err).violation();
+  };
+  CHECK_THAT(violation([] { return 0; }), Catch::Equals(""));
+  CHECK_THAT(violation([] {
+               std::fprintf(stderr, "crowdlab: error: f.yaml:1:1: bad\n");
+               return 2;
+             }),
+             Catch::Equals(""));
+  CHECK_THAT(violation([] { return 2; }), Catch::Contains("without an error message"));
+  CHECK_THAT(violation([] { return 1; }), Catch::Contains("exited with code 1"));
+  CHECK_THAT(violation([] {
+               raise(SIGSEGV);
+               return 0;
+             }),
+             Catch::Contains("signal 11"));
+  CHECK_THAT(violation(
+                 [] {
+                   pause();
+                   return 0;
+                 },
+                 0.5),
+             Catch::Contains("time limit"));
+  // Touching 1.5 GB: over the resident cap (in Release RLIMIT_AS may stop it first, as std::bad_alloc).
+  const std::string memory = violation([] {
+    std::vector<char> big(std::size_t{1536} << 20);
+    for (std::size_t i = 0; i < big.size(); i += 4096) big[i] = 1;
+    return big[4096] == 1 ? 0 : 3;
+  });
+  CHECK_THAT(memory, Catch::Contains("memory cap") || Catch::Contains("exited with code 1") ||
+                         Catch::Contains("signal"));
+}

@@ -1,0 +1,159 @@
+// Hand-mutated crowd files (issue 21): each broken GLB, through `correct`, `metrics` and `export-csv`,
+// exits 2 with a message naming the file and what is wrong, where (before: "cannot read glTF: unknown
+// error" or tinygltf's bare "Invalid glTF binary.").
+#include <tiny_gltf.h>
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+
+#include "framework/correction/swaying_crowd_fixture.hpp"
+#include "framework/io/write_crowd_glb.hpp"
+#include "tests/support/glb_bytes.hpp"
+#include "tests/support/run_cli.hpp"
+
+using namespace crowdlab;
+using namespace crowdlab::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+void write_bytes(const fs::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+/// The crowd file edited through tinygltf (which writes whatever it is given).
+fs::path edited(const fs::path& good, const fs::path& out,
+                const std::function<void(tinygltf::Model&)>& change) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF gltf;
+  std::string err, warn;
+  REQUIRE(gltf.LoadBinaryFromFile(&model, &err, &warn, good.string()));
+  change(model);
+  REQUIRE(gltf.WriteGltfSceneToFile(&model, out.string(), false, true, false, true));
+  return out;
+}
+
+void check_refused(const fs::path& file, const std::vector<std::string>& expected) {
+  const fs::path dir = file.parent_path();
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"correct", file.string(), "--out", (dir / "out.glb").string()},
+        std::vector<std::string>{"metrics", file.string()},
+        std::vector<std::string>{"export-csv", file.string(), "--out", (dir / "out.csv").string()}}) {
+    const CliResult r = run_cli(args);
+    INFO(args[0] << " " << file.filename().string() << ": " << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Catch::Contains(file.string() + ": "));
+    for (const std::string& e : expected) CHECK_THAT(r.err, Catch::Contains(e));
+    CHECK_THAT(r.err, !Catch::Contains("unknown error") && !Catch::Contains("gave no reason"));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("hand-mutated GLBs exit 2 from correct, metrics and export-csv, saying what is wrong and where") {
+  const fs::path dir = scratch_dir("glb_mutations");
+  SwayingCrowdOptions o;
+  o.characters = 2;
+  o.frames = 3;
+  const fs::path good = dir / "good.glb";
+  write_crowd_glb(make_swaying_crowd_fixture(o), good.string());
+  const std::string bytes = slurp(good);
+  const std::uint32_t json_length = glb_u32(bytes, 12);
+  REQUIRE(bytes.size() > 20 + json_length + 8);
+
+  std::string b = bytes;
+  b[1] = 'L';
+  write_bytes(dir / "magic.glb", b);
+  check_refused(dir / "magic.glb",
+                {"cannot read glTF: not a valid GLB file", "bytes 0-3 are 'gLTF', not the magic 'glTF'"});
+
+  b = bytes;
+  put_glb_u32(b, 4, 1);
+  write_bytes(dir / "version.glb", b);
+  check_refused(dir / "version.glb", {"container version 1, expected 2"});
+
+  write_bytes(dir / "truncated.glb", bytes.substr(0, bytes.size() - 100));
+  check_refused(dir / "truncated.glb",
+                {"total length of " + std::to_string(bytes.size()) + " bytes",
+                 "the file has " + std::to_string(bytes.size() - 100) + " (truncated?)"});
+
+  b = bytes;
+  put_glb_u32(b, 12, 0x7FFFFFF0u);
+  write_bytes(dir / "json_length.glb", b);
+  check_refused(dir / "json_length.glb",
+                {"the JSON chunk (byte 12) gives a length of 2147483632 bytes", "past the total length"});
+
+  b = bytes;
+  std::memcpy(b.data() + 20 + json_length + 4, "BIM", 4);
+  write_bytes(dir / "bin_type.glb", b);
+  check_refused(dir / "bin_type.glb",
+                {"the second chunk (byte " + std::to_string(20 + json_length) + ") has type 'BIM\\x00'",
+                 "expected 'BIN'"});
+
+  // A syntax error inside the JSON: the separator after the first key becomes ';'.
+  b = bytes;
+  const std::size_t colon = b.find("\":", 20) + 1;
+  REQUIRE(colon < 20 + json_length);
+  b[colon] = ';';
+  write_bytes(dir / "json_syntax.glb", b);
+  check_refused(dir / "json_syntax.glb",
+                {"cannot read glTF",
+                 "the JSON is not valid at byte " + std::to_string(colon) + " of the file (line 1, column " +
+                     std::to_string(colon - 20 + 1) + " of the JSON)",
+                 "syntax error", "expected ':'"});
+
+  // Inside well-formed JSON: a bufferView beyond its buffer, and an accessor longer than its bufferView.
+  const fs::path view = edited(good, dir / "view_range.glb",
+                               [](tinygltf::Model& m) { m.bufferViews[0].byteOffset = 1u << 30; });
+  check_refused(view, {"accessor", "bufferView 0 lies outside its buffer"});
+  const fs::path count = edited(good, dir / "accessor_count.glb", [](tinygltf::Model& m) {
+    for (tinygltf::Accessor& a : m.accessors)
+      if (a.bufferView == 0) a.count = 100000000;
+  });
+  check_refused(count, {"accessor", "100000000 elements do not fit in bufferView 0"});
+}
+
+TEST_CASE("bodies no human has exit 2 from correct and metrics at once, not after minutes of voxelising") {
+  // The second joint's (left_hip's) offset or the first capsule's radius is changed. Issue 21: joint offsets
+  // of 65535 m or 1e300 m, or a capsule radius of 1e6 m, kept `correct` in union_fraction() (a 2.5 cm grid
+  // over the body's box) for over 300 s; at 1e300 its x += 0.025 never advanced.
+  const fs::path dir = scratch_dir("glb_implausible_bodies");
+  SwayingCrowdOptions o;
+  o.characters = 2;
+  o.frames = 3;
+  const fs::path good = dir / "good.glb";
+  write_crowd_glb(make_swaying_crowd_fixture(o), good.string());
+  const std::string bytes = slurp(good), json = glb_json(bytes);
+  // Replaces the first number after `key` (after `anchor`) in the JSON by `value`.
+  const auto with_number = [&](const std::string& anchor, const std::string& key, const std::string& value) {
+    std::string j = json;
+    const std::size_t start = j.find_first_of("-0123456789", j.find(key, j.find(anchor)) + key.size());
+    j.replace(start, j.find_first_of(",]}", start) - start, value);
+    return glb_with_json(bytes, j);
+  };
+  const struct {
+    const char* name;
+    std::string bytes;
+    const char* expected;
+  } cases[] = {
+      {"offset_65535", with_number("\"joint_offsets_m\"", "],[", "65535"), "more than the limit of 4 m"},
+      {"offset_1e300", with_number("\"joint_offsets_m\"", "],[", "1e300"), "more than the limit of 4 m"},
+      {"radius_1e6", with_number("\"capsules\"", "\"radius_m\":", "1e6"), "more than the limit of 1 m"}};
+  for (const auto& c : cases) {
+    const fs::path file = dir / (std::string(c.name) + ".glb");
+    write_bytes(file, c.bytes);
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"correct", file.string(), "--out", (dir / "out.glb").string()},
+          std::vector<std::string>{"metrics", file.string()}}) {
+      const auto start = std::chrono::steady_clock::now();
+      const CliResult r = run_cli(args);
+      INFO(args[0] << " " << c.name << ": " << r.err);
+      CHECK(r.exit_code == 2);
+      CHECK_THAT(r.err, Catch::Contains(file.string()) && Catch::Contains(c.expected));
+      CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(30));
+    }
+  }
+}
