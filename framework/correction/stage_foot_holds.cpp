@@ -24,6 +24,7 @@
 // horizontal world spring in the solve pulls it to the anchor; a swinging foot has no world spring
 // and gives way to contacts like any other limb. A foot farther sideways than the leg is long goes as
 // far as the leg allows and the anchor follows (real skate; not seen on the gomez2024 scenarios).
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -101,9 +102,18 @@ FootGoal foot_goal(const CorrectorModel& model, const CorrectorState& s, int c, 
   g.ankle_m = hold.ankle ? hold.ankle_anchor_m : Vec3(hold.ball_anchor_m - ball_offset);
   g.ball_m = hold.ball ? hold.ball_anchor_m : Vec3(g.ankle_m + ball_offset);
   // Height: the input's, the foot's ground contact as the input plants it (the correction moves bodies
-  // sideways, not up). The solve's planted-foot spring pulls to it (stage_assemble.cpp); the IK below
-  // keeps the solve's height.
-  const double shift = s.target_origin_m[ankle].y() - g.ankle_m.y();
+  // sideways, not up; held horizontally only, whole bodies floated on their planted feet). A foot that
+  // is off that height goes back at most at the foot motion budget: per step, its input's vertical
+  // motion plus foot_pop_budget_m, from where the last output had it (an unlimited pull threw feet:
+  // docs/correction.md). The solve's planted-foot spring pulls to it (stage_assemble.cpp); the IK in
+  // hold_feet keeps the solve's height.
+  double y = s.target_origin_m[ankle].y();
+  if (model.params.foot_pop_budget_m > 0.0) {
+    const double start_y = s.foot_start_m[static_cast<size_t>(4 * c + side)].y();
+    const double step = std::abs(y - s.target_origin_old_m[ankle].y()) + model.params.foot_pop_budget_m;
+    y = std::clamp(y, start_y - step, start_y + step);
+  }
+  const double shift = y - g.ankle_m.y();
   g.ankle_m.y() += shift;
   g.ball_m.y() += shift;
   return g;

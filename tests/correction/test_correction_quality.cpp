@@ -211,7 +211,7 @@ TEST_CASE("correction: planted feet stay at the input's height, so bodies do not
   // gomez2024's sparsest corridor on its MPFB2 bodies, where the correction barely has to move anyone.
   // With planted feet held horizontally only (height left to the solve), whole bodies rose on their
   // planted feet: measured on a 1 s clip of this condition, pelvis 20 mm above the input's (median), the
-  // soles of planted feet 101 mm above the input's (p99). Held at the input's height: 5 mm and 38 mm.
+  // soles of planted feet 101 mm above the input's (p99). Held at the input's height: 5 mm and 39 mm.
   const CrowdAnimation in = corridor_walkers(test::kSanitized ? 1.0 : 2.0, false, true);
   const CrowdAnimation out = correct_crowd(in, CorrectorParams{});
   const CorrectionQuality q = measure_correction_quality(in, out);
@@ -234,8 +234,9 @@ TEST_CASE("correction: the foot motion budget stops feet jumping in the densest 
   // gomez2024's corridor at 6.66 /m^2 on its MPFB2 bodies: without the budget the depenetration pass
   // threw feet 5-20 cm farther than their input moved in one frame. Measured on this 2 s clip with
   // planted feet held horizontally only: 12 -> 2 foot pops, worst excess 20.7 -> 6.8 cm, p99 depth 5.0
-  // -> 5.7 mm, deviation 7.3 -> 7.2 deg; with planted feet also held at the input's height (issue 18):
-  // 10 -> 0 pops, worst excess 7.3 -> 4.0 cm, p99 depth 5.8 -> 5.0 mm, deviation 7.8 -> 7.6 deg.
+  // -> 5.7 mm, deviation 7.3 -> 7.2 deg; with planted feet also held at the input's height and the
+  // budget rows prioritised (issue 18): 10 -> 0 pops, worst excess 7.3 -> 2.6 cm, p99 depth 5.8 -> 6.7
+  // mm, deviation 7.8 -> 7.6 deg.
   const CrowdAnimation in = corridor_walkers(test::kSanitized ? 1.0 : 2.0, true, true);
   REQUIRE(in.characters.size() >= 100);
   CorrectorParams off;
