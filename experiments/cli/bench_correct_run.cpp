@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "experiments/cli/correction_quality_json.hpp"
 #include "experiments/cli/timing.hpp"
 #include "framework/core/error.hpp"
 #include "framework/correction/corrector.hpp"
 #include "framework/correction/swaying_crowd_fixture.hpp"
 #include "framework/metrics/measure_crowd.hpp"
+#include "framework/pipeline/metrics_json.hpp"
 
 namespace crowdlab::cli {
 namespace {

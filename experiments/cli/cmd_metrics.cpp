@@ -12,7 +12,6 @@
 #include <string>
 
 #include "experiments/cli/command_registry.hpp"
-#include "experiments/cli/correction_quality_json.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/metrics/correction_quality.hpp"

@@ -1,5 +1,6 @@
 #include "framework/core/stimulus_manifest.hpp"
 
+#include <array>
 #include <fstream>
 
 #include "framework/core/csv.hpp"
@@ -9,7 +10,25 @@ namespace crowdlab {
 namespace {
 const std::vector<std::string> kTrailing = {"file",   "duration_s", "frames", "width",      "height",
                                             "sha256", "overlap_l",  "v_i_m",  "collisions", "practice"};
+
+/// The clip-quality columns (optional when read: older manifests lack them), in file order.
+struct QualityColumn {
+  const char* name;
+  double ClipQuality::*value;  ///< null for foot_pops, the one count
+};
+constexpr std::array<QualityColumn, 7> kQuality = {
+    {{"depth_p99_m", &ClipQuality::depth_p99_m},
+     {"depth_max_m", &ClipQuality::depth_max_m},
+     {"stance_foot_drift_p99_m", &ClipQuality::stance_foot_drift_p99_m},
+     {"stance_foot_drift_max_m", &ClipQuality::stance_foot_drift_max_m},
+     {"foot_pops", nullptr},
+     {"foot_ground_penetration_max_m", &ClipQuality::foot_ground_penetration_max_m},
+     {"foot_float_p99_m", &ClipQuality::foot_float_p99_m}}};
+
+std::string optional_cell(double v) {
+  return v >= 0 ? csv_number(v) : "";
 }
+}  // namespace
 
 void write_manifest(const StimulusManifest& m, const std::string& csv_path) {
   std::ofstream out(csv_path, std::ios::binary | std::ios::trunc);
@@ -17,6 +36,7 @@ void write_manifest(const StimulusManifest& m, const std::string& csv_path) {
   std::vector<std::string> header = {"id"};
   header.insert(header.end(), m.factor_names.begin(), m.factor_names.end());
   header.insert(header.end(), kTrailing.begin(), kTrailing.end());
+  for (const QualityColumn& q : kQuality) header.push_back(q.name);
   out << csv_line(header);
   for (const StimulusEntry& e : m.entries) {
     std::vector<std::string> row = {e.id};
@@ -30,10 +50,13 @@ void write_manifest(const StimulusManifest& m, const std::string& csv_path) {
     row.push_back(std::to_string(e.width));
     row.push_back(std::to_string(e.height));
     row.push_back(e.sha256);
-    row.push_back(e.mean_overlap_l >= 0 ? csv_number(e.mean_overlap_l) : "");
-    row.push_back(e.v_i_m >= 0 ? csv_number(e.v_i_m) : "");
+    row.push_back(optional_cell(e.mean_overlap_l));
+    row.push_back(optional_cell(e.v_i_m));
     row.push_back(e.collisions >= 0 ? std::to_string(e.collisions) : "");
     row.push_back(e.practice ? "1" : "0");
+    for (const QualityColumn& q : kQuality)
+      row.push_back(q.value ? optional_cell(e.quality.*q.value)
+                            : (e.quality.foot_pops >= 0 ? std::to_string(e.quality.foot_pops) : ""));
     out << csv_line(row);
   }
   if (!out.flush()) throw RuntimeError(csv_path + ": write failed");
@@ -51,6 +74,8 @@ StimulusManifest read_manifest(const std::string& csv_path) {
     const size_t c = t.column(col);
     return t.cell(r, c).empty() ? -1.0 : t.number(r, c);
   };
+  std::vector<bool> has_quality;
+  for (const QualityColumn& q : kQuality) has_quality.push_back(t.has_column(q.name));
   for (size_t r = 0; r < t.rows.size(); ++r) {
     StimulusEntry e;
     e.id = t.cell(r, id_col);
@@ -65,6 +90,14 @@ StimulusManifest read_manifest(const std::string& csv_path) {
     e.v_i_m = optional_number(r, "v_i_m");
     e.collisions = static_cast<int>(optional_number(r, "collisions"));
     e.practice = t.cell(r, t.column("practice")) == "1";
+    for (size_t k = 0; k < kQuality.size(); ++k) {
+      if (!has_quality[k]) continue;
+      const double v = optional_number(r, kQuality[k].name);
+      if (kQuality[k].value)
+        e.quality.*kQuality[k].value = v;
+      else
+        e.quality.foot_pops = static_cast<int>(v);
+    }
     m.entries.push_back(std::move(e));
   }
   return m;

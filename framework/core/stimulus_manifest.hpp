@@ -1,13 +1,31 @@
 #pragma once
 // StimulusManifest: what the stimuli stage produced, as the study and analysis stages read it.
 // Stored as DIR/manifest.csv with columns:
-//   id,<factor columns...>,file,duration_s,frames,width,height,sha256,overlap_l,v_i_m,collisions,practice
-// (factor columns in spec order; metric columns empty when not computed).
+//   id,<factor columns...>,file,duration_s,frames,width,height,sha256,overlap_l,v_i_m,collisions,practice,
+//   depth_p99_m,depth_max_m,stance_foot_drift_p99_m,stance_foot_drift_max_m,foot_pops,
+//   foot_ground_penetration_max_m,foot_float_p99_m
+// (factor columns in spec order; metric columns empty when not computed). The last seven are the
+// correction-quality measures of the clip's crowd against its input (issue 18; definitions in
+// framework/metrics/correction_quality.hpp and foot_contact_quality.hpp, names as in
+// correction_quality.csv): for `baseline` the input is the crowd itself, for `ours` the baseline of the
+// same condition. Manifests written before them lack these columns and read as unknown.
 #include <map>
 #include <string>
 #include <vector>
 
 namespace crowdlab {
+
+/// The correction-quality measures of one clip's crowd against its input (see the header); metres,
+/// -1 = unknown.
+struct ClipQuality {
+  double depth_p99_m = -1.0;                    ///< p99 inter-body capsule depth
+  double depth_max_m = -1.0;                    ///< largest inter-body capsule depth
+  double stance_foot_drift_p99_m = -1.0;        ///< horizontal slide of planted foot joints, p99
+  double stance_foot_drift_max_m = -1.0;        ///< and max
+  int foot_pops = -1;                           ///< foot-joint frames moving > 5 cm more than the input's
+  double foot_ground_penetration_max_m = -1.0;  ///< deepest a foot goes below y = 0 (empty on surfaces)
+  double foot_float_p99_m = -1.0;               ///< planted feet higher than the input's, p99
+};
 
 struct StimulusEntry {
   std::string id;                              ///< condition id (+ "_" + viewpoint when rendered per view)
@@ -22,6 +40,7 @@ struct StimulusEntry {
   double v_i_m = -1.0;           ///< seed 001 Eq. 1, metres (-1 = unknown)
   int collisions = -1;           ///< colliding character pairs over the clip (-1 = unknown)
   bool practice = false;
+  ClipQuality quality;
 };
 
 struct StimulusManifest {

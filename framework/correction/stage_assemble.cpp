@@ -127,15 +127,15 @@ void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
     s.rhs[g] -= a.transpose() * resid_t;
   }
 
-  // Feet: a planted foot's ankle and ball joints are held horizontally on their anchors by a world
-  // spring (seed 000 §3.3, see params and stage_foot_holds.cpp; the anchor is still, so the damper acts
-  // on the joint's own velocity, and the ground and the legs set the height). A swinging foot is pulled
+  // Feet: a planted foot's ankle and ball joints are held on their anchors by a world spring (seed 000
+  // §3.3, see params and stage_foot_holds.cpp): horizontally where the foot landed, vertically at the
+  // input's height (issue 18: held horizontally only, whole bodies floated 2-5 cm up on their planted
+  // feet). The anchor is still, so the damper acts on the joint's own velocity. A swinging foot is pulled
   // toward its target by a spring 40x weaker (swing_foot_stiffness), with the Eq. 4 damper on its
   // deviation velocity: weak enough to step around neighbours' legs, strong enough that feet keep
   // landing where the input puts them.
   if (body.foot_anchor_stiffness > 0.0 || body.foot_anchor_damping > 0.0) {
     const double kt = body.foot_anchor_stiffness, dt = body.foot_anchor_damping * inv_h2;
-    const Mat3 horizontal = Vec3(1.0, 0.0, 1.0).asDiagonal();
     for (int side = 0; side < 2; ++side) {
       const size_t ankle = side == 0 ? size_t{kLeftAnkle} : size_t{kRightAnkle};
       const size_t ball = side == 0 ? size_t{kLeftFoot} : size_t{kRightFoot};
@@ -156,8 +156,8 @@ void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
       for (const auto& [j, anchor] : {std::pair{ankle, goal.ankle_m}, std::pair{ball, goal.ball_m}}) {
         const size_t g = static_cast<size_t>(base) + j;
         const auto a = point_jacobian(origin[j] - s.com_m[g]);
-        s.diag[g] += (kt + dt) * a.transpose() * horizontal * a;
-        s.rhs[g] -= a.transpose() * (kt * (horizontal * (origin[j] - anchor)));
+        s.diag[g] += (kt + dt) * a.transpose() * a;
+        s.rhs[g] -= a.transpose() * (kt * (origin[j] - anchor));
       }
     }
   }

@@ -11,8 +11,9 @@
 //   hold_feet (stage_integrate)  after the projection to a pose, a held foot more than
 //       foot_hold_tolerance_m from its anchor is put back by the least-change two-bone leg IK
 //       (core/leg_ik.hpp, reach_ankle: the knee flexes about its own bend axis and the leg swings about
-//       the hip, so the solved leg's twists stay). Held horizontally only: the height stays the
-//       solve's, so the ground can still lift a foot. For a rolling foot held at the ball only, the
+//       the hip, so the solved leg's twists stay). The IK moves it horizontally only: the height stays
+//       the solve's, whose planted-foot spring pulls it to the input's height (foot_goal), so the
+//       ground can still lift a foot. For a rolling foot held at the ball only, the
 //       ankle goes where the ball anchor and the foot rotation put it. If the leg cannot reach, the
 //       pelvis is lowered first; if it moved, both held feet are re-planted. The bones are then rebuilt
 //       from that pose, so the next step starts from the held foot.
@@ -23,6 +24,7 @@
 // horizontal world spring in the solve pulls it to the anchor; a swinging foot has no world spring
 // and gives way to contacts like any other limb. A foot farther sideways than the leg is long goes as
 // far as the leg allows and the anchor follows (real skate; not seen on the gomez2024 scenarios).
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -99,6 +101,21 @@ FootGoal foot_goal(const CorrectorModel& model, const CorrectorState& s, int c, 
   const Vec3 ball_offset = g.rotation * shape.joint_offsets_m[static_cast<size_t>(lj.foot)];
   g.ankle_m = hold.ankle ? hold.ankle_anchor_m : Vec3(hold.ball_anchor_m - ball_offset);
   g.ball_m = hold.ball ? hold.ball_anchor_m : Vec3(g.ankle_m + ball_offset);
+  // Height: the input's, the foot's ground contact as the input plants it (the correction moves bodies
+  // sideways, not up; held horizontally only, whole bodies floated on their planted feet). A foot that
+  // is off that height goes back at most at the foot motion budget: per step, its input's vertical
+  // motion plus foot_pop_budget_m, from where the last output had it (an unlimited pull threw feet:
+  // docs/correction.md). The solve's planted-foot spring pulls to it (stage_assemble.cpp); the IK in
+  // hold_feet keeps the solve's height.
+  double y = s.target_origin_m[ankle].y();
+  if (model.params.foot_pop_budget_m > 0.0) {
+    const double start_y = s.foot_start_m[static_cast<size_t>(4 * c + side)].y();
+    const double step = std::abs(y - s.target_origin_old_m[ankle].y()) + model.params.foot_pop_budget_m;
+    y = std::clamp(y, start_y - step, start_y + step);
+  }
+  const double shift = y - g.ankle_m.y();
+  g.ankle_m.y() += shift;
+  g.ball_m.y() += shift;
   return g;
 }
 
@@ -117,8 +134,9 @@ void hold_feet(const CorrectorModel& model, CorrectorState& s, int c, Pose& pose
     const LegJoints lj = leg_joints(kSides[side]);
     const Vec3& ankle = solved[static_cast<size_t>(lj.ankle)].translation;
     const Vec3& ball = solved[static_cast<size_t>(lj.foot)].translation;
-    // Held horizontally only: the height stays the solve's, so the ground can still lift a foot and
-    // the hold never pins a foot below the floor (skate is a horizontal slide).
+    // Height: the solve's. Its planted-foot spring pulls the foot to the input's height, and the ground
+    // can still lift a foot; re-planting it here too held the legs so hard that neighbours' legs stayed
+    // inside each other (docs/correction.md).
     const double lift = ankle.y() - g.ankle_m.y();
     g.ankle_m.y() += lift;
     g.ball_m.y() += lift;

@@ -9,6 +9,7 @@
 #include "framework/correction/correct_crowd.hpp"
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/io/write_crowd_glb.hpp"
+#include "framework/metrics/correction_quality.hpp"
 #include "framework/metrics/measure_crowd.hpp"
 #include "framework/pipeline/animate_scenario.hpp"
 #include "framework/pipeline/crowd_key.hpp"
@@ -139,11 +140,24 @@ Stage CrowdGroup::metrics_stage(CrowdMethod method) {
   const fs::path out = metrics_path(method);
   Stage s;
   s.name = "metrics";
+  // The correction-quality measures compare the animation with its input, the baseline (for the
+  // baseline itself: the same animation, so drift and pops read 0 and depth and the feet's ground
+  // penetration are its own).
+  s.params = json{{"correction_quality_input", kind_name(CrowdMethod::baseline)}};
   s.upstream = {animation_hash(method)};
+  if (method != CrowdMethod::baseline) s.upstream.push_back(animation_hash(CrowdMethod::baseline));
   s.outputs.push_back(
       {out, [this, i](const fs::path& tmp) { write_text_file(tmp, metrics_[i]->dump(2) + "\n"); }});
   s.compute = [this, i, method] {
-    metrics_[i] = crowd_metrics_json(measure_crowd(animation(method)), false);
+    const CrowdAnimation& crowd = animation(method);
+    json m = crowd_metrics_json(measure_crowd(crowd), false);
+    json q = correction_quality_json(measure_correction_quality(animation(CrowdMethod::baseline), crowd));
+    if (is_manifold()) {  // the feet's ground is the surface there, not y = 0
+      q.erase("foot_ground_penetration_max_m");
+      q.erase("foot_ground_penetration_p99_m");
+    }
+    m["correction_quality"] = std::move(q);
+    metrics_[i] = std::move(m);
   };
   s.load = [this, i, out] {
     std::ifstream in(out);

@@ -6,7 +6,8 @@
 //                                                        factor levels, scenario type, group seed, spec text
 //   animation    baseline.glb                            spec text, MPFB2 asset folder; crowd
 //   correction   ours.glb                                damping, stiffness, contact stiffness; animation
-//   metrics      <method>.metrics.json                   the animation it measures
+//   metrics      <method>.metrics.json                   the animation it measures (and the baseline:
+//                                                        its "correction_quality" is measured against it)
 // Each result is computed (or loaded, when up to date) on first use and kept in memory while the
 // group's conditions run; asking for a stage runs the stages it reads first, so no call order matters.
 // Units: trajectories in metres and seconds; metrics volumes in litres (metrics_json.hpp).
@@ -19,8 +20,8 @@
 #include "framework/core/crowd_animation.hpp"
 #include "framework/core/surface_trajectories.hpp"
 #include "framework/crowd/generate_scenario.hpp"
-#include "framework/spec/condition_kinds.hpp"
 #include "framework/pipeline/stage_runner.hpp"
+#include "framework/spec/condition_kinds.hpp"
 #include "framework/spec/experiment_spec.hpp"
 
 namespace crowdlab {

@@ -61,6 +61,21 @@ void link_or_copy(const fs::path& from, const fs::path& to) {
   if (ec) fs::copy_file(from, to, fs::copy_options::overwrite_existing);
 }
 
+/// The correction-quality columns of a clip from its metrics JSON (-1 where absent).
+ClipQuality clip_quality(const nlohmann::json& metrics) {
+  ClipQuality q;
+  if (!metrics.contains("correction_quality")) return q;
+  const nlohmann::json& j = metrics.at("correction_quality");
+  q.depth_p99_m = j.value("depth_p99_m", -1.0);
+  q.depth_max_m = j.value("depth_max_m", -1.0);
+  q.stance_foot_drift_p99_m = j.value("stance_foot_drift_p99_m", -1.0);
+  q.stance_foot_drift_max_m = j.value("stance_foot_drift_max_m", -1.0);
+  q.foot_pops = j.value("foot_pops", -1);
+  q.foot_ground_penetration_max_m = j.value("foot_ground_penetration_max_m", -1.0);
+  q.foot_float_p99_m = j.value("foot_float_p99_m", -1.0);
+  return q;
+}
+
 /// One condition: its crowd (linked from the group), its metrics and its presentation.
 StimulusEntry run_condition(const ExperimentSpec& spec, const RunOptions& opt, StageRunner& runner,
                             CrowdGroup& g, const Condition& c, PresentationStages* presentation) {
@@ -79,6 +94,7 @@ StimulusEntry run_condition(const ExperimentSpec& spec, const RunOptions& opt, S
   e.mean_overlap_l = m.value("mean_character_overlap_l", -1.0);
   e.v_i_m = m.value("volume_index_m", -1.0);
   e.collisions = m.value("collision_count", -1);
+  e.quality = clip_quality(m);
   e.frames = crowd.frame_count();
   e.duration_s = crowd.duration_s();
   if (spec.outputs.video && presentation) presentation->run(runner, g, c, opt.out_dir, dir, e);

@@ -63,4 +63,44 @@ TEST_CASE("stimulus manifest round-trips") {
   CHECK(back.entries[0].mean_overlap_l == 0.25);
   CHECK(back.entries[0].v_i_m == -1.0);
   CHECK(back.entries[0].frames == 600);
+  CHECK(back.entries[0].quality.depth_p99_m == -1.0);
+  CHECK(back.entries[0].quality.foot_pops == -1);
+}
+
+TEST_CASE("stimulus manifest carries the clip's correction-quality columns") {
+  StimulusManifest m;
+  StimulusEntry e;
+  e.id = "c1";
+  e.file = "c1.mp4";
+  e.quality.depth_p99_m = 0.0042;
+  e.quality.depth_max_m = 0.02;
+  e.quality.stance_foot_drift_p99_m = 0.0008;
+  e.quality.stance_foot_drift_max_m = 0.0012;
+  e.quality.foot_pops = 3;
+  e.quality.foot_ground_penetration_max_m = 0.0;
+  e.quality.foot_float_p99_m = 0.005;
+  m.entries = {e};
+  const auto dir = test::scratch_dir("manifest_quality");
+  const std::string path = (dir / "manifest.csv").string();
+  write_manifest(m, path);
+  const std::string header = test::slurp(path).substr(0, test::slurp(path).find('\n'));
+  CHECK(
+      header.ends_with(",practice,depth_p99_m,depth_max_m,stance_foot_drift_p99_m,stance_foot_drift_max_m,"
+                       "foot_pops,foot_ground_penetration_max_m,foot_float_p99_m"));
+  const ClipQuality q = read_manifest(path).entries.at(0).quality;
+  CHECK(q.depth_p99_m == 0.0042);
+  CHECK(q.depth_max_m == 0.02);
+  CHECK(q.stance_foot_drift_p99_m == 0.0008);
+  CHECK(q.stance_foot_drift_max_m == 0.0012);
+  CHECK(q.foot_pops == 3);
+  CHECK(q.foot_ground_penetration_max_m == 0.0);
+  CHECK(q.foot_float_p99_m == 0.005);
+  // A manifest written before these columns existed still reads, with the measures unknown.
+  std::ofstream(path, std::ios::trunc)
+      << "id,file,duration_s,frames,width,height,sha256,overlap_l,v_i_m,collisions,practice\n"
+         "c1,c1.mp4,1,30,64,48,ab,0.1,,,0\n";
+  const StimulusEntry old = read_manifest(path).entries.at(0);
+  CHECK(old.mean_overlap_l == 0.1);
+  CHECK(old.quality.foot_pops == -1);
+  CHECK(old.quality.foot_float_p99_m == -1.0);
 }
