@@ -4,6 +4,7 @@
 
 #include "framework/core/csv.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/write_file.hpp"
 
 namespace crowdlab {
 namespace {
@@ -12,12 +13,11 @@ const std::vector<std::string> kTrailing = {"file",   "duration_s", "frames", "w
 }
 
 void write_manifest(const StimulusManifest& m, const std::string& csv_path) {
-  std::ofstream out(csv_path, std::ios::binary | std::ios::trunc);
-  if (!out) throw RuntimeError(csv_path + ": cannot write manifest");
+  std::string out;
   std::vector<std::string> header = {"id"};
   header.insert(header.end(), m.factor_names.begin(), m.factor_names.end());
   header.insert(header.end(), kTrailing.begin(), kTrailing.end());
-  out << csv_line(header);
+  out += csv_line(header);
   for (const StimulusEntry& e : m.entries) {
     std::vector<std::string> row = {e.id};
     for (const auto& f : m.factor_names) {
@@ -34,9 +34,10 @@ void write_manifest(const StimulusManifest& m, const std::string& csv_path) {
     row.push_back(e.v_i_m >= 0 ? csv_number(e.v_i_m) : "");
     row.push_back(e.collisions >= 0 ? std::to_string(e.collisions) : "");
     row.push_back(e.practice ? "1" : "0");
-    out << csv_line(row);
+    out += csv_line(row);
   }
-  if (!out.flush()) throw RuntimeError(csv_path + ": write failed");
+  // Atomically: a manifest is never seen half-written, and a full disk is reported with its reason.
+  write_file_atomic(csv_path, out);
 }
 
 StimulusManifest read_manifest(const std::string& csv_path) {
