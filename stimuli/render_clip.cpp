@@ -14,6 +14,7 @@
 
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
+#include "framework/core/write_file.hpp"
 #include "stimuli/video_encoder.hpp"
 
 namespace crowdlab::stimuli {
@@ -22,6 +23,14 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+/// Writes `image` as a PNG. Encoded in memory and written with write_text_file, because cv::imwrite only
+/// answers false: a full disk must name the file and the OS's reason (issue 21).
+void write_png(const std::string& path, const cv::Mat& image) {
+  std::vector<std::uint8_t> png;
+  if (!cv::imencode(".png", image, png)) throw RuntimeError(path + ": cannot encode the PNG image");
+  write_text_file(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
 }
 
 cv::Mat bottom_up_rgba_to_bgr(const std::vector<std::uint8_t>& rgba, int width, int height) {
@@ -116,8 +125,8 @@ RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const 
         if (!options.frames_png_dir.empty()) {
           char name[32];
           std::snprintf(name, sizeof name, "frame_%05d.png", item.first);
-          cv::imwrite((std::filesystem::path(options.frames_png_dir) / name).string(),
-                      bottom_up_rgba_to_bgr(item.second, options.width, options.height));
+          write_png((std::filesystem::path(options.frames_png_dir) / name).string(),
+                    bottom_up_rgba_to_bgr(item.second, options.width, options.height));
         }
         std::lock_guard lock(queue.mutex);
         queue.free_buffers.push_back(std::move(item.second));
@@ -226,7 +235,7 @@ void write_contact_sheet(Renderer& renderer, const CrowdAnimation& crowd, const 
                 std::max(1, static_cast<int>(2 * scale)), cv::LINE_AA);
     tile.copyTo(sheet(cv::Rect((k % 2) * tile_w, (k / 2) * tile_h, tile_w, tile_h)));
   }
-  if (!cv::imwrite(out_png, sheet)) throw RuntimeError("cannot write contact sheet " + out_png);
+  write_png(out_png, sheet);
 }
 
 }  // namespace crowdlab::stimuli

@@ -50,6 +50,7 @@ struct VideoEncoder::Impl {
   AVPacket* packet = nullptr;
   SwsContext* sws = nullptr;
   bool open = false;
+  std::string path;  ///< named by every error: libav's own messages carry no file name
 
   ~Impl() {
     sws_freeContext(sws);
@@ -66,11 +67,11 @@ struct VideoEncoder::Impl {
     for (;;) {
       const int r = avcodec_receive_packet(codec, packet);
       if (r == AVERROR(EAGAIN) || (flush && r == AVERROR_EOF)) return;
-      if (r < 0) throw RuntimeError("H.264 encoding failed: " + av_error(r));
+      if (r < 0) throw RuntimeError(path + ": H.264 encoding failed: " + av_error(r));
       av_packet_rescale_ts(packet, codec->time_base, stream->time_base);
       packet->stream_index = stream->index;
       const int w = av_interleaved_write_frame(format, packet);
-      if (w < 0) throw RuntimeError("writing the video failed: " + av_error(w));
+      if (w < 0) throw RuntimeError(path + ": write failed: " + av_error(w));
     }
   }
 };
@@ -81,6 +82,7 @@ VideoEncoder::VideoEncoder(const std::string& path, const VideoSettings& s)
   if (av_log_get_level() > AV_LOG_WARNING)
     av_log_set_level(AV_LOG_WARNING);  // x264 banners are noise in logs
   Impl& m = *impl_;
+  m.path = path;
   if (avformat_alloc_output_context2(&m.format, nullptr, "mp4", path.c_str()) < 0 || !m.format)
     throw RuntimeError("cannot create an MP4 container for " + path);
   const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
@@ -163,7 +165,7 @@ EncodeTimes VideoEncoder::add_frame(const std::uint8_t* rgba, bool bottom_up) {
   t = Clock::now();
   m.frame->pts = frames_++;
   const int r = avcodec_send_frame(m.codec, m.frame);
-  if (r < 0) throw RuntimeError("H.264 encoding failed: " + av_error(r));
+  if (r < 0) throw RuntimeError(m.path + ": H.264 encoding failed: " + av_error(r));
   m.drain(false);
   times.encode_ms = ms_since(t);
   return times;
@@ -174,10 +176,14 @@ void VideoEncoder::close() {
   if (!m.open) return;
   m.open = false;
   const int r = avcodec_send_frame(m.codec, nullptr);
-  if (r < 0) throw RuntimeError("flushing the H.264 encoder failed: " + av_error(r));
+  if (r < 0) throw RuntimeError(m.path + ": flushing the H.264 encoder failed: " + av_error(r));
   m.drain(true);
+  // libav buffers its writes: a full disk may surface only in the trailer or in the final flush at close,
+  // and av_error() of an AVERROR(errno) is the OS's reason (strerror).
   const int t = av_write_trailer(m.format);
-  if (t < 0) throw RuntimeError("writing the MP4 trailer failed: " + av_error(t));
+  if (t < 0) throw RuntimeError(m.path + ": writing the MP4 trailer failed: " + av_error(t));
+  const int c = avio_closep(&m.format->pb);
+  if (c < 0) throw RuntimeError(m.path + ": write failed: " + av_error(c));
 }
 
 }  // namespace crowdlab::stimuli

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -101,9 +102,14 @@ void fsync_parent_directory(const std::string& path) {
 
 void write_file_atomically(const std::string& path, const std::string& text, bool durable) {
   const std::string tmp = path + ".tmp";
-  write_whole(tmp, O_TRUNC, text, durable);
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-    throw RuntimeError(path + ": rename failed: " + errno_text());
+  try {
+    write_whole(tmp, O_TRUNC, text, durable);
+    if (std::rename(tmp.c_str(), path.c_str()) != 0)
+      throw RuntimeError(path + ": rename failed: " + errno_text());
+  } catch (...) {
+    std::remove(tmp.c_str());  // a full disk must not leave a (zero-byte) temporary behind (issue 21)
+    throw;
+  }
   if (durable) fsync_parent_directory(path);
 }
 

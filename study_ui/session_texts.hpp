@@ -5,8 +5,9 @@ namespace crowdlab::study::texts {
 
 inline constexpr const char* kPracticeTitle = "Practice";
 inline constexpr const char* kPracticeIntro =
-    "The next videos are practice examples, to get used to the task.\n"
-    "Your answers to them are not analysed.\n\nPress any key to start.";
+    // Worded for any number of practice trials: the demo has one (issue 21 item 10d).
+    "First some practice, to get used to the task.\n"
+    "Your answers during the practice are not analysed.\n\nPress any key to start.";
 inline constexpr const char* kAfterPractice =
     "The practice is over. The experiment starts now.\n\nPress any key.";
 inline constexpr const char* kBlockIntro = "Press any key to continue.";

@@ -17,6 +17,7 @@
 #include "analysis/simulated_rows.hpp"
 #include "analysis/study_report.hpp"
 #include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "framework/core/error.hpp"
 
 namespace crowdlab::cli {
@@ -412,6 +413,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   report->add_option("--out", report_opt->out_dir, "Output folder (report.md, figures/)")->required();
   report->add_flag("--allow-simulated-mix", report_opt->allow_simulated_mix, kAllowMixHelp);
   report->callback([o = report_opt] {
+    const OutputFolderLock lock(o->out_dir);  // one process per folder (output_folder_lock.hpp)
     check_study_dir_unmixed(o->study_dir, o->allow_simulated_mix);
     const auto path = write_study_report(o->study_dir, o->spec_path, o->out_dir);
     std::cout << "wrote " << path << "\n";

@@ -10,6 +10,7 @@
 #include "analysis/study_report.hpp"
 #include "crowdlab_embedded_demo.hpp"
 #include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "experiments/cli/pipeline/render_stages.hpp"
 #include "framework/core/stimulus_manifest.hpp"
 #include "framework/pipeline/provenance.hpp"
@@ -54,7 +55,8 @@ int append_contact_sheets(const fs::path& report_md, const fs::path& stimuli_dir
 
 void run_demo(const Options& o) {
   const fs::path dir = fs::absolute(o.out);
-  fs::create_directories(dir);
+  // One process per folder (output_folder_lock.hpp); the stimuli folder is also a `run --out`.
+  const OutputFolderLock lock(dir), stimuli_lock(dir / "stimuli");
   // The spec is written out first so that every later stage (and the user) reads a real file.
   const fs::path spec_path = dir / "spec.yaml";
   write_file_atomic(spec_path, kEmbeddedDemoSpec);

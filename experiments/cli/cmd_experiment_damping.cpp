@@ -12,6 +12,7 @@
 #include "experiments/cli/command_registry.hpp"
 #include "experiments/cli/experiment_group.hpp"
 #include "experiments/cli/figures/damping_figure.hpp"
+#include "experiments/cli/pipeline/output_folder_lock.hpp"
 
 namespace crowdlab::cli {
 namespace {
@@ -30,6 +31,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--damping", opt->dampings, "Damping values d")->capture_default_str();
   cmd->add_option("--duration", opt->duration_s, "Seconds simulated")->capture_default_str();
   cmd->callback([opt] {
+    const OutputFolderLock lock(opt->out_dir);  // one process per folder (output_folder_lock.hpp)
     const auto runs = run_damping_experiment(opt->dampings, CorrectorParams{}, opt->duration_s);
     for (const DampingRun& r : runs)
       spdlog::info(

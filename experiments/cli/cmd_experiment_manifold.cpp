@@ -18,6 +18,7 @@
 
 #include "experiments/cli/command_registry.hpp"
 #include "experiments/cli/experiment_group.hpp"
+#include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "experiments/cli/timing.hpp"
 #include "framework/core/csv.hpp"
 #include "framework/core/error.hpp"
@@ -115,7 +116,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--seed", opts->seed, "Seed")->capture_default_str();
   cmd->add_flag("--face-up", opts->face_up,
                 "Bodies stand along each face's normal (snapping at creases) instead of the smoothed up");
-  cmd->callback([opts] { run(*opts); });
+  cmd->callback([opts] {
+    const OutputFolderLock lock(opts->out);  // one process per folder (output_folder_lock.hpp)
+    run(*opts);
+  });
 });
 
 }  // namespace

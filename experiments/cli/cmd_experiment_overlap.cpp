@@ -21,6 +21,7 @@
 #include "experiments/cli/corrector_tuning_options.hpp"
 #include "experiments/cli/experiment_group.hpp"
 #include "experiments/cli/figures/overlap_vs_density.hpp"
+#include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "framework/animation/animate_crowd.hpp"
 #include "framework/core/csv.hpp"
 #include "framework/core/progress.hpp"
@@ -177,7 +178,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--settle-steps", o->params.settle_steps, "Steps run on frame 0 before the output starts")
       ->capture_default_str();
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o] {
+    const OutputFolderLock lock(o->out);  // one process per folder (output_folder_lock.hpp)
+    run(*o);
+  });
 });
 
 }  // namespace

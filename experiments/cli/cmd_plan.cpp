@@ -9,6 +9,7 @@
 
 #include "experiments/cli/command_registry.hpp"
 #include "experiments/cli/pipeline/job_script_text.hpp"
+#include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "framework/core/error.hpp"
 #include "framework/pipeline/provenance.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
@@ -99,7 +100,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--shards", o->shards, "Number of shards (default: one per condition, at most 64)");
   cmd->add_option("--cpus", o->cpus, "CPUs per Slurm task")->capture_default_str();
   cmd->add_option("--crowdlab", o->exe, "Path of the crowdlab binary on the cluster")->capture_default_str();
-  cmd->callback([o] { emit(*o); });
+  cmd->callback([o] {
+    const OutputFolderLock lock(o->out);  // one process per folder (output_folder_lock.hpp)
+    emit(*o);
+  });
 });
 
 }  // namespace

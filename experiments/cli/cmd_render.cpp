@@ -11,8 +11,8 @@
 
 #include "experiments/cli/command_registry.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/write_file.hpp"
 #include "framework/io/read_crowd_glb.hpp"
-#include "framework/pipeline/provenance.hpp"
 #include "stimuli/clip_sidecar.hpp"
 #include "stimuli/render_clip.hpp"
 #include "stimuli/synthetic_crowd.hpp"
@@ -87,7 +87,11 @@ void run(const RenderArgs& a) {
   const stimuli::Viewpoint view(a.viewpoint, crowd, o.width, o.height, o.viewpoint_overrides);
   const std::filesystem::path sidecar = stimuli::clip_sidecar_path(a.out);
   if (sidecar == std::filesystem::path(a.out)) throw InputError("--out: the clip must not end in .json");
-  const stimuli::RenderResult r = stimuli::render_clip(renderer, crowd, o, view, a.out);
+  // Via a temporary (write_file.hpp): a failed encode (a full disk) leaves no broken clip under --out.
+  stimuli::RenderResult r;
+  write_output_via_temporary(a.out, [&](const std::filesystem::path& tmp) {
+    r = stimuli::render_clip(renderer, crowd, o, view, tmp.string());
+  });
   write_file_atomic(sidecar, stimuli::clip_sidecar(view, r.frames, crowd).dump(2) + "\n");
   auto median = [](std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -100,11 +104,11 @@ void run(const RenderArgs& a) {
       median(r.render_ms), median(r.encode_ms), r.wall_s, r.setup_s, r.device);
   if (a.overlap) {
     const std::string csv = a.out + ".overlap.csv";
-    std::ofstream out(csv);
+    std::ostringstream out;
     out << "frame,time_s,red_fraction\n";
     for (size_t f = 0; f < r.red_fraction.size(); ++f)
       out << f << ',' << f / r.fps << ',' << r.red_fraction[f] << '\n';
-    if (!out) throw RuntimeError("cannot write " + csv);
+    write_file_atomic(csv, out.str());
     const double mean = std::accumulate(r.red_fraction.begin(), r.red_fraction.end(), 0.0) /
                         std::max<size_t>(1, r.red_fraction.size());
     spdlog::info("red-pixel fraction: mean {:.5f}, max {:.5f} (per frame in {})", mean,

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "experiments/cli/reproduce/reproduce_gomez2024.hpp"
 #include "experiments/cli/reproduce/reproduce_hoyet2016.hpp"
 
@@ -37,7 +38,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                       gomez, "Override the clip length of both studies' specs (seconds)",
                       "Override the frame rate of both studies' specs");
   g->add_flag("--skip-timing", gomez->skip_timing, "Leave out the timing table");
-  g->callback([gomez] { reproduce_gomez2024(*gomez); });
+  g->callback([gomez] {
+    const OutputFolderLock lock(gomez->out);  // one process per folder (output_folder_lock.hpp)
+    reproduce_gomez2024(*gomez);
+  });
   auto hoyet = std::make_shared<ReproduceOptions>();
   auto* h =
       add_paper(group, "hoyet2016",
@@ -47,7 +51,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                 "Override the frame rate of the pair clips (Fig. 3, Table 1)");
   h->add_option("--repetitions", hoyet->repetitions, "Override the repetitions of each pair condition")
       ->check(CLI::Range(1, 32));
-  h->callback([hoyet] { reproduce_hoyet2016(*hoyet); });
+  h->callback([hoyet] {
+    const OutputFolderLock lock(hoyet->out);
+    reproduce_hoyet2016(*hoyet);
+  });
 });
 
 }  // namespace

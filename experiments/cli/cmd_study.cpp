@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/seed.hpp"
 #include "framework/core/stimulus_manifest.hpp"
@@ -178,6 +179,7 @@ const CommandRegistration kSimulateStudy([](CLI::App& root) {
   cmd->add_option("--observer", a->observer, "Observer model: 'default' or key=value,...")
       ->capture_default_str();
   cmd->callback([a] {
+    const OutputFolderLock lock(a->out);  // one process per folder (output_folder_lock.hpp)
     const ExperimentSpec spec = load_experiment_spec(a->spec);
     const StimulusManifest manifest = load_manifest(a->stimuli);
     study::SimulateStudyOptions opt;

@@ -5,6 +5,7 @@
 
 #include "framework/core/csv.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/write_file.hpp"
 
 namespace crowdlab {
 namespace {
@@ -31,13 +32,12 @@ std::string optional_cell(double v) {
 }  // namespace
 
 void write_manifest(const StimulusManifest& m, const std::string& csv_path) {
-  std::ofstream out(csv_path, std::ios::binary | std::ios::trunc);
-  if (!out) throw RuntimeError(csv_path + ": cannot write manifest");
+  std::string out;
   std::vector<std::string> header = {"id"};
   header.insert(header.end(), m.factor_names.begin(), m.factor_names.end());
   header.insert(header.end(), kTrailing.begin(), kTrailing.end());
   for (const QualityColumn& q : kQuality) header.push_back(q.name);
-  out << csv_line(header);
+  out += csv_line(header);
   for (const StimulusEntry& e : m.entries) {
     std::vector<std::string> row = {e.id};
     for (const auto& f : m.factor_names) {
@@ -57,9 +57,10 @@ void write_manifest(const StimulusManifest& m, const std::string& csv_path) {
     for (const QualityColumn& q : kQuality)
       row.push_back(q.value ? optional_cell(e.quality.*q.value)
                             : (e.quality.foot_pops >= 0 ? std::to_string(e.quality.foot_pops) : ""));
-    out << csv_line(row);
+    out += csv_line(row);
   }
-  if (!out.flush()) throw RuntimeError(csv_path + ": write failed");
+  // Atomically: a manifest is never seen half-written, and a full disk is reported with its reason.
+  write_file_atomic(csv_path, out);
 }
 
 StimulusManifest read_manifest(const std::string& csv_path) {

@@ -6,11 +6,13 @@
 #include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "crowdlab_version.hpp"
 #include "framework/core/appearance.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/write_file.hpp"
 #include "framework/io/capsule_mesh.hpp"
 #include "framework/io/crowd_glb_format.hpp"
 #include "framework/io/gltf_builder.hpp"
@@ -464,13 +466,18 @@ void write_crowd_glb(const CrowdAnimation& crowd, const std::string& path) {
   // Write beside the target and rename, so that an interrupted run never leaves a truncated file under
   // the final name (resumable runs treat an existing .glb as finished).
   const std::string partial = path + ".partial";
+  // Serialised in memory, then written with write(2): tinygltf's own file writer ignores a failed
+  // write, so a full disk published a truncated crowd file (issue 21).
+  std::ostringstream glb;
   tinygltf::TinyGLTF writer;
-  if (!writer.WriteGltfSceneToFile(&model, partial, /*embedImages=*/false, /*embedBuffers=*/true,
-                                   /*prettyPrint=*/false, /*writeBinary=*/true) ||
-      !std::filesystem::is_regular_file(partial)) {
+  if (!writer.WriteGltfSceneToStream(&model, glb, /*prettyPrint=*/false, /*writeBinary=*/true))
+    throw RuntimeError(path + ": cannot encode the glTF file");
+  try {
+    write_text_file(partial, glb.view());
+  } catch (...) {
     std::error_code ignored;
     std::filesystem::remove(partial, ignored);
-    throw RuntimeError(path + ": cannot write the glTF file");
+    throw;
   }
   std::error_code ec;
   std::filesystem::rename(partial, path, ec);

@@ -58,10 +58,9 @@ CrowdGroup::CrowdGroup(const ExperimentSpec& spec, StageRunner& runner, const fs
       dir_(crowds_dir / key_),
       condition_(crowd_condition(spec, first)) {
   fs::create_directories(dir_);
-  // Each stage's input hash covers its own parameters plus its upstream hash.
+  // The animation is computed from the crowd stage's result in memory (deterministic from the seed), so
+  // its input hash covers the crowd stage's recipe; every later stage reads files and hashes them.
   crowd_hash_ = crowd_stage().input_hash();
-  animation_hash_[index_of(CrowdMethod::baseline)] = animation_stage().input_hash();
-  animation_hash_[index_of(CrowdMethod::corrected)] = correction_stage().input_hash();
 }
 
 bool CrowdGroup::is_manifold() const {
@@ -122,7 +121,7 @@ Stage CrowdGroup::correction_stage() {
   s.params = json{{"damping", spec_.correction.damping},
                   {"stiffness", spec_.correction.stiffness},
                   {"contact_stiffness", spec_.correction.collision_stiffness}};
-  s.upstream = {animation_hash(CrowdMethod::baseline)};
+  s.inputs = {animation_path(CrowdMethod::baseline)};
   s.compute = [this, i] {
     const CrowdAnimation& input = animation(CrowdMethod::baseline);
     Progress progress("correct " + key_, static_cast<size_t>(input.frame_count()));
@@ -144,8 +143,8 @@ Stage CrowdGroup::metrics_stage(CrowdMethod method) {
   // baseline itself: the same animation, so drift and pops read 0 and depth and the feet's ground
   // penetration are its own).
   s.params = json{{"correction_quality_input", kind_name(CrowdMethod::baseline)}};
-  s.upstream = {animation_hash(method)};
-  if (method != CrowdMethod::baseline) s.upstream.push_back(animation_hash(CrowdMethod::baseline));
+  s.inputs = {animation_path(method)};
+  if (method != CrowdMethod::baseline) s.inputs.push_back(animation_path(CrowdMethod::baseline));
   s.outputs.push_back(
       {out, [this, i](const fs::path& tmp) { write_text_file(tmp, metrics_[i]->dump(2) + "\n"); }});
   s.compute = [this, i, method] {
@@ -189,13 +188,11 @@ fs::path CrowdGroup::animation_path(CrowdMethod method) const {
   return dir_ / (std::string(kind_name(method)) + ".glb");
 }
 
-const std::string& CrowdGroup::animation_hash(CrowdMethod method) const {
-  return animation_hash_[index_of(method)];
-}
-
 const json& CrowdGroup::metrics(CrowdMethod method) {
   const size_t i = index_of(method);
-  if (!metrics_[i]) runner_.run(metrics_stage(method));
+  if (metrics_[i]) return *metrics_[i];
+  animation(method);  // the stage reads the animation's file: make it first
+  runner_.run(metrics_stage(method));
   return *metrics_[i];
 }
 

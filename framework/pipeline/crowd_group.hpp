@@ -4,12 +4,16 @@
 //   stage        outputs (in DIR/crowds/<key>/)          input hash covers
 //   crowd        trajectories.csv (+ surface_trajectories.csv for manifold crowds)
 //                                                        factor levels, scenario type, group seed, spec text
-//   animation    baseline.glb                            spec text, MPFB2 asset folder; crowd
-//   correction   ours.glb                                damping, stiffness, contact stiffness; animation
-//   metrics      <method>.metrics.json                   the animation it measures (and the baseline:
-//                                                        its "correction_quality" is measured against it)
+//   animation    baseline.glb                            spec text, MPFB2 asset folder; the crowd's recipe
+//   correction   ours.glb                                damping, stiffness, contact stiffness; the bytes
+//                                                        of baseline.glb
+//   metrics      <method>.metrics.json                   the bytes of the animation file it measures and
+//                                                        of baseline.glb (its "correction_quality" is
+//                                                        measured against the baseline)
 // Each result is computed (or loaded, when up to date) on first use and kept in memory while the
 // group's conditions run; asking for a stage runs the stages it reads first, so no call order matters.
+// Crowd files are always read back from disk after they are written (stage.hpp), so the correction,
+// the metrics and the clips see the same float32 data in a fresh and in a resumed run.
 // Units: trajectories in metres and seconds; metrics volumes in litres (metrics_json.hpp).
 #include <array>
 #include <filesystem>
@@ -48,8 +52,6 @@ class CrowdGroup {
   /// The animation a method shows: baseline.glb or ours.glb, made or loaded by its stage.
   const CrowdAnimation& animation(CrowdMethod method);
   std::filesystem::path animation_path(CrowdMethod method) const;
-  /// The input hash of that animation's stage: what every stage downstream of it lists as upstream.
-  const std::string& animation_hash(CrowdMethod method) const;
 
   /// The metrics stage's JSON for a method's animation (metrics_json.hpp).
   const nlohmann::json& metrics(CrowdMethod method);
@@ -71,7 +73,6 @@ class CrowdGroup {
   std::filesystem::path dir_;
   Condition condition_;
   std::string crowd_hash_;
-  std::array<std::string, kCrowdMethodCount> animation_hash_;
   bool crowd_done_ = false;
   std::optional<ScenarioResult> scenario_;
   SurfaceTrajectories surface_;

@@ -1,13 +1,8 @@
 #include "framework/pipeline/provenance.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <Eigen/Core>
-#include <cerrno>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <sstream>
@@ -62,53 +57,6 @@ nlohmann::json framework_library_versions() {
   j["eigen"] = std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
                std::to_string(EIGEN_MINOR_VERSION);
   return j;
-}
-
-/// fsync(2) on an existing file, so that the rename that follows never publishes unwritten data.
-static void sync_file(const fs::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw RuntimeError(path.string() + ": cannot open to sync: " + std::strerror(errno));
-  const int rc = ::fsync(fd);
-  const int error = errno;
-  ::close(fd);
-  if (rc != 0) throw RuntimeError(path.string() + ": fsync failed: " + std::strerror(error));
-}
-
-void write_output_via_temporary(const fs::path& output, const std::function<void(const fs::path&)>& write) {
-  // Per-process temporary name: shards running at once may write the same file (e.g. spec.yaml).
-  const fs::path tmp = output.parent_path() / (output.stem().string() + ".tmp." + std::to_string(::getpid()) +
-                                               output.extension().string());
-  try {
-    write(tmp);
-    sync_file(tmp);
-    fs::rename(tmp, output);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw;
-  }
-}
-
-void write_text_file(const fs::path& path, const std::string& contents) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw RuntimeError(path.string() + ": cannot write: " + std::strerror(errno));
-  const char* p = contents.data();
-  size_t left = contents.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n <= 0) {
-      const int error = n < 0 ? errno : ENOSPC;
-      ::close(fd);
-      throw RuntimeError(path.string() + ": write failed: " + std::strerror(error));
-    }
-    p += n;
-    left -= static_cast<size_t>(n);
-  }
-  ::close(fd);
-}
-
-void write_file_atomic(const fs::path& path, const std::string& contents) {
-  write_output_via_temporary(path, [&](const fs::path& tmp) { write_text_file(tmp, contents); });
 }
 
 void record_provenance(const fs::path& output, const std::string& stage, const std::string& input_hash,

@@ -19,6 +19,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "framework/core/write_file.hpp"  // write_output_via_temporary, write_text_file
+
 namespace crowdlab {
 
 /// Versions of the libraries the framework was built against (crowdlab, Eigen); the composing program
@@ -45,19 +47,5 @@ void record_provenance(const std::filesystem::path& output, const std::string& s
 
 /// The recorded input hash of an output ("" when it has no sidecar).
 std::string recorded_hash(const std::filesystem::path& output);
-
-/// Makes `output` atomically: `write(tmp)` writes the complete file at `tmp` (same folder, name
-/// "<stem>.tmp.<pid><extension>", so writers that choose a format by extension still work); it is then
-/// fsync'd and renamed over `output`. When `write` throws, the temporary is removed and the exception
-/// passes on; `output` is never seen half-written.
-void write_output_via_temporary(const std::filesystem::path& output,
-                                const std::function<void(const std::filesystem::path& tmp)>& write);
-
-/// Writes `contents` to `path` in place (a stage output's `write`, called on its temporary); errors name
-/// the file and the system's reason.
-void write_text_file(const std::filesystem::path& path, const std::string& contents);
-
-/// Writes a file atomically (write_output_via_temporary); errors name the file and the system's reason.
-void write_file_atomic(const std::filesystem::path& path, const std::string& contents);
 
 }  // namespace crowdlab

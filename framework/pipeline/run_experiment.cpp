@@ -1,11 +1,14 @@
 #include "framework/pipeline/run_experiment.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <fstream>
 #include <map>
 #include <sstream>
 
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
+#include "framework/core/write_file.hpp"
 #include "framework/pipeline/crowd_key.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
@@ -115,6 +118,9 @@ RunSummary run_experiment(const ExperimentSpec& spec, const RunOptions& options,
   CrowdGroups groups = select_groups(spec, options);
   fs::create_directories(options.out_dir / "crowds");
   fs::create_directories(options.out_dir / "conditions");
+  // What a killed run could not clean up itself (outputs half-written under a temporary name).
+  if (const int stale = remove_stale_temporaries(options.out_dir))
+    spdlog::info("removed {} temporary file(s) left by an interrupted run", stale);
   copy_spec(spec, options.out_dir);
 
   StageRunner runner(ProvenanceContext{spec.source_hash, spec.seed, options.libraries}, options.force);

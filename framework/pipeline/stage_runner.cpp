@@ -3,11 +3,18 @@
 #include <spdlog/spdlog.h>
 
 #include "framework/core/error.hpp"
+#include "framework/core/sha256.hpp"
 
 namespace crowdlab {
 
 std::string Stage::input_hash() const {
-  return stage_input_hash(name, params, upstream);
+  std::vector<std::string> hashes = upstream;
+  for (const std::filesystem::path& input : inputs) {
+    if (!std::filesystem::exists(input))
+      throw RuntimeError("stage '" + name + "': its input " + input.string() + " is missing");
+    hashes.push_back(input.filename().string() + ":" + sha256_file_hex(input.string()));
+  }
+  return stage_input_hash(name, params, hashes);
 }
 
 StageRunner::StageRunner(ProvenanceContext context, bool force)
@@ -37,6 +44,8 @@ bool StageRunner::run(const Stage& stage) {
       write_output_via_temporary(out->path, out->write);
       record_provenance(out->path, stage.name, hash, context_);
     }
+    // Downstream stages consume what is on disk, as they would after a resume (stage.hpp).
+    if (stage.load) stage.load();
   } catch (const InputError&) {
     spdlog::error("stage '{}' failed on bad input while making {}", stage.name, current->path.string());
     throw;

@@ -1,9 +1,12 @@
 #pragma once
 // The one generic runner of pipeline stages (stage.hpp), used for every stage of `crowdlab run`:
-//   up-to-date check  every output exists, its sidecar records the stage's input hash and the file's
+//   up-to-date check  every output exists, its sidecar records the stage's input hash (with the hashes
+//                     of its input files) and the file's
 //                     SHA-256 (provenance.hpp); then the stage is skipped and `load` reads its result
 //   recompute         otherwise (or with `force`): `compute`, then every stale output is written via a
-//                     temporary and renamed into place, and its sidecar is written after it
+//                     temporary and renamed into place, and its sidecar is written after it; then
+//                     `load` reads the result back from the files, so that what the stages downstream
+//                     consume never depends on whether this run computed or resumed (stage.hpp)
 //   progress          counts of stages run (main output, outputs.front(), remade) and skipped (main
 //                     output up to date, even when a derived output was remade), a debug line per stage
 //   error context     a failure names the stage and the output it was making: RuntimeError and other

@@ -21,13 +21,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 /// A stage with one text output per name, counting what it computes, writes and loads.
 struct CountingStage {
   explicit CountingStage(fs::path folder) : dir(std::move(folder)) {}
@@ -64,12 +57,12 @@ TEST_CASE("stage runner: runs once, then skips and loads while nothing changed")
   CountingStage c{scratch_dir("stage_runner_skip")};
   StageRunner runner(ProvenanceContext{"spec-hash", 7}, false);
   CHECK(runner.run(c.stage()));
-  CHECK(slurp_file(c.dir / "out.txt") == "v1:out.txt");
+  CHECK(slurp(c.dir / "out.txt") == "v1:out.txt");
   CHECK(c.computed == 1);
-  CHECK(c.loaded == 0);
+  CHECK(c.loaded == 1);  // read back after writing: downstream consumes what is on disk
   CHECK_FALSE(runner.run(c.stage()));
   CHECK(c.computed == 1);
-  CHECK(c.loaded == 1);
+  CHECK(c.loaded == 2);
   CHECK(runner.stages_run() == 1);
   CHECK(runner.stages_skipped() == 1);
   // A new runner over the same folder (the next `crowdlab run`) skips too.
@@ -81,13 +74,61 @@ TEST_CASE("stage runner: runs once, then skips and loads while nothing changed")
   CHECK(c.computed == 2);
 }
 
+TEST_CASE("stage runner: the result is read back from the outputs after they are written") {
+  // The stage's in-memory result is replaced by what its file holds, as a resumed run would load it
+  // (issue 21: a crowd corrected from the in-memory baseline differed from one corrected after a resume).
+  const fs::path dir = scratch_dir("stage_runner_read_back");
+  std::string result;
+  Stage s;
+  s.name = "lossy";
+  s.outputs.push_back(
+      {dir / "out.txt", [&](const fs::path& tmp) { write_text_file(tmp, result.substr(0, 4)); }});
+  s.compute = [&] { result = "0.123456789"; };
+  s.load = [&] { result = slurp(dir / "out.txt"); };
+  StageRunner runner(ProvenanceContext{}, false);
+  REQUIRE(runner.run(s));
+  CHECK(result == "0.12");
+}
+
+TEST_CASE("stage runner: an input file recomputed with other bytes redoes the stage that reads it") {
+  // Issue 21: a crowd file deleted and recomputed kept its stale metrics and clip, whose input hash
+  // covered only the upstream stage's parameters, not the bytes they read.
+  CountingStage up{scratch_dir("stage_runner_input_file")};
+  CountingStage down{up.dir};
+  StageRunner runner(ProvenanceContext{}, false);
+  const auto downstream = [&] {
+    Stage s = down.stage({"down.txt"});
+    s.inputs = {up.dir / "up.txt"};
+    return s;
+  };
+  REQUIRE(runner.run(up.stage({"up.txt"})));
+  REQUIRE(runner.run(downstream()));
+  CHECK_FALSE(runner.run(downstream()));
+  // Recomputed with the same bytes: downstream stays up to date.
+  fs::remove(up.dir / "up.txt");
+  REQUIRE(runner.run(up.stage({"up.txt"})));
+  CHECK_FALSE(runner.run(downstream()));
+  // Recomputed with other bytes under the same parameters (what new assets or another library do).
+  fs::remove(up.dir / "up.txt");
+  const auto params = up.stage({"up.txt"}).input_hash();
+  Stage changed = up.stage({"up.txt"});
+  changed.outputs[0].write = [](const fs::path& tmp) { write_text_file(tmp, "other bytes"); };
+  REQUIRE(changed.input_hash() == params);
+  REQUIRE(runner.run(changed));
+  CHECK(runner.run(downstream()));
+  CHECK(down.computed == 2);
+  // A missing input is an error naming it, never a silent skip.
+  fs::remove(up.dir / "up.txt");
+  CHECK_THROWS_WITH(runner.run(downstream()), Catch::Contains("up.txt") && Catch::Contains("missing"));
+}
+
 TEST_CASE("stage runner: a changed parameter or upstream hash recomputes") {
   CountingStage c{scratch_dir("stage_runner_inputs")};
   StageRunner runner(ProvenanceContext{}, false);
   REQUIRE(runner.run(c.stage()));
   c.text = "v2";
   CHECK(runner.run(c.stage()));
-  CHECK(slurp_file(c.dir / "out.txt") == "v2:out.txt");
+  CHECK(slurp(c.dir / "out.txt") == "v2:out.txt");
   CHECK_FALSE(runner.run(c.stage()));
   c.upstream = {"an upstream stage changed"};
   CHECK(runner.run(c.stage()));
@@ -112,7 +153,7 @@ TEST_CASE("stage runner: a missing or altered output is remade, its up-to-date s
   // Runs: the first, and the one that remade the main output a.txt; remaking only b.txt is not one.
   CHECK(runner.stages_run() == 2);
   CHECK(runner.stages_skipped() == 1);
-  CHECK(slurp_file(c.dir / "b.txt") == "v1:b.txt");
+  CHECK(slurp(c.dir / "b.txt") == "v1:b.txt");
   // A lost sidecar makes its output stale as well.
   fs::remove(c.dir / "a.txt.prov.json");
   CHECK(runner.run(c.stage({"a.txt", "b.txt"})));

@@ -72,7 +72,7 @@ TEST_CASE("validate counts the other shipped specs") {
   const std::vector<std::pair<std::string, std::string>> expected = {
       {"gomez2024_nonstationary.yaml", "\n20 conditions\n"},
       {"hoyet2016_crowds.yaml", "\n120 conditions (+12 practice)\n"},
-      {"demo.yaml", "\n8 conditions\n"},
+      {"demo.yaml", "\n8 conditions (+1 practice)\n"},  // instructions and one practice trial (issue 21)
   };
   for (const auto& [file, count] : expected) {
     const auto r = run_cli({"validate", spec_path(file), "--no-table"});

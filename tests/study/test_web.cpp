@@ -390,13 +390,15 @@ TEST_CASE(
     return;
   }
   const auto dir = test::scratch_dir("web-browser");
-  // The demo spec, plus every screen the protocol can have: instructions, consent, a practice trial
-  // (shown at the start of the 'baseline' block), two blocks in Latin-square order, a break.
+  // The demo spec (it has instructions and a practice trial of its own), plus every other screen the
+  // protocol can have: consent, two blocks in Latin-square order (the practice trial, whose method is
+  // baseline, opens the 'baseline' block), a break.
   std::string yaml = slurp(test::source_dir() / "experiments" / "demo.yaml");
+  REQUIRE(yaml.find("  instructions:") != std::string::npos);
+  REQUIRE(yaml.find("  practice: {density: [3.33], viewpoint: [V1], method: [baseline]}") !=
+          std::string::npos);
   yaml.insert(yaml.find("  scale:"),
-              "  instructions: \"Watch each video, then answer the six statements.\"\n"
               "  consent: \"I agree to take part in this study.\"\n"
-              "  practice: {density: [3.33], viewpoint: [V1], method: [baseline]}\n"
               "  block_by: method\n  block_order: latin_square\n  break_every: 3\n");
   std::ofstream(dir / "demo-online.yaml") << yaml;
   const std::string spec_path = (dir / "demo-online.yaml").string();

@@ -1,7 +1,10 @@
 #pragma once
 // Runs the real `crowdlab` binary on an argument list and captures exit code, stdout and stderr,
 // the way a user's shell script would.
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -47,6 +50,24 @@ inline CliResult run_cli(const std::vector<std::string>& args) {
   r.out = slurp(out_path);
   r.err = slurp(err_path);
   return r;
+}
+
+/// Starts the real `crowdlab` binary on an argument list in the background, output to /dev/null, and
+/// returns its pid (for tests that kill a run or race two of them; reap it with waitpid).
+inline pid_t spawn_cli(const std::vector<std::string>& args) {
+  const std::string exe = crowdlab_exe().string();
+  std::vector<char*> argv{const_cast<char*>(exe.c_str())};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t io;
+  posix_spawn_file_actions_init(&io);
+  posix_spawn_file_actions_addopen(&io, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&io, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&io, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, exe.c_str(), &io, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&io);
+  return rc == 0 ? pid : -1;
 }
 
 }  // namespace crowdlab::test

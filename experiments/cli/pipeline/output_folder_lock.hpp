@@ -1,6 +1,11 @@
 #pragma once
-// Mutual exclusion of `crowdlab run` processes on one output folder (issue 21: two runs on one --out
+// Mutual exclusion of crowdlab processes on one output folder (issue 21: two runs on one --out
 // interleaved their writes, and both could exit 0 with a manifest whose hashes did not match the clips).
+// Every command that writes an output folder takes it exclusively for its whole life: `run`, `demo`
+// (its folder and the stimuli folder inside it, which `run --out DIR/stimuli` would write),
+// `reproduce`, `experiment damping|manifold-compare|overlap-vs-density`, `analyze report`, `simulate-study`
+// and `plan`. `export-web` needs none: it refuses any folder that is not empty, and a lock file would ship
+// inside the web study.
 //
 // flock(2) on DIR/.crowdlab.lock, held until the process ends (the kernel drops it on exit or kill -9,
 // so a crashed run never leaves a stale lock):
@@ -19,6 +24,8 @@ class OutputFolderLock {
   /// unsharded run or a collect). Throws InputError naming the folder and the other process's pid when
   /// another process holds a conflicting lock; never waits.
   OutputFolderLock(const std::filesystem::path& dir, int shard_index, int shard_count);
+  /// Locks `dir` exclusively: a command that writes the whole folder.
+  explicit OutputFolderLock(const std::filesystem::path& dir) : OutputFolderLock(dir, 1, 1) {}
   ~OutputFolderLock();
   OutputFolderLock(const OutputFolderLock&) = delete;
   OutputFolderLock& operator=(const OutputFolderLock&) = delete;

@@ -44,7 +44,7 @@ class RenderStages final : public PresentationStages {
   }
 
  private:
-  /// The camera depends on the shared framing data (trajectories and heights: the baseline's hash
+  /// The camera depends on the shared framing data (trajectories and heights: the baseline's file
   /// covers both), the framing rule, the viewpoint, the image size and the overrides (in the spec).
   Stage render_stage(CrowdGroup& g, CrowdMethod method, const std::string& viewpoint, const RenderOptions& ro,
                      const fs::path& clip) {
@@ -61,7 +61,7 @@ class RenderStages final : public PresentationStages {
                     {"characters", ro.character_files},
                     {"framing", kFramingRule},
                     {"spec", spec_.source_hash}};
-    s.upstream = {g.animation_hash(method), g.animation_hash(CrowdMethod::baseline)};
+    s.inputs = {g.animation_path(method), g.animation_path(CrowdMethod::baseline)};
     s.compute = [this, &g, view, viewpoint, ro] {
       view->emplace(viewpoint, extent(g), ro.width, ro.height, ro.viewpoint_overrides);
     };
@@ -80,7 +80,7 @@ class RenderStages final : public PresentationStages {
     Stage s;
     s.name = "contact_sheet";
     s.params = json{{"w", ro.width}, {"h", ro.height}, {"framing", kFramingRule}};
-    s.upstream = {g.animation_hash(method), g.animation_hash(CrowdMethod::baseline)};
+    s.inputs = {g.animation_path(method), g.animation_path(CrowdMethod::baseline)};
     s.outputs.push_back({g.dir() / (std::string(kind_name(method)) + ".contact_sheet.png"),
                          [this, &g, &crowd, ro](const fs::path& tmp) {
                            write_contact_sheet(renderer(), crowd, ro, crowd.frame_count() / 2, tmp.string(),

@@ -1,0 +1,111 @@
+#include "framework/core/write_file.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <string>
+
+#include "framework/core/error.hpp"
+
+namespace crowdlab {
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void fail(const fs::path& path, const char* what, int error) {
+  throw RuntimeError(path.string() + ": " + what + ": " + std::strerror(error));
+}
+
+/// fsync(2) on an existing file, so that the rename that follows never publishes unwritten data.
+void sync_file(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) fail(path, "cannot open to sync", errno);
+  const int rc = ::fsync(fd);
+  const int error = errno;
+  ::close(fd);
+  if (rc != 0) fail(path, "fsync failed", error);
+}
+
+}  // namespace
+
+void write_text_file(const fs::path& path, std::string_view contents) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) fail(path, "cannot write", errno);
+  const char* p = contents.data();
+  size_t left = contents.size();
+  int error = 0;
+  while (left > 0 && error == 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      error = n < 0 ? errno : ENOSPC;  // write(2) returns 0 only when nothing more fits
+      break;
+    }
+    p += n;
+    left -= static_cast<size_t>(n);
+  }
+  // close(2) reports deferred write errors on some file systems (NFS, quotas).
+  if (::close(fd) != 0 && error == 0) error = errno;
+  if (error == 0) return;
+  // A file that could not be written whole is not left behind half-written under any name.
+  ::unlink(path.c_str());
+  fail(path, "write failed", error);
+}
+
+void write_output_via_temporary(const fs::path& output, const std::function<void(const fs::path&)>& write) {
+  // Per-process temporary name: shards running at once may write the same file (e.g. spec.yaml).
+  const fs::path tmp = output.parent_path() / (output.stem().string() + ".tmp." + std::to_string(::getpid()) +
+                                               output.extension().string());
+  try {
+    write(tmp);
+    sync_file(tmp);
+    std::error_code ec;
+    fs::rename(tmp, output, ec);
+    if (ec)
+      throw RuntimeError(output.string() + ": cannot rename " + tmp.string() +
+                         " into place: " + ec.message());
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw;
+  }
+}
+
+void write_file_atomic(const fs::path& path, std::string_view contents) {
+  write_output_via_temporary(path, [&](const fs::path& tmp) { write_text_file(tmp, contents); });
+}
+
+namespace {
+
+/// The pid in a temporary's name "<stem>.tmp.<pid>[<ext>][.partial]", or 0 when the name is not one.
+pid_t temporary_owner(const std::string& name) {
+  const size_t at = name.rfind(".tmp.");
+  if (at == std::string::npos) return 0;
+  size_t end = at + 5;
+  pid_t pid = 0;
+  while (end < name.size() && name[end] >= '0' && name[end] <= '9' && pid < 100000000)
+    pid = pid * 10 + (name[end++] - '0');
+  const bool ends_there = end == name.size() || name[end] == '.';
+  return end > at + 5 && ends_there ? pid : 0;
+}
+
+}  // namespace
+
+int remove_stale_temporaries(const fs::path& dir) {
+  int removed = 0;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (!it->is_regular_file(ec)) continue;
+    const pid_t owner = temporary_owner(it->path().filename().string());
+    // kill(pid, 0) fails with ESRCH only when no such process exists: a live writer keeps its file.
+    if (owner <= 0 || owner == ::getpid() || ::kill(owner, 0) == 0 || errno != ESRCH) continue;
+    std::error_code ignored;
+    removed += fs::remove(it->path(), ignored) ? 1 : 0;
+  }
+  return removed;
+}
+
+}  // namespace crowdlab

@@ -1,0 +1,40 @@
+#pragma once
+// Writing files so that a failure is never silent and never leaves a half-written file under its final
+// name (issue 21: disk full gave "write failed" without the reason, or no file name, and left zero-byte
+// temporaries behind).
+//   write_text_file             writes every byte (any content, text or binary) with write(2); a failure
+//                               (ENOSPC, EIO, EDQUOT, ...) throws RuntimeError "FILE: write failed: REASON"
+//                               with the OS's reason (strerror), after closing the file
+//   write_output_via_temporary  makes a file atomically: a writer fills "<stem>.tmp.<pid><ext>" beside the
+//                               target, it is fsync'd and renamed over the target; on any failure the
+//                               temporary is removed and the error passes on
+//   write_file_atomic           both together: bytes to a file, atomically
+//   remove_stale_temporaries    removes the temporaries of processes that no longer run (a run killed with
+//                               SIGKILL cannot remove its own), so a resumed run ends with the same files
+//                               as an uninterrupted one
+// Every message names the file and the OS's reason; the callers report them as runtime failures (exit 1).
+#include <filesystem>
+#include <functional>
+#include <string_view>
+
+namespace crowdlab {
+
+/// Writes `contents` to `path` in place (created or truncated). Throws RuntimeError naming the file and
+/// the OS's reason when it cannot be opened, written completely or closed.
+void write_text_file(const std::filesystem::path& path, std::string_view contents);
+
+/// Makes `output` atomically: `write(tmp)` writes the complete file at `tmp` (same folder, name
+/// "<stem>.tmp.<pid><extension>", so writers that choose a format by extension still work); it is then
+/// fsync'd and renamed over `output`. When anything throws, the temporary is removed and the exception
+/// passes on; `output` is never seen half-written.
+void write_output_via_temporary(const std::filesystem::path& output,
+                                const std::function<void(const std::filesystem::path& tmp)>& write);
+
+/// Writes a file atomically (write_output_via_temporary + write_text_file).
+void write_file_atomic(const std::filesystem::path& path, std::string_view contents);
+
+/// Removes, under `dir` (recursively), every temporary "<stem>.tmp.<pid>..." of write_output_via_temporary
+/// whose process no longer runs. Returns how many were removed.
+int remove_stale_temporaries(const std::filesystem::path& dir);
+
+}  // namespace crowdlab
