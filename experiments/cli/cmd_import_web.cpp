@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/stimulus_manifest.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
@@ -38,6 +39,8 @@ const CommandRegistration kImportWeb([](CLI::App& root) {
   cmd->add_option("--out", a->out, "Response folder for P.csv / P.json (analyze report reads it)")
       ->required();
   cmd->callback([a] {
+    // Imports merge into the folder (check, then write): one process per folder (output_folder_lock.hpp).
+    const OutputFolderLock lock(a->out);
     const ExperimentSpec spec = load_experiment_spec(a->spec);
     const std::string manifest_path = (std::filesystem::path(a->stimuli) / "manifest.csv").string();
     if (!std::filesystem::is_regular_file(manifest_path))

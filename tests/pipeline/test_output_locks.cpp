@@ -87,6 +87,7 @@ TEST_CASE("every other command that writes an output folder is refused while ano
            {"experiment", "manifold-compare", "--out", out},
            {"analyze", "report", out, "--spec", demo_spec, "--out", out},
            {"simulate-study", demo_spec, "--stimuli", out, "--out", out},
+           {"import-web", out, "--spec", demo_spec, "--stimuli", out, "--out", out},
            {"plan", spec, "--emit", "make", "--out", out},
        }) {
     INFO(args[0] << " " << args[1]);

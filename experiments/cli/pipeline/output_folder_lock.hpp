@@ -3,9 +3,9 @@
 // interleaved their writes, and both could exit 0 with a manifest whose hashes did not match the clips).
 // Every command that writes an output folder takes it exclusively for its whole life: `run`, `demo`
 // (its folder and the stimuli folder inside it, which `run --out DIR/stimuli` would write),
-// `reproduce`, `experiment damping|manifold-compare|overlap-vs-density`, `analyze report`, `simulate-study`
-// and `plan`. `export-web` needs none: it refuses any folder that is not empty, and a lock file would ship
-// inside the web study.
+// `reproduce`, `experiment damping|manifold-compare|overlap-vs-density`, `analyze report`, `simulate-study`,
+// `import-web` and `plan`. `export-web` needs none: it refuses any folder that is not empty, and a lock file
+// would ship inside the web study.
 //
 // flock(2) on DIR/.crowdlab.lock, held until the process ends (the kernel drops it on exit or kill -9,
 // so a crashed run never leaves a stale lock):
