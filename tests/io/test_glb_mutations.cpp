@@ -157,3 +157,22 @@ TEST_CASE("bodies no human has exit 2 from correct and metrics at once, not afte
     }
   }
 }
+
+TEST_CASE("a glTF parser message quoting a huge value is cut to a readable length") {
+  const fs::path dir = scratch_dir("glb_long_reason");
+  SwayingCrowdOptions o;
+  o.characters = 1;
+  o.frames = 2;
+  const fs::path good = dir / "good.glb";
+  write_crowd_glb(make_swaying_crowd_fixture(o), good.string());
+  const std::string bytes = slurp(good);
+  std::string json = glb_json(bytes);
+  const std::size_t type = json.find("\"type\":\"") + 8;
+  json.insert(type,
+              std::string(30000, '['));  // tinygltf: Unsupported `type` for accessor object. Got "[[[...
+  write_bytes(dir / "long.glb", glb_with_json(bytes, json));
+  const CliResult r = run_cli({"metrics", (dir / "long.glb").string()});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("long.glb: cannot read glTF") && Catch::Contains("more characters)"));
+  CHECK(r.err.size() < 1000);
+}
