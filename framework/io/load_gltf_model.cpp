@@ -69,6 +69,11 @@ tinygltf::Model load_gltf_model(const std::filesystem::path& path) {
     std::string why = json_syntax_error(json, json_offset);
     if (why.empty()) why = err;
     while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
+    // tinygltf quotes the offending value whole: a fuzzed `type` of 30,000 brackets filled the terminal.
+    constexpr std::size_t kMaxReason = 400;
+    if (why.size() > kMaxReason)
+      why =
+          why.substr(0, kMaxReason) + "... (" + std::to_string(why.size() - kMaxReason) + " more characters)";
     throw InputError(
         file + ": cannot read glTF: " +
         (why.empty() ? std::string("the file is not valid glTF 2.0 (the parser gave no reason)") : why));

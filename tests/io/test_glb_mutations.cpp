@@ -36,6 +36,16 @@ fs::path edited(const fs::path& good, const fs::path& out,
   return out;
 }
 
+/// A valid crowd file of swaying characters, dir/good.glb, for the mutations to start from.
+fs::path small_crowd_glb(const fs::path& dir, int characters, int frames) {
+  SwayingCrowdOptions o;
+  o.characters = characters;
+  o.frames = frames;
+  const fs::path good = dir / "good.glb";
+  write_crowd_glb(make_swaying_crowd_fixture(o), good.string());
+  return good;
+}
+
 void check_refused(const fs::path& file, const std::vector<std::string>& expected) {
   const fs::path dir = file.parent_path();
   for (const std::vector<std::string>& args :
@@ -55,11 +65,7 @@ void check_refused(const fs::path& file, const std::vector<std::string>& expecte
 
 TEST_CASE("hand-mutated GLBs exit 2 from correct, metrics and export-csv, saying what is wrong and where") {
   const fs::path dir = scratch_dir("glb_mutations");
-  SwayingCrowdOptions o;
-  o.characters = 2;
-  o.frames = 3;
-  const fs::path good = dir / "good.glb";
-  write_crowd_glb(make_swaying_crowd_fixture(o), good.string());
+  const fs::path good = small_crowd_glb(dir, 2, 3);
   const std::string bytes = slurp(good);
   const std::uint32_t json_length = glb_u32(bytes, 12);
   REQUIRE(bytes.size() > 20 + json_length + 8);
@@ -121,11 +127,7 @@ TEST_CASE("bodies no human has exit 2 from correct and metrics at once, not afte
   // of 65535 m or 1e300 m, or a capsule radius of 1e6 m, kept `correct` in union_fraction() (a 2.5 cm grid
   // over the body's box) for over 300 s; at 1e300 its x += 0.025 never advanced.
   const fs::path dir = scratch_dir("glb_implausible_bodies");
-  SwayingCrowdOptions o;
-  o.characters = 2;
-  o.frames = 3;
-  const fs::path good = dir / "good.glb";
-  write_crowd_glb(make_swaying_crowd_fixture(o), good.string());
+  const fs::path good = small_crowd_glb(dir, 2, 3);
   const std::string bytes = slurp(good), json = glb_json(bytes);
   // Replaces the first number after `key` (after `anchor`) in the JSON by `value`.
   const auto with_number = [&](const std::string& anchor, const std::string& key, const std::string& value) {
@@ -156,4 +158,19 @@ TEST_CASE("bodies no human has exit 2 from correct and metrics at once, not afte
       CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(30));
     }
   }
+}
+
+TEST_CASE("a glTF parser message quoting a huge value is cut to a readable length") {
+  const fs::path dir = scratch_dir("glb_long_reason");
+  const fs::path good = small_crowd_glb(dir, 1, 2);
+  const std::string bytes = slurp(good);
+  std::string json = glb_json(bytes);
+  const std::size_t type = json.find("\"type\":\"") + 8;
+  json.insert(type,
+              std::string(30000, '['));  // tinygltf: Unsupported `type` for accessor object. Got "[[[...
+  write_bytes(dir / "long.glb", glb_with_json(bytes, json));
+  const CliResult r = run_cli({"metrics", (dir / "long.glb").string()});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("long.glb: cannot read glTF") && Catch::Contains("more characters)"));
+  CHECK(r.err.size() < 1000);
 }
