@@ -46,8 +46,10 @@ struct CorrectorParams {
   /// absolutely (seed 000 §3.3). 4 x 10 = 40 1/s^2: a 70 kg body is held at 2800 N/m (natural frequency
   /// ~1 Hz), soft against contact forces so that crowded bodies give way instead of interpenetrating.
   double root_translation_stiffness = 4.0;
-  /// Horizontal world-position spring holding a PLANTED foot's ankle and ball joints on their anchors
-  /// (1/s^2, per kg of body mass; multiplied by stiff_joint_gain; the damper is the root's). Seed 000
+  /// World-position spring holding a PLANTED foot's ankle and ball joints on their anchors: the landing
+  /// point horizontally, the input's height vertically (issue 18: held horizontally only, whole bodies
+  /// floated 2-5 cm on their planted feet; stage_foot_holds.cpp, foot_goal) (1/s^2, per kg of body
+  /// mass; multiplied by stiff_joint_gain; the damper is the root's). Seed 000
   /// §3.3 raises the feet gains "to avoid footskate"; relative joint rotations alone cannot hold a foot
   /// once the leg above it is pushed, so, like the root, planted feet are coupled in world space, and
   /// after each step the leg IK of stage_foot_holds.cpp puts them back exactly. 400 x 10 = 4000 1/s^2
@@ -198,6 +200,8 @@ struct CorrectorParams {
   /// 0 pops (worst 3.7 cm), 6.3 mm, the same mean deviation (7.3 deg); 4 cm -> 1 pop, 7.3 mm. Runs are
   /// chaotic: on a 2 s clip of another crowd 2 / 3 / 4 cm left 1 / 3 / 1 pops of 78 with procedural
   /// bodies (p99 depth 19.9 / 12.4 / 11.5 mm against 10.7 without) and 2 of 12 with MPFB2 bodies at 2 cm.
+  /// Since session 8 the pass prioritises these rows (kFootBudgetRowWeight) and a planted foot returns
+  /// to the input's height at most at this rate: 0 pops on every 20 s clip of gomez2024.
   /// 0 = off.
   double foot_pop_budget_m = 0.02;
 };

@@ -136,6 +136,7 @@ void timing_section(const Size& size, const fs::path& dir, std::string& md) {
   struct Case {
     int characters;
     double density, paper_ms;
+    const char* target;  ///< this project's target, if any (not checked: wall clock depends on the load)
   };
   std::string csv =
       "characters,density_per_m2,ms_per_step_median,ms_per_step_mean,contacts_mean,"
@@ -143,8 +144,9 @@ void timing_section(const Size& size, const fs::path& dir, std::string& md) {
   md +=
       "## Timing: corrector ms per step\n\n"
       "| characters | density (/m²) | this machine, median (mean) ms | contacts | CG iterations | threads | "
-      "paper (8-core Ryzen 7 2700) |\n|---|---|---|---|---|---|---|\n";
-  for (const Case c : {Case{20, 2.22, 5.0}, Case{60, 6.66, 20.0}}) {
+      "paper (8-core Ryzen 7 2700) | target |\n|---|---|---|---|---|---|---|---|\n";
+  for (const Case c :
+       {Case{20, 2.22, 5.0, "-"}, Case{60, 6.66, 20.0, "<= 2 ms on a quiet 2-core machine (issue 18)"}}) {
     CorrectBenchOptions b;
     b.characters = c.characters;
     b.density = c.density;
@@ -153,9 +155,9 @@ void timing_section(const Size& size, const fs::path& dir, std::string& md) {
     const CorrectBenchResult r = run_correct_bench(b);
     csv += fmt::format("{},{},{:.4f},{:.4f},{:.2f},{:.2f},{},{}\n", c.characters, c.density, r.ms_median,
                        r.ms_mean, r.contacts_mean, r.cg_iterations_mean, r.threads, c.paper_ms);
-    md += fmt::format("| {} | {} | {:.2f} ({:.2f}) | {:.1f} | {:.1f} | {} | up to {} ms |\n", c.characters,
-                      c.density, r.ms_median, r.ms_mean, r.contacts_mean, r.cg_iterations_mean, r.threads,
-                      c.paper_ms);
+    md += fmt::format("| {} | {} | {:.2f} ({:.2f}) | {:.1f} | {:.1f} | {} | up to {} ms | {} |\n",
+                      c.characters, c.density, r.ms_median, r.ms_mean, r.contacts_mean, r.cg_iterations_mean,
+                      r.threads, c.paper_ms, c.target);
   }
   write_file_atomic(dir / "timing.csv", csv);
   md += fmt::format(
