@@ -409,9 +409,8 @@ ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std
     prev = k == 0 ? q : prev + std::exp(v[k]);
   }
   // BOBYQA to a relative change of 1e-10, then Newton steps on the finite-difference gradient and
-  // Hessian (which the SEs need anyway): BOBYQA creeps over its last digits with many parameters (a
-  // 33-cell design's 37 parameters took 4x longer to 1e-15), Newton converges there in one or two steps.
-  // Where Newton cannot (a flat direction), BOBYQA goes on to 1e-15 from where Newton stopped.
+  // Hessian (which the SEs need anyway): they land closer to the optimum than BOBYQA's last digits
+  // (docs/analysis.md). Where Newton cannot (a flat direction), BOBYQA goes on to 1e-15 from there.
   NloptOutcome opt = minimise_derivative_free(v, {}, objective, const_cast<Data*>(&d), 200000, 1e-10);
   std::vector<double> natural = to_natural(d, v.data());
   Eigen::MatrixXd info = information(d, natural);
