@@ -112,7 +112,9 @@ double laplace_loglik_nested(const Data& d, const Params& p) {
   const Eigen::VectorXd eta = d.x * p.beta;
   const double sd = std::exp(p.log_sd[0]);
   const auto& term = d.terms[0];
-  double total = 0;
+  // Sums in long double (as R's sum()): the Hessian's second differences divide rounding noise in the
+  // sum of ~1000 rows by 1e-8; in double it reached 1e-4 of the crossed model's SEs.
+  long double total = 0;
   d.modes.resize(d.q, 0.0);
   for (size_t g = 0; g < term.rows_of.size(); ++g) {
     const auto& rows = term.rows_of[g];
@@ -133,16 +135,17 @@ double laplace_loglik_nested(const Data& d, const Params& p) {
     }
     d.modes[g] = u;
     // Value and curvature at the mode.
-    double value_at = -0.5 * u * u, h = -1.0;
+    long double value_at = -0.5 * u * u;
+    double h = -1.0;
     for (size_t r : rows) {
       double lp = 0, d1 = 0, d2 = 0;
       row_terms(d, p, d.y[r], eta[static_cast<Eigen::Index>(r)], sd * u, lp, d1, d2);
       value_at += lp;
       h += sd * sd * d2;
     }
-    total += value_at - 0.5 * std::log(-h);
+    total += value_at - 0.5L * std::log(-h);
   }
-  return total;
+  return static_cast<double>(total);
 }
 
 // The same with several random-intercept terms (crossed, e.g. participants and stimuli): the joint
@@ -162,7 +165,7 @@ double laplace_loglik_crossed(const Data& d, const Params& p) {
     return static_cast<Eigen::Index>(d.terms[t].offset + d.terms[t].code[r]);
   };
   // At u: sum of log P, the gradient of the log posterior and the factor of its negative Hessian.
-  auto evaluate = [&](double& loglik, Eigen::VectorXd& grad,
+  auto evaluate = [&](long double& loglik, Eigen::VectorXd& grad,
                       Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& ldlt) {
     loglik = 0;
     grad = -u;
@@ -185,7 +188,7 @@ double laplace_loglik_crossed(const Data& d, const Params& p) {
     ldlt.compute(a);
     return ldlt.info() == Eigen::Success;
   };
-  double loglik = 0;
+  long double loglik = 0;
   Eigen::VectorXd grad;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
   for (int it = 0; it < 50; ++it) {
@@ -198,7 +201,11 @@ double laplace_loglik_crossed(const Data& d, const Params& p) {
   }
   if (!evaluate(loglik, grad, ldlt)) return -HUGE_VAL;
   std::copy(u.data(), u.data() + q, d.modes.begin());
-  return loglik - 0.5 * u.squaredNorm() - 0.5 * ldlt.vectorD().array().log().sum();
+  long double log_det = 0;
+  for (Eigen::Index j = 0; j < q; ++j) log_det += std::log(ldlt.vectorD()[j]);
+  long double u2 = 0;
+  for (Eigen::Index j = 0; j < q; ++j) u2 += static_cast<long double>(u[j]) * u[j];
+  return static_cast<double>(loglik - 0.5L * u2 - 0.5L * log_det);
 }
 
 double laplace_loglik(const Data& d, const Params& p) {
@@ -325,6 +332,58 @@ Eigen::MatrixXd information(const Data& d, const std::vector<double>& at) {
     }
   return h;
 }
+// Gradient of the Laplace log-likelihood in the natural parameters, by central differences (the steps of
+// `information`).
+Eigen::VectorXd gradient(const Data& d, const std::vector<double>& at) {
+  Eigen::VectorXd g(static_cast<Eigen::Index>(at.size()));
+  for (size_t i = 0; i < at.size(); ++i) {
+    const double h = 1e-4 * std::max(1.0, std::abs(at[i]));
+    auto v = at;
+    v[i] = at[i] + h;
+    const double up = laplace_loglik(d, unpack_natural(d, v.data()));
+    v[i] = at[i] - h;
+    g[static_cast<Eigen::Index>(i)] = (up - laplace_loglik(d, unpack_natural(d, v.data()))) / (2.0 * h);
+  }
+  return g;
+}
+
+bool thresholds_ordered(const Data& d, const std::vector<double>& natural) {
+  for (int k = 1; k < d.levels - 1; ++k)
+    if (!(natural[static_cast<size_t>(k)] > natural[static_cast<size_t>(k - 1)])) return false;
+  return true;
+}
+
+// Newton steps x += info^-1 gradient from `natural` (updated, with `info` at it), each kept only when it
+// is small (every coordinate below 0.5), keeps the thresholds ordered and does not lower the
+// log-likelihood. True once a step is below 1e-9 (converged); false when a step is refused or five
+// steps did not get there (e.g. a random SD running to 0, where the likelihood is flat in log sd).
+bool newton_polish(const Data& d, std::vector<double>& natural, Eigen::MatrixXd& info) {
+  double ll = laplace_loglik(d, unpack_natural(d, natural.data()));
+  for (int it = 0; it < 5; ++it) {
+    const Eigen::VectorXd step = info.ldlt().solve(gradient(d, natural));
+    const double largest = step.cwiseAbs().maxCoeff();
+    if (!std::isfinite(largest) || largest > 0.5) return false;
+    auto next = natural;
+    for (size_t i = 0; i < next.size(); ++i) next[i] += step[static_cast<Eigen::Index>(i)];
+    if (!thresholds_ordered(d, next)) return false;
+    const double ll_next = laplace_loglik(d, unpack_natural(d, next.data()));
+    if (!(ll_next >= ll)) return false;
+    natural = next;
+    ll = ll_next;
+    info = information(d, natural);
+    if (largest < 1e-9) return true;
+  }
+  return false;
+}
+
+// The optimiser's coordinates of natural parameters (inverse of to_natural).
+std::vector<double> from_natural(const Data& d, const std::vector<double>& natural) {
+  std::vector<double> v = natural;
+  for (int k = 1; k < d.levels - 1; ++k)
+    v[static_cast<size_t>(k)] =
+        std::log(natural[static_cast<size_t>(k)] - natural[static_cast<size_t>(k - 1)]);
+  return v;
+}
 }  // namespace
 
 ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std::string& link,
@@ -349,8 +408,19 @@ ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std
     v[k] = k == 0 ? q : std::log(std::max(q - prev, 1e-3));
     prev = k == 0 ? q : prev + std::exp(v[k]);
   }
-  const NloptOutcome opt = minimise_derivative_free(v, {}, objective, const_cast<Data*>(&d), 200000);
-  const double best = opt.value;
+  // BOBYQA to a relative change of 1e-10, then Newton steps on the finite-difference gradient and
+  // Hessian (which the SEs need anyway): they land closer to the optimum than BOBYQA's last digits
+  // (docs/analysis.md). Where Newton cannot (a flat direction), BOBYQA goes on to 1e-15 from there.
+  NloptOutcome opt = minimise_derivative_free(v, {}, objective, const_cast<Data*>(&d), 200000, 1e-10);
+  std::vector<double> natural = to_natural(d, v.data());
+  Eigen::MatrixXd info = information(d, natural);
+  if (!newton_polish(d, natural, info)) {
+    v = from_natural(d, natural);
+    opt = minimise_derivative_free(v, {}, objective, const_cast<Data*>(&d), 200000);
+    natural = to_natural(d, v.data());
+    info = information(d, natural);
+  }
+  const double best = -laplace_loglik(d, unpack_natural(d, natural.data()));
   ClmmResult out;
   out.link = link;
   out.observations = d.y.size();
@@ -358,14 +428,12 @@ ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std
   if (!out.converged)
     out.warnings.push_back("the optimiser did not converge (NLopt status " + std::to_string(opt.status) +
                            ")");
-  const auto natural = to_natural(d, v.data());
   out.loglik = -best;
   for (size_t t = 0; t < nt; ++t) {
     out.random.push_back({d.terms[t].group, std::exp(natural[k1 + p + t]), d.terms[t].rows_of.size()});
     if (out.random.back().sd < 1e-4)
       out.warnings.push_back("the random-effect SD of '" + d.terms[t].group + "' is (near) zero");
   }
-  const Eigen::MatrixXd info = information(d, natural);
   const Eigen::MatrixXd cov = info.inverse();
   const boost::math::normal_distribution<double> z01;
   for (size_t i = 0; i < k1 + p; ++i) {

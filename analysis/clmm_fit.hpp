@@ -9,7 +9,8 @@
 // the random effects integrated out by the Laplace approximation (clmm's default nAGQ = 1): per group
 // in closed form for one term, jointly through a sparse Cholesky factor for several.
 // The marginal log-likelihood is maximised by NLopt's BOBYQA over (theta_1, log increments of the
-// thresholds, beta, log sd); standard errors come from the inverse of the negative Hessian of the
+// thresholds, beta, log sd of each term), finished by Newton steps on its finite-difference gradient
+// and Hessian (docs/analysis.md); standard errors come from the inverse of the negative Hessian of the
 // Laplace log-likelihood in (theta, beta, log sd), by central differences, the quantity clmm's Hess =
 // TRUE approximates (clmm's own differences carry up to ~1 % of numerical noise: docs/analysis.md).
 // Response levels: sorted numerically when every level is a number, else in byte order.

@@ -223,15 +223,17 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     const auto error = o->error == "pooled"     ? PosthocError::pooled
                        : o->error == "separate" ? PosthocError::separate
                                                 : PosthocError::classic;
+    // "(emmeans' univariate model, Tukey-adjusted p)" for --error pooled|separate.
+    const std::string model = std::string("emmeans' ") +
+                              (error == PosthocError::pooled ? "univariate" : "multivariate") + " model, " +
+                              (method == PosthocMethod::tukey ? "Tukey" : "Bonferroni") + "-adjusted p";
     if (!design.between.empty()) {
       const auto result = posthoc_mixed(design, parse_mixed_effect(design, o->effect), method, o->simple,
                                         o->max_comparisons, error);
       if (o->json)
         std::cout << posthoc_to_json(result).dump(2) << "\n";
       else
-        std::cout << "Post-hoc comparisons for " << result.effect << " (emmeans' "
-                  << (error == PosthocError::pooled ? "univariate" : "multivariate") << " model, "
-                  << (method == PosthocMethod::tukey ? "Tukey" : "Bonferroni") << "-adjusted p)\n\n"
+        std::cout << "Post-hoc comparisons for " << result.effect << " (" << model << ")\n\n"
                   << posthoc_markdown_table(result);
       return;
     }
@@ -257,7 +259,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       return;
     }
     std::cout << "Post-hoc comparisons for " << result.effect << " ("
-              << (method == PosthocMethod::tukey ? "Tukey HSD" : "paired t-tests, Bonferroni") << ")\n\n"
+              << (error != PosthocError::classic   ? model
+                  : method == PosthocMethod::tukey ? "Tukey HSD"
+                                                   : "paired t-tests, Bonferroni")
+              << ")\n\n"
               << posthoc_markdown_table(result);
     if (factors.size() > 1) {
       std::cout << "\nSimple effects:\n";
