@@ -21,6 +21,7 @@
 #include <functional>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "tests/support/test_paths.hpp"
@@ -39,12 +40,26 @@ struct LimitedRun {
   double seconds = 0.0;
   std::string err;  ///< its stderr
 
+  /// Under AddressSanitizer a deadly signal never reaches the parent: the sanitizer's handler prints
+  /// "AddressSanitizer: SEGV on ..." (or BUS, FPE, ILL) and exits 1. Returns that signal's number, or 0.
+  int signal_caught_by_sanitizer() const {
+    static constexpr std::pair<const char*, int> kNames[] = {{"AddressSanitizer: SEGV", SIGSEGV},
+                                                             {"AddressSanitizer: BUS", SIGBUS},
+                                                             {"AddressSanitizer: FPE", SIGFPE},
+                                                             {"AddressSanitizer: ILL", SIGILL}};
+    for (const auto& [name, number] : kNames)
+      if (err.find(name) != std::string::npos) return number;
+    return 0;
+  }
+
   /// The fuzz contract (issue 21): exit 0, or exit 2 with a message, never a signal, a hang, memory
   /// beyond the cap, another exit code, or a sanitizer report.
   std::string violation() const {
     if (timed_out) return "did not finish within the time limit (hang?)";
     if (over_memory) return "went over the memory cap of " + std::to_string(kRssCap_mb) + " MB resident";
     if (signal != 0) return "was killed by signal " + std::to_string(signal);
+    if (const int caught = signal_caught_by_sanitizer(); caught != 0)
+      return "was killed by signal " + std::to_string(caught) + " (caught and reported by AddressSanitizer)";
     if (err.find("AddressSanitizer") != std::string::npos || err.find("runtime error:") != std::string::npos)
       return "made a sanitizer report";
     if (exit_code != 0 && exit_code != 2) return "exited with code " + std::to_string(exit_code);
