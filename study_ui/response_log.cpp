@@ -13,6 +13,7 @@
 
 #include "framework/core/csv.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/write_file.hpp"
 
 namespace crowdlab::study {
 namespace {
@@ -68,10 +69,10 @@ bool is_complete_row(const std::string& header_line, const std::string& line, si
   }
 }
 
-/// Opens (creating) `path` with `mode` (O_APPEND or O_TRUNC), writes `bytes`, fsyncs when `durable`, and
-/// closes the descriptor whatever fails.
-void write_whole(const std::string& path, int mode, const std::string& bytes, bool durable) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | mode | O_CLOEXEC, 0644);
+/// Appends `bytes` to `path` (created if missing), fsyncs when `durable`, and closes the descriptor
+/// whatever fails.
+void append_whole(const std::string& path, const std::string& bytes, bool durable) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
   if (fd < 0) throw RuntimeError(path + ": cannot create: " + errno_text());
   try {
     write_all(fd, bytes, path);
@@ -86,7 +87,7 @@ void write_whole(const std::string& path, int mode, const std::string& bytes, bo
 /// Appends the bytes about to be cut from `path` to `path`.recovered (fsync'd) so that nothing a
 /// participant answered is lost even if the recovery rule was wrong.
 void save_cut_bytes(const std::string& path, const std::string& bytes, bool durable) {
-  write_whole(path + ".recovered", O_APPEND, bytes, durable);
+  append_whole(path + ".recovered", bytes, durable);
 }
 
 }  // namespace
@@ -101,15 +102,9 @@ void fsync_parent_directory(const std::string& path) {
 }
 
 void write_file_atomically(const std::string& path, const std::string& text, bool durable) {
-  const std::string tmp = path + ".tmp";
-  try {
-    write_whole(tmp, O_TRUNC, text, durable);
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-      throw RuntimeError(path + ": rename failed: " + errno_text());
-  } catch (...) {
-    std::remove(tmp.c_str());  // a full disk must not leave a (zero-byte) temporary behind (issue 21)
-    throw;
-  }
+  // The framework's atomic write (temporary, fsync, rename; no temporary left on failure, issue 21),
+  // plus the folder's fsync so that a crash cannot undo the rename of a participant's file.
+  write_file_atomic(path, text, durable);
   if (durable) fsync_parent_directory(path);
 }
 

@@ -67,8 +67,9 @@ class ResponseLog {
 /// fsync()s the directory containing `path` (best effort is not enough: throws RuntimeError).
 void fsync_parent_directory(const std::string& path);
 
-/// Writes `text` to `path` atomically: temp file, fsync, rename, fsync of the directory (the fsyncs
-/// are skipped when durable = false; the rename keeps it atomic).
+/// Writes `text` to `path` atomically: framework/core/write_file.hpp's write_file_atomic (temporary,
+/// fsync, rename), then an fsync of the directory (the fsyncs are skipped when durable = false; the
+/// rename keeps it atomic).
 void write_file_atomically(const std::string& path, const std::string& text, bool durable = true);
 
 }  // namespace crowdlab::study

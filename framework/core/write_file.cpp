@@ -55,13 +55,14 @@ void write_text_file(const fs::path& path, std::string_view contents) {
   fail(path, "write failed", error);
 }
 
-void write_output_via_temporary(const fs::path& output, const std::function<void(const fs::path&)>& write) {
+void write_output_via_temporary(const fs::path& output, const std::function<void(const fs::path&)>& write,
+                                bool durable) {
   // Per-process temporary name: shards running at once may write the same file (e.g. spec.yaml).
   const fs::path tmp = output.parent_path() / (output.stem().string() + ".tmp." + std::to_string(::getpid()) +
                                                output.extension().string());
   try {
     write(tmp);
-    sync_file(tmp);
+    if (durable) sync_file(tmp);
     std::error_code ec;
     fs::rename(tmp, output, ec);
     if (ec)
@@ -74,8 +75,9 @@ void write_output_via_temporary(const fs::path& output, const std::function<void
   }
 }
 
-void write_file_atomic(const fs::path& path, std::string_view contents) {
-  write_output_via_temporary(path, [&](const fs::path& tmp) { write_text_file(tmp, contents); });
+void write_file_atomic(const fs::path& path, std::string_view contents, bool durable) {
+  write_output_via_temporary(
+      path, [&](const fs::path& tmp) { write_text_file(tmp, contents); }, durable);
 }
 
 namespace {

@@ -6,8 +6,8 @@
 //                               (ENOSPC, EIO, EDQUOT, ...) throws RuntimeError "FILE: write failed: REASON"
 //                               with the OS's reason (strerror), after closing the file
 //   write_output_via_temporary  makes a file atomically: a writer fills "<stem>.tmp.<pid><ext>" beside the
-//                               target, it is fsync'd and renamed over the target; on any failure the
-//                               temporary is removed and the error passes on
+//                               target, it is fsync'd (when durable) and renamed over the target; on any
+//                               failure the temporary is removed and the error passes on
 //   write_file_atomic           both together: bytes to a file, atomically
 //   remove_stale_temporaries    removes the temporaries of processes that no longer run (a run killed with
 //                               SIGKILL cannot remove its own), so a resumed run ends with the same files
@@ -26,12 +26,14 @@ void write_text_file(const std::filesystem::path& path, std::string_view content
 /// Makes `output` atomically: `write(tmp)` writes the complete file at `tmp` (same folder, name
 /// "<stem>.tmp.<pid><extension>", so writers that choose a format by extension still work); it is then
 /// fsync'd and renamed over `output`. When anything throws, the temporary is removed and the exception
-/// passes on; `output` is never seen half-written.
+/// passes on; `output` is never seen half-written. `durable = false` skips the fsync (files a test or a
+/// simulation can remake); the rename still keeps the write atomic.
 void write_output_via_temporary(const std::filesystem::path& output,
-                                const std::function<void(const std::filesystem::path& tmp)>& write);
+                                const std::function<void(const std::filesystem::path& tmp)>& write,
+                                bool durable = true);
 
 /// Writes a file atomically (write_output_via_temporary + write_text_file).
-void write_file_atomic(const std::filesystem::path& path, std::string_view contents);
+void write_file_atomic(const std::filesystem::path& path, std::string_view contents, bool durable = true);
 
 /// Removes, under `dir` (recursively), every temporary "<stem>.tmp.<pid>..." of write_output_via_temporary
 /// whose process no longer runs. Returns how many were removed.
