@@ -63,17 +63,26 @@ Eigen::MatrixXd effect_subject_means(const WithinDesign& design, const std::vect
   return out / per_mean;
 }
 
-double posthoc_comparison_count(const WithinDesign& design, const std::vector<size_t>& effect_factors,
-                                bool simple_only) {
+double posthoc_comparison_count(const std::vector<size_t>& level_counts, bool simple_only) {
   double means = 1;
-  for (size_t f : effect_factors) means *= static_cast<double>(design.factors[f].levels.size());
+  for (size_t l : level_counts) means *= static_cast<double>(l);
   if (!simple_only) return means * (means - 1.0) / 2.0;
   double pairs = 0;
-  for (size_t f : effect_factors) {
-    const auto l = static_cast<double>(design.factors[f].levels.size());
+  for (size_t count : level_counts) {
+    const auto l = static_cast<double>(count);
     pairs += l * (l - 1.0) / 2.0 * (means / l);
   }
   return pairs;
+}
+
+void check_posthoc_family(const WithinDesign& design, const std::string& effect,
+                          const std::vector<size_t>& level_counts, bool simple_only, size_t max_comparisons) {
+  const double count = posthoc_comparison_count(level_counts, simple_only);
+  if (count <= static_cast<double>(max_comparisons)) return;
+  throw InputError(SourceLocation{design.source, 0, 0, effect},
+                   "post-hoc family of " + std::to_string(std::llround(count)) +
+                       " comparisons, more than the limit of " + std::to_string(max_comparisons) +
+                       " (--max-comparisons)");
 }
 
 namespace {
@@ -154,23 +163,20 @@ void adjust_family(PosthocResult& res) {
 PosthocResult posthoc(const WithinDesign& design, const std::vector<size_t>& effect_factors,
                       PosthocMethod method, bool simple_only, size_t max_comparisons, PosthocError error) {
   if (effect_factors.empty()) throw InputError("posthoc: empty effect");
-  if (const double count = posthoc_comparison_count(design, effect_factors, simple_only);
-      count > static_cast<double>(max_comparisons)) {
-    std::string effect;
-    for (size_t f : effect_factors) effect += (effect.empty() ? "" : ":") + design.factors[f].name;
-    throw InputError(SourceLocation{design.source, 0, 0, effect},
-                     "post-hoc family of " + std::to_string(std::llround(count)) +
-                         " comparisons, more than the limit of " + std::to_string(max_comparisons) +
-                         " (--max-comparisons)");
+  std::string effect;
+  std::vector<size_t> level_counts;
+  for (size_t f : effect_factors) {
+    effect += (effect.empty() ? "" : ":") + design.factors[f].name;
+    level_counts.push_back(design.factors[f].levels.size());
   }
+  check_posthoc_family(design, effect, level_counts, simple_only, max_comparisons);
   const Eigen::MatrixXd means = effect_subject_means(design, effect_factors);
   const auto m = static_cast<size_t>(means.cols());
   const double n = static_cast<double>(means.rows());
   PosthocResult res;
   res.method = method;
   res.error = error;
-  for (size_t i = 0; i < effect_factors.size(); ++i)
-    res.effect += (i ? ":" : "") + design.factors[effect_factors[i]].name;
+  res.effect = effect;
   for (size_t c = 0; c < m; ++c) {
     const auto lv = effect_levels_of(design, effect_factors, c);
     std::string label;

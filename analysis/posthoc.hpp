@@ -65,10 +65,15 @@ Eigen::MatrixXd effect_subject_means(const WithinDesign& design, const std::vect
 /// default family is 1000 (45 levels). Documented in docs/analysis.md ("Limits").
 inline constexpr size_t kDefaultMaxComparisons = 1000;
 
-/// The family's size, computed from the level counts alone: all pairs of the effect's m means, m(m-1)/2,
-/// or with simple_only the pairs differing in one factor, sum over f of C(l_f, 2) * m / l_f.
-double posthoc_comparison_count(const WithinDesign& design, const std::vector<size_t>& effect_factors,
-                                bool simple_only);
+/// The family's size, computed from the level counts l_f of the effect's factors (within and between)
+/// alone: all pairs of the effect's m = prod l_f means, m(m-1)/2, or with simple_only the pairs
+/// differing in one factor, sum over f of C(l_f, 2) * m / l_f.
+double posthoc_comparison_count(const std::vector<size_t>& level_counts, bool simple_only);
+
+/// Throws InputError naming the design's CSV, the effect (`effect`, factor names joined with ':') and
+/// the family's size when it has more than max_comparisons comparisons; called before any work.
+void check_posthoc_family(const WithinDesign& design, const std::string& effect,
+                          const std::vector<size_t>& level_counts, bool simple_only, size_t max_comparisons);
 
 /// Throws InputError (naming the design's CSV, the effect and the count) when the family has more than
 /// max_comparisons comparisons; checked before any work.

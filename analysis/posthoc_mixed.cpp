@@ -203,25 +203,16 @@ PosthocResult posthoc_mixed(const WithinDesign& design, const MixedEffect& effec
         "posthoc with --between: use --error separate (emmeans' multivariate model, afex's default) or "
         "--error pooled (the univariate model); classic Tukey has no single error term across strata");
   std::string name;
-  std::vector<double> sizes;
+  std::vector<size_t> level_counts;
   for (size_t f : effect.between) {
     name += (name.empty() ? "" : ":") + design.between[f].name;
-    sizes.push_back(static_cast<double>(design.between[f].levels.size()));
+    level_counts.push_back(design.between[f].levels.size());
   }
   for (size_t f : effect.within) {
     name += (name.empty() ? "" : ":") + design.factors[f].name;
-    sizes.push_back(static_cast<double>(design.factors[f].levels.size()));
+    level_counts.push_back(design.factors[f].levels.size());
   }
-  // The family's size from the level counts alone, before any work (as posthoc_comparison_count).
-  double means = 1, simple_pairs = 0;
-  for (double l : sizes) means *= l;
-  for (double l : sizes) simple_pairs += l * (l - 1.0) / 2.0 * (means / l);
-  if (const double count = simple_only ? simple_pairs : means * (means - 1.0) / 2.0;
-      count > static_cast<double>(max_comparisons))
-    throw InputError(SourceLocation{design.source, 0, 0, name},
-                     "post-hoc family of " + std::to_string(std::llround(count)) +
-                         " comparisons, more than the limit of " + std::to_string(max_comparisons) +
-                         " (--max-comparisons)");
+  check_posthoc_family(design, name, level_counts, simple_only, max_comparisons);
   const EffectCells cells = effect_cells(design, effect);
   const size_t m = cells.labels.size();
   auto differing = [&](size_t a, size_t b) {
