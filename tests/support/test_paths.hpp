@@ -1,6 +1,8 @@
 #pragma once
 // Paths the tests need, fixed at configure time, plus access to ../shared test data (which a user's
-// machine does not have: tests that need it call shared_data_or_skip()).
+// machine does not have: tests that need it call shared_data_or_skip()). The configured paths live in one
+// small translation unit (test_paths.cpp), so the test sources compile to the same objects in every
+// checkout and a compiler cache can share them between worktrees.
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -9,19 +11,13 @@
 
 namespace crowdlab::test {
 
-inline std::filesystem::path source_dir() {
-  return CROWDLAB_SOURCE_DIR;
-}
+std::filesystem::path source_dir();
+std::filesystem::path binary_dir();
+std::filesystem::path crowdlab_exe();
 
 /// The small pipeline spec most `run` tests use (tests/data/pipeline/tiny.yaml).
 inline std::string tiny_spec() {
   return (source_dir() / "tests/data/pipeline/tiny.yaml").string();
-}
-inline std::filesystem::path binary_dir() {
-  return CROWDLAB_BINARY_DIR;
-}
-inline std::filesystem::path crowdlab_exe() {
-  return CROWDLAB_EXE;
 }
 inline constexpr bool kSanitized = CROWDLAB_SANITIZED;
 
