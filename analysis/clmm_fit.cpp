@@ -11,6 +11,7 @@
 
 #include "analysis/lmm_formula.hpp"
 #include "analysis/model_matrix.hpp"
+#include "analysis/model_not_fitted.hpp"
 #include "analysis/nlopt_minimise.hpp"
 #include "framework/core/error.hpp"
 
@@ -384,6 +385,38 @@ std::vector<double> from_natural(const Data& d, const std::vector<double>& natur
         std::log(natural[static_cast<size_t>(k)] - natural[static_cast<size_t>(k - 1)]);
   return v;
 }
+// The covariance of the thresholds and fixed effects: the inverse of the information matrix in
+// (theta, beta, log sd). Where that matrix is singular because a random SD sits at its boundary (sd -> 0,
+// so the log-likelihood is flat in log sd), the SEs are those with that SD held at its estimate: the
+// inverse of the information over the other parameters (clmm then warns that the Hessian is singular
+// and prints no SEs; a report needs them, and the SD's warning stays). Any other singular or
+// non-positive-definite information (a separated or empty factor cell, an unidentified threshold) means
+// the model is not fitted (issue 32).
+Eigen::MatrixXd coefficient_covariance(const Eigen::MatrixXd& info, size_t coefficients,
+                                       const std::vector<double>& natural) {
+  auto well_conditioned = [](const Eigen::MatrixXd& m) {
+    if (!m.allFinite()) return false;
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(m, Eigen::EigenvaluesOnly);
+    const double lo = eig.eigenvalues().minCoeff(), hi = eig.eigenvalues().maxCoeff();
+    return eig.info() == Eigen::Success && hi > 0 && lo > 1e-10 * hi;
+  };
+  if (well_conditioned(info)) return info.inverse();
+  std::vector<Eigen::Index> keep;
+  for (size_t i = 0; i < static_cast<size_t>(info.rows()); ++i)
+    if (i < coefficients || std::exp(natural[i]) >= 1e-4) keep.push_back(static_cast<Eigen::Index>(i));
+  const Eigen::MatrixXd sub = info(keep, keep);
+  if (keep.size() == static_cast<size_t>(info.rows()) || !well_conditioned(sub)) {
+    if (!info.allFinite())
+      throw ModelNotFitted("the log-likelihood's curvature at the optimum is not finite");
+    throw ModelNotFitted(
+        "the information matrix is singular at the optimum: an effect is not identified (a factor cell "
+        "whose answers all lie at one end of the scale, i.e. separated data, or a cell without answers)");
+  }
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(info.rows(), info.cols());
+  const Eigen::MatrixXd sub_cov = sub.inverse();
+  cov(keep, keep) = sub_cov;
+  return cov;
+}
 }  // namespace
 
 ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std::string& link,
@@ -425,21 +458,26 @@ ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std
   out.link = link;
   out.observations = d.y.size();
   out.converged = opt.converged();
-  if (!out.converged)
-    out.warnings.push_back("the optimiser did not converge (NLopt status " + std::to_string(opt.status) +
-                           ")");
   out.loglik = -best;
   for (size_t t = 0; t < nt; ++t) {
     out.random.push_back({d.terms[t].group, std::exp(natural[k1 + p + t]), d.terms[t].rows_of.size()});
     if (out.random.back().sd < 1e-4)
       out.warnings.push_back("the random-effect SD of '" + d.terms[t].group + "' is (near) zero");
   }
-  const Eigen::MatrixXd cov = info.inverse();
+  if (!out.converged)
+    throw ModelNotFitted("the optimiser did not converge (NLopt status " + std::to_string(opt.status) + ")");
+  require_finite_estimate(out.loglik, "the log-likelihood");
+  const Eigen::MatrixXd cov = coefficient_covariance(info, k1 + p, natural);
   const boost::math::normal_distribution<double> z01;
   for (size_t i = 0; i < k1 + p; ++i) {
     ClmmCoefficient c;
     c.estimate = natural[i];
     c.se = std::sqrt(cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)));
+    const std::string what =
+        i < k1 ? "threshold " + levels[i] + "|" + levels[i + 1] : "term " + names[i - k1];
+    require_finite_estimate(c.estimate, "the estimate of " + what);
+    if (!(c.se > 0) || !std::isfinite(c.se))
+      throw ModelNotFitted("the standard error of " + what + " is not a positive finite number");
     c.z = c.estimate / c.se;
     c.p = 2.0 * boost::math::cdf(boost::math::complement(z01, std::abs(c.z)));
     if (i < k1) {

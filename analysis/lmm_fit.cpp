@@ -9,6 +9,7 @@
 #include <set>
 
 #include "analysis/model_matrix.hpp"
+#include "analysis/model_not_fitted.hpp"
 #include "analysis/nlopt_minimise.hpp"
 #include "analysis/satterthwaite.hpp"
 #include "framework/core/error.hpp"
@@ -255,6 +256,12 @@ LmmResult fit_lmm(const CsvTable& table, const std::string& formula, bool reml) 
   for (Eigen::Index j = 0; j < pr.p; ++j) {
     const double se = std::sqrt(vcov(j, j)), t = fin.beta[j] / se;
     const double df = satterthwaite.df[static_cast<size_t>(j)];
+    const std::string& term = fixed_names[static_cast<size_t>(j)];
+    require_finite_estimate(fin.beta[j], "the estimate of " + term);
+    if (!(se > 0) || !std::isfinite(se))
+      throw ModelNotFitted(table.source + ": the standard error of " + term +
+                           " is not a positive finite number (residual variance 0: the model fits the data "
+                           "exactly)");
     out.fixed.push_back({fixed_names[static_cast<size_t>(j)], fin.beta[j], se, t, df, t_test_p(t, df)});
   }
   out.warnings.insert(out.warnings.end(), satterthwaite.warnings.begin(), satterthwaite.warnings.end());

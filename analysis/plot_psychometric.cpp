@@ -43,7 +43,7 @@ void plot_psychometric(const PsychometricPlot& plot, const std::string& path_ste
       }
       pls.width(2.0);
       pls.lsty(1);
-      pls.line(n, cx.data(), cy.data());
+      if (c.fitted) pls.line(n, cx.data(), cy.data());
       const auto m = static_cast<PLINT>(c.x.size());
       std::vector<PLFLT> lo(c.x.size()), hi(c.x.size());
       for (size_t i = 0; i < c.x.size(); ++i) {

@@ -12,6 +12,7 @@ struct PsychometricCurve {
   std::vector<double> x, proportion, se;  ///< observed points
   double intercept = 0, slope = 0;        ///< fitted logistic (plain model)
   double threshold50 = 0;                 ///< marked with a dashed line (NaN: not drawn)
+  bool fitted = true;                     ///< false: the points alone (the answers could not be fitted)
 };
 
 struct PsychometricPlot {

@@ -184,7 +184,14 @@ std::string psychometric_markdown_table(const PsychometricAnalysis& a, const std
   for (const auto& g : a.groups) {
     s += "| " + (g.by.empty() ? std::string("all") : g.by) + " | " + std::to_string(g.n) + " |";
     for (size_t k = 0; k < g.mean.size(); ++k) {
-      std::snprintf(buf, sizeof buf, " %.3f ± %.3f |", g.mean[k], g.sd[k]);
+      // A group whose participants all lack a finite threshold (flat or separated answers that never
+      // cross p) has no mean: "Not fitted"; one threshold alone has no SD (issue 32).
+      if (!std::isfinite(g.mean[k]))
+        std::snprintf(buf, sizeof buf, " Not fitted: no finite threshold |");
+      else if (!std::isfinite(g.sd[k]))
+        std::snprintf(buf, sizeof buf, " %.3f (one participant, no SD) |", g.mean[k]);
+      else
+        std::snprintf(buf, sizeof buf, " %.3f ± %.3f |", g.mean[k], g.sd[k]);
       s += buf;
     }
     s += "\n";

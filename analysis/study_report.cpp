@@ -1,16 +1,20 @@
 #include "analysis/study_report.hpp"
 
 #include <algorithm>
+#include <boost/math/policies/error_handling.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "analysis/analysis_json.hpp"
 #include "analysis/apa_format.hpp"
 #include "analysis/clmm_fit.hpp"
 #include "analysis/kolmogorov_smirnov.hpp"
+#include "analysis/model_not_fitted.hpp"
 #include "analysis/plot_interaction.hpp"
 #include "analysis/plot_psychometric.hpp"
 #include "analysis/posthoc.hpp"
@@ -53,6 +57,31 @@ struct Context {
   fs::path out;
   std::string md;
 };
+
+// Fits one model of the report. A model the data cannot support (singular, separated, non-finite, not
+// converged; issue 32) throws InputError/ModelNotFitted or a numeric error of Boost.Math or the standard
+// library; its reason is returned and the report goes on. Anything else (I/O, memory) still ends the run.
+template <class Fit>
+std::optional<std::string> try_fit(Fit&& fit) {
+  try {
+    fit();
+    return std::nullopt;
+  } catch (const InputError& e) {
+    return std::string(e.what());
+  } catch (const boost::math::evaluation_error& e) {
+    return std::string(e.what());
+  } catch (const std::domain_error& e) {
+    return std::string(e.what());
+  } catch (const std::overflow_error& e) {
+    return std::string(e.what());
+  } catch (const std::underflow_error& e) {
+    return std::string(e.what());
+  }
+}
+
+std::string not_fitted_line(const std::string& why) {
+  return "Not fitted: " + why + "\n\n";
+}
 
 // participant, <factors...>, value rows of one measure (a question or a composite).
 CsvTable measure_table(const Context& ctx, const std::vector<std::string>& items, const std::string& name) {
@@ -108,8 +137,11 @@ void reliability_section(Context& ctx, const CompositeSpec& comp) {
   }
   const auto rel = pair_reliability(va, vb);
   ctx.md += "Internal reliability of " + comp.items[0] + " and " + comp.items[1] + " (reverse-coded), over " +
-            std::to_string(rel.n) + " trials: r = " + fmt(rel.pearson_r) +
-            ", Cronbach's α = " + fmt(rel.cronbach_alpha) + ".\n\n";
+            std::to_string(rel.n) + " trials: ";
+  if (std::isfinite(rel.pearson_r) && std::isfinite(rel.cronbach_alpha))
+    ctx.md += "r = " + fmt(rel.pearson_r) + ", Cronbach's α = " + fmt(rel.cronbach_alpha) + ".\n\n";
+  else
+    ctx.md += "not defined (an item's answers, or their sum, do not vary).\n\n";
 }
 
 void interaction_plots(Context& ctx, const WithinDesign& design, const std::string& name,
@@ -137,11 +169,15 @@ void interaction_plots(Context& ctx, const WithinDesign& design, const std::stri
       }
       plot.series.push_back(series);
     }
-    if (k > 1)
-      for (const auto& se : simple_effects(design, effect, f))
-        plot.stars.push_back(significance_stars(
-            se.effect.p_gg && se.effect.mauchly_p && *se.effect.mauchly_p < 0.05 ? *se.effect.p_gg
-                                                                                 : se.effect.p));
+    if (k > 1) {
+      std::vector<SimpleEffect> simple;
+      // A simple effect without error variance has no test: its stars are left out.
+      if (!try_fit([&] { simple = simple_effects(design, effect, f); }))
+        for (const auto& se : simple)
+          plot.stars.push_back(significance_stars(
+              se.effect.p_gg && se.effect.mauchly_p && *se.effect.mauchly_p < 0.05 ? *se.effect.p_gg
+                                                                                   : se.effect.p));
+    }
     const std::string stem = "interaction_" + safe_name(name) + "_" + safe_name(design.factors[f].name);
     plot_interaction(plot, (ctx.out / "figures" / stem).string());
     ctx.md += "![" + plot.title + "](figures/" + stem + ".png)\n\n";
@@ -165,26 +201,66 @@ void clmm_section(Context& ctx, const std::string& item, nlohmann::json& stats) 
   ctx.md += "Ordinal model of " + item +
             " (cumulative link mixed model, logit link, Laplace approximation, as R's `ordinal::clmm`; `" +
             formula + "`, factors categorical; estimates in log cumulative odds of a higher answer):\n\n";
-  try {
-    const auto fit = fit_clmm(t, formula, "logit", {ctx.factors.begin(), ctx.factors.end()});
-    ctx.md += clmm_markdown_table(fit) + "\n";
-    for (const auto& w : fit.warnings) ctx.md += "Warning: " + w + ".\n\n";
-    auto j = clmm_to_json(fit);
-    j["item"] = item;
-    j["formula"] = formula;
-    stats["clmm"].push_back(j);
-  } catch (const InputError& e) {
-    ctx.md += "Not fitted: " + std::string(e.what()) + "\n\n";
+  ClmmResult fit;
+  const auto why = try_fit([&] {
+    fit = fit_clmm(t, formula, "logit", {ctx.factors.begin(), ctx.factors.end()});
+  });
+  nlohmann::json j = why ? nlohmann::json{{"not_fitted", *why}} : clmm_to_json(fit);
+  j["item"] = item;
+  j["formula"] = formula;
+  stats["clmm"].push_back(j);
+  if (why) {
+    ctx.md += not_fitted_line(*why);
+    return;
+  }
+  ctx.md += clmm_markdown_table(fit) + "\n";
+  for (const auto& w : fit.warnings) ctx.md += "Warning: " + w + ".\n\n";
+}
+
+// The residual normality line of an ANOVA (subject x cell interaction residuals), with its Q-Q data.
+void normality_section(Context& ctx, const WithinDesign& design, const std::string& name) {
+  const Eigen::MatrixXd& y = design.cell_means;
+  const Eigen::VectorXd rm = y.rowwise().mean(), cm = y.colwise().mean().transpose();
+  std::vector<double> residuals;
+  for (Eigen::Index i = 0; i < y.rows(); ++i)
+    for (Eigen::Index c = 0; c < y.cols(); ++c) residuals.push_back(y(i, c) - rm[i] - cm[c] + y.mean());
+  NormalityCheck normal;
+  if (const auto why = try_fit([&] { normal = normality_check(residuals); })) {
+    ctx.md += "Normality of residuals: not tested: " + *why + "\n\n";
+    return;
+  }
+  std::ofstream qq(ctx.out / "stats" / ("qq_" + safe_name(name) + ".csv"));
+  qq << "theoretical,sample\n";
+  for (size_t i = 0; i < normal.sample.size(); ++i)
+    qq << normal.theoretical[i] << "," << normal.sample[i] << "\n";
+  ctx.md += "Normality of residuals: Kolmogorov-Smirnov D = " + fmt(normal.ks.statistic, 3) +
+            ", p = " + apa_p(normal.ks.p) + " (Q-Q data: stats/qq_" + safe_name(name) + ".csv).\n\n";
+}
+
+// Tukey post-hocs of every significant ANOVA effect; one that cannot be computed is "Not fitted".
+void posthoc_section(Context& ctx, const WithinDesign& design, const RmAnovaResult& anova,
+                     const std::string& name, nlohmann::json& stats) {
+  for (const auto& e : anova.effects) {
+    const double p = (e.mauchly_p && *e.mauchly_p < 0.05) ? *e.p_gg : e.p;
+    if (p >= 0.05) continue;
+    ctx.md += "Post-hoc (Tukey HSD" + std::string(e.factors.size() > 1 ? ", simple comparisons" : "") +
+              ") for " + e.name + ":\n\n";
+    PosthocResult ph;
+    if (const auto why =
+            try_fit([&] { ph = posthoc(design, e.factors, PosthocMethod::tukey, e.factors.size() > 1); })) {
+      stats["posthoc"].push_back({{"effect", e.name}, {"not_fitted", *why}});
+      ctx.md += not_fitted_line(*why);
+      continue;
+    }
+    stats["posthoc"].push_back(posthoc_to_json(ph));
+    if (ph.pairs.size() <= 30)
+      ctx.md += posthoc_markdown_table(ph) + "\n";
+    else
+      ctx.md += std::to_string(ph.pairs.size()) + " comparisons: see stats/" + safe_name(name) + ".json.\n\n";
   }
 }
 
-void measure_section(Context& ctx, const std::string& name, const std::vector<std::string>& items) {
-  ctx.md += "### " + name + "\n\n";
-  if (items.size() > 1)
-    ctx.md += "Composite of " + std::to_string(items.size()) + " items, averaged per trial.\n\n";
-  const CsvTable t = measure_table(ctx, items, name);
-  const auto design = build_within_design(t, "value", "participant", ctx.factors);
-  const auto anova = rm_anova(design);
+void describe_cell_means(Context& ctx, const WithinDesign& design) {
   ctx.md += "Mean ± SD over participants:";
   for (size_t f = 0; f < design.factors.size(); ++f) {
     const Eigen::MatrixXd m = effect_subject_means(design, {f});
@@ -196,40 +272,38 @@ void measure_section(Context& ctx, const std::string& name, const std::vector<st
                 " ± " + fmt(sd);
     }
   }
-  ctx.md += ".\n\n" + anova_markdown_table(anova) + "\n";
-  for (const auto& e : anova.effects) ctx.md += "- " + e.name + ": " + apa_f_sentence(e) + "\n";
-  ctx.md += "\n";
-  // Normality of residuals (subject x cell interaction residuals).
-  const Eigen::MatrixXd& y = design.cell_means;
-  const Eigen::VectorXd rm = y.rowwise().mean(), cm = y.colwise().mean().transpose();
-  std::vector<double> residuals;
-  for (Eigen::Index i = 0; i < y.rows(); ++i)
-    for (Eigen::Index c = 0; c < y.cols(); ++c) residuals.push_back(y(i, c) - rm[i] - cm[c] + y.mean());
-  const auto normal = normality_check(residuals);
-  std::ofstream qq(ctx.out / "stats" / ("qq_" + safe_name(name) + ".csv"));
-  qq << "theoretical,sample\n";
-  for (size_t i = 0; i < normal.sample.size(); ++i)
-    qq << normal.theoretical[i] << "," << normal.sample[i] << "\n";
-  ctx.md += "Normality of residuals: Kolmogorov-Smirnov D = " + fmt(normal.ks.statistic, 3) +
-            ", p = " + apa_p(normal.ks.p) + " (Q-Q data: stats/qq_" + safe_name(name) + ".csv).\n\n";
-  nlohmann::json stats = {{"measure", name},
-                          {"anova", anova_to_json(anova)},
-                          {"posthoc", nlohmann::json::array()},
-                          {"clmm", nlohmann::json::array()}};
-  for (const auto& item : items) clmm_section(ctx, item, stats);
-  for (const auto& e : anova.effects) {
-    const double p = (e.mauchly_p && *e.mauchly_p < 0.05) ? *e.p_gg : e.p;
-    if (p >= 0.05) continue;
-    const auto ph = posthoc(design, e.factors, PosthocMethod::tukey, e.factors.size() > 1);
-    stats["posthoc"].push_back(posthoc_to_json(ph));
-    ctx.md += "Post-hoc (Tukey HSD" + std::string(e.factors.size() > 1 ? ", simple comparisons" : "") +
-              ") for " + e.name + ":\n\n";
-    if (ph.pairs.size() <= 30)
-      ctx.md += posthoc_markdown_table(ph) + "\n";
-    else
-      ctx.md += std::to_string(ph.pairs.size()) + " comparisons: see stats/" + safe_name(name) + ".json.\n\n";
+  ctx.md += ".\n\n";
+}
+
+// One rating measure: its ANOVA, residual normality, one CLMM per item, post-hocs and plots. Each model
+// that the data cannot support is written "Not fitted: <why>" (issue 32) and the others still are.
+void measure_section(Context& ctx, const std::string& name, const std::vector<std::string>& items) {
+  ctx.md += "### " + name + "\n\n";
+  if (items.size() > 1)
+    ctx.md += "Composite of " + std::to_string(items.size()) + " items, averaged per trial.\n\n";
+  nlohmann::json stats = {
+      {"measure", name}, {"posthoc", nlohmann::json::array()}, {"clmm", nlohmann::json::array()}};
+  const CsvTable t = measure_table(ctx, items, name);
+  WithinDesign design;
+  RmAnovaResult anova;
+  const auto design_why =
+      try_fit([&] { design = build_within_design(t, "value", "participant", ctx.factors); });
+  const auto anova_why = design_why ? design_why : try_fit([&] { anova = rm_anova(design); });
+  if (!design_why) describe_cell_means(ctx, design);
+  if (anova_why) {
+    stats["anova"] = {{"not_fitted", *anova_why}};
+    ctx.md += "Repeated-measures ANOVA: " + not_fitted_line(*anova_why);
+  } else {
+    stats["anova"] = anova_to_json(anova);
+    ctx.md += anova_markdown_table(anova) + "\n";
+    for (const auto& e : anova.effects) ctx.md += "- " + e.name + ": " + apa_f_sentence(e) + "\n";
+    ctx.md += "\n";
+    normality_section(ctx, design, name);
   }
+  for (const auto& item : items) clmm_section(ctx, item, stats);
+  if (!anova_why) posthoc_section(ctx, design, anova, name, stats);
   std::ofstream(ctx.out / "stats" / (safe_name(name) + ".json")) << stats.dump(2) << "\n";
+  if (design_why) return;
   const int points = ctx.spec.protocol.scale_points;
   interaction_plots(ctx, design, name, "Answer (1-" + std::to_string(points) + " scale)");
 }
@@ -270,7 +344,13 @@ void psychometric_section(Context& ctx, const QuestionSpec& q) {
   req.by = "condition";
   req.probabilities = {0.5, 0.05};
   req.bootstrap = 0;
-  const auto a = analyze_psychometric(t, req);
+  PsychometricAnalysis a;
+  if (const auto why = try_fit([&] { a = analyze_psychometric(t, req); })) {
+    std::ofstream(ctx.out / "stats" / ("psychometric_" + safe_name(q.id) + ".json"))
+        << nlohmann::json{{"not_fitted", *why}}.dump(2);
+    ctx.md += not_fitted_line(*why);
+    return;
+  }
   ctx.md +=
       "Logistic fits of P(yes) against " + x_factor + " per participant and condition (maximum likelihood; " +
       "Firth's estimate where answers were completely separated).\n\nTable 1: thresholds (mean ± SD over "
@@ -311,10 +391,12 @@ void psychometric_section(Context& ctx, const QuestionSpec& q) {
       c.proportion.push_back(mean);
       c.se.push_back(v.size() > 1 ? std::sqrt(ss / (v.size() - 1.0) / static_cast<double>(v.size())) : 0.0);
     }
-    const auto pooled = fit_psychometric(px, py);
+    // A condition whose pooled answers cannot be fitted is drawn as points without a curve.
+    PsychometricFit pooled;
+    c.fitted = !try_fit([&] { pooled = fit_psychometric(px, py); }) && std::isfinite(pooled.threshold(0.5));
     c.intercept = pooled.intercept;
     c.slope = pooled.slope;
-    c.threshold50 = pooled.threshold(0.5);
+    c.threshold50 = c.fitted ? pooled.threshold(0.5) : std::numeric_limits<double>::quiet_NaN();
     plot.curves.push_back(c);
   }
   const std::string stem = "psychometric_" + safe_name(q.id);

@@ -1,5 +1,6 @@
 // The configured paths of tests/support/test_paths.hpp (CMake passes them to this file alone).
-#include "tests/support/test_paths.hpp"
+// It does not include the header, which needs CROWDLAB_SANITIZED (only the test executables get it).
+#include <filesystem>
 
 namespace crowdlab::test {
 
