@@ -233,7 +233,7 @@ TEST_CASE("export-web writes the study folder and a JATOS archive, completion_ur
   opt.out_dir = (dir / "web").string();
   opt.jatos_path = (dir / "study.jzip").string();
   opt.participants = {"P01", "P02"};
-  opt.web_source_dir = (source_dir() / "study_ui/web").string();
+  opt.web_source_dir = (test::source_dir() / "study_ui/web").string();
   opt.node_modules_dir = fake_node_modules(dir / "node_modules").string();
   const WebExportResult r = export_web(spec, m, opt);
   CHECK(r.clips == 3);  // v0, v1 and the practice clip
@@ -308,7 +308,7 @@ TEST_CASE("export-web writes the study folder and a JATOS archive, completion_ur
   CHECK_THROWS_WITH(export_web(spec, m, opt), Catch::Contains("not an empty folder"));
 
   // protocol.completion_url must be an http(s) URL.
-  const std::string demo = slurp(source_dir() / "experiments/demo.yaml");
+  const std::string demo = slurp(test::source_dir() / "experiments/demo.yaml");
   for (const std::string url : {"ftp://x.org/", "https://", "https://a.org/x y", "javascript:alert(1)"}) {
     std::string yaml = demo;
     yaml.insert(yaml.find("  composites:"), "  completion_url: \"" + url + "\"\n");
