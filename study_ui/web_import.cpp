@@ -150,9 +150,11 @@ std::vector<std::string> result_files(const std::vector<std::string>& inputs) {
       std::vector<std::string> found;
       for (const auto& e : fs::recursive_directory_iterator(in)) {
         const std::string ext = e.path().extension().string();
-        if (e.is_regular_file() &&
-            (ext == ".json" || ext == ".jsonl" || ext == ".txt" || is_csv_file(e.path())))
-          found.push_back(e.path().string());
+        if (e.is_directory() ||
+            !(ext == ".json" || ext == ".jsonl" || ext == ".txt" || is_csv_file(e.path())))
+          continue;
+        require_regular_input(e.path(), "web results");  // a FIFO named *.json: refused, never opened
+        found.push_back(e.path().string());
       }
       std::sort(found.begin(), found.end());
       if (found.empty())

@@ -499,6 +499,8 @@ ExperimentSpec load_experiment_spec_text(const std::string& yaml_text, const std
 ExperimentSpec load_experiment_spec(const std::string& path) {
   // A FIFO would block for ever and /dev/zero never ends (issue 32): refused before opening; a spec is a
   // few kB, so its size is checked before it is read.
+  if (!std::filesystem::exists(path))
+    throw InputError(SourceLocation{path, 0, 0, ""}, "cannot open the spec file: no such file");
   const std::string text = read_regular_file(path, "the spec", kMaxSpecBytes, "nothing: a spec is a few kB");
   const std::string base = std::filesystem::path(path).parent_path().string();
   return load_experiment_spec_text(text, path, base.empty() ? "." : base);

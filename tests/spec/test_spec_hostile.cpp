@@ -150,7 +150,7 @@ TEST_CASE("spec: duplicate levels are one error each, with file:line:col (issue 
                                  "\n  density: [2]\n" + kLikert);
   CHECK(count_of(errors, "duplicate level") == 1999);
   CHECK_THAT(errors,
-             Catch::Contains("t.yaml:5:") && Catch::Contains("factors.viewpoint[1]: duplicate level 'V4'"));
+             Catch::Contains("t.yaml:6:") && Catch::Contains("factors.viewpoint[1]: duplicate level 'V4'"));
   // The same in protocol.practice (5.8 GB).
   const std::string practice_likert =
       "protocol:\n  type: likert\n  scale: {points: 6, labels: [a, b]}\n  questions: [{id: Q1, text: x}]\n"

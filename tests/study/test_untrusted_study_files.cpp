@@ -91,7 +91,9 @@ TEST_CASE("import-web refuses a result file over --max-file-mb and a FIFO before
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   CHECK_THROWS_WITH(import_web(w.spec, w.m, {fifo.string()}, w.opt),
                     Catch::Contains(fifo.string()) && Catch::Contains("FIFO"));
-  CHECK_THROWS_WITH(import_web(w.spec, w.m, {w.dir.string()}, w.opt), Catch::Contains("FIFO"));
+  fs::create_directories(w.dir / "results");
+  fs::rename(fifo, w.dir / "results" / "results.json");
+  CHECK_THROWS_WITH(import_web(w.spec, w.m, {(w.dir / "results").string()}, w.opt), Catch::Contains("FIFO"));
 }
 
 TEST_CASE("import-web never replaces an existing participant's files", "[study]") {
