@@ -30,14 +30,18 @@ static fs::path sidecar(const fs::path& output) {
 }
 
 /// The sidecar of `output` as JSON (null when missing or torn: killed mid-write means "not up to date").
-/// Read as untrusted JSON (untrusted_json.hpp): a sidecar nested deep, huge or a FIFO is "not up to
-/// date" too, never a crash or a hang; rewriting it then refuses what is not a regular file.
-static nlohmann::json read_sidecar(const fs::path& output) {
-  if (!fs::exists(fs::symlink_status(sidecar(output)))) return nullptr;
+nlohmann::json read_provenance_record(const fs::path& path) {
   JsonLimits limits;
   limits.max_bytes = 16u << 20;  // a sidecar is a few hundred bytes
+  return read_untrusted_json(path, "provenance record", limits);
+}
+
+/// A sidecar nested deep, huge or a FIFO is "not up to date" too, never a crash or a hang; rewriting it
+/// then refuses what is not a regular file.
+static nlohmann::json read_sidecar(const fs::path& output) {
+  if (!fs::exists(fs::symlink_status(sidecar(output)))) return nullptr;
   try {
-    return read_untrusted_json(sidecar(output), "provenance", limits);
+    return read_provenance_record(sidecar(output));
   } catch (const InputError&) {
     return nullptr;
   }

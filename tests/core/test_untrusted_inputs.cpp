@@ -14,6 +14,7 @@
 #include "framework/core/file_kind.hpp"
 #include "framework/core/write_file.hpp"
 #include "framework/io/untrusted_json.hpp"
+#include "framework/pipeline/provenance.hpp"
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
 
@@ -148,4 +149,18 @@ TEST_CASE("cli: huge counts are refused from the count, before the work, exit 2"
   r = test::run_cli({"bench", "correct", "--characters", "1000000", "--steps", "1"});
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Catch::Contains("--characters") && Catch::Contains("limit of 10000"));
+}
+
+TEST_CASE("a provenance sidecar nested deep or a FIFO is not up to date, never a crash or a hang", "[core]") {
+  const auto dir = test::scratch_dir("untrusted-provenance");
+  const fs::path out = dir / "out.csv";
+  std::ofstream(out) << "x";
+  std::ofstream(dir / "out.csv.prov.json") << "{\"input_hash\": " << std::string(400000, '[');
+  CHECK_FALSE(output_up_to_date(out, "h"));
+  CHECK_THROWS_WITH(read_provenance_record(dir / "out.csv.prov.json"),
+                    Catch::Contains("out.csv.prov.json:1: JSON nests") && Catch::Contains("at byte 78"));
+  fs::remove(dir / "out.csv.prov.json");
+  make_fifo(dir, "out.csv.prov.json");
+  CHECK_FALSE(output_up_to_date(out, "h"));
+  CHECK(recorded_hash(out).empty());
 }
