@@ -164,3 +164,9 @@ TEST_CASE("a provenance sidecar nested deep or a FIFO is not up to date, never a
   CHECK_FALSE(output_up_to_date(out, "h"));
   CHECK(recorded_hash(out).empty());
 }
+
+TEST_CASE("cli: a misspelt command is named, not 'A subcommand is required' (issue 33)", "[core][cli]") {
+  const auto r = test::run_cli({"nosuchcommand"});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("unknown command 'nosuchcommand'"));
+}
