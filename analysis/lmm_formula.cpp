@@ -44,8 +44,20 @@ std::vector<std::string> split_top(const std::string& s, char sep) {
   return out;
 }
 
-// Every non-empty subset of the crossed variables, as R expands a*b*c.
-std::vector<ModelTerm> expand_crossing(const std::vector<std::string>& vars) {
+// Every non-empty subset of the crossed variables, as R expands a*b*c (a variable crossed with itself
+// is itself, a*a = a). n variables make 2^n - 1 terms: refused from the count before any is built
+// (issue 32: crossing 24-30 factors, or `method` 30 times, ran out of memory).
+std::vector<ModelTerm> expand_crossing(std::vector<std::string> vars, const std::string& formula) {
+  std::vector<std::string> distinct;
+  for (const std::string& v : vars)
+    if (std::find(distinct.begin(), distinct.end(), v) == distinct.end()) distinct.push_back(v);
+  vars = distinct;
+  if (vars.size() > kMaxCrossedVariables)
+    fail(formula, "crossing " + std::to_string(vars.size()) + " variables with '*' makes 2^" +
+                      std::to_string(vars.size()) + " - 1 terms, more than the limit of " +
+                      std::to_string((size_t{1} << kMaxCrossedVariables) - 1) + " (" +
+                      std::to_string(kMaxCrossedVariables) +
+                      " variables); write the interactions the model needs with ':' instead");
   std::vector<ModelTerm> out;
   for (size_t mask = 1; mask < (size_t{1} << vars.size()); ++mask) {
     ModelTerm t;
@@ -79,7 +91,7 @@ std::vector<ModelTerm> parse_fixed_terms(const std::string& rhs, bool& intercept
     for (const auto& v : vars)
       if (!is_name(v)) fail(formula, "unsupported term '" + piece + "' (variables, ':' and '*' only)");
     if (crossing) {
-      for (auto& t : expand_crossing(vars)) terms.push_back(t);
+      for (auto& t : expand_crossing(vars, formula)) terms.push_back(t);
     } else {
       terms.push_back(vars);
     }

@@ -6,10 +6,15 @@
 //   random: `(1 | g)`, `(1 + x | g)`, `(x | g)` (the intercept implied), `(0 + x | g)`; each bar term
 //           has correlated effects within its group; several bar terms give crossed random effects.
 // Not supported (an error naming the piece): `||`, nested `g1/g2`, functions such as log(x), offsets.
+#include <cstddef>
 #include <string>
 #include <vector>
 
 namespace crowdlab::analysis {
+
+/// Most distinct variables one crossing `a*b*...` may hold: n make 2^n - 1 terms (10 make 1023), each a
+/// block of design-matrix columns. Beyond it the formula is refused before expansion.
+inline constexpr std::size_t kMaxCrossedVariables = 10;
 
 /// A model term: the variables it multiplies, in the order written (empty = the intercept).
 using ModelTerm = std::vector<std::string>;

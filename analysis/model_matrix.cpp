@@ -43,6 +43,24 @@ bool has_term(const std::vector<ModelTerm>& terms, bool intercept, const std::se
   return std::any_of(terms.begin(), terms.end(),
                      [&](const ModelTerm& t) { return std::set<std::string>(t.begin(), t.end()) == wanted; });
 }
+/// The number of columns model_matrix makes, from the level counts (nothing built).
+double column_count(const std::vector<ModelTerm>& terms, bool intercept,
+                    const std::map<std::string, ModelVariable>& variables) {
+  double count = intercept ? 1.0 : 0.0;
+  for (const auto& term : terms) {
+    double product = 1.0;
+    for (const auto& var : term) {
+      const ModelVariable& v = variables.at(var);
+      if (v.numeric) continue;
+      std::set<std::string> without(term.begin(), term.end());
+      without.erase(var);
+      const bool contrasts = has_term(terms, intercept, without);
+      product *= static_cast<double>(v.levels.size()) - (contrasts ? 1.0 : 0.0);
+    }
+    count += product;
+  }
+  return count;
+}
 }  // namespace
 
 std::map<std::string, ModelVariable> read_model_variables(const CsvTable& table,
@@ -109,6 +127,14 @@ std::vector<size_t> grouping_codes(const CsvTable& table, const std::string& col
 
 ModelMatrix model_matrix(const std::vector<ModelTerm>& terms, bool intercept,
                          const std::map<std::string, ModelVariable>& variables, size_t rows) {
+  // Interactions of many-level factors multiply their columns: refused from the count, before the
+  // rows x columns matrix is allocated (issue 32).
+  const double planned = column_count(terms, intercept, variables);
+  if (planned > static_cast<double>(kMaxModelColumns))
+    throw InputError("the model's terms make " + std::to_string(static_cast<long long>(planned)) +
+                     " design-matrix columns (levels multiplied over each interaction), more than the limit "
+                     "of " +
+                     std::to_string(kMaxModelColumns) + "; drop interactions or factors with many levels");
   std::vector<std::vector<double>> columns;
   ModelMatrix m;
   if (intercept) {

@@ -43,6 +43,10 @@ struct ModelMatrix {
   std::vector<std::string> names;  ///< R's column names, "(Intercept)" first when present
 };
 
+/// Most columns a model matrix may have (fixed effects of a study model number in the tens).
+inline constexpr std::size_t kMaxModelColumns = 2000;
+
+/// Throws InputError, before allocating, when the terms make more than kMaxModelColumns columns.
 ModelMatrix model_matrix(const std::vector<ModelTerm>& terms, bool intercept,
                          const std::map<std::string, ModelVariable>& variables, size_t rows);
 

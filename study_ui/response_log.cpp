@@ -13,6 +13,7 @@
 
 #include "framework/core/csv.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/file_kind.hpp"
 #include "framework/core/write_file.hpp"
 
 namespace crowdlab::study {
@@ -72,7 +73,8 @@ bool is_complete_row(const std::string& header_line, const std::string& line, si
 /// Appends `bytes` to `path` (created if missing), fsyncs when `durable`, and closes the descriptor
 /// whatever fails.
 void append_whole(const std::string& path, const std::string& bytes, bool durable) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  require_writable_destination(path);  // never appends through a link (issue 32)
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (fd < 0) throw RuntimeError(path + ": cannot create: " + errno_text());
   try {
     write_all(fd, bytes, path);
@@ -137,6 +139,9 @@ ResponseLog ResponseLog::reopen(const std::string& path, const std::vector<std::
                                 const std::string& trial_column, const std::string& session_column,
                                 int rows_per_trial, RecoveredLog& recovered, bool durable) {
   recovered = RecoveredLog{};
+  // A log that is a link (to a file outside --out) or a FIFO is refused before it is read or appended to
+  // (issue 32); O_NOFOLLOW below closes the gap for the link.
+  require_writable_destination(path);
   std::string text = read_all(path);
   const size_t on_disk = text.size();
   const std::string header_line = csv_line(header);
@@ -191,7 +196,7 @@ ResponseLog ResponseLog::reopen(const std::string& path, const std::vector<std::
   keep = rows_kept == 0 ? header_line.size() : line_end[rows_kept - 1];
   recovered.dropped_bytes = keep < on_disk ? static_cast<long>(on_disk - keep) : 0;
 
-  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC | O_NOFOLLOW);
   if (fd < 0) throw RuntimeError(path + ": cannot open for appending: " + errno_text());
   ResponseLog log(path, fd, header.size(), durable);
   if (keep < on_disk) {

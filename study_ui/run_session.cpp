@@ -6,13 +6,16 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "crowdlab_version.hpp"
 #include "framework/core/csv.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/file_kind.hpp"
 #include "framework/core/sha256.hpp"
+#include "framework/io/untrusted_json.hpp"
 #include "study_ui/response_log.hpp"
 #include "study_ui/session_texts.hpp"
 #include "study_ui/verify_stimuli.hpp"
@@ -52,14 +55,26 @@ const std::vector<std::string> kFixedColumns = {"participant",
                                                 "practice",
                                                 "simulated"};
 
+/// P.json of an earlier session: untrusted (it may have been edited or replaced), so read with the
+/// limits of untrusted_json.hpp, and its shape checked where the session reads it.
 nlohmann::json read_metadata(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return nlohmann::json::object();
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(path + ": session metadata is not valid JSON: " + e.what());
-  }
+  if (!fs::exists(fs::symlink_status(path))) return nlohmann::json::object();
+  require_writable_destination(path);  // rewritten by this session: never through a link
+  JsonLimits limits;
+  limits.max_bytes = 16u << 20;
+  const nlohmann::json meta = read_untrusted_json(path, "session metadata", limits);
+  if (!meta.is_object())
+    throw InputError(SourceLocation{path, 0, 0, ""}, "session metadata must be a JSON object");
+  if (meta.contains("runs") && !meta["runs"].is_array())
+    throw InputError(SourceLocation{path, 0, 0, "runs"},
+                     "expected a list of runs, got " + meta["runs"].dump());
+  if (meta.contains("runs"))
+    for (const auto& run : meta["runs"])
+      if (!run.is_object())
+        throw InputError(SourceLocation{path, 0, 0, "runs"}, "each run must be a JSON object");
+  if (meta.contains("spec_hash") && !meta["spec_hash"].is_string())
+    throw InputError(SourceLocation{path, 0, 0, "spec_hash"}, "expected a string");
+  return meta;
 }
 
 void check_answers(const TrialOutcome& outcome, const std::vector<StudyQuestion>& questions,
@@ -195,6 +210,9 @@ void check_session_inputs(const ExperimentSpec& spec, const StimulusManifest& ma
     throw InputError(json_path + ": this participant's session used another spec (hash " +
                      meta["spec_hash"].get<std::string>() + "); refusing to mix data");
   const fs::path csv_path = dir / (opt.participant + ".csv");
+  // Appended to by this session: a link (to a file outside --out) or a FIFO is refused before it is
+  // opened (issue 32).
+  require_writable_destination(csv_path);
   std::ifstream csv(csv_path, std::ios::binary);
   std::string first_line;
   if (csv && std::getline(csv, first_line) && first_line + "\n" != header_line)
@@ -233,6 +251,10 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     if (recovered.completed_trials.count(t.index)) ++result.trials_already_done;
   if (static_cast<int>(recovered.completed_trials.size()) != result.trials_already_done)
     throw InputError(result.csv_path + ": holds trial indices this spec and manifest do not produce");
+  if (recovered.max_session == std::numeric_limits<int>::max())
+    throw InputError(SourceLocation{result.csv_path, 0, 0, "session"},
+                     "the log's last session is " + std::to_string(recovered.max_session) +
+                         ", the largest session number; another session cannot be numbered");
   const int session = recovered.max_session + 1;
 
   const ScreenInfo screen = presenter.screen();

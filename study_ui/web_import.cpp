@@ -5,14 +5,19 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
+#include <type_traits>
 
 #include "crowdlab_version.hpp"
 #include "framework/core/csv.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/file_kind.hpp"
 #include "framework/core/sha256.hpp"
+#include "framework/io/untrusted_json.hpp"
 #include "study_ui/build_trial_list.hpp"
 #include "study_ui/response_log.hpp"
 #include "study_ui/run_session.hpp"
@@ -40,6 +45,15 @@ std::string read_text(const std::string& path) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+/// The limits of untrusted_json.hpp for a participant's records (a record nests 4 levels).
+JsonLimits web_json_limits(const WebImportOptions& opt) {
+  JsonLimits limits;
+  limits.max_depth = 32;
+  limits.max_bytes = opt.max_file_bytes;
+  limits.raise_with = "--max-file-mb";
+  return limits;
 }
 
 /// Records of one parsed JSON value (see the header for the three shapes).
@@ -73,7 +87,8 @@ bool is_csv_file(const fs::path& path) {
 /// row per jsPsych trial, one column per data key, every cell quoted, objects as JSON text. The trial
 /// records are the JSON objects in the crowdlab_record column; rows with that cell empty are the
 /// study's other screens.
-std::vector<WebRecord> read_jspsych_csv(const std::string& path, const std::string& text) {
+std::vector<WebRecord> read_jspsych_csv(const std::string& path, const std::string& text,
+                                        const JsonLimits& limits) {
   const CsvTable table = parse_csv(text, path);  // names file and line for a ragged row or open quote
   if (!table.has_column(kRecordColumn))
     throw InputError(SourceLocation{path, 1, 0, kRecordColumn},
@@ -87,10 +102,10 @@ std::vector<WebRecord> read_jspsych_csv(const std::string& path, const std::stri
     const int line = table.line_numbers[r];
     nlohmann::json record;
     try {
-      record = nlohmann::json::parse(cell);
-    } catch (const nlohmann::json::parse_error& e) {
+      record = parse_untrusted_json(cell, path, limits, 0, line);
+    } catch (const InputError& e) {
       throw InputError(SourceLocation{path, line, 0, kRecordColumn},
-                       std::string("not valid JSON: ") + e.what());
+                       std::string("the record cell: ") + e.what());
     }
     if (!record.is_object())
       throw InputError(SourceLocation{path, line, 0, kRecordColumn},
@@ -101,27 +116,26 @@ std::vector<WebRecord> read_jspsych_csv(const std::string& path, const std::stri
 }
 
 /// One file: jsPsych CSV (*.csv), else a whole JSON document, else JSON lines.
-std::vector<WebRecord> read_result_file(const std::string& path) {
-  const std::string text = read_text(path);
-  if (is_csv_file(path)) return read_jspsych_csv(path, text);
+std::vector<WebRecord> read_result_file(const std::string& path, const JsonLimits& limits) {
+  // Size from stat before reading; FIFOs and devices refused before opening (issue 32).
+  const std::string text = read_regular_file(path, "web results", limits.max_bytes, limits.raise_with);
+  if (is_csv_file(path)) return read_jspsych_csv(path, text, limits);
+  check_untrusted_json(text, path, limits);  // depth: the whole text, before either parse below
   std::vector<WebRecord> out;
-  try {
-    collect_records(nlohmann::json::parse(text), path, 1, out);
+  if (nlohmann::json whole = nlohmann::json::parse(text, nullptr, false); !whole.is_discarded()) {
+    collect_records(whole, path, 1, out);
     return out;
-  } catch (const nlohmann::json::parse_error&) {
   }
-  std::istringstream lines(text);
-  std::string line;
   int number = 0, values = 0;
-  while (std::getline(lines, line)) {
+  for (size_t start = 0; start < text.size();) {
+    const size_t end = std::min(text.find('\n', start), text.size());
+    const std::string_view line(text.data() + start, end - start);
+    const size_t offset = start;
+    start = end + 1;
     ++number;
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    try {
-      collect_records(nlohmann::json::parse(line), path, number, out);
-      ++values;
-    } catch (const nlohmann::json::parse_error& e) {
-      throw InputError(SourceLocation{path, number, 0, ""}, std::string("not valid JSON: ") + e.what());
-    }
+    collect_records(parse_untrusted_json(line, path, limits, offset, number), path, number, out);
+    ++values;
   }
   if (values == 0) throw InputError(path + ": empty (no crowdlab web study data)");
   return out;
@@ -136,14 +150,18 @@ std::vector<std::string> result_files(const std::vector<std::string>& inputs) {
       std::vector<std::string> found;
       for (const auto& e : fs::recursive_directory_iterator(in)) {
         const std::string ext = e.path().extension().string();
-        if (e.is_regular_file() &&
-            (ext == ".json" || ext == ".jsonl" || ext == ".txt" || is_csv_file(e.path())))
-          found.push_back(e.path().string());
+        if (e.is_directory() ||
+            !(ext == ".json" || ext == ".jsonl" || ext == ".txt" || is_csv_file(e.path())))
+          continue;
+        require_regular_input(e.path(), "web results");  // a FIFO named *.json: refused, never opened
+        found.push_back(e.path().string());
       }
       std::sort(found.begin(), found.end());
       if (found.empty())
         throw InputError(in + ": no result files (*.json, *.jsonl, *.txt, *.csv) in this folder");
       files.insert(files.end(), found.begin(), found.end());
+    } else if (fs::exists(in)) {
+      require_regular_input(in, "web results");  // a FIFO or device: refused, never opened
     } else {
       throw InputError(SourceLocation{"", 0, 0, "RESULTS"}, in + ": no such file or folder");
     }
@@ -151,13 +169,38 @@ std::vector<std::string> result_files(const std::vector<std::string>& inputs) {
   return files;
 }
 
+/// `value` as an int when it is a JSON integer in int's range; nlohmann's get<int>() narrows silently
+/// (issue 33: response 4294967299 was stored as 3, trial 4294967298 as 2).
+std::optional<int> int_in_range(const nlohmann::json& value) {
+  if (value.is_number_unsigned())
+    return value.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<int>::max())
+               ? std::optional<int>(static_cast<int>(value.get<std::uint64_t>()))
+               : std::nullopt;
+  if (!value.is_number_integer()) return std::nullopt;
+  const std::int64_t v = value.get<std::int64_t>();
+  if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max()) return std::nullopt;
+  return static_cast<int>(v);
+}
+
+/// A value cut for a message (a hostile value may be megabytes long).
+std::string quoted(const nlohmann::json& value) {
+  const std::string text = value.dump();
+  return text.size() <= 80 ? text
+                           : text.substr(0, 80) + "... (" + std::to_string(text.size() - 80) + " more)";
+}
+
 template <class T>
 T field(const WebRecord& r, const std::string& key) {
   if (!r.json.is_object() || !r.json.contains(key)) bad(r, key, "the trial record lacks '" + key + "'");
-  try {
-    return r.json.at(key).get<T>();
-  } catch (const nlohmann::json::exception&) {
-    bad(r, key, "'" + key + "' has the wrong type: " + r.json.at(key).dump());
+  if constexpr (std::is_same_v<T, int>) {
+    if (const auto v = int_in_range(r.json.at(key))) return *v;
+    bad(r, key, "'" + key + "' must be a whole number in int's range, got " + quoted(r.json.at(key)));
+  } else {
+    try {
+      return r.json.at(key).get<T>();
+    } catch (const nlohmann::json::exception&) {
+      bad(r, key, "'" + key + "' has the wrong type: " + quoted(r.json.at(key)));
+    }
   }
 }
 
@@ -174,11 +217,11 @@ std::vector<Answer> record_answers(const WebRecord& r, const std::vector<StudyQu
       bad(r, key, "expected the answer to question " + questions[i].id + ", got " + a.dump());
     Answer answer;
     answer.question_id = questions[i].id;
-    if (!a.contains("response") || !a["response"].is_number_integer() ||
-        !questions[i].valid(a["response"].get<int>()))
+    const std::optional<int> response = a.contains("response") ? int_in_range(a["response"]) : std::nullopt;
+    if (!response || !questions[i].valid(*response))
       bad(r, key + ".response",
-          "invalid response to " + questions[i].id + ": " + a.value("response", nlohmann::json()).dump());
-    answer.raw = a["response"].get<int>();
+          "invalid response to " + questions[i].id + ": " + quoted(a.value("response", nlohmann::json())));
+    answer.raw = *response;
     if (!a.contains("rt_ms") || !a["rt_ms"].is_number() || !std::isfinite(a["rt_ms"].get<double>()) ||
         a["rt_ms"].get<double>() < 0)
       bad(r, key + ".rt_ms", "expected a response time >= 0 ms");
@@ -297,6 +340,32 @@ nlohmann::json participant_metadata(const ExperimentSpec& spec, const std::strin
   return meta;
 }
 
+/// An import never replaces a participant's files (issue 32: an import for W01 replaced the W01.json of
+/// an earlier session and exited 0). The participant in the folder is the same one only when its P.csv
+/// holds byte for byte the records imported now; a P.json without that P.csv, a P.csv with other
+/// records, or either one not a regular file is refused, naming the file in the folder and the record's.
+void check_existing_participant(const std::string& out_dir, const std::string& id,
+                                const std::string& csv_text, const WebRecord& first) {
+  const fs::path csv = fs::path(out_dir) / (id + ".csv");
+  const fs::path json = fs::path(out_dir) / (id + ".json");
+  const std::string imported = first.file + ":" + std::to_string(first.line);
+  const auto refuse = [&](const fs::path& existing, const std::string& why) {
+    throw InputError(SourceLocation{"", 0, 0, "--out"},
+                     existing.string() + ": " + why + " of participant " + id + " than the records in " +
+                         imported + "; refusing to overwrite (import into another folder, or rename one)");
+  };
+  for (const fs::path& p : {csv, json}) {
+    const std::string kind = describe_file_kind(p, false);
+    if (!kind.empty() && kind != "missing")
+      throw InputError(SourceLocation{"", 0, 0, "--out"}, p.string() + ": is " + kind +
+                                                              ", not a participant file; refusing to write " +
+                                                              id + " (records in " + imported + ")");
+  }
+  if (fs::exists(csv) && read_text(csv.string()) != csv_text)
+    refuse(csv, "already holds other answers (a native session, or an earlier import of different data)");
+  if (!fs::exists(csv) && fs::exists(json)) refuse(json, "already holds the metadata of another session");
+}
+
 }  // namespace
 
 WebImportResult import_web(const ExperimentSpec& spec, const StimulusManifest& manifest,
@@ -305,7 +374,7 @@ WebImportResult import_web(const ExperimentSpec& spec, const StimulusManifest& m
   WebImportResult result;
   std::vector<WebRecord> records;
   for (const std::string& file : result_files(inputs)) {
-    auto some = read_result_file(file);
+    auto some = read_result_file(file, web_json_limits(opt));
     records.insert(records.end(), some.begin(), some.end());
     ++result.files;
   }
@@ -319,12 +388,7 @@ WebImportResult import_web(const ExperimentSpec& spec, const StimulusManifest& m
   std::map<std::string, std::string> csv_text;
   for (const auto& [id, p] : checked.participants) {
     csv_text[id] = participant_csv(spec, manifest, id, p, questions);
-    const fs::path csv = fs::path(opt.out_dir) / (id + ".csv");
-    if (fs::exists(csv) && read_text(csv.string()) != csv_text[id])
-      throw InputError(
-          SourceLocation{"", 0, 0, "--out"},
-          csv.string() + ": already holds other answers of participant " + id +
-              " (a native session, or an earlier import of different data); refusing to overwrite");
+    check_existing_participant(opt.out_dir, id, csv_text[id], p.by_trial.begin()->second);
   }
   fs::create_directories(opt.out_dir);
   for (const auto& [id, p] : checked.participants) {
@@ -333,7 +397,7 @@ WebImportResult import_web(const ExperimentSpec& spec, const StimulusManifest& m
     const size_t trials = build_trial_list(spec.protocol, manifest, spec.seed, p.order_of).size();
     if (p.by_trial.size() == trials) ++result.complete;
     result.csv_paths.push_back(csv.string());
-    if (fs::exists(csv)) {
+    if (fs::exists(csv)) {  // byte for byte the same records (checked above): nothing to write
       ++result.already_imported;
       continue;
     }

@@ -17,7 +17,11 @@
 // those of the order that crowdlab computes for `order_of` (build_trial_list), its answers are one valid
 // answer per question in order. A (participant, trial) seen twice is merged when both records are
 // identical and refused otherwise; an existing P.csv in the output is left alone when identical and
-// refused otherwise.
+// refused otherwise, and a P.json without its P.csv (another session's) is refused: an import never
+// replaces a file in the output folder. Result files are untrusted (a participant's browser wrote them):
+// they are read through framework/io/untrusted_json.hpp (at most 32 levels deep and
+// max_file_bytes large), and FIFOs and devices are refused before they are opened.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -29,6 +33,7 @@ namespace crowdlab::study {
 struct WebImportOptions {
   std::string out_dir;
   std::string stimuli_dir;  ///< folder of manifest.csv (for manifest_sha256 in the metadata)
+  std::uintmax_t max_file_bytes = 256u << 20;  ///< larger result files are refused (--max-file-mb)
 };
 
 struct WebImportResult {

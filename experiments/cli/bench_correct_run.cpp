@@ -13,6 +13,7 @@
 #include "framework/correction/swaying_crowd_fixture.hpp"
 #include "framework/metrics/measure_crowd.hpp"
 #include "framework/pipeline/metrics_json.hpp"
+#include "framework/spec/work_limits.hpp"
 
 namespace crowdlab::cli {
 namespace {
@@ -30,6 +31,11 @@ double peak_rss_mb() {
 
 CorrectBenchResult run_correct_bench(const CorrectBenchOptions& o) {
   if (o.characters < 1) throw InputError("--characters must be >= 1");
+  if (o.characters > kMaxCharactersPerCrowd)  // refused before the crowd is built (issue 32)
+    throw InputError("--characters: " + std::to_string(o.characters) +
+                     " characters, more than the limit of " +
+                     std::to_string(static_cast<int>(kMaxCharactersPerCrowd)) +
+                     " characters of one crowd (framework/spec/work_limits.hpp)");
   if (o.steps < 1) throw InputError("--steps must be >= 1");
   if (o.warmup < 0) throw InputError("--warmup must be >= 0");
   if (o.threads < 0) throw InputError("--threads must be >= 0");

@@ -316,9 +316,11 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       try {
         size_t used = 0;
         pr.options.lapse = std::stod(o->lapse, &used);
-        if (used != o->lapse.size()) throw InputError("");
+        // "nan" parses, and was then reported as a CSV problem of the first subject (issue 33).
+        if (used != o->lapse.size() || !(pr.options.lapse >= 0.0 && pr.options.lapse < 1.0))
+          throw InputError("");
       } catch (const std::exception&) {
-        throw InputError("--lapse: expected fixed, symmetric or a number, got '" + o->lapse + "'");
+        throw InputError("--lapse: expected fixed, symmetric or a number in [0, 1), got '" + o->lapse + "'");
       }
     }
     pr.probabilities.clear();

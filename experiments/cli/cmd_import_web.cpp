@@ -17,6 +17,7 @@ namespace {
 struct ImportWebArgs {
   std::vector<std::string> results;
   std::string spec, stimuli, out;
+  double max_file_mb = 256;
 };
 
 const CommandRegistration kImportWeb([](CLI::App& root) {
@@ -38,6 +39,10 @@ const CommandRegistration kImportWeb([](CLI::App& root) {
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--out", a->out, "Response folder for P.csv / P.json (analyze report reads it)")
       ->required();
+  cmd->add_option("--max-file-mb", a->max_file_mb,
+                  "Result files larger than this (MiB) are refused before they are read")
+      ->check(CLI::Range(1.0, 1048576.0))
+      ->capture_default_str();
   cmd->callback([a] {
     // Imports merge into the folder (check, then write): one process per folder (output_folder_lock.hpp).
     const OutputFolderLock lock(a->out);
@@ -48,6 +53,7 @@ const CommandRegistration kImportWeb([](CLI::App& root) {
     study::WebImportOptions opt;
     opt.out_dir = a->out;
     opt.stimuli_dir = a->stimuli;
+    opt.max_file_bytes = static_cast<std::uintmax_t>(a->max_file_mb * 1048576.0);
     const study::WebImportResult r = study::import_web(spec, read_manifest(manifest_path), a->results, opt);
     std::printf(
         "%d record(s) from %d file(s), %d identical duplicate(s) merged\n%d participant(s), %d complete, %d "

@@ -39,6 +39,13 @@ std::string run_command(const Options& o, const std::string& spec_abs,
 void emit(const Options& o) {
   const ExperimentSpec spec = load_experiment_spec(o.spec);
   const size_t conditions = enumerate_conditions(spec).size() + enumerate_practice_conditions(spec).size();
+  // Each shard runs at least one condition: more shards would write empty jobs (issue 32: --shards
+  // 2147483647 built a script of two billion lines in memory). Refused from the counts, before writing.
+  if (o.shards < 0 || static_cast<size_t>(o.shards) > conditions)
+    throw InputError(SourceLocation{"", 0, 0, "--shards"},
+                     std::to_string(o.shards) + " shards for " + std::to_string(conditions) +
+                         " conditions of " + o.spec + "; give 1 to " + std::to_string(conditions) +
+                         " (each shard runs at least one condition)");
   const int n = o.shards > 0 ? o.shards : static_cast<int>(std::min<size_t>(conditions, 64));
   const double frames_per_condition = spec.duration_s * spec.fps;
   const double per_shard_s = 2.0 * std::ceil(static_cast<double>(conditions) / n) * frames_per_condition *

@@ -13,6 +13,7 @@
 #include "framework/core/error.hpp"
 #include "framework/core/write_file.hpp"
 #include "framework/io/read_crowd_glb.hpp"
+#include "framework/spec/work_limits.hpp"
 #include "stimuli/clip_sidecar.hpp"
 #include "stimuli/render_clip.hpp"
 #include "stimuli/synthetic_crowd.hpp"
@@ -51,6 +52,11 @@ void parse_override(const std::string& text, stimuli::ViewpointOverrides& overri
 }
 
 void run(const RenderArgs& a) {
+  if (a.synthetic < 0 || a.synthetic > kMaxCharactersPerCrowd)  // refused before the crowd is built
+    throw InputError(SourceLocation{"", 0, 0, "--synthetic"},
+                     std::to_string(a.synthetic) + " characters; give 1 to " +
+                         std::to_string(static_cast<int>(kMaxCharactersPerCrowd)) +
+                         " (the limit of characters in one crowd, framework/spec/work_limits.hpp)");
   if (a.crowd_path.empty() == (a.synthetic == 0))
     throw InputError("render: give either a crowd file (CROWD.glb) or --synthetic N");
   CrowdAnimation crowd;

@@ -46,6 +46,13 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    // CLI11 says only "A subcommand is required" for a misspelt command (issue 33): name it.
+    if (const auto rest = app.remaining(); app.get_subcommands().empty() && !rest.empty() &&
+                                           rest.front()[0] != '-' && e.get_name() == "RequiredError") {
+      std::fprintf(stderr, "crowdlab: error: unknown command '%s' (crowdlab --help lists the commands)\n",
+                   rest.front().c_str());
+      return 2;
+    }
     const int code = app.exit(e);  // prints help or the usage error
     return code == 0 ? 0 : 2;
   } catch (const crowdlab::InputError& e) {

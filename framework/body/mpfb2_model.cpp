@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "framework/core/error.hpp"
+#include "framework/core/file_kind.hpp"
 
 namespace crowdlab {
 namespace {
@@ -62,13 +63,27 @@ double round_to_sixteenth(double x) {
 }  // namespace
 
 ShapeTarget read_target_gz(const std::filesystem::path& path, int vertex_count) {
+  require_regular_input(path, "target file");  // a FIFO would block gzopen for ever
   gzFile f = gzopen(path.string().c_str(), "rb");
   if (!f) throw InputError(path.string() + ": cannot open target file");
+  // A target moves each vertex at most once, in lines of a few dozen bytes: the decompressed size and
+  // the entries are bounded by the vertex count, so a gzip bomb (2.2 MB inflating to gigabytes took
+  // 4.4 GB and 71 s, issue 32) is refused as soon as it passes the bound, before it is held.
+  const long long max_bytes = static_cast<long long>(vertex_count) * kMaxTargetLineBytes + (1 << 20);
   ShapeTarget t;
   char buf[512];
   int line_no = 0;
   while (gzgets(f, buf, sizeof buf)) {
     ++line_no;
+    if (gztell(f) > max_bytes || t.indices.size() >= static_cast<size_t>(vertex_count) + 1) {
+      gzclose(f);
+      throw InputError(
+          SourceLocation{path.string(), line_no, 0, ""},
+          "the target inflates past " + std::to_string(max_bytes) + " bytes or " +
+              std::to_string(vertex_count) + " entries, the limit for a mesh of " +
+              std::to_string(vertex_count) + " vertices (" + std::to_string(kMaxTargetLineBytes) +
+              " bytes and one entry per vertex, plus 1 MiB); not an MPFB2 target (a gzip bomb?)");
+    }
     if (buf[0] == '#' || buf[0] == '\n' || buf[0] == '\r' || buf[0] == '\0') continue;
     // strtol/strtod: several times faster than istringstream on the ~10^4-line targets.
     char* end = nullptr;

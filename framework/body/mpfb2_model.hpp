@@ -82,7 +82,12 @@ class Mpfb2Model {
   mutable std::map<std::string, std::unique_ptr<ShapeTarget>> cache_;
 };
 
-/// Reads a gzipped target file ("index dx dy dz" per line; '#' comments). vertex_count bounds indices.
+/// Bytes per vertex a target's decompressed text may hold (its lines are about 25 bytes).
+inline constexpr int kMaxTargetLineBytes = 128;
+
+/// Reads a gzipped target file ("index dx dy dz" per line; '#' comments). vertex_count bounds indices,
+/// the number of entries (one per vertex at most) and the decompressed size (vertex_count x
+/// kMaxTargetLineBytes + 1 MiB): past either the file is refused while inflating (InputError).
 ShapeTarget read_target_gz(const std::filesystem::path& path, int vertex_count);
 
 /// Blender Z-up (x, y, z) -> crowdlab / OBJ Y-up (x, z, -y); same units.

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "framework/core/error.hpp"
+#include "framework/core/file_kind.hpp"
 
 namespace crowdlab {
 
@@ -103,11 +104,9 @@ CsvTable parse_csv(const std::string& text, const std::string& source) {
 }
 
 CsvTable read_csv(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_csv(ss.str(), path);
+  // FIFOs and devices (/dev/zero never ends) are refused before they are opened (issue 32).
+  return parse_csv(
+      read_regular_file(path, "CSV", kMaxCsvBytes, "nothing: split the table into several files"), path);
 }
 
 std::string csv_escape(const std::string& field) {

@@ -1,6 +1,7 @@
 #pragma once
 // A small RFC 4180 CSV table: header row + string cells, with errors that name file, row and column.
 // Used for every tabular file crowdlab reads or writes (manifests, responses, trajectories).
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -25,6 +26,10 @@ struct CsvTable {
 /// Throws InputError on a ragged row or an unterminated quote, naming the line.
 CsvTable parse_csv(const std::string& text, const std::string& source);
 /// Reads and parses a file; throws InputError when it cannot be opened.
+/// Largest CSV file read (the parsed table takes several times its size in memory).
+inline constexpr std::uintmax_t kMaxCsvBytes = std::uintmax_t{1} << 30;
+
+/// parse_csv of a regular file of at most kMaxCsvBytes; a FIFO or device is refused before it is opened.
 CsvTable read_csv(const std::string& path);
 
 /// Quotes a field when it contains a comma, quote, CR or LF.

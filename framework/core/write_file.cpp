@@ -9,6 +9,7 @@
 #include <string>
 
 #include "framework/core/error.hpp"
+#include "framework/core/file_kind.hpp"
 
 namespace crowdlab {
 namespace fs = std::filesystem;
@@ -32,7 +33,10 @@ void sync_file(const fs::path& path) {
 }  // namespace
 
 void write_text_file(const fs::path& path, std::string_view contents) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  // Never through a link or into a device, FIFO or folder (issue 32); O_NOFOLLOW closes the gap between
+  // the check and the open for the link itself.
+  require_writable_destination(path);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (fd < 0) fail(path, "cannot write", errno);
   const char* p = contents.data();
   size_t left = contents.size();
@@ -57,6 +61,8 @@ void write_text_file(const fs::path& path, std::string_view contents) {
 
 void write_output_via_temporary(const fs::path& output, const std::function<void(const fs::path&)>& write,
                                 bool durable) {
+  // rename(2) replaces whatever the name holds: a device node, or a link that pointed elsewhere (issue 32).
+  require_writable_destination(output);
   // Per-process temporary name: shards running at once may write the same file (e.g. spec.yaml).
   const fs::path tmp = output.parent_path() / (output.stem().string() + ".tmp." + std::to_string(::getpid()) +
                                                output.extension().string());

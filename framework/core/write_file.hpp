@@ -13,6 +13,9 @@
 //                               SIGKILL cannot remove its own), so a resumed run ends with the same files
 //                               as an uninterrupted one
 // Every message names the file and the OS's reason; the callers report them as runtime failures (exit 1).
+// A destination that exists and is not a regular file (a symbolic link, a device such as /dev/full, a
+// FIFO, a folder) is refused before anything is written, as an InputError (exit 2; file_kind.hpp): the
+// rename would replace the device node or the link, and an in-place write would follow the link.
 #include <filesystem>
 #include <functional>
 #include <string_view>

@@ -1,9 +1,16 @@
 #include "framework/io/json_nesting_depth.hpp"
 
 namespace crowdlab {
+namespace {
 
-std::size_t json_nesting_depth(std::string_view json, std::size_t stop_at) {
-  std::size_t depth = 0, deepest = 0;
+struct NestingScan {
+  std::size_t deepest = 0;
+  std::size_t exceeded_at = std::string_view::npos;  ///< where depth first passed stop_at
+};
+
+NestingScan scan_nesting(std::string_view json, std::size_t stop_at) {
+  NestingScan scan;
+  std::size_t depth = 0;
   bool in_string = false;
   for (std::size_t i = 0; i < json.size(); ++i) {
     const char c = json[i];
@@ -17,13 +24,26 @@ std::size_t json_nesting_depth(std::string_view json, std::size_t stop_at) {
     if (c == '"') {
       in_string = true;
     } else if (c == '[' || c == '{') {
-      if (++depth > deepest) deepest = depth;
-      if (deepest > stop_at) return deepest;
+      if (++depth > scan.deepest) scan.deepest = depth;
+      if (scan.deepest > stop_at) {
+        scan.exceeded_at = i;
+        return scan;
+      }
     } else if ((c == ']' || c == '}') && depth > 0) {
       --depth;
     }
   }
-  return deepest;
+  return scan;
+}
+
+}  // namespace
+
+std::size_t json_nesting_depth(std::string_view json, std::size_t stop_at) {
+  return scan_nesting(json, stop_at).deepest;
+}
+
+std::size_t json_nesting_exceeded_at(std::string_view json, std::size_t limit) {
+  return scan_nesting(json, limit).exceeded_at;
 }
 
 }  // namespace crowdlab

@@ -12,4 +12,8 @@ namespace crowdlab {
 /// exceeded, so the result is at most stop_at + 1.
 std::size_t json_nesting_depth(std::string_view json, std::size_t stop_at);
 
+/// Byte offset of the first `[` / `{` that opens level `limit + 1`, or std::string_view::npos when the
+/// text nests at most `limit` levels deep (for messages that say where, issue 32).
+std::size_t json_nesting_exceeded_at(std::string_view json, std::size_t limit);
+
 }  // namespace crowdlab

@@ -7,18 +7,61 @@
 #include <string>
 
 #include "framework/core/error.hpp"
+#include "framework/core/file_kind.hpp"
 #include "framework/io/glb_container.hpp"
-#include "framework/io/json_nesting_depth.hpp"
+#include "framework/io/untrusted_json.hpp"
 
 namespace crowdlab {
 namespace {
 
-std::string read_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string() + ": cannot open the file");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
+constexpr std::uintmax_t kMaxGltfBytes = std::numeric_limits<std::uint32_t>::max();  // the format's limit
+
+/// tinygltf's reader of external buffers and images (uri), which sized its buffer from seekg/tellg: a
+/// `uri: "."` (a folder) or "/dev/zero" asked for exabytes (issue 32). Only regular files within the
+/// format's size limit are read.
+bool read_regular_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                             void*) {
+  try {
+    const std::string bytes = read_regular_file(path, "the glTF buffer", kMaxGltfBytes, "");
+    out->assign(bytes.begin(), bytes.end());
+    return true;
+  } catch (const InputError& e) {
+    if (err) *err += e.what();
+    return false;
+  }
+}
+
+/// Refuses accessors that together view more bytes than the buffers hold many times over: each reads
+/// count x element size bytes into memory, so a 40 MB file whose accessors all view one buffer asked
+/// for 7.2 GB (issue 32). Accessors that do not fit their bufferView are left to the accessor reader,
+/// which names the accessor. A valid file views each byte about once (indices and attributes do not
+/// overlap); the limit allows kMaxAccessorOverlap times, plus 1 MiB for tiny files.
+constexpr double kMaxAccessorOverlap = 4.0;
+void check_accessor_amplification(const tinygltf::Model& model, const std::string& file) {
+  double buffer_bytes = 0.0, accessor_bytes = 0.0;
+  for (const tinygltf::Buffer& b : model.buffers) buffer_bytes += static_cast<double>(b.data.size());
+  for (const tinygltf::Accessor& a : model.accessors) {
+    const int component = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
+    const int components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
+    if (component <= 0 || components <= 0 || a.bufferView < 0 ||
+        a.bufferView >= static_cast<int>(model.bufferViews.size()))
+      continue;  // refused with its own message by gltf_accessor_reader when read
+    const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(a.bufferView)];
+    const double element = static_cast<double>(component) * components;
+    const double stride = view.byteStride > 0 ? static_cast<double>(view.byteStride) : element;
+    const double needed =
+        a.count == 0 ? 0.0 : static_cast<double>(a.byteOffset) + (a.count - 1.0) * stride + element;
+    if (needed > static_cast<double>(view.byteLength)) continue;  // likewise: does not fit its view
+    accessor_bytes += static_cast<double>(a.count) * element;
+  }
+  const double limit = kMaxAccessorOverlap * buffer_bytes + 1048576.0;
+  if (accessor_bytes > limit)
+    throw InputError(file + ": cannot read glTF: its " + std::to_string(model.accessors.size()) +
+                     " accessors view " + std::to_string(static_cast<long long>(accessor_bytes)) +
+                     " bytes of buffers holding " + std::to_string(static_cast<long long>(buffer_bytes)) +
+                     " bytes, more than the limit of " + std::to_string(static_cast<long long>(limit)) +
+                     " (" + std::to_string(static_cast<int>(kMaxAccessorOverlap)) +
+                     " x the buffers + 1 MiB; a valid glTF views each byte about once)");
 }
 
 /// Where the JSON text is not JSON, from nlohmann's parser (tinygltf's own message carries no position,
@@ -45,19 +88,21 @@ std::string json_syntax_error(std::string_view json, std::size_t offset) {
 
 tinygltf::Model load_gltf_model(const std::filesystem::path& path) {
   const std::string file = path.string();
-  if (!std::filesystem::is_regular_file(path)) throw InputError(file + ": no such file");
   const bool binary = path.extension() == ".glb";
-  const std::string bytes = read_bytes(path);
-  if (bytes.size() > std::numeric_limits<std::uint32_t>::max())
-    throw InputError(file + ": cannot read glTF: the file is " + std::to_string(bytes.size()) +
-                     " bytes; glTF files are limited to 4 GiB by the format");
+  // A FIFO or device is refused before it is opened, a file over 4 GiB before it is read.
+  const std::string bytes = read_regular_file(path, "glTF", kMaxGltfBytes,
+                                              "nothing (glTF files are limited to 4 GiB by the format)");
   const std::string_view json = binary ? glb_json_chunk(bytes, file) : std::string_view(bytes);
   const std::size_t json_offset = binary ? kGlbJsonOffset : 0;
-  if (json_nesting_depth(json, kMaxGltfJsonDepth) > kMaxGltfJsonDepth)
-    throw InputError(file + ": cannot read glTF: its JSON nests arrays/objects more than " +
-                     std::to_string(kMaxGltfJsonDepth) + " levels deep (a valid glTF needs fewer than 10)");
+  JsonLimits limits;
+  limits.max_depth = kMaxGltfJsonDepth;
+  limits.max_bytes = bytes.size();  // the container's own limit (4 GiB) is checked above
+  check_untrusted_json(json, file, limits, json_offset);
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
+  tinygltf::FsCallbacks fs_callbacks{&tinygltf::FileExists, &tinygltf::ExpandFilePath,
+                                     &read_regular_whole_file, &tinygltf::WriteWholeFile, nullptr};
+  loader.SetFsCallbacks(fs_callbacks);
   std::string err, warn;
   const std::string base_dir = path.parent_path().string();
   const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
@@ -78,6 +123,7 @@ tinygltf::Model load_gltf_model(const std::filesystem::path& path) {
         file + ": cannot read glTF: " +
         (why.empty() ? std::string("the file is not valid glTF 2.0 (the parser gave no reason)") : why));
   }
+  check_accessor_amplification(model, file);
   return model;
 }
 

@@ -11,6 +11,7 @@
 #include "crowdlab_version.hpp"
 #include "framework/core/appearance.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/file_kind.hpp"
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/write_file.hpp"
 #include "framework/io/capsule_mesh.hpp"
@@ -466,6 +467,7 @@ void write_crowd_glb(const CrowdAnimation& crowd, const std::string& path) {
   // Write beside the target and rename, so that an interrupted run never leaves a truncated file under
   // the final name (resumable runs treat an existing .glb as finished).
   const std::string partial = path + ".partial";
+  require_writable_destination(path);  // the rename below replaces whatever the name holds (issue 32)
   // Serialised in memory, then written with write(2): tinygltf's own file writer ignores a failed
   // write, so a full disk published a truncated crowd file (issue 21).
   std::ostringstream glb;

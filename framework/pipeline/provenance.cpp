@@ -10,6 +10,7 @@
 #include "crowdlab_version.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/sha256.hpp"
+#include "framework/io/untrusted_json.hpp"
 
 namespace crowdlab {
 namespace fs = std::filesystem;
@@ -29,12 +30,19 @@ static fs::path sidecar(const fs::path& output) {
 }
 
 /// The sidecar of `output` as JSON (null when missing or torn: killed mid-write means "not up to date").
+nlohmann::json read_provenance_record(const fs::path& path) {
+  JsonLimits limits;
+  limits.max_bytes = 16u << 20;  // a sidecar is a few hundred bytes
+  return read_untrusted_json(path, "provenance record", limits);
+}
+
+/// A sidecar nested deep, huge or a FIFO is "not up to date" too, never a crash or a hang; rewriting it
+/// then refuses what is not a regular file.
 static nlohmann::json read_sidecar(const fs::path& output) {
-  std::ifstream in(sidecar(output));
-  if (!in) return nullptr;
+  if (!fs::exists(fs::symlink_status(sidecar(output)))) return nullptr;
   try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
+    return read_provenance_record(sidecar(output));
+  } catch (const InputError&) {
     return nullptr;
   }
 }

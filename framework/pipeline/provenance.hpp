@@ -48,4 +48,9 @@ void record_provenance(const std::filesystem::path& output, const std::string& s
 /// The recorded input hash of an output ("" when it has no sidecar).
 std::string recorded_hash(const std::filesystem::path& output);
 
+/// A provenance sidecar (OUTPUT.prov.json) read as untrusted JSON (framework/io/untrusted_json.hpp: at most
+/// 64 levels deep and 16 MiB; a FIFO or device refused before opening). Throws InputError naming the
+/// file and the byte.
+nlohmann::json read_provenance_record(const std::filesystem::path& path);
+
 }  // namespace crowdlab

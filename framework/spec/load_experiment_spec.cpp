@@ -15,12 +15,14 @@
 #include <string_view>
 
 #include "framework/core/control_characters.hpp"
+#include "framework/core/file_kind.hpp"
 #include "framework/core/mpfb2_asset_dir.hpp"
 #include "framework/core/sha256.hpp"
 #include "framework/core/utf8_validity.hpp"
 #include "framework/core/viewpoint_catalogue.hpp"
 #include "framework/spec/parse_factor.hpp"
 #include "framework/spec/parse_protocol.hpp"
+#include "framework/spec/work_limits.hpp"
 #include "framework/spec/yaml_flow_nesting.hpp"
 #include "framework/spec/yaml_section.hpp"
 
@@ -28,15 +30,6 @@ namespace crowdlab {
 namespace {
 
 constexpr int kFormatVersion = 1;
-
-// Work limits checked at load, before anything is enumerated or allocated (issue 21: specs whose factor
-// levels multiplied out, or whose clips were an hour at 240 fps, ran the machine out of memory). A spec
-// beyond one is refused with the estimate (docs/spec-reference.md); such a study is split into specs.
-constexpr double kMaxConditions = 10000;          // factor levels x repetitions
-constexpr double kMaxCharactersPerCrowd = 10000;  // density x area, the characters factor or agents
-// Characters x frames of one crowd (duration_s x fps): every pose of every frame is kept in memory and
-// corrected, measured and rendered, so the work and memory of a crowd grow with this product.
-constexpr double kMaxCharacterFrames = 2e6;
 
 std::string join_lines(const std::vector<std::string>& lines) {
   std::string out;
@@ -389,6 +382,22 @@ double largest_crowd(const ExperimentSpec& spec) {
   return most;
 }
 
+/// How many conditions enumerate_practice_conditions makes, from the level counts (nothing enumerated):
+/// the practice factors crossed with the block factor when practice does not name it.
+double practice_condition_count(const ExperimentSpec& spec) {
+  const ProtocolSpec& p = spec.protocol;
+  if (p.practice_factors.empty()) return 0.0;
+  double count = 1.0;
+  bool blocks_named = false;
+  for (const Factor& f : p.practice_factors) {
+    count *= static_cast<double>(f.levels.size());
+    blocks_named = blocks_named || f.name == p.block_by;
+  }
+  if (!p.block_by.empty() && !blocks_named)
+    if (const Factor* block = spec.factor(p.block_by)) count *= static_cast<double>(block->levels.size());
+  return count;
+}
+
 // Estimates of the work a spec asks for, refused beyond the documented limits (load_experiment_spec.hpp).
 void check_work_limits(YamlSection& top, const ExperimentSpec& spec) {
   SpecDiagnostics& diag = top.diagnostics();
@@ -400,6 +409,15 @@ void check_work_limits(YamlSection& top, const ExperimentSpec& spec) {
                "the factor levels x " + std::to_string(spec.repetitions) + " repetitions make " +
                    format_number(conditions) + " conditions, more than the limit of " +
                    format_number(kMaxConditions) + "; split the study into several specs");
+  // Practice conditions are rendered too (issue 32: a practice block multiplying to 1e7 conditions
+  // passed `validate` and ran `plan` out of memory).
+  const double practice = practice_condition_count(spec);
+  if (conditions <= kMaxConditions && conditions + practice > kMaxConditions)
+    diag.error(top.has("protocol") ? top.get("protocol") : top.node(), "protocol.practice",
+               format_number(conditions) + " conditions + " + format_number(practice) +
+                   " practice conditions (the practice levels, crossed with the blocks) make " +
+                   format_number(conditions + practice) + ", more than the limit of " +
+                   format_number(kMaxConditions) + "; list fewer practice levels or split the study");
   const double characters = largest_crowd(spec);
   if (characters > kMaxCharactersPerCrowd)
     diag.error(at("factors"), "factors",
@@ -479,12 +497,13 @@ ExperimentSpec load_experiment_spec_text(const std::string& yaml_text, const std
 }
 
 ExperimentSpec load_experiment_spec(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(SourceLocation{path, 0, 0, ""}, "cannot open the spec file");
-  std::stringstream ss;
-  ss << in.rdbuf();
+  // A FIFO would block for ever and /dev/zero never ends (issue 32): refused before opening; a spec is a
+  // few kB, so its size is checked before it is read.
+  if (!std::filesystem::exists(path))
+    throw InputError(SourceLocation{path, 0, 0, ""}, "cannot open the spec file: no such file");
+  const std::string text = read_regular_file(path, "the spec", kMaxSpecBytes, "nothing: a spec is a few kB");
   const std::string base = std::filesystem::path(path).parent_path().string();
-  return load_experiment_spec_text(ss.str(), path, base.empty() ? "." : base);
+  return load_experiment_spec_text(text, path, base.empty() ? "." : base);
 }
 
 }  // namespace crowdlab

@@ -133,6 +133,13 @@ std::optional<Factor> parse_factor(SpecDiagnostics& diag, const std::string& nam
     diag.error(list, list_path, "a factor needs at least one level");
     return std::nullopt;
   }
+  if (list.size() > kMaxFactorLevels) {
+    diag.error(list, list_path,
+               "lists " + std::to_string(list.size()) + " levels, more than the limit of " +
+                   std::to_string(kMaxFactorLevels) +
+                   " (the condition limit); split the study into several specs");
+    return std::nullopt;
+  }
   Factor factor;
   factor.name = name;
   bool ok = true;
@@ -150,6 +157,7 @@ std::optional<Factor> parse_factor(SpecDiagnostics& diag, const std::string& nam
         diag.error(list[i], level_path,
                    "duplicate level '" + level->text + "' (same as '" + earlier.text + "')");
         ok = false;
+        break;  // one message per repeated level, not one per earlier copy
       }
     }
     factor.levels.push_back(*level);

@@ -18,7 +18,10 @@
 //              (seed 001 §4.2.1: A = flow_a, B = flow_b)
 //   side       left | right passing side
 // The level text (as written, "%" stripped) is what condition ids use, so it may contain only
-// letters, digits, '.', '+' and '-'. Duplicate levels (same text, or equal numbers) are errors.
+// letters, digits, '.', '+' and '-'. Duplicate levels (same text, or equal numbers) are errors, one per
+// repeated level (issue 32: a factor listing V4 5,000 times made one error per earlier copy, 12.5
+// million messages and 6.5 GB). A list longer than kMaxFactorLevels is refused from its length, before
+// any level is read.
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +30,10 @@
 #include "framework/spec/yaml_section.hpp"
 
 namespace crowdlab {
+
+/// Most levels one factor may list (the condition limit of load_experiment_spec.cpp: more levels could
+/// never fit in a spec).
+inline constexpr std::size_t kMaxFactorLevels = 10000;
 
 /// The factor names a spec may use, in documentation order.
 const std::vector<std::string>& known_factor_names();

@@ -9,6 +9,7 @@
 
 #include "analysis/lmm_fit.hpp"
 #include "analysis/lmm_formula.hpp"
+#include "analysis/model_matrix.hpp"
 #include "framework/core/error.hpp"
 #include "tests/analysis/reference_table.hpp"
 #include "tests/support/run_cli.hpp"
@@ -129,4 +130,29 @@ TEST_CASE("analysis: analyze lmm --json and bad input (exit 2)", "[analysis][cli
   const auto no_column = lmm("col.csv", "s,a,y\n1,x,1\n", "y ~ b + (1 | s)");
   CHECK(no_column.exit_code == 2);
   CHECK(no_column.err.find("'b'") != std::string::npos);
+}
+
+TEST_CASE("analysis: lmm crossings and model matrices too large are refused from the counts", "[analysis]") {
+  // Issue 32: `v0*v1*...*v23` (2^24 - 1 terms) and `method` crossed 30 times ran out of memory.
+  std::string crossed = "y ~ v0";
+  for (int i = 1; i < 24; ++i) crossed += "*v" + std::to_string(i);
+  CHECK_THROWS_WITH(parse_lmm_formula(crossed + " + (1 | S)"),
+                    Catch::Contains("crossing 24 variables") && Catch::Contains("limit of 1023"));
+  std::string same = "y ~ method";
+  for (int i = 1; i < 30; ++i) same += "*method";
+  const LmmFormula f = parse_lmm_formula(same + " + (1 | S)");  // a*a is a, as in R
+  REQUIRE(f.fixed.size() == 1);
+  CHECK(f.fixed[0] == ModelTerm{"method"});
+  // An interaction of two 100-level factors: 9,999 columns of the design matrix, refused before the
+  // rows x columns matrix is allocated.
+  std::map<std::string, ModelVariable> vars;
+  for (const char* name : {"a", "b"}) {
+    ModelVariable v;
+    v.numeric = false;
+    for (int l = 0; l < 100; ++l) v.levels.push_back("L" + std::to_string(l));
+    v.codes.assign(4, 0);
+    vars[name] = v;
+  }
+  CHECK_THROWS_WITH(model_matrix({{"a"}, {"b"}, {"a", "b"}}, true, vars, 4),
+                    Catch::Contains("10000 design-matrix columns") && Catch::Contains("limit of 2000"));
 }

@@ -170,9 +170,11 @@ TEST_CASE("analysis: analyze psychometric --lapse symmetric|fixed|NUMBER", "[ana
   const auto number = with({"--lapse", "0.05", "--json"});
   REQUIRE(number.exit_code == 0);
   CHECK(nlohmann::json::parse(number.out)["fits"][0]["lapse"] == 0.05);
-  const auto bad = with({"--lapse", "sometimes"});
-  CHECK(bad.exit_code == 2);
-  CHECK(bad.err.find("--lapse") != std::string::npos);
+  for (const char* value : {"sometimes", "nan", "-0.1", "1"}) {  // nan was a CSV problem of subject '1'
+    const auto bad = with({"--lapse", value});
+    CHECK(bad.exit_code == 2);
+    CHECK_THAT(bad.err, Catch::StartsWith("crowdlab: error: --lapse: ") && Catch::Contains(value));
+  }
   const auto clash = with({"--lapse", "symmetric", "--guess", "0.5"});
   CHECK(clash.exit_code == 2);
 }

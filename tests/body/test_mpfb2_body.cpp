@@ -287,3 +287,27 @@ TEST_CASE("each MPFB2 capsule carries the volume of its body part, for sampled s
     }
   }
 }
+
+TEST_CASE("a gzip target that inflates past its vertex count's bound is refused while inflating") {
+  // Issue 32: a 2.2 MB .target.gz inflating to gigabytes took 4.4 GB and 71 s in `run`. Small versions:
+  // comments past the byte bound, and more entries than vertices.
+  const auto dir = test::scratch_dir("mpfb2-gzip-bomb");
+  const auto comments = dir / "comments.target.gz";
+  {
+    gzFile f = gzopen(comments.string().c_str(), "wb9");
+    const std::string line = "#" + std::string(126, 'x') + "\n";
+    for (int i = 0; i < 20000; ++i) gzputs(f, line.c_str());  // 2.5 MB of text, a few kB compressed
+    gzclose(f);
+  }
+  CHECK(std::filesystem::file_size(comments) < 100000);
+  CHECK_THROWS_WITH(read_target_gz(comments, 100), Catch::Contains("comments.target.gz:") &&
+                                                       Catch::Contains("inflates past 1061376 bytes") &&
+                                                       Catch::Contains("100 vertices"));
+  const auto entries = dir / "entries.target.gz";
+  {
+    gzFile f = gzopen(entries.string().c_str(), "wb");
+    for (int i = 0; i < 300; ++i) gzputs(f, (std::to_string(i % 100) + " 0.1 0.2 0.3\n").c_str());
+    gzclose(f);
+  }
+  CHECK_THROWS_WITH(read_target_gz(entries, 100), Catch::Contains("entries.target.gz:102"));
+}

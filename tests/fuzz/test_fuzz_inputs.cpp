@@ -9,18 +9,30 @@
 // the input file, which is kept under build/test-scratch/fuzz_<kind>/. Run that command on that file,
 // or rerun the test with CROWDLAB_FUZZ_SEED=<seed>. CROWDLAB_FUZZ_CASES=<n> changes the number of
 // cases per input kind (for a longer run by hand).
+//
+// The hostile families of issue 32 (deep JSON in web results, GLB accessors viewing one buffer many
+// times, gzip bombs, duplicate factor levels, special files as inputs, outputs that are links) are
+// generated, not mutated: each case is a small input of a seeded size, and each must be refused (exit 2
+// with a message, and a linked output's target untouched), within the same time and memory caps.
+#include <sys/stat.h>
+#include <zlib.h>
+
 #include <catch2/catch.hpp>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <iostream>
 
+#include <nlohmann/json.hpp>
 #include "framework/animation/bvh.hpp"
 #include "framework/animation/gltf_motion.hpp"
 #include "framework/animation/retarget.hpp"
+#include "framework/body/mpfb2_model.hpp"
 #include "framework/core/error.hpp"
 #include "framework/correction/swaying_crowd_fixture.hpp"
 #include "framework/io/write_crowd_glb.hpp"
+#include "framework/spec/load_experiment_spec.hpp"
+#include "study_ui/web_import.hpp"
 #include "tests/fuzz/limited_run.hpp"
 #include "tests/fuzz/mutator.hpp"
 #include "tests/support/glb_bytes.hpp"
@@ -237,6 +249,128 @@ TEST_CASE("mutated analysis CSVs through analyze anova end in exit 0 or 2 with a
                      {"analyze", "anova", "--csv", in, "--dv", "DV", "--subject", "id", "--within", "A,B,D"},
                      run_limit_s(), c.dir / "err.txt"));
       });
+  c.report();
+}
+
+namespace {
+
+/// A hostile family's case must be refused: exit 0 is a violation too.
+void record_refusal(Campaign& c, int index, const std::string& what, const std::string& command,
+                    const LimitedRun& r) {
+  c.record(index, what, command, r);
+  if (r.exit_code == 0)
+    c.violations.push_back(c.kind + " case " + std::to_string(index) + " (" + what + "): " + command +
+                           " accepted a hostile input; input kept at " + c.input_path(index).string());
+}
+
+std::string repeated_list(const std::string& item, std::size_t n) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + item;
+  return out + "]";
+}
+
+}  // namespace
+
+TEST_CASE("hostile families of issue 32 are refused with exit 2, within the caps", "[fuzz]") {
+  Campaign c("hostile", ".in");
+  Mutator m(c.seed);
+  const int cases = fuzz_cases(kSanitized ? 3 : 6);
+  const ExperimentSpec spec = load_experiment_spec(tiny_spec());
+  const std::string spec_text = slurp(tiny_spec());
+  const fs::path err = c.dir / "err.txt";
+  int index = 0;
+  // Deep JSON in web results (a stack overflow at 300,000 levels): as one document and as JSON lines.
+  for (int k = 0; k < cases; ++k, ++index) {
+    const std::size_t depth = std::size_t{40} << m.below(14);  // 40 .. 327,680 levels
+    const std::string deep = std::string(depth, '[') + std::string(depth, ']');
+    const bool lines = m.below(2) == 1;
+    write_file(c.input_path(index),
+               lines ? "{\"format\": \"crowdlab-web-data\", \"video\": " + deep + "}\n"
+                     : "{\"format\": \"crowdlab-web-data\", \"records\": [{\"spec_hash\": " + deep + "}]}");
+    const std::string file = c.input_path(index).string();
+    const auto import = [&] {
+      return exit_code_of([&] {
+        (void)study::import_web(spec, StimulusManifest{}, {file}, {(c.dir / "out").string(), ""});
+      });
+    };
+    record_refusal(c, index, "web results " + std::to_string(depth) + " deep", "import_web",
+                   run_limited(import, run_limit_s(), err));
+  }
+  // GLB accessors viewing one buffer many times over (7.2 GB from a 40 MB file).
+  SwayingCrowdOptions o;
+  o.characters = 2;
+  o.frames = 3;
+  const fs::path good_glb = c.dir / "good.glb";
+  write_crowd_glb(make_swaying_crowd_fixture(o), good_glb.string());
+  const std::string glb = slurp(good_glb);
+  for (int k = 0; k < cases; ++k, ++index) {
+    nlohmann::json json = nlohmann::json::parse(glb_json(glb));
+    const nlohmann::json accessor = json["accessors"][m.below(json["accessors"].size())];
+    const std::size_t copies = 20000 + m.below(40000);
+    for (std::size_t i = 0; i < copies; ++i) json["accessors"].push_back(accessor);
+    write_file(c.input_path(index), glb_with_json(glb, json.dump()));
+    record_refusal(c, index, std::to_string(copies) + " copies of an accessor", "`crowdlab metrics`",
+                   run_crowdlab_limited({"metrics", c.input_path(index).string()}, run_limit_s(), err));
+  }
+  // Gzip bombs: shape targets that inflate far past their mesh's bound.
+  for (int k = 0; k < cases; ++k, ++index) {
+    const int vertices = 10 + static_cast<int>(m.below(1000));
+    const std::size_t lines = 10000 + m.below(40000);
+    {
+      gzFile f = gzopen(c.input_path(index).c_str(), "wb9");
+      const std::string line =
+          m.below(2) ? "0 0.1 0.2 0.3" + std::string(100, ' ') + "\n" : "#" + std::string(120, 'z') + "\n";
+      for (std::size_t i = 0; i < lines; ++i) gzputs(f, line.c_str());
+      gzclose(f);
+    }
+    const fs::path path = c.input_path(index);
+    const auto read = [&] { return exit_code_of([&] { (void)read_target_gz(path, vertices); }); };
+    record_refusal(c, index, std::to_string(lines) + " lines for " + std::to_string(vertices) + " vertices",
+                   "read_target_gz", run_limited(read, run_limit_s(), err));
+  }
+  // Duplicate factor levels, in the factors and in protocol.practice (12.5 million messages before).
+  for (int k = 0; k < cases; ++k, ++index) {
+    const std::size_t n = 2 + m.below(4000);
+    std::string text = spec_text;
+    const bool practice = m.below(2) == 1;
+    if (practice)
+      text.replace(text.find("outputs:"), 0, "  practice: {viewpoint: " + repeated_list("V4", n) + "}\n");
+    else
+      text.replace(text.find("viewpoint: [V4]"), 15, "viewpoint: " + repeated_list("V4", n));
+    write_file(c.input_path(index), text);
+    record_refusal(c, index, std::to_string(n) + " x V4" + (practice ? " in practice" : ""),
+                   "`crowdlab validate`",
+                   run_crowdlab_limited({"validate", c.input_path(index).string()}, run_limit_s(), err));
+  }
+  // Special files as inputs: a FIFO nobody writes (blocked for ever before), endless devices.
+  const fs::path fifo = c.dir / "fifo.yaml";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  for (const std::string& input : {fifo.string(), std::string("/dev/zero"), std::string("/dev/urandom")}) {
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"validate", input},
+          std::vector<std::string>{"analyze", "anova", "--csv", input, "--dv", "DV", "--subject", "id",
+                                   "--within", "A"},
+          std::vector<std::string>{"metrics", input}}) {
+      record_refusal(c, index, input, "`crowdlab " + args[0] + " " + input + "`",
+                     run_crowdlab_limited(args, run_limit_s(), err));
+    }
+    ++index;
+  }
+  // Outputs that are links (to a file outside the output folder) or FIFOs: refused, the target untouched.
+  for (const std::string& kind : {std::string("link"), std::string("dangling"), std::string("fifo")}) {
+    const fs::path target = c.dir / ("target-" + kind + ".csv"), out = c.dir / ("out-" + kind + ".csv");
+    if (kind != "dangling") std::ofstream(target) << "keep";
+    if (kind == "fifo")
+      REQUIRE(::mkfifo(out.c_str(), 0600) == 0);
+    else
+      fs::create_symlink(target, out);
+    record_refusal(
+        c, index, "output " + kind, "`crowdlab export-csv --out " + out.string() + "`",
+        run_crowdlab_limited({"export-csv", good_glb.string(), "--out", out.string()}, run_limit_s(), err));
+    if (kind == "dangling" ? fs::exists(target) : slurp(target) != "keep")
+      c.violations.push_back("export-csv wrote through the " + kind + " " + out.string());
+    ++index;
+  }
   c.report();
 }
 

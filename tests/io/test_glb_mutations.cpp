@@ -174,3 +174,35 @@ TEST_CASE("a glTF parser message quoting a huge value is cut to a readable lengt
   CHECK_THAT(r.err, Catch::Contains("long.glb: cannot read glTF") && Catch::Contains("more characters)"));
   CHECK(r.err.size() < 1000);
 }
+
+TEST_CASE("accessors viewing one buffer many times over, and a buffer uri that is a folder, exit 2") {
+  // Issue 32: a 40 MB GLB whose accessors all viewed one buffer asked 7.2 GB of export-csv, metrics
+  // and correct; a buffer with `uri: "."` asked for exabytes. Small versions: each accessor fits its
+  // view, so only the sum gives them away.
+  const fs::path dir = scratch_dir("glb_amplification");
+  const fs::path good = small_crowd_glb(dir, 2, 3);
+  const fs::path amplified = edited(good, dir / "amplified.glb", [](tinygltf::Model& m) {
+    std::size_t buffer = 0, largest = 0, largest_bytes = 0;
+    for (const auto& b : m.buffers) buffer += b.data.size();
+    for (std::size_t i = 0; i < m.accessors.size(); ++i) {
+      const auto& a = m.accessors[i];
+      const std::size_t bytes =
+          a.count * static_cast<std::size_t>(
+                        tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType)) *
+                        tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type)));
+      if (bytes > largest_bytes) largest = i, largest_bytes = bytes;
+    }
+    const tinygltf::Accessor copy = m.accessors[largest];
+    // Enough copies to view 4 x the buffers + 1 MiB and a little more.
+    const std::size_t copies = (4 * buffer + (1u << 20)) / largest_bytes + 2;
+    for (std::size_t k = 0; k < copies; ++k) m.accessors.push_back(copy);
+  });
+  check_refused(amplified, {"cannot read glTF", "accessors view", "more than the limit of"});
+
+  std::string json = glb_json(slurp(good));
+  const std::size_t buffers = json.find("\"buffers\":[{");
+  REQUIRE(buffers != std::string::npos);
+  json.insert(buffers + 12, "\"uri\":\".\",");
+  write_bytes(dir / "uri_folder.glb", glb_with_json(slurp(good), json));
+  check_refused(dir / "uri_folder.glb", {"cannot read glTF", "directory"});
+}

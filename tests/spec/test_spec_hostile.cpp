@@ -126,3 +126,72 @@ TEST_CASE("spec: lists nested thousands deep are refused with the line and the l
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Catch::Contains(path.string() + ":13:11") && Catch::Contains("nesting too deep"));
 }
+
+namespace {
+
+std::string repeated(const std::string& level, int n) {
+  std::string s = "[";
+  for (int i = 0; i < n; ++i) s += (i ? ", " : "") + level;
+  return s + "]";
+}
+
+size_t count_of(const std::string& text, const std::string& word) {
+  size_t n = 0;
+  for (size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("spec: duplicate levels are one error each, with file:line:col (issue 32)") {
+  // V4 listed 5,000 times made one error per earlier copy: 12.5 million messages, 6.5 GB in validate.
+  const std::string scenario = "scenario: {type: stationary, area: {width_m: 3, depth_m: 3}}\n";
+  std::string errors = errors_of(kHeader + scenario + "factors:\n  viewpoint: " + repeated("V4", 2000) +
+                                 "\n  density: [2]\n" + kLikert);
+  CHECK(count_of(errors, "duplicate level") == 1999);
+  CHECK_THAT(errors,
+             Catch::Contains("t.yaml:6:") && Catch::Contains("factors.viewpoint[1]: duplicate level 'V4'"));
+  // The same in protocol.practice (5.8 GB).
+  const std::string practice_likert =
+      "protocol:\n  type: likert\n  scale: {points: 6, labels: [a, b]}\n  questions: [{id: Q1, text: x}]\n"
+      "  practice: {viewpoint: " +
+      repeated("V1", 1000) + "}\noutputs: {video: false, contact_sheet: false}\n";
+  errors =
+      errors_of(kHeader + scenario + "factors:\n  viewpoint: [V1, V4]\n  density: [2]\n" + practice_likert);
+  CHECK(count_of(errors, "duplicate level") == 999);
+  CHECK_THAT(errors, Catch::Contains("protocol.practice.viewpoint[1]"));
+}
+
+TEST_CASE("spec: a factor longer than the level limit is refused from its length") {
+  std::string many = "[";
+  for (int i = 0; i < 10001; ++i)
+    many += (i ? ", " : "") + std::to_string(1 + i % 9) + "." + std::to_string(i);
+  many += "]";
+  const std::string errors = errors_of(
+      kHeader + "scenario: {type: stationary, area: {width_m: 3, depth_m: 3}}\nfactors:\n  density: " + many +
+      "\n" + kLikert);
+  CHECK_THAT(errors, Catch::Contains("factors.density") && Catch::Contains("10001 levels") &&
+                         Catch::Contains("limit of 10000"));
+  CHECK(count_of(errors, "\n") == 1);  // one message, no per-level errors
+}
+
+TEST_CASE("spec: practice conditions count toward the condition limit (issue 32)") {
+  // Practice levels crossed with the blocks: 100 x 100 practice conditions over 2 x 2 test conditions
+  // (plan went on to 1e7 with more levels).
+  std::string densities = "[", distances = "[";
+  for (int i = 0; i < 100; ++i) {
+    densities += (i ? ", " : "") + std::to_string(1.0 + 0.01 * i);
+    distances += (i ? ", " : "") + std::to_string(0.2 + 0.001 * i);
+  }
+  densities += "]";
+  distances += "]";
+  const std::string text = kHeader + "scenario: {type: stationary, area: {width_m: 3, depth_m: 3}}\n" +
+                           "factors:\n  density: [1.0, 2.0]\n  distance: [0.2, 0.3]\n" +
+                           "protocol:\n  type: likert\n  scale: {points: 6, labels: [a, b]}\n"
+                           "  questions: [{id: Q1, text: x}]\n  practice: {density: " +
+                           densities + ", distance: " + distances +
+                           "}\noutputs: {video: false, contact_sheet: false}\n";
+  const std::string errors = errors_of(text);
+  CHECK_THAT(errors, Catch::Contains("protocol.practice") && Catch::Contains("10000 practice conditions") &&
+                         Catch::Contains("10004") && Catch::Contains("limit of 10000"));
+}

@@ -29,13 +29,16 @@ inline std::string shell_quote(const std::string& s) {
   return q + "'";
 }
 
-inline CliResult run_cli(const std::vector<std::string>& args) {
+/// `timeout_s` > 0 runs it under coreutils' timeout (a hang then fails the test with exit 124 instead of
+/// stalling the suite: the FIFO and /dev/zero tests of issue 32).
+inline CliResult run_cli(const std::vector<std::string>& args, int timeout_s = 0) {
   static int counter = 0;
   const auto dir = binary_dir() / "test-scratch" / "cli-io";
   std::filesystem::create_directories(dir);
   const auto out_path = dir / ("out" + std::to_string(getpid()) + "_" + std::to_string(counter) + ".txt");
   const auto err_path = dir / ("err" + std::to_string(getpid()) + "_" + std::to_string(counter++) + ".txt");
-  std::string cmd = shell_quote(crowdlab_exe().string());
+  std::string cmd = timeout_s > 0 ? "timeout -k 5 " + std::to_string(timeout_s) + " " : "";
+  cmd += shell_quote(crowdlab_exe().string());
   for (const auto& a : args) cmd += " " + shell_quote(a);
   cmd += " >" + shell_quote(out_path.string()) + " 2>" + shell_quote(err_path.string()) + " </dev/null";
   const int status = std::system(cmd.c_str());

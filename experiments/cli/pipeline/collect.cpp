@@ -74,13 +74,12 @@ CollectSummary collect_shards(const ExperimentSpec& spec, const fs::path& dir) {
   for (const auto& entry : fs::recursive_directory_iterator(dir)) {
     const std::string name = entry.path().string();
     if (!name.ends_with(".prov.json")) continue;
-    std::ifstream in(entry.path());
     try {
       prov["outputs"][fs::relative(name.substr(0, name.size() - 10), dir).string()] =
-          nlohmann::json::parse(in);
+          read_provenance_record(entry.path());
       ++s.provenance_records;
-    } catch (const nlohmann::json::exception&) {
-      throw RuntimeError(name + ": corrupt provenance record (re-run that shard)");
+    } catch (const InputError& e) {
+      throw RuntimeError(std::string(e.what()) + " (a corrupt provenance record: re-run that shard)");
     }
   }
   write_file_atomic(dir / "provenance.json", prov.dump(2) + "\n");
