@@ -36,7 +36,7 @@ struct TrialRequest {
   int count = 0;        ///< trials of its kind: "Trial 3 of 40" counts test trials only
   bool loop_video = true;                       ///< loop until answered; otherwise play once, then ask
   double fps = 30.0;                            ///< playback rate when the file does not say
-  std::string inter_trial_screen = "fixation";  ///< "blank" or "fixation", shown while the clip loads
+  InterTrialScreen inter_trial_screen = InterTrialScreen::fixation;  ///< shown while the clip loads
   double inter_trial_min_ms = 500.0;            ///< the inter-trial screen's minimum duration
   double video_share = 0.0;                     ///< video's share of the screen height; 0 = automatic
 };

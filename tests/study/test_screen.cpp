@@ -13,9 +13,9 @@ using namespace crowdlab::study;
 
 TEST_CASE("trial screen layout: targets inside the canvas, disjoint, found by hit_test", "[study]") {
   ProtocolSpec likert, afc;
-  afc.type = "2afc";
+  afc.type = ProtocolType::two_afc;
   ProtocolSpec eleven;  // 11-point scales in the narrow cells of a 3-column grid
-  eleven.type = "rating";
+  eleven.type = ProtocolType::rating;
   eleven.questions = {{"A", "a", false, "scale", 11, {}},
                       {"B", "b", false, "scale", 11, {}},
                       {"C", "c", false, "scale", 11, {}},
@@ -128,7 +128,7 @@ TEST_CASE("frame interval statistics: mean, nearest-rank p99 and max of consecut
 
 TEST_CASE("keyboard answers reach every point of 10- and 11-point scales", "[study]") {
   ProtocolSpec p;
-  p.type = "rating";
+  p.type = ProtocolType::rating;
   p.questions = {{"A", "a", false, "scale", 11, {}},
                  {"B", "b", false, "scale", 10, {}},
                  {"C", "c", false, "scale", 7, {}}};
