@@ -18,11 +18,19 @@ using namespace crowdlab::test;
 
 namespace {
 
+/// The paths of a stage's input files as text (they are hashed by content when the stage runs; here,
+/// which files a stage reads is what counts).
+std::string files(const std::vector<std::filesystem::path>& paths) {
+  std::vector<std::string> text;
+  for (const auto& p : paths) text.push_back(p.string());
+  return canonical_bytes(text);
+}
+
 /// Each stage's recipe bytes for the spec's first condition.
 std::map<std::string, std::string> recipe_bytes(const ExperimentSpec& spec) {
   const CrowdGroupRecipes r = crowd_group_recipes(spec, enumerate_conditions(spec).front());
-  return {{"crowd", canonical_bytes(r.crowd) + canonical_bytes(r.crowd_files)},
-          {"animation", canonical_bytes(r.animation) + canonical_bytes(r.animation_files)},
+  return {{"crowd", canonical_bytes(r.crowd) + files(r.crowd_files)},
+          {"animation", canonical_bytes(r.animation) + files(r.animation_files)},
           {"correction", canonical_bytes(r.correction)},
           {"metrics", canonical_bytes(metrics_recipe(r.crowd, CrowdMethod::corrected))},
           {"render", canonical_bytes(stimuli::render_recipe(spec, "V4"))},

@@ -69,7 +69,9 @@ const std::string kClipBaseline = kCondition + "baseline_rep-1/clip.mp4";
 const std::string kClipOurs = kCondition + "ours_rep-1/clip.mp4";
 const std::string kSheetBaseline = kGroup + "baseline.contact_sheet.png";
 const std::string kSheetOurs = kGroup + "ours.contact_sheet.png";
-const std::set<std::string> kClips{kClipBaseline, kClipBaseline + ".json", kClipOurs, kClipOurs + ".json"};
+const std::string kClipJsonBaseline = kCondition + "baseline_rep-1/clip.json";
+const std::string kClipJsonOurs = kCondition + "ours_rep-1/clip.json";
+const std::set<std::string> kClips{kClipBaseline, kClipJsonBaseline, kClipOurs, kClipJsonOurs};
 const std::set<std::string> kSheets{kSheetBaseline, kSheetOurs};
 
 std::set<std::string> operator+(std::set<std::string> a, const std::set<std::string>& b) {
@@ -188,9 +190,9 @@ TEST_CASE("stage redo: the stimuli's look redoes the clips and the contact sheet
 TEST_CASE("stage redo: a crowd, animation or correction change redoes its stage and exactly its dependants",
           "[pipeline][redo]") {
   CHECK(redone_after(first_run(), "damping: 0.006", "damping: 0.02") ==
-        std::set<std::string>{kOurs, kMetricsOurs, kClipOurs, kClipOurs + ".json", kSheetOurs});
+        std::set<std::string>{kOurs, kMetricsOurs, kClipOurs, kClipJsonOurs, kSheetOurs});
   CHECK(redone_after(first_run(), "female_fraction: 0.5", "female_fraction: 0.2") ==
         std::set<std::string>{kBaseline, kOurs, kMetricsBaseline, kMetricsOurs} + kClips + kSheets);
-  CHECK(redone_after(first_run(), "agent_radius_m: 0.18", "agent_radius_m: 0.17") ==
+  CHECK(redone_after(first_run(), "width_m: 1.5", "width_m: 1.6") ==
         std::set<std::string>{kCrowd, kBaseline, kOurs, kMetricsBaseline, kMetricsOurs} + kClips + kSheets);
 }
