@@ -32,6 +32,7 @@ using namespace crowdlab::study;
 namespace fs = std::filesystem;
 using crowdlab::test::slurp;
 using namespace crowdlab::test::web;
+using crowdlab::test::source_dir;
 
 namespace {
 
