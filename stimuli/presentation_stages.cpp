@@ -29,9 +29,9 @@ class PresentationContext {
     const std::vector<double> heights = body_heights_m(g.animation(CrowdMethod::baseline));
     const ScenarioResult& s = g.scenario();
     const SurfaceTrajectories& surface = g.surface();
-    extent_ = crowd_extent(surface.empty() ? character_tracks(s.trajectories, heights)
-                                           : character_tracks(surface, heights),
-                           s.trajectories.fps);
+    extent_ = crowd_extent(
+        surface.empty() ? character_tracks(s.trajectories, heights) : character_tracks(surface, heights),
+        s.trajectories.fps);
     extent_key_ = g.dir();
     return *extent_;
   }
@@ -51,8 +51,8 @@ std::vector<fs::path> presentation_inputs(CrowdGroup& g, CrowdMethod method, con
   return inputs;
 }
 
-Stage render_stage(const std::shared_ptr<PresentationContext>& ctx, const RenderRecipe& recipe,
-                   CrowdGroup& g, CrowdMethod method, const fs::path& condition_dir) {
+Stage render_stage(const std::shared_ptr<PresentationContext>& ctx, const RenderRecipe& recipe, CrowdGroup& g,
+                   CrowdMethod method, const fs::path& condition_dir) {
   const CrowdAnimation& crowd = g.animation(method);
   auto view = std::make_shared<std::optional<Viewpoint>>();
   RenderOptions ro = render_options(recipe.look);
@@ -71,7 +71,8 @@ Stage render_stage(const std::shared_ptr<PresentationContext>& ctx, const Render
                          render_clip(ctx->renderer(), crowd, ro, **view, tmp.string());
                        }});
   s.outputs.push_back({clip_sidecar_path(clip), [&crowd, view](const fs::path& tmp) {
-                         write_text_file(tmp, clip_sidecar(**view, crowd.frame_count(), crowd).dump(2) + "\n");
+                         write_text_file(tmp,
+                                         clip_sidecar(**view, crowd.frame_count(), crowd).dump(2) + "\n");
                        }});
   return s;
 }
@@ -84,8 +85,8 @@ Stage contact_sheet_stage(const std::shared_ptr<PresentationContext>& ctx, const
   const RenderOptions ro = render_options(recipe.look);
   s.outputs.push_back({g.dir() / (std::string(kind_name(method)) + ".contact_sheet.png"),
                        [ctx, &g, &crowd, ro](const fs::path& tmp) {
-                         write_contact_sheet(ctx->renderer(), crowd, ro, crowd.frame_count() / 2, tmp.string(),
-                                             &ctx->extent(g));
+                         write_contact_sheet(ctx->renderer(), crowd, ro, crowd.frame_count() / 2,
+                                             tmp.string(), &ctx->extent(g));
                        }});
   return s;
 }
@@ -96,21 +97,23 @@ std::vector<PresentationStage> presentation_stages(const ExperimentSpec& spec) {
   auto ctx = std::make_shared<PresentationContext>();
   std::vector<PresentationStage> stages;
   const RenderRecipe clip = render_recipe(spec, ConditionParams{}.viewpoint);
-  stages.push_back({std::string(RenderRecipe::kStage),
-                    [ctx, clip](CrowdGroup& g, const Condition& c, const fs::path& dir) -> std::optional<Stage> {
-                      RenderRecipe recipe = clip;
-                      recipe.viewpoint = c.params.viewpoint;
-                      return render_stage(ctx, recipe, g, c.params.method, dir);
-                    },
-                    true});
+  stages.push_back(
+      {std::string(RenderRecipe::kStage),
+       [ctx, clip](CrowdGroup& g, const Condition& c, const fs::path& dir) -> std::optional<Stage> {
+         RenderRecipe recipe = clip;
+         recipe.viewpoint = c.params.viewpoint;
+         return render_stage(ctx, recipe, g, c.params.method, dir);
+       },
+       true});
   ContactSheetRecipe sheet{stimulus_look(spec.render)};
   const bool sheets = spec.outputs.contact_sheet;
-  stages.push_back({std::string(ContactSheetRecipe::kStage),
-                    [ctx, sheet, sheets](CrowdGroup& g, const Condition& c, const fs::path&) -> std::optional<Stage> {
-                      if (!sheets) return std::nullopt;
-                      return contact_sheet_stage(ctx, sheet, g, c.params.method);
-                    },
-                    false});
+  stages.push_back(
+      {std::string(ContactSheetRecipe::kStage),
+       [ctx, sheet, sheets](CrowdGroup& g, const Condition& c, const fs::path&) -> std::optional<Stage> {
+         if (!sheets) return std::nullopt;
+         return contact_sheet_stage(ctx, sheet, g, c.params.method);
+       },
+       false});
   return stages;
 }
 

@@ -84,7 +84,7 @@ void run(const Args& a) {
   if (a.threads < 1) throw InputError("bench crowd: --threads must be >= 1");
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<std::size_t>(a.threads));
-  CrowdSpec spec;  // the benchmark's parameters are crowd.* defaults
+  CrowdSpec spec;                                 // the benchmark's parameters are crowd.* defaults
   spec.model = *parse_kind<CrowdModel>(a.model);  // CLI::IsMember allows only the enum's spellings
   if (a.overlap_free && a.model != "orca")
     throw InputError("bench crowd: --overlap-free applies to --model orca only");

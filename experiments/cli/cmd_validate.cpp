@@ -45,10 +45,10 @@ void print_summary(const ExperimentSpec& spec) {
   std::printf("repetitions: %d\n", spec.repetitions);
   const ProtocolSpec& p = spec.protocol;
   std::printf("protocol:    %s, %zu question(s), %d-point scale", std::string(kind_name(p.type)).c_str(),
-              p.questions.size(),
-              p.scale_points);
+              p.questions.size(), p.scale_points);
   if (!p.block_by.empty())
-    std::printf(", blocks by %s (%s order)", p.block_by.c_str(), std::string(kind_name(p.block_order)).c_str());
+    std::printf(", blocks by %s (%s order)", p.block_by.c_str(),
+                std::string(kind_name(p.block_order)).c_str());
   std::printf("\n");
   int w = 0;
   for (const QuestionSpec& q : p.questions) w = std::max(w, static_cast<int>(q.id.size()));

@@ -40,7 +40,9 @@ struct AnyField {
 
 template <class T, std::size_t... I>
 constexpr bool brace_initialisable(std::index_sequence<I...>) {
-  return requires { T{(void(I), AnyField{})...}; };
+  return requires {
+    T{(void(I), AnyField{})...};
+  };
 }
 
 template <class T, std::size_t N = 0>

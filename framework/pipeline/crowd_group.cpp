@@ -44,10 +44,7 @@ Stage crowd_file_stage(const Recipe& recipe, const fs::path& path, std::optional
 }  // namespace
 
 CrowdGroup::CrowdGroup(CrowdGroupRecipes recipes, StageRunner& runner, const fs::path& crowds_dir)
-    : recipes_(std::move(recipes)),
-      runner_(runner),
-      key_(recipes_.animation.key),
-      dir_(crowds_dir / key_) {
+    : recipes_(std::move(recipes)), runner_(runner), key_(recipes_.animation.key), dir_(crowds_dir / key_) {
   fs::create_directories(dir_);
   // The animation is computed from the crowd stage's result in memory (deterministic from the seed), so
   // its input hash covers the crowd stage's recipe; every later stage reads files and hashes them.
@@ -112,7 +109,8 @@ Stage CrowdGroup::correction_stage() {
     const CrowdAnimation& input = animation(CrowdMethod::baseline);
     Progress progress("correct " + key_, static_cast<size_t>(input.frame_count()));
     CorrectionReport report;
-    animation_[i] = correct_crowd(input, corrector_params(recipes_.correction.correction), &progress, &report);
+    animation_[i] =
+        correct_crowd(input, corrector_params(recipes_.correction.correction), &progress, &report);
     if (report.rejected_steps > 0)
       spdlog::warn("{}: the corrector rejected {} of {} steps and kept the last stable state", key_,
                    report.rejected_steps, report.frames);

@@ -75,10 +75,11 @@ struct KindNames<PassingSide> {
 
 template <>
 struct KindNames<CrowdModel> {
-  static constexpr std::array<std::pair<CrowdModel, std::string_view>, 4> names{{{CrowdModel::orca, "orca"},
-                                                                                {CrowdModel::social, "social"},
-                                                                                {CrowdModel::cost, "cost"},
-                                                                                {CrowdModel::none, "none"}}};
+  static constexpr std::array<std::pair<CrowdModel, std::string_view>, 4> names{
+      {{CrowdModel::orca, "orca"},
+       {CrowdModel::social, "social"},
+       {CrowdModel::cost, "cost"},
+       {CrowdModel::none, "none"}}};
 };
 
 template <>
@@ -89,7 +90,9 @@ struct KindNames<ProtocolType> {
 template <>
 struct KindNames<BlockOrder> {
   static constexpr std::array<std::pair<BlockOrder, std::string_view>, 3> names{
-      {{BlockOrder::random, "random"}, {BlockOrder::fixed, "fixed"}, {BlockOrder::latin_square, "latin_square"}}};
+      {{BlockOrder::random, "random"},
+       {BlockOrder::fixed, "fixed"},
+       {BlockOrder::latin_square, "latin_square"}}};
 };
 template <>
 struct KindNames<InterTrialScreen> {

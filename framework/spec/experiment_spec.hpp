@@ -117,9 +117,9 @@ struct ProtocolSpec {
   /// their first level; when block_by is set and not named here, the practice set is repeated for
   /// every block level (seed 001 §4.2.2: practice "at the beginning of each block").
   std::vector<Factor> practice_factors;
-  std::string block_by;                ///< factor whose levels form blocks ("" = one block)
+  std::string block_by;  ///< factor whose levels form blocks ("" = one block)
   BlockOrder block_order = BlockOrder::random;
-  int break_every = 0;                 ///< a break screen every N trials (0 = none)
+  int break_every = 0;  ///< a break screen every N trials (0 = none)
   std::string instructions;
   std::string consent;
   std::string break_text = "Take a short break. Press any key to continue.";

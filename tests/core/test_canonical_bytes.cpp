@@ -4,8 +4,8 @@
 #include <cmath>
 #include <functional>
 #include <map>
-#include <set>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -74,7 +74,8 @@ TEST_CASE("canonical bytes: a change of any field, however deep, changes the byt
 }
 
 TEST_CASE("canonical bytes: string boundaries and empty values are unambiguous") {
-  CHECK(canonical_bytes(std::vector<std::string>{"ab", "c"}) != canonical_bytes(std::vector<std::string>{"a", "bc"}));
+  CHECK(canonical_bytes(std::vector<std::string>{"ab", "c"}) !=
+        canonical_bytes(std::vector<std::string>{"a", "bc"}));
   CHECK(canonical_bytes(std::optional<int>{}) != canonical_bytes(std::optional<int>{0}));
   CHECK(canonical_bytes(std::string{}) != canonical_bytes(std::vector<std::string>{}));
   CHECK(canonical_bytes(0) != canonical_bytes(0.0));

@@ -140,7 +140,7 @@ TEST_CASE("cost-gradient: weights are validated by name", "[crowd][cost]") {
 
 TEST_CASE("navigation: identical trajectories with 1 and 2 threads for every model", "[crowd][determinism]") {
   const int n = test::kSanitized ? 300 : 1200;  // several TBB chunks of 256 agents
-  for (const char* model : {"orca", "social", "cost"}) {
+  for (const CrowdModel model : {CrowdModel::orca, CrowdModel::social, CrowdModel::cost}) {
     CrowdSpec spec;
     spec.model = model;
     auto run = [&](int threads) {
@@ -149,11 +149,11 @@ TEST_CASE("navigation: identical trajectories with 1 and 2 threads for every mod
       CrowdSimulation sim(make_navigation_model(spec), test::antipodal_circle(n, 0.6, 0.25), kWalls, 0.1);
       sim.set_preferred_velocity_jitter(0.01, 7);
       const auto t =
-          simulate_trajectories(sim, std::string(model) == "social" ? 0.6 : 3.0, 10.0,
+          simulate_trajectories(sim, model == CrowdModel::social ? 0.6 : 3.0, 10.0,
                                 std::vector<double>(sim.size(), 0.0), std::vector<int>(sim.size(), 0));
       return test::trajectories_hash(t);
     };
-    INFO("model " << model);
+    INFO("model " << kind_name(model));
     CHECK(run(1) == run(2));
   }
 }

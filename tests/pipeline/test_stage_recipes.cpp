@@ -29,12 +29,13 @@ std::string files(const std::vector<std::filesystem::path>& paths) {
 /// Each stage's recipe bytes for the spec's first condition.
 std::map<std::string, std::string> recipe_bytes(const ExperimentSpec& spec) {
   const CrowdGroupRecipes r = crowd_group_recipes(spec, enumerate_conditions(spec).front());
-  return {{"crowd", canonical_bytes(r.crowd) + files(r.crowd_files)},
-          {"animation", canonical_bytes(r.animation) + files(r.animation_files)},
-          {"correction", canonical_bytes(r.correction)},
-          {"metrics", canonical_bytes(metrics_recipe(r.crowd, CrowdMethod::corrected))},
-          {"render", canonical_bytes(stimuli::render_recipe(spec, "V4"))},
-          {"contact_sheet", canonical_bytes(stimuli::ContactSheetRecipe{stimuli::stimulus_look(spec.render)})}};
+  return {
+      {"crowd", canonical_bytes(r.crowd) + files(r.crowd_files)},
+      {"animation", canonical_bytes(r.animation) + files(r.animation_files)},
+      {"correction", canonical_bytes(r.correction)},
+      {"metrics", canonical_bytes(metrics_recipe(r.crowd, CrowdMethod::corrected))},
+      {"render", canonical_bytes(stimuli::render_recipe(spec, "V4"))},
+      {"contact_sheet", canonical_bytes(stimuli::ContactSheetRecipe{stimuli::stimulus_look(spec.render)})}};
 }
 
 struct Edit {
@@ -54,14 +55,16 @@ TEST_CASE("stage recipes: every spec value changes exactly the recipes of the st
       {"scenario.stage_direction_deg", [](ExperimentSpec& s) { s.scenario.stage_direction_deg = 90; }, crowd},
       {"scenario.walk_speed_mps", [](ExperimentSpec& s) { s.scenario.walk_speed_mps = 1.1; }, crowd},
       {"scenario.initial_spacing_m", [](ExperimentSpec& s) { s.scenario.initial_spacing_m = 0.8; }, crowd},
-      {"scenario.passing_side", [](ExperimentSpec& s) { s.scenario.passing_side = PassingSide::right; }, crowd},
+      {"scenario.passing_side", [](ExperimentSpec& s) { s.scenario.passing_side = PassingSide::right; },
+       crowd},
       {"scenario.agents", [](ExperimentSpec& s) { s.scenario.agents = 12; }, crowd},
       {"crowd.model", [](ExperimentSpec& s) { s.crowd.model = CrowdModel::social; }, crowd},
       {"crowd.agent_radius_m", [](ExperimentSpec& s) { s.crowd.agent_radius_m = 0.2; }, crowd},
       {"crowd.neighbor_distance_m", [](ExperimentSpec& s) { s.crowd.neighbor_distance_m = 3; }, crowd},
       {"crowd.max_neighbors", [](ExperimentSpec& s) { s.crowd.max_neighbors = 5; }, crowd},
       {"crowd.time_horizon_s", [](ExperimentSpec& s) { s.crowd.time_horizon_s = 3; }, crowd},
-      {"crowd.obstacle_time_horizon_s", [](ExperimentSpec& s) { s.crowd.obstacle_time_horizon_s = 3; }, crowd},
+      {"crowd.obstacle_time_horizon_s", [](ExperimentSpec& s) { s.crowd.obstacle_time_horizon_s = 3; },
+       crowd},
       {"crowd.max_speed_mps", [](ExperimentSpec& s) { s.crowd.max_speed_mps = 2; }, crowd},
       {"crowd.dt_s", [](ExperimentSpec& s) { s.crowd.dt_s = 0.05; }, crowd},
       {"crowd.overlap_free", [](ExperimentSpec& s) { s.crowd.overlap_free = true; }, crowd},
@@ -69,7 +72,8 @@ TEST_CASE("stage recipes: every spec value changes exactly the recipes of the st
       {"duration_s", [](ExperimentSpec& s) { s.duration_s = 2; }, crowd},
       {"fps", [](ExperimentSpec& s) { s.fps = 30; }, crowd},
       {"seed", [](ExperimentSpec& s) { s.seed = 8; }, {"crowd", "animation"}},
-      {"animation.body_model", [](ExperimentSpec& s) { s.animation.body_model = BodyModel::mpfb2; }, animation},
+      {"animation.body_model", [](ExperimentSpec& s) { s.animation.body_model = BodyModel::mpfb2; },
+       animation},
       {"animation.female_fraction", [](ExperimentSpec& s) { s.animation.female_fraction = 0.3; }, animation},
       {"animation.ttca_threshold_s", [](ExperimentSpec& s) { s.animation.ttca_threshold_s = 1; }, animation},
       {"animation.dtca_threshold_m", [](ExperimentSpec& s) { s.animation.dtca_threshold_m = 1; }, animation},
@@ -80,7 +84,8 @@ TEST_CASE("stage recipes: every spec value changes exactly the recipes of the st
        animation},
       {"correction.stiffness", [](ExperimentSpec& s) { s.correction.stiffness = 10; }, {"correction"}},
       {"correction.damping", [](ExperimentSpec& s) { s.correction.damping = 0.01; }, {"correction"}},
-      {"correction.collision_stiffness", [](ExperimentSpec& s) { s.correction.collision_stiffness = 5; },
+      {"correction.collision_stiffness",
+       [](ExperimentSpec& s) { s.correction.collision_stiffness = 5; },
        {"correction"}},
       {"render.width", [](ExperimentSpec& s) { s.render.width = 320; }, look},
       {"render.height", [](ExperimentSpec& s) { s.render.height = 192; }, look},
@@ -88,8 +93,8 @@ TEST_CASE("stage recipes: every spec value changes exactly the recipes of the st
       {"render.overlap", [](ExperimentSpec& s) { s.render.overlap = true; }, look},
       {"render.background", [](ExperimentSpec& s) { s.render.background = "#000000"; }, look},
       {"render.fog", [](ExperimentSpec& s) { s.render.fog = true; }, look},
-      {"render.viewpoints", [](ExperimentSpec& s) { s.render.viewpoint_overrides["V4"] = {0, 9, 1, 0, 0, 0, 40}; },
-       look},
+      {"render.viewpoints",
+       [](ExperimentSpec& s) { s.render.viewpoint_overrides["V4"] = {0, 9, 1, 0, 0, 0, 40}; }, look},
       {"render.characters", [](ExperimentSpec& s) { s.render.characters = {"c.glb"}; }, look},
       {"render.crf", [](ExperimentSpec& s) { s.render.crf = 23; }, {"render"}},
       {"render.frames_png", [](ExperimentSpec& s) { s.render.frames_png = true; }, {"render"}},

@@ -95,7 +95,8 @@ std::map<std::string, std::string> input_hashes(const fs::path& root) {
     if (!e.is_regular_file() || !path.ends_with(suffix)) continue;
     std::ifstream in(e.path());
     const std::string output = fs::relative(e.path(), root).generic_string();
-    hashes[output.substr(0, output.size() - suffix.size())] = nlohmann::json::parse(in).value("input_hash", "");
+    hashes[output.substr(0, output.size() - suffix.size())] =
+        nlohmann::json::parse(in).value("input_hash", "");
   }
   return hashes;
 }
@@ -116,7 +117,8 @@ fs::path own_scratch(const std::string& name) {
 }
 
 /// The outputs remade when the first run's spec is edited from `from` to `to` and run again.
-std::set<std::string> redone_after(const fs::path& first_run, const std::string& from, const std::string& to) {
+std::set<std::string> redone_after(const fs::path& first_run, const std::string& from,
+                                   const std::string& to) {
   const fs::path dir = own_scratch("stage_redo_edit");
   fs::copy(first_run, dir / "out", fs::copy_options::recursive);
   const auto before = input_hashes(dir / "out");

@@ -27,7 +27,7 @@ TEST_CASE("trial screen layout: targets inside the canvas, disjoint, found by hi
       for (double share : {0.0, 0.3, 0.5, 0.9}) {
         const auto qs = resolve_questions(*p);
         const TrialLayout L = layout_trial_screen(size, qs, share);
-        INFO(p->type << " " << size.width << "x" << size.height << " share " << share);
+        INFO(kind_name(p->type) << " " << size.width << "x" << size.height << " share " << share);
         const cv::Rect canvas({0, 0}, size);
         CHECK((L.video_area & canvas) == L.video_area);
         CHECK(L.video_area.height >= size.height / 5);

@@ -15,8 +15,7 @@ using namespace crowdlab;
 
 namespace {
 
-ExperimentSpec manifold_spec(const std::string& mesh, CrowdModel model, int agents,
-                             double duration_s) {
+ExperimentSpec manifold_spec(const std::string& mesh, CrowdModel model, int agents, double duration_s) {
   ExperimentSpec spec;
   spec.scenario.type = ScenarioKind::manifold;
   spec.scenario.mesh = mesh;
@@ -168,10 +167,13 @@ TEST_CASE("a manifold scenario is deterministic and refuses crowd models it cann
   for (size_t i = 0; i < a.surface.agents.size(); ++i)
     CHECK(a.surface.agents[i].feet_m == b.surface.agents[i].feet_m);
   CHECK(a.surface.agents[0].feet_m != c.surface.agents[0].feet_m);
-  CHECK_THROWS_AS(generate_manifold_scenario(manifold_spec("floor_ceiling", CrowdModel::cost, 10, 0.5), condition(1)),
-                  InputError);
-  CHECK_THROWS_AS(generate_manifold_scenario(manifold_spec("no_such_scene", CrowdModel::orca, 10, 0.5), condition(1)),
-                  InputError);
-  CHECK_THROWS_AS(generate_manifold_scenario(manifold_spec("floor_ceiling", CrowdModel::orca, 0, 0.5), condition(1)),
-                  InputError);
+  CHECK_THROWS_AS(
+      generate_manifold_scenario(manifold_spec("floor_ceiling", CrowdModel::cost, 10, 0.5), condition(1)),
+      InputError);
+  CHECK_THROWS_AS(
+      generate_manifold_scenario(manifold_spec("no_such_scene", CrowdModel::orca, 10, 0.5), condition(1)),
+      InputError);
+  CHECK_THROWS_AS(
+      generate_manifold_scenario(manifold_spec("floor_ceiling", CrowdModel::orca, 0, 0.5), condition(1)),
+      InputError);
 }
