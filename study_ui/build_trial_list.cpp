@@ -50,10 +50,6 @@ std::vector<Trial> build_trial_list(const ProtocolSpec& protocol, const Stimulus
                                manifest.factor_names.end())
     throw InputError(SourceLocation{"", 0, 0, "protocol.blocks"},
                      "block factor '" + block_by + "' is not a column of the stimulus manifest");
-  if (protocol.block_order != "random" && protocol.block_order != "fixed" &&
-      protocol.block_order != "latin_square")
-    throw InputError(SourceLocation{"", 0, 0, "protocol.block_order"},
-                     "unknown block order '" + protocol.block_order + "' (random | fixed | latin_square)");
 
   // Blocks in order of first appearance; practice split into global and per-block.
   std::vector<std::string> block_names;
@@ -83,10 +79,10 @@ std::vector<Trial> build_trial_list(const ProtocolSpec& protocol, const Stimulus
   const std::uint64_t seed = participant_seed(spec_seed, participant);
   std::vector<int> order(block_names.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-  if (protocol.block_order == "random") {
+  if (protocol.block_order == BlockOrder::random) {
     Rng rng(derive_seed(seed, "block-order"));
     shuffle_in_place(order, rng);
-  } else if (protocol.block_order == "latin_square") {
+  } else if (protocol.block_order == BlockOrder::latin_square) {
     order = williams_row(static_cast<int>(block_names.size()), participant_number(participant));
   }
 

@@ -34,11 +34,11 @@ struct TrialRequest {
   int trial_count = 0;  ///< total trials in the session, practice included
   int number = 0;       ///< 1-based position among the trials of its kind (test or practice), for the header
   int count = 0;        ///< trials of its kind: "Trial 3 of 40" counts test trials only
-  bool loop_video = true;                       ///< loop until answered; otherwise play once, then ask
-  double fps = 30.0;                            ///< playback rate when the file does not say
-  std::string inter_trial_screen = "fixation";  ///< "blank" or "fixation", shown while the clip loads
-  double inter_trial_min_ms = 500.0;            ///< the inter-trial screen's minimum duration
-  double video_share = 0.0;                     ///< video's share of the screen height; 0 = automatic
+  bool loop_video = true;  ///< loop until answered; otherwise play once, then ask
+  double fps = 30.0;       ///< playback rate when the file does not say
+  InterTrialScreen inter_trial_screen = InterTrialScreen::fixation;  ///< shown while the clip loads
+  double inter_trial_min_ms = 500.0;  ///< the inter-trial screen's minimum duration
+  double video_share = 0.0;           ///< video's share of the screen height; 0 = automatic
 };
 
 /// What a presenter measured of one trial's presentation (headless presenters measure nothing).

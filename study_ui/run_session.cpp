@@ -266,7 +266,7 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
     meta["spec_seed"] = spec.seed;
     meta["participant_seed"] = participant_seed(spec.seed, opt.participant);
     meta["crowdlab_version"] = CROWDLAB_VERSION;
-    meta["protocol"] = spec.protocol.type;
+    meta["protocol"] = kind_name(spec.protocol.type);
     meta["simulated"] = opt.simulated;
     meta["trials"] = trials.size();
     meta["questions"] = nlohmann::json::array();

@@ -19,9 +19,9 @@ StudyQuestion scale_question(std::string id, std::string text, int points, std::
   return q;
 }
 
-std::vector<StudyQuestion> default_questions(const std::string& type, int points, const std::string& low,
+std::vector<StudyQuestion> default_questions(ProtocolType type, int points, const std::string& low,
                                              const std::string& high) {
-  if (type == "likert") {
+  if (type == ProtocolType::likert) {
     // seed 000 §4.4.1: the six assertions, positive/negative per pair.
     const char* texts[6] = {"Contacts made by characters between them seem natural to me",
                             "Character bodies overlap, it is not physically realistic to me",
@@ -34,7 +34,7 @@ std::vector<StudyQuestion> default_questions(const std::string& type, int points
       qs.push_back(scale_question("Q" + std::to_string(i + 1), texts[i], points, low, high, i % 2 == 1));
     return qs;
   }
-  if (type == "2afc") {
+  if (type == ProtocolType::two_afc) {
     StudyQuestion yn;
     yn.id = "collision";
     yn.text = "Did the characters go through each other?";
@@ -45,27 +45,22 @@ std::vector<StudyQuestion> default_questions(const std::string& type, int points
     return {yn, scale_question("naturalness", "How natural was the interaction?", 7, "not very natural",
                                "very natural", false)};
   }
-  if (type == "rating") {
-    return {scale_question("collisions", "How often did you see collisions between characters?", 7, "never",
-                           "very often", false),
-            scale_question("naturalness", "How natural was the way the characters moved in the crowd?", 7,
-                           "not very natural", "very natural", false)};
-  }
-  throw InputError(SourceLocation{"", 0, 0, "protocol.type"},
-                   "unknown protocol type '" + type + "' (likert | 2afc | rating)");
+  // ProtocolType::rating
+  return {scale_question("collisions", "How often did you see collisions between characters?", 7, "never",
+                         "very often", false),
+          scale_question("naturalness", "How natural was the way the characters moved in the crowd?", 7,
+                         "not very natural", "very natural", false)};
 }
 
 }  // namespace
 
 std::vector<StudyQuestion> resolve_questions(const ProtocolSpec& protocol) {
-  const std::string& type = protocol.type;
-  if (type != "likert" && type != "2afc" && type != "rating")
-    throw InputError(SourceLocation{"", 0, 0, "protocol.type"},
-                     "unknown protocol type '" + type + "' (likert | 2afc | rating)");
+  const ProtocolType type = protocol.type;
   int points = protocol.scale_points;
-  if (type != "likert" && points == 6 && protocol.scale_labels.empty()) points = 7;  // seed 001 uses 1..7
+  if (type != ProtocolType::likert && points == 6 && protocol.scale_labels.empty())
+    points = 7;                                                     // seed 001 uses 1..7
   std::string low = "I strongly disagree", high = "I fully agree";  // seed 000 §4.4.1 anchors
-  if (type != "likert") low = "not very natural", high = "very natural";
+  if (type != ProtocolType::likert) low = "not very natural", high = "very natural";
   if (protocol.scale_labels.size() >= 2)
     low = protocol.scale_labels.front(), high = protocol.scale_labels.back();
 

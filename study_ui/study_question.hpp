@@ -38,7 +38,7 @@ struct StudyQuestion {
   bool valid(int raw) const { return raw >= min_response() && raw <= max_response(); }
 };
 
-/// The questions asked on every trial, in order. Throws InputError on an unknown protocol type, a
+/// The questions asked on every trial, in order. Throws InputError on a
 /// scale with fewer than 2 or more than 11 points, or duplicate question ids.
 std::vector<StudyQuestion> resolve_questions(const ProtocolSpec& protocol);
 

@@ -185,7 +185,7 @@ nlohmann::json web_timeline(const ExperimentSpec& spec, const StimulusManifest& 
                 {"spec_seed", spec.seed},
                 {"crowdlab_version", CROWDLAB_VERSION},
                 {"manifest_sha256", manifest_sha256},
-                {"protocol", p.type},
+                {"protocol", kind_name(p.type)},
                 {"loop_video", p.loop_video},
                 {"fps", spec.fps},
                 {"break_every", p.break_every},

@@ -325,7 +325,7 @@ nlohmann::json participant_metadata(const ExperimentSpec& spec, const std::strin
                          {"spec_seed", spec.seed},
                          {"participant_seed", participant_seed(spec.seed, p.order_of)},
                          {"crowdlab_version", CROWDLAB_VERSION},
-                         {"protocol", spec.protocol.type},
+                         {"protocol", kind_name(spec.protocol.type)},
                          {"trials", trials},
                          {"trials_done", p.by_trial.size()},
                          {"manifest_sha256", manifest_sha256},

@@ -245,7 +245,7 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
   const Clock::time_point inter_trial_start = Clock::now();
   {
     cv::Mat blank(m.canvas_size, CV_8UC3);
-    draw_inter_trial(blank, layout, req.inter_trial_screen == "fixation");
+    draw_inter_trial(blank, layout, req.inter_trial_screen == InterTrialScreen::fixation);
     cv::imshow(kWindow, blank);
     cv::waitKey(1);
     m.snapshot(blank, tag + "_inter_trial");

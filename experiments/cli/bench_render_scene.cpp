@@ -40,10 +40,11 @@ CrowdAnimation make_bench_render_crowd(const BenchRenderScene& scene) {
   if (spec.animation.body_model == BodyModel::mpfb2 && spec.animation.body_model_path.empty())
     spec.animation.body_model_path = default_mpfb2_dir().string();
   if (scene.duration_s > 0.0) spec.duration_s = std::min(spec.duration_s, scene.duration_s);
-  const Condition condition = crowd_condition(spec, pick_condition(spec, scene));
-  const std::string key = crowd_key(condition);
-  const ScenarioResult scenario = generate_scenario(spec, condition);
-  return animate_scenario(spec, condition, key, scenario, {});
+  // The run pipeline's recipes, so the bench renders the crowd `crowdlab run` would make.
+  const CrowdGroupRecipes recipes = crowd_group_recipes(spec, pick_condition(spec, scene));
+  const ScenarioResult scenario =
+      generate_scenario(recipe_spec(recipes.crowd, spec.source_path), recipe_condition(recipes.crowd));
+  return animate_scenario(recipes.animation, scenario, {});
 }
 
 }  // namespace crowdlab::cli

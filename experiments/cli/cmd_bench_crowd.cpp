@@ -84,8 +84,8 @@ void run(const Args& a) {
   if (a.threads < 1) throw InputError("bench crowd: --threads must be >= 1");
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<std::size_t>(a.threads));
-  CrowdSpec spec;  // the benchmark's parameters are crowd.* defaults
-  spec.model = a.model;
+  CrowdSpec spec;                                 // the benchmark's parameters are crowd.* defaults
+  spec.model = *parse_kind<CrowdModel>(a.model);  // CLI::IsMember allows only the enum's spellings
   if (a.overlap_free && a.model != "orca")
     throw InputError("bench crowd: --overlap-free applies to --model orca only");
   spec.overlap_free = a.overlap_free;  // crowd.overlap_free
@@ -149,7 +149,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       "Milliseconds per step of a 2D navigation model: N agents on a circle (0.6 m apart) swapping to "
       "their antipodes");
   cmd->add_option("--model", args->model, "Navigation model")
-      ->check(CLI::IsMember({"orca", "social", "cost", "none"}))
+      ->check(CLI::IsMember(kind_names<CrowdModel>()))
       ->capture_default_str();
   cmd->add_option("--agents", args->agents, "Number of agents N (circle radius N*0.6/2pi m), at most 100000")
       ->capture_default_str();

@@ -34,7 +34,8 @@ void print_summary(const ExperimentSpec& spec) {
   else
     std::printf("scenario:    %s (%.6g m x %.6g m)\n", scenario.c_str(), spec.scenario.width_m,
                 spec.scenario.depth_m);
-  std::printf("crowd model: %s, agent radius %.6g m\n", spec.crowd.model.c_str(), spec.crowd.agent_radius_m);
+  std::printf("crowd model: %s, agent radius %.6g m\n", std::string(kind_name(spec.crowd.model)).c_str(),
+              spec.crowd.agent_radius_m);
   std::printf("clips:       %.6g s at %.6g fps, %dx%d\n", spec.duration_s, spec.fps, spec.render.width,
               spec.render.height);
   std::printf("factors:\n");
@@ -43,10 +44,11 @@ void print_summary(const ExperimentSpec& spec) {
                 levels_text(f).c_str());
   std::printf("repetitions: %d\n", spec.repetitions);
   const ProtocolSpec& p = spec.protocol;
-  std::printf("protocol:    %s, %zu question(s), %d-point scale", p.type.c_str(), p.questions.size(),
-              p.scale_points);
+  std::printf("protocol:    %s, %zu question(s), %d-point scale", std::string(kind_name(p.type)).c_str(),
+              p.questions.size(), p.scale_points);
   if (!p.block_by.empty())
-    std::printf(", blocks by %s (%s order)", p.block_by.c_str(), p.block_order.c_str());
+    std::printf(", blocks by %s (%s order)", p.block_by.c_str(),
+                std::string(kind_name(p.block_order)).c_str());
   std::printf("\n");
   int w = 0;
   for (const QuestionSpec& q : p.questions) w = std::max(w, static_cast<int>(q.id.size()));

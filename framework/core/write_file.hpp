@@ -12,6 +12,8 @@
 //   remove_stale_temporaries    removes the temporaries of processes that no longer run (a run killed with
 //                               SIGKILL cannot remove its own), so a resumed run ends with the same files
 //                               as an uninterrupted one
+// This is the one atomic writer of crowdlab (issue 30): crowd files (write_crowd_glb), every output of
+// the run pipeline (StageRunner) and the study's files (study_ui, durable: fsync'd with their folder).
 // Every message names the file and the OS's reason; the callers report them as runtime failures (exit 1).
 // A destination that exists and is not a regular file (a symbolic link, a device such as /dev/full, a
 // FIFO, a folder) is refused before anything is written, as an InputError (exit 2; file_kind.hpp): the

@@ -28,30 +28,34 @@ std::shared_ptr<const NavigationModel> make_navigation_model(const CrowdSpec& c)
   if (!(c.dt_s > 0.0) || !std::isfinite(c.dt_s)) throw InputError("crowd.dt_s: must be > 0");
   if (!(c.neighbor_distance_m > 0.0) || !std::isfinite(c.neighbor_distance_m))
     throw InputError("crowd.neighbor_distance_m: must be > 0");
-  if (c.overlap_free && c.model != "orca")
-    throw InputError("crowd.overlap_free: applies to model orca only (model is '" + c.model + "')");
-  if (c.model == "orca") {
-    OrcaParams p;
-    p.neighbor_distance_m = c.neighbor_distance_m;
-    p.max_neighbors = c.max_neighbors;
-    p.time_horizon_s = c.time_horizon_s;
-    p.obstacle_time_horizon_s = c.obstacle_time_horizon_s;
-    p.resolve_overlaps = c.overlap_free;
-    return std::make_shared<OrcaModel>(p);
+  if (c.overlap_free && c.model != CrowdModel::orca)
+    throw InputError("crowd.overlap_free: applies to model orca only (model is '" +
+                     std::string(kind_name(c.model)) + "')");
+  switch (c.model) {
+    case CrowdModel::orca: {
+      OrcaParams p;
+      p.neighbor_distance_m = c.neighbor_distance_m;
+      p.max_neighbors = c.max_neighbors;
+      p.time_horizon_s = c.time_horizon_s;
+      p.obstacle_time_horizon_s = c.obstacle_time_horizon_s;
+      p.resolve_overlaps = c.overlap_free;
+      return std::make_shared<OrcaModel>(p);
+    }
+    case CrowdModel::social: {
+      SocialForceParams p;
+      p.neighbor_distance_m = c.neighbor_distance_m;
+      return std::make_shared<SocialForceModel>(p);
+    }
+    case CrowdModel::cost: {
+      CostGradientParams p = cost_gradient_params_from_weights(c.cost_weights);
+      p.neighbor_distance_m = c.neighbor_distance_m;
+      p.max_neighbors = std::max(c.max_neighbors, 1);
+      return std::make_shared<CostGradientModel>(p);
+    }
+    case CrowdModel::none:
+      return std::make_shared<StraightLineModel>(c.neighbor_distance_m);
   }
-  if (c.model == "social") {
-    SocialForceParams p;
-    p.neighbor_distance_m = c.neighbor_distance_m;
-    return std::make_shared<SocialForceModel>(p);
-  }
-  if (c.model == "cost") {
-    CostGradientParams p = cost_gradient_params_from_weights(c.cost_weights);
-    p.neighbor_distance_m = c.neighbor_distance_m;
-    p.max_neighbors = std::max(c.max_neighbors, 1);
-    return std::make_shared<CostGradientModel>(p);
-  }
-  if (c.model == "none") return std::make_shared<StraightLineModel>(c.neighbor_distance_m);
-  throw InputError("crowd.model: unknown model '" + c.model + "' (orca | social | cost | none)");
+  throw InputError("crowd.model: not a navigation model");  // unreachable: every enumerator is handled
 }
 
 }  // namespace crowdlab

@@ -464,26 +464,17 @@ void write_crowd_glb(const CrowdAnimation& crowd, const std::string& path) {
   model.scenes.push_back(scene);
   model.defaultScene = 0;
   model.buffers[0].name = "crowd";
-  // Write beside the target and rename, so that an interrupted run never leaves a truncated file under
-  // the final name (resumable runs treat an existing .glb as finished).
-  const std::string partial = path + ".partial";
-  require_writable_destination(path);  // the rename below replaces whatever the name holds (issue 32)
   // Serialised in memory, then written with write(2): tinygltf's own file writer ignores a failed
   // write, so a full disk published a truncated crowd file (issue 21).
   std::ostringstream glb;
   tinygltf::TinyGLTF writer;
   if (!writer.WriteGltfSceneToStream(&model, glb, /*prettyPrint=*/false, /*writeBinary=*/true))
     throw RuntimeError(path + ": cannot encode the glTF file");
-  try {
-    write_text_file(partial, glb.view());
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(partial, ignored);
-    throw;
-  }
-  std::error_code ec;
-  std::filesystem::rename(partial, path, ec);
-  if (ec) throw RuntimeError(path + ": cannot write the glTF file: " + ec.message());
+  // The framework's one atomic writer (a temporary beside the target, renamed into place), so that an
+  // interrupted run never leaves a truncated file under the final name and a killed run's temporary is
+  // removed by the next (remove_stale_temporaries). Not fsync'd: a crowd file can be remade, and the
+  // run pipeline's own write of it (stage_runner.hpp) is durable.
+  write_file_atomic(path, glb.view(), /*durable=*/false);
 }
 
 }  // namespace crowdlab

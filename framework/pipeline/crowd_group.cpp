@@ -22,13 +22,6 @@ using nlohmann::json;
 
 namespace {
 
-json level_json(const Condition& c) {
-  json j = json::object();
-  for (const auto& [name, level] : c.levels) j[name] = level.text;
-  j["rep"] = c.repetition;
-  return j;
-}
-
 /// The spec's correction section as corrector parameters (0 keeps the corrector's default).
 CorrectorParams corrector_params(const CorrectionSpec& c) {
   CorrectorParams params;
@@ -38,11 +31,11 @@ CorrectorParams corrector_params(const CorrectionSpec& c) {
   return params;
 }
 
-/// What the animation and correction stages share: a stage named `name` whose one output is the crowd
+/// What the animation and correction stages share: the stage of `recipe` whose one output is the crowd
 /// file `path`, written from `crowd` and read back into it when up to date.
-Stage crowd_file_stage(const std::string& name, const fs::path& path, std::optional<CrowdAnimation>& crowd) {
-  Stage s;
-  s.name = name;
+template <class Recipe>
+Stage crowd_file_stage(const Recipe& recipe, const fs::path& path, std::optional<CrowdAnimation>& crowd) {
+  Stage s = stage_for(recipe);
   s.outputs.push_back({path, [&crowd](const fs::path& tmp) { write_crowd_glb(*crowd, tmp.string()); }});
   s.load = [&crowd, path] { crowd = read_crowd_glb(path.string()); };
   return s;
@@ -50,13 +43,8 @@ Stage crowd_file_stage(const std::string& name, const fs::path& path, std::optio
 
 }  // namespace
 
-CrowdGroup::CrowdGroup(const ExperimentSpec& spec, StageRunner& runner, const fs::path& crowds_dir,
-                       const Condition& first)
-    : spec_(spec),
-      runner_(runner),
-      key_(crowd_key(first)),
-      dir_(crowds_dir / key_),
-      condition_(crowd_condition(spec, first)) {
+CrowdGroup::CrowdGroup(CrowdGroupRecipes recipes, StageRunner& runner, const fs::path& crowds_dir)
+    : recipes_(std::move(recipes)), runner_(runner), key_(recipes_.animation.key), dir_(crowds_dir / key_) {
   fs::create_directories(dir_);
   // The animation is computed from the crowd stage's result in memory (deterministic from the seed), so
   // its input hash covers the crowd stage's recipe; every later stage reads files and hashes them.
@@ -64,18 +52,21 @@ CrowdGroup::CrowdGroup(const ExperimentSpec& spec, StageRunner& runner, const fs
 }
 
 bool CrowdGroup::is_manifold() const {
-  return condition_.params.scenario == ScenarioKind::manifold;
+  return recipes_.crowd.params.scenario == ScenarioKind::manifold;
 }
 
 const ScenarioResult& CrowdGroup::scenario() {
   if (scenario_) return *scenario_;
+  // The generators see the recipe's values only (recipe_spec()).
+  const ExperimentSpec spec = recipe_spec(recipes_.crowd, recipes_.source_path);
+  const Condition condition = recipe_condition(recipes_.crowd);
   if (is_manifold()) {
     // Crowds on surfaces come from the surface stage (seed 002), with their 3D frames.
-    ManifoldScenario m = generate_manifold_scenario(spec_, condition_);
+    ManifoldScenario m = generate_manifold_scenario(spec, condition);
     surface_ = std::move(m.surface);
     scenario_ = std::move(m.result);
   } else {
-    scenario_ = generate_scenario(spec_, condition_);
+    scenario_ = generate_scenario(spec, condition);
   }
   return *scenario_;
 }
@@ -86,47 +77,40 @@ const SurfaceTrajectories& CrowdGroup::surface() {
 }
 
 Stage CrowdGroup::crowd_stage() {
-  Stage s;
-  s.name = "crowd";
-  s.params["levels"] = level_json(condition_);
-  s.params["scenario"] = kind_name(spec_.scenario.type);
-  s.params["seed"] = condition_.seed;
-  s.params["spec"] = spec_.source_hash;  // scenario/crowd sections live in the spec text
+  Stage s = stage_for(recipes_.crowd);
+  s.inputs = recipes_.crowd_files;
   s.outputs.push_back({dir_ / "trajectories.csv", [this](const fs::path& tmp) {
                          write_text_file(tmp, trajectories_csv(scenario().trajectories));
                        }});
   if (is_manifold())
     s.outputs.push_back({dir_ / "surface_trajectories.csv", [this](const fs::path& tmp) {
-                           write_text_file(tmp, surface_trajectories_csv(surface(), spec_.fps));
+                           write_text_file(tmp, surface_trajectories_csv(surface(), recipes_.crowd.fps));
                          }});
   return s;
 }
 
 Stage CrowdGroup::animation_stage() {
   const size_t i = index_of(CrowdMethod::baseline);
-  Stage s = crowd_file_stage("animation", animation_path(CrowdMethod::baseline), animation_[i]);
-  // The MPFB2 asset folder may come from the environment, so it is an input of its own.
-  s.params = json{{"spec", spec_.source_hash}, {"body_model_path", spec_.animation.body_model_path}};
+  Stage s = crowd_file_stage(recipes_.animation, animation_path(CrowdMethod::baseline), animation_[i]);
   s.upstream = {crowd_hash_};
+  s.inputs = recipes_.animation_files;
   s.compute = [this, i] {
     const ScenarioResult& crowd = scenario();
-    animation_[i] = animate_scenario(spec_, condition_, key_, crowd, surface());
+    animation_[i] = animate_scenario(recipes_.animation, crowd, surface());
   };
   return s;
 }
 
 Stage CrowdGroup::correction_stage() {
   const size_t i = index_of(CrowdMethod::corrected);
-  Stage s = crowd_file_stage("correction", animation_path(CrowdMethod::corrected), animation_[i]);
-  s.params = json{{"damping", spec_.correction.damping},
-                  {"stiffness", spec_.correction.stiffness},
-                  {"contact_stiffness", spec_.correction.collision_stiffness}};
+  Stage s = crowd_file_stage(recipes_.correction, animation_path(CrowdMethod::corrected), animation_[i]);
   s.inputs = {animation_path(CrowdMethod::baseline)};
   s.compute = [this, i] {
     const CrowdAnimation& input = animation(CrowdMethod::baseline);
     Progress progress("correct " + key_, static_cast<size_t>(input.frame_count()));
     CorrectionReport report;
-    animation_[i] = correct_crowd(input, corrector_params(spec_.correction), &progress, &report);
+    animation_[i] =
+        correct_crowd(input, corrector_params(recipes_.correction.correction), &progress, &report);
     if (report.rejected_steps > 0)
       spdlog::warn("{}: the corrector rejected {} of {} steps and kept the last stable state", key_,
                    report.rejected_steps, report.frames);
@@ -137,21 +121,20 @@ Stage CrowdGroup::correction_stage() {
 Stage CrowdGroup::metrics_stage(CrowdMethod method) {
   const size_t i = index_of(method);
   const fs::path out = metrics_path(method);
-  Stage s;
-  s.name = "metrics";
   // The correction-quality measures compare the animation with its input, the baseline (for the
   // baseline itself: the same animation, so drift and pops read 0 and depth and the feet's ground
   // penetration are its own).
-  s.params = json{{"correction_quality_input", kind_name(CrowdMethod::baseline)}};
+  const MetricsRecipe recipe = metrics_recipe(recipes_.crowd, method);
+  Stage s = stage_for(recipe);
   s.inputs = {animation_path(method)};
   if (method != CrowdMethod::baseline) s.inputs.push_back(animation_path(CrowdMethod::baseline));
   s.outputs.push_back(
       {out, [this, i](const fs::path& tmp) { write_text_file(tmp, metrics_[i]->dump(2) + "\n"); }});
-  s.compute = [this, i, method] {
-    const CrowdAnimation& crowd = animation(method);
+  s.compute = [this, i, recipe] {
+    const CrowdAnimation& crowd = animation(recipe.method);
     json m = crowd_metrics_json(measure_crowd(crowd), false);
     json q = correction_quality_json(measure_correction_quality(animation(CrowdMethod::baseline), crowd));
-    if (is_manifold()) {  // the feet's ground is the surface there, not y = 0
+    if (recipe.surface_ground) {  // the feet's ground is the surface there, not y = 0
       q.erase("foot_ground_penetration_max_m");
       q.erase("foot_ground_penetration_p99_m");
     }
@@ -182,6 +165,12 @@ const CrowdAnimation& CrowdGroup::animation(CrowdMethod method) {
     runner_.run(correction_stage());
   }
   return *animation_[i];
+}
+
+std::vector<fs::path> CrowdGroup::crowd_paths() const {
+  std::vector<fs::path> paths{dir_ / "trajectories.csv"};
+  if (is_manifold()) paths.push_back(dir_ / "surface_trajectories.csv");
+  return paths;
 }
 
 fs::path CrowdGroup::animation_path(CrowdMethod method) const {

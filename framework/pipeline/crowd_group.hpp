@@ -1,14 +1,16 @@
 #pragma once
 // The work shared by every condition that shows one crowd (crowd_key.hpp), and the four framework
-// stages that make it, each described as a Stage (stage.hpp) and run by the group's StageRunner:
-//   stage        outputs (in DIR/crowds/<key>/)          input hash covers
+// stages that make it, each described as a Stage (stage.hpp) and run by the group's StageRunner. Each
+// stage's compute reads its recipe (crowd_recipes.hpp) and its input files only; the group holds no
+// ExperimentSpec. The input hash covers the recipe (every field), the inputs and the code version:
+//   stage        outputs (in DIR/crowds/<key>/)          recipe; inputs
 //   crowd        trajectories.csv (+ surface_trajectories.csv for manifold crowds)
-//                                                        factor levels, scenario type, group seed, spec text
-//   animation    baseline.glb                            spec text, MPFB2 asset folder; the crowd's recipe
-//   correction   ours.glb                                damping, stiffness, contact stiffness; the bytes
-//                                                        of baseline.glb
-//   metrics      <method>.metrics.json                   the bytes of the animation file it measures and
-//                                                        of baseline.glb (its "correction_quality" is
+//                                                        CrowdRecipe; the manifold mesh file
+//   animation    baseline.glb                            AnimationRecipe; the crowd's recipe (upstream),
+//                                                        the motion clip files
+//   correction   ours.glb                                CorrectionRecipe; baseline.glb
+//   metrics      <method>.metrics.json                   MetricsRecipe; the animation file it measures and
+//                                                        baseline.glb (its "correction_quality" is
 //                                                        measured against the baseline)
 // Each result is computed (or loaded, when up to date) on first use and kept in memory while the
 // group's conditions run; asking for a stage runs the stages it reads first, so no call order matters.
@@ -24,25 +26,27 @@
 #include "framework/core/crowd_animation.hpp"
 #include "framework/core/surface_trajectories.hpp"
 #include "framework/crowd/generate_scenario.hpp"
+#include "framework/pipeline/crowd_recipes.hpp"
 #include "framework/pipeline/stage_runner.hpp"
 #include "framework/spec/condition_kinds.hpp"
-#include "framework/spec/experiment_spec.hpp"
 
 namespace crowdlab {
 
 class CrowdGroup {
  public:
-  /// `first`: the group's first condition (its crowd factors are the group's); `crowds_dir`: DIR/crowds.
-  CrowdGroup(const ExperimentSpec& spec, StageRunner& runner, const std::filesystem::path& crowds_dir,
-             const Condition& first);
+  /// `recipes`: crowd_group_recipes() of the group's first condition; `crowds_dir`: DIR/crowds.
+  CrowdGroup(CrowdGroupRecipes recipes, StageRunner& runner, const std::filesystem::path& crowds_dir);
   // Stages capture `this`: a group stays where it was made.
   CrowdGroup(const CrowdGroup&) = delete;
   CrowdGroup& operator=(const CrowdGroup&) = delete;
 
   const std::string& key() const { return key_; }
   const std::filesystem::path& dir() const { return dir_; }
-  /// The group's condition, with the group's seed (crowd_condition()).
-  const Condition& condition() const { return condition_; }
+  const CrowdGroupRecipes& recipes() const { return recipes_; }
+  /// The crowd stage's input hash: what the stages computed from its in-memory result are upstream of.
+  const std::string& crowd_hash() const { return crowd_hash_; }
+  /// The files of the crowd stage (trajectories.csv, surface_trajectories.csv for manifold crowds).
+  std::vector<std::filesystem::path> crowd_paths() const;
 
   /// The crowd stage's result (computed in memory on first use; the csv files are its outputs).
   const ScenarioResult& scenario();
@@ -67,11 +71,10 @@ class CrowdGroup {
   bool is_manifold() const;
   void run_crowd_stage();
 
-  const ExperimentSpec& spec_;
+  const CrowdGroupRecipes recipes_;
   StageRunner& runner_;
   std::string key_;
   std::filesystem::path dir_;
-  Condition condition_;
   std::string crowd_hash_;
   bool crowd_done_ = false;
   std::optional<ScenarioResult> scenario_;

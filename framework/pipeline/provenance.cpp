@@ -15,11 +15,13 @@
 namespace crowdlab {
 namespace fs = std::filesystem;
 
-std::string stage_input_hash(const std::string& stage, const nlohmann::json& params,
-                             const std::vector<std::string>& upstream_hashes) {
+std::string stage_input_hash(const std::string& stage, const std::string& code_version,
+                             const std::string& recipe, const std::vector<std::string>& upstream_hashes) {
+  // The recipe is raw bytes (not UTF-8): it is hashed on its own and only its digest enters the JSON.
   nlohmann::json j;
   j["stage"] = stage;
-  j["params"] = params;  // nlohmann::json objects are key-sorted: the dump is canonical
+  j["code_version"] = code_version;
+  j["recipe_sha256"] = sha256_hex(recipe);
   j["upstream"] = upstream_hashes;
   j["crowdlab_version"] = CROWDLAB_VERSION;
   return sha256_hex(j.dump());

@@ -4,15 +4,16 @@
 // Every output file OUT gets a sidecar OUT.prov.json recording what made it:
 //   {"stage", "input_hash", "output_sha256", "crowdlab_version", "spec_hash", "seed", "libraries",
 //    "created_utc"}
-// A stage's input_hash is the SHA-256 of its parameters (canonical JSON), the hashes of its upstream
-// outputs and the crowdlab version. A stage re-runs only when its output is missing, its recorded
-// input_hash differs (like a build system), or the output's SHA-256 differs from the recorded
-// output_sha256 (a truncated or altered file, issue 21; sidecars without the field are redone once).
-// Integrity: every output is written to a temporary name in its folder and renamed into place only when
-// complete (write_output_via_temporary), and its sidecar is written after it, so a run killed at any
-// point leaves either the old output with its old sidecar, or a new output whose hash no sidecar
-// vouches for: both are redone or kept correctly by the next run. Sidecars are per file, so shards running in
-// parallel never write the same file; `run --collect` merges them into DIR/provenance.json.
+// A stage's input_hash is the SHA-256 of its recipe (canonical bytes of every value it reads, stage.hpp),
+// the version of its code, the hashes of its upstream stages and input files, and the crowdlab version. A
+// stage re-runs only when its output is missing, its recorded input_hash differs (like a build system), or
+// the output's SHA-256 differs from the recorded output_sha256 (a truncated or altered file, issue 21;
+// sidecars without the field are redone once). Integrity: every output is written to a temporary name in its
+// folder and renamed into place only when complete (write_output_via_temporary), and its sidecar is written
+// after it, so a run killed at any point leaves either the old output with its old sidecar, or a new output
+// whose hash no sidecar vouches for: both are redone or kept correctly by the next run. Sidecars are per
+// file, so shards running in parallel never write the same file; `run --collect` merges them into
+// DIR/provenance.json.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -33,9 +34,10 @@ struct ProvenanceContext {
   nlohmann::json libraries = framework_library_versions();  ///< recorded in every sidecar
 };
 
-/// SHA-256 over the stage name, its parameters (canonical JSON dump) and its upstream hashes.
-std::string stage_input_hash(const std::string& stage, const nlohmann::json& params,
-                             const std::vector<std::string>& upstream_hashes);
+/// SHA-256 over the stage name, the version of its code, its recipe (canonical bytes, stage.hpp), its
+/// upstream hashes and crowdlab's version.
+std::string stage_input_hash(const std::string& stage, const std::string& code_version,
+                             const std::string& recipe, const std::vector<std::string>& upstream_hashes);
 
 /// True when `output` exists, its sidecar records exactly `input_hash`, and the file's SHA-256 is the
 /// sidecar's output_sha256.

@@ -8,6 +8,7 @@
 
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
+#include "framework/core/sha256.hpp"
 #include "framework/core/write_file.hpp"
 #include "framework/pipeline/crowd_key.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
@@ -79,9 +80,28 @@ ClipQuality clip_quality(const nlohmann::json& metrics) {
   return q;
 }
 
+/// Runs the presentation stages of condition `c` in table order; the stimulus stage's main output fills
+/// the entry's file (relative to the run folder), size and SHA-256.
+void present_condition(const ExperimentSpec& spec, const RunOptions& opt, StageRunner& runner, CrowdGroup& g,
+                       const Condition& c, const fs::path& dir,
+                       const std::vector<PresentationStage>& presentation, StimulusEntry& e) {
+  for (const PresentationStage& p : presentation) {
+    const std::optional<Stage> stage = p.make(g, c, dir);
+    if (!stage) continue;
+    runner.run(*stage);
+    if (!p.stimulus) continue;
+    const fs::path& file = stage->outputs.front().path;
+    e.file = fs::relative(file, opt.out_dir).string();
+    e.width = spec.render.width;
+    e.height = spec.render.height;
+    e.sha256 = sha256_file_hex(file.string());
+  }
+}
+
 /// One condition: its crowd (linked from the group), its metrics and its presentation.
 StimulusEntry run_condition(const ExperimentSpec& spec, const RunOptions& opt, StageRunner& runner,
-                            CrowdGroup& g, const Condition& c, PresentationStages* presentation) {
+                            CrowdGroup& g, const Condition& c,
+                            const std::vector<PresentationStage>& presentation) {
   const CrowdMethod method = c.params.method;
   const fs::path dir = opt.out_dir / "conditions" / c.id;
   fs::create_directories(dir);
@@ -100,7 +120,7 @@ StimulusEntry run_condition(const ExperimentSpec& spec, const RunOptions& opt, S
   e.quality = clip_quality(m);
   e.frames = crowd.frame_count();
   e.duration_s = crowd.duration_s();
-  if (spec.outputs.video && presentation) presentation->run(runner, g, c, opt.out_dir, dir, e);
+  if (spec.outputs.video) present_condition(spec, opt, runner, g, c, dir, presentation, e);
   return e;
 }
 
@@ -113,8 +133,17 @@ fs::path manifest_path(const RunOptions& opt) {
 
 }  // namespace
 
+std::vector<std::string> run_stage_names(const std::vector<PresentationStage>& presentation) {
+  std::vector<std::string> names;
+  for (std::string_view name :
+       {CrowdRecipe::kStage, AnimationRecipe::kStage, CorrectionRecipe::kStage, MetricsRecipe::kStage})
+    names.emplace_back(name);
+  for (const PresentationStage& p : presentation) names.push_back(p.name);
+  return names;
+}
+
 RunSummary run_experiment(const ExperimentSpec& spec, const RunOptions& options,
-                          PresentationStages* presentation) {
+                          const std::vector<PresentationStage>& presentation) {
   CrowdGroups groups = select_groups(spec, options);
   fs::create_directories(options.out_dir / "crowds");
   fs::create_directories(options.out_dir / "conditions");
@@ -129,7 +158,7 @@ RunSummary run_experiment(const ExperimentSpec& spec, const RunOptions& options,
   Progress progress("run " + spec.name, groups.selected);
   for (const std::string& key : groups.order) {
     const std::vector<Condition>& conditions = groups.conditions[key];
-    CrowdGroup group(spec, runner, options.out_dir / "crowds", conditions.front());
+    CrowdGroup group(crowd_group_recipes(spec, conditions.front()), runner, options.out_dir / "crowds");
     for (const Condition& c : conditions) {
       manifest.entries.push_back(run_condition(spec, options, runner, group, c, presentation));
       progress.advance();

@@ -2,8 +2,9 @@
 // The run pipeline as a library (`crowdlab run` calls it): every stage for every condition,
 // incremental like a build system. Stages are data (stage.hpp) run by one StageRunner
 // (stage_runner.hpp); the crowd, animation, correction and metrics stages are the crowd group's
-// (crowd_group.hpp); the stages that present a condition (render, contact sheet) come from the
-// composing program through PresentationStages, so framework/ needs no renderer.
+// (crowd_group.hpp); the stages that present a condition (render, contact sheet) are contributed as
+// data (PresentationStage) by the stimuli module and handed in by the composing program, so framework/
+// needs no renderer. The whole table, with each stage's recipe: docs/architecture.md, "Stages".
 //
 // Output layout (DIR = RunOptions::out_dir):
 //   DIR/spec.yaml                       the spec that was run (copied for provenance)
@@ -16,10 +17,14 @@
 //       crowd.glb                       the animation this condition shows (hard link)
 //       metrics.json                    its metrics (hard link)
 //       clip.mp4                        the rendered stimulus (presentation stages)
+//   DIR/crowds/<crowd key>/<method>.contact_sheet.png   V1-V4 at the middle frame (presentation stages)
 //   DIR/manifest.csv                    every stimulus (StimulusManifest); per shard when sharded
 // Every output has a provenance sidecar (provenance.hpp); a stage re-runs only when its inputs changed.
 #include <filesystem>
+#include <functional>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "framework/core/stimulus_manifest.hpp"
 #include "framework/pipeline/crowd_group.hpp"
@@ -44,22 +49,28 @@ struct RunSummary {
   std::filesystem::path manifest;
 };
 
-/// The stages that show a condition's crowd (render, contact sheet), run after the framework stages
-/// when the spec asks for video (outputs.video).
-class PresentationStages {
- public:
-  virtual ~PresentationStages() = default;
-  /// Runs the presentation stages of condition `c` (of crowd group `group`) through `runner`, writing
-  /// into `condition_dir`, and fills the stimulus fields of `entry` (file relative to `out_dir`,
-  /// width, height, sha256).
-  virtual void run(StageRunner& runner, CrowdGroup& group, const Condition& c,
-                   const std::filesystem::path& out_dir, const std::filesystem::path& condition_dir,
-                   StimulusEntry& entry) = 0;
+/// A stage that shows one condition's crowd (render, contact sheet), described as data by the module
+/// that makes it (stimuli/presentation_stages.hpp) and run, in table order, after the crowd group's
+/// stages when the spec asks for video (outputs.video).
+struct PresentationStage {
+  std::string name;
+  /// The stage for condition `c` of group `group`, writing into `condition_dir` (or the group's folder);
+  /// nullopt when the spec does not ask for it. Asking the group for a crowd file runs its stages.
+  std::function<std::optional<Stage>(CrowdGroup& group, const Condition& c,
+                                     const std::filesystem::path& condition_dir)>
+      make;
+  /// Its main output is the condition's stimulus: the manifest entry's file and SHA-256 (its size is
+  /// the spec's render.width x render.height).
+  bool stimulus = false;
 };
 
-/// Runs the spec's conditions (practice first) into options.out_dir. `presentation` may be null: then
-/// no clip is made and the manifest's entries carry no file.
+/// The names of the run's stages in run order: the crowd group's (crowd, animation, correction,
+/// metrics), then the presentation stages (docs/architecture.md's stage table is this list).
+std::vector<std::string> run_stage_names(const std::vector<PresentationStage>& presentation);
+
+/// Runs the spec's conditions (practice first) into options.out_dir. Without presentation stages no
+/// clip is made and the manifest's entries carry no file.
 RunSummary run_experiment(const ExperimentSpec& spec, const RunOptions& options,
-                          PresentationStages* presentation);
+                          const std::vector<PresentationStage>& presentation = {});
 
 }  // namespace crowdlab

@@ -14,7 +14,7 @@ std::string Stage::input_hash() const {
       throw RuntimeError("stage '" + name + "': its input " + input.string() + " is missing");
     hashes.push_back(input.filename().string() + ":" + sha256_file_hex(input.string()));
   }
-  return stage_input_hash(name, params, hashes);
+  return stage_input_hash(name, code_version, recipe, hashes);
 }
 
 StageRunner::StageRunner(ProvenanceContext context, bool force)

@@ -9,6 +9,11 @@
 //   BodyModel     procedural (capsule mannequins) | mpfb2 (MakeHuman/MPFB2 CC0 bodies)
 //   MotionSource  procedural (synthesised walks and dances) | clips (the spec's BVH/glTF clips)
 //   PassingSide   left | right | alternate (pair_crossing, seed 001 §3.1.4; alternate by repetition)
+//   CrowdModel    orca | social | cost | none (crowd.model: the 2D navigation model,
+//                 framework/crowd/make_navigation_model.hpp)
+//   ProtocolType  likert (seed 000 §4.4.1) | 2afc | rating (seed 001 §3.2, §4.2.3)  (protocol.type)
+//   BlockOrder    random | fixed | latin_square  (protocol.block_order; study_ui/build_trial_list.hpp)
+//   InterTrialScreen  blank | fixation  (protocol.inter_trial.screen)
 #include <array>
 #include <cstddef>
 #include <optional>
@@ -24,6 +29,10 @@ enum class CrowdMethod { baseline, corrected };
 enum class BodyModel { procedural, mpfb2 };
 enum class MotionSource { procedural, clips };
 enum class PassingSide { left, right, alternate };
+enum class CrowdModel { orca, social, cost, none };
+enum class ProtocolType { likert, two_afc, rating };
+enum class BlockOrder { random, fixed, latin_square };
+enum class InterTrialScreen { blank, fixation };
 
 inline constexpr std::size_t kCrowdMethodCount = 2;
 inline std::size_t index_of(CrowdMethod method) {
@@ -62,6 +71,33 @@ template <>
 struct KindNames<PassingSide> {
   static constexpr std::array<std::pair<PassingSide, std::string_view>, 3> names{
       {{PassingSide::left, "left"}, {PassingSide::right, "right"}, {PassingSide::alternate, "alternate"}}};
+};
+
+template <>
+struct KindNames<CrowdModel> {
+  static constexpr std::array<std::pair<CrowdModel, std::string_view>, 4> names{
+      {{CrowdModel::orca, "orca"},
+       {CrowdModel::social, "social"},
+       {CrowdModel::cost, "cost"},
+       {CrowdModel::none, "none"}}};
+};
+
+template <>
+struct KindNames<ProtocolType> {
+  static constexpr std::array<std::pair<ProtocolType, std::string_view>, 3> names{
+      {{ProtocolType::likert, "likert"}, {ProtocolType::two_afc, "2afc"}, {ProtocolType::rating, "rating"}}};
+};
+template <>
+struct KindNames<BlockOrder> {
+  static constexpr std::array<std::pair<BlockOrder, std::string_view>, 3> names{
+      {{BlockOrder::random, "random"},
+       {BlockOrder::fixed, "fixed"},
+       {BlockOrder::latin_square, "latin_square"}}};
+};
+template <>
+struct KindNames<InterTrialScreen> {
+  static constexpr std::array<std::pair<InterTrialScreen, std::string_view>, 2> names{
+      {{InterTrialScreen::blank, "blank"}, {InterTrialScreen::fixation, "fixation"}}};
 };
 
 /// The spelling of `value` ("corridor", "ours", ...).

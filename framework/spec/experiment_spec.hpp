@@ -42,7 +42,7 @@ struct ScenarioSpec {
 
 /// crowd.* : the 2D navigation model.
 struct CrowdSpec {
-  std::string model = "orca";    ///< orca | social | cost | none
+  CrowdModel model = CrowdModel::orca;
   double agent_radius_m = 0.25;  ///< disc radius, metres, (0, 1]
   double neighbor_distance_m = 2.0;
   int max_neighbors = 10;
@@ -53,7 +53,9 @@ struct CrowdSpec {
   /// ORCA only: the overlap-free mode (OrcaParams::resolve_overlaps; step guards plus the overlap
   /// projection, framework/crowd/orca_model.hpp). Off: plain ORCA as published (residual overlaps in jams).
   bool overlap_free = false;
-  std::map<std::string, double> cost_weights;  ///< cost model: goal, separation, smoothness...
+  /// cost model: goal, smoothness, separation, walls, sigma_m, lookahead_s, iterations (keys and ranges
+  /// checked by the spec loader; framework/crowd/cost_gradient_model.hpp)
+  std::map<std::string, double> cost_weights;
 };
 
 /// animation.* : bodies and motion.
@@ -84,7 +86,6 @@ struct RenderSpec {
   int msaa = 1;  ///< samples per pixel: 1 (the fast path) or 4 (the quality reference), docs/stimuli.md
   bool overlap = false;  ///< paint overlapping volume red (seed 000 Fig. 5)
   bool frames_png = false;
-  bool contact_sheet = true;  ///< copied from outputs.contact_sheet
   std::string background = "#d8dde3";
   bool fog = false;
   std::map<std::string, std::vector<double>> viewpoint_overrides;  ///< name -> [px,py,pz, tx,ty,tz, fov_deg]
@@ -107,7 +108,7 @@ struct CompositeSpec {
 
 /// protocol.* : the study a participant runs.
 struct ProtocolSpec {
-  std::string type = "likert";  ///< likert | 2afc | rating
+  ProtocolType type = ProtocolType::likert;
   int scale_points = 6;
   std::vector<std::string> scale_labels;
   std::vector<QuestionSpec> questions;
@@ -116,16 +117,16 @@ struct ProtocolSpec {
   /// their first level; when block_by is set and not named here, the practice set is repeated for
   /// every block level (seed 001 §4.2.2: practice "at the beginning of each block").
   std::vector<Factor> practice_factors;
-  std::string block_by;                ///< factor whose levels form blocks ("" = one block)
-  std::string block_order = "random";  ///< random | fixed | latin_square
-  int break_every = 0;                 ///< a break screen every N trials (0 = none)
+  std::string block_by;  ///< factor whose levels form blocks ("" = one block)
+  BlockOrder block_order = BlockOrder::random;
+  int break_every = 0;  ///< a break screen every N trials (0 = none)
   std::string instructions;
   std::string consent;
   std::string break_text = "Take a short break. Press any key to continue.";
   bool loop_video = true;  ///< loop until answered (Likert)
-  /// Between trials, while the next clip loads (protocol.inter_trial): "blank" (background only) or
-  /// "fixation" (a cross where the video will be), shown for at least inter_trial_min_ms.
-  std::string inter_trial_screen = "fixation";
+  /// Between trials, while the next clip loads (protocol.inter_trial): blank (background only) or
+  /// fixation (a cross where the video will be), shown for at least inter_trial_min_ms.
+  InterTrialScreen inter_trial_screen = InterTrialScreen::fixation;
   double inter_trial_min_ms = 500.0;
   /// Share of the screen height given to the video (protocol.video_share); 0 = as large as the
   /// questions allow.
@@ -135,11 +136,11 @@ struct ProtocolSpec {
   std::string completion_url;
 };
 
+/// outputs.* : what `crowdlab run` makes besides the crowds (the analysis report is `crowdlab analyze`'s).
 struct OutputSpec {
-  bool video = true;
-  bool contact_sheet = true;
-  bool metrics = true;
-  bool report = true;
+  bool video = true;          ///< the render stage: one clip per condition
+  bool contact_sheet = true;  ///< the contact_sheet stage: V1-V4 at the middle frame per crowd and method
+  bool metrics = true;        ///< the metrics stage
 };
 
 struct ExperimentSpec {

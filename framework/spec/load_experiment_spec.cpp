@@ -77,11 +77,31 @@ void parse_scenario(YamlSection s, ExperimentSpec& spec) {
                           "a manifold scenario needs a mesh (scene name or file)");
 }
 
+/// crowd.cost_weights: the cost model's keys (did-you-mean on a typo) and each one's range, checked here so
+/// that `validate` refuses what the cost model would refuse minutes into `run`.
+void parse_cost_weights(YamlSection w, CrowdSpec& c) {
+  if (!w.present()) return;
+  w.allow_keys({"goal", "smoothness", "separation", "walls", "sigma_m", "lookahead_s", "iterations"});
+  const auto weight = [&](const char* key, const Range& range) {
+    if (!w.has(key)) return;
+    double v = 0.0;
+    w.number(key, v, range);
+    c.cost_weights[key] = v;
+  };
+  for (const char* key : {"goal", "smoothness", "separation", "walls"}) weight(key, Range::non_negative());
+  for (const char* key : {"sigma_m", "lookahead_s"}) weight(key, Range::positive());
+  if (w.has("iterations")) {
+    int n = 1;
+    w.integer("iterations", n, 1, 100);
+    c.cost_weights["iterations"] = n;
+  }
+}
+
 void parse_crowd(YamlSection s, ExperimentSpec& spec) {
   CrowdSpec& c = spec.crowd;
   s.allow_keys({"model", "agent_radius_m", "neighbor_distance_m", "max_neighbors", "time_horizon_s",
                 "obstacle_time_horizon_s", "max_speed_mps", "dt_s", "cost_weights", "overlap_free"});
-  s.choice("model", c.model, {"orca", "social", "cost", "none"});
+  s.choice("model", c.model);
   s.number("agent_radius_m", c.agent_radius_m, Range::positive(1.0));
   s.number("neighbor_distance_m", c.neighbor_distance_m, Range::positive(100.0));
   s.integer("max_neighbors", c.max_neighbors, 1, 1000);
@@ -90,17 +110,10 @@ void parse_crowd(YamlSection s, ExperimentSpec& spec) {
   s.number("max_speed_mps", c.max_speed_mps, Range::positive(10.0));
   s.number("dt_s", c.dt_s, Range::positive(1.0));
   s.boolean("overlap_free", c.overlap_free);
-  if (c.overlap_free && c.model != "orca")
+  if (c.overlap_free && c.model != CrowdModel::orca)
     s.diagnostics().error(s.get("overlap_free"), s.child_path("overlap_free"),
-                          "applies to model orca only (model is '" + c.model + "')");
-  YamlSection w = s.section("cost_weights");
-  if (w.present()) {
-    for (auto it = w.node().begin(); it != w.node().end(); ++it) {
-      const std::string name = it->first.Scalar();
-      if (auto v = parse_number(s.diagnostics(), it->second, w.child_path(name), Range::non_negative()))
-        c.cost_weights[name] = *v;
-    }
-  }
+                          "applies to model orca only (model is '" + std::string(kind_name(c.model)) + "')");
+  parse_cost_weights(s.section("cost_weights"), c);
 }
 
 void parse_walk_clips(YamlSection& s, AnimationSpec& a) {
@@ -235,12 +248,10 @@ void parse_render(YamlSection s, ExperimentSpec& spec) {
 }
 
 void parse_outputs(YamlSection s, ExperimentSpec& spec) {
-  s.allow_keys({"video", "contact_sheet", "metrics", "report"});
+  s.allow_keys({"video", "contact_sheet", "metrics"});
   s.boolean("video", spec.outputs.video);
   s.boolean("contact_sheet", spec.outputs.contact_sheet);
   s.boolean("metrics", spec.outputs.metrics);
-  s.boolean("report", spec.outputs.report);
-  spec.render.contact_sheet = spec.outputs.contact_sheet;
 }
 
 void parse_resolution(YamlSection& top, ExperimentSpec& spec) {
@@ -345,8 +356,29 @@ void check_encoding(SpecDiagnostics& diag, const std::string& text) {
 }
 
 // Checks that need several sections at once.
+/// A manifold scenario's crowd (framework/surface/generate_manifold_scenario.hpp): its avoidance models and
+/// the surface crowd's ranges, checked here so that `validate` refuses what the surface stage would.
+void check_manifold_crowd(YamlSection& top, const ExperimentSpec& spec) {
+  if (spec.scenario.type != ScenarioKind::manifold) return;
+  SpecDiagnostics& diag = top.diagnostics();
+  const CrowdSpec& c = spec.crowd;
+  const auto require = [&](bool ok, const char* section, const char* key, const std::string& range) {
+    if (!ok)
+      diag.error(child(child(top.node(), section), key), std::string(section) + "." + key,
+                 "a manifold scenario needs " + range);
+  };
+  require(c.model == CrowdModel::orca || c.model == CrowdModel::social, "crowd", "model",
+          "'orca' or 'social', not '" + std::string(kind_name(c.model)) + "'");
+  require(c.neighbor_distance_m <= 10, "crowd", "neighbor_distance_m", "a value in (0, 10] m");
+  require(c.max_neighbors <= 32, "crowd", "max_neighbors", "a value in [1, 32]");
+  require(c.time_horizon_s <= 10, "crowd", "time_horizon_s", "a value in (0, 10] s");
+  require(2 * c.agent_radius_m <= 1.8, "crowd", "agent_radius_m", "a radius of at most 0.9 m (1.8 m agents)");
+  require(spec.scenario.walk_speed_mps <= 3, "scenario", "walk_speed_mps", "a value in (0, 3] m/s");
+}
+
 void check_consistency(YamlSection& top, ExperimentSpec& spec) {
   SpecDiagnostics& diag = top.diagnostics();
+  check_manifold_crowd(top, spec);
   const Factor* density = spec.factor("density");
   const bool area_scenario = is_area_scenario(spec.scenario.type);
   if (density && area_scenario && !spec.factor("characters")) {

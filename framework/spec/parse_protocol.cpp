@@ -168,7 +168,7 @@ void parse_practice(YamlSection& protocol, ExperimentSpec& spec) {
 void parse_study_window(YamlSection& s, ProtocolSpec& p) {
   YamlSection iti = s.section("inter_trial");
   iti.allow_keys({"screen", "min_ms"});
-  iti.choice("screen", p.inter_trial_screen, {"blank", "fixation"});
+  iti.choice("screen", p.inter_trial_screen);
   iti.number("min_ms", p.inter_trial_min_ms, Range::non_negative(10000.0));
   s.number("video_share", p.video_share, Range{0.0, 0.9});
   if (p.video_share > 0.0 && p.video_share < 0.3)
@@ -186,7 +186,7 @@ void parse_protocol(YamlSection s, ExperimentSpec& spec) {
   s.allow_keys({"type", "scale", "questions", "composites", "practice", "block_by", "block_order",
                 "break_every", "instructions", "consent", "break_text", "loop_video", "completion_url",
                 "inter_trial", "video_share"});
-  s.choice("type", p.type, {"likert", "2afc", "rating"});
+  s.choice("type", p.type);
   YamlSection scale = s.section("scale");
   scale.allow_keys({"points", "labels"});
   scale.integer("points", p.scale_points, kMinScalePoints, kMaxScalePoints);
@@ -194,7 +194,7 @@ void parse_protocol(YamlSection s, ExperimentSpec& spec) {
   check_label_count(scale, "labels", p.scale_labels.size(), p.scale_points);
 
   parse_questions(s, p);
-  if (p.type == "2afc") {
+  if (p.type == ProtocolType::two_afc) {
     bool has_yesno = false;
     for (const QuestionSpec& q : p.questions) has_yesno = has_yesno || q.kind == "yesno";
     if (!has_yesno && s.has("questions"))
@@ -211,7 +211,7 @@ void parse_protocol(YamlSection s, ExperimentSpec& spec) {
                  "'" + p.block_by + "' is not a factor of this spec" +
                      suggestion_suffix(p.block_by, factor_names(spec)));
   }
-  s.choice("block_order", p.block_order, {"random", "fixed", "latin_square"});
+  s.choice("block_order", p.block_order);
   s.integer("break_every", p.break_every, 0, 100000);
   s.string("instructions", p.instructions);
   s.string("consent", p.consent);

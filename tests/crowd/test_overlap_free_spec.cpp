@@ -64,7 +64,7 @@ TEST_CASE("crowd.overlap_free reaches the ORCA model, other models reject it",
   CHECK_FALSE(make_navigation_model(c)->resolves_overlaps());
   c.overlap_free = true;
   CHECK(make_navigation_model(c)->resolves_overlaps());
-  c.model = "cost";
+  c.model = CrowdModel::cost;
   CHECK_THROWS_WITH(make_navigation_model(c),
                     Catch::Contains("crowd.overlap_free: applies to model orca only"));
 }

@@ -33,7 +33,7 @@ struct CountingStage {
   Stage stage(const std::vector<std::string>& names = {"out.txt"}) {
     Stage s;
     s.name = "counting";
-    s.params = nlohmann::json{{"text", text}};
+    s.recipe = canonical_bytes(text);
     s.upstream = upstream;
     for (const std::string& name : names)
       s.outputs.push_back({dir / name, [this, name](const fs::path& tmp) {
@@ -208,7 +208,7 @@ TEST_CASE("run_experiment without presentation stages: crowd, animation, correct
   RunOptions options;
   options.out_dir = out;
   options.only = "density-2.5_viewpoint-V4_method-ours_rep-1";
-  RunSummary first = run_experiment(spec, options, nullptr);
+  RunSummary first = run_experiment(spec, options);
   CHECK(first.conditions == 1);
   // crowd, animation, correction and the corrected crowd's metrics.
   CHECK(first.stages_run == 4);
@@ -226,11 +226,11 @@ TEST_CASE("run_experiment without presentation stages: crowd, animation, correct
   CHECK(m.entries[0].frames == 15);
   CHECK(m.entries[0].mean_overlap_l >= 0.0);
   // Nothing changed: every stage is up to date (the crowd stage is checked, not remade).
-  RunSummary second = run_experiment(spec, options, nullptr);
+  RunSummary second = run_experiment(spec, options);
   CHECK(second.stages_run == 0);
   CHECK(second.stages_skipped == 4);
   // An altered corrected crowd is remade; its metrics, whose input hash is unchanged, are not.
   fs::resize_file(group / "ours.glb", fs::file_size(group / "ours.glb") - 4);
-  RunSummary third = run_experiment(spec, options, nullptr);
+  RunSummary third = run_experiment(spec, options);
   CHECK(third.stages_run == 1);
 }

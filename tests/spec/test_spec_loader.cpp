@@ -56,7 +56,7 @@ TEST_CASE("a spec's values reach the typed structs, with units and defaults") {
   CHECK(s.scenario.type == ScenarioKind::corridor);
   CHECK(s.scenario.width_m == 2.5);
   CHECK(s.scenario.depth_m == 8.0);
-  CHECK(s.crowd.model == "social");
+  CHECK(s.crowd.model == CrowdModel::social);
   CHECK(s.crowd.agent_radius_m == 0.2);
   CHECK(s.crowd.cost_weights.at("goal") == 1.5);
   CHECK(s.crowd.max_neighbors == 10);  // default kept
@@ -73,11 +73,11 @@ TEST_CASE("a spec's values reach the typed structs, with units and defaults") {
   CHECK(s.render.msaa == 4);
   CHECK(s.render.background == "#102030");
   CHECK(s.render.viewpoint_overrides.at("V3").size() == 7);
-  CHECK(s.protocol.type == "rating");
+  CHECK(s.protocol.type == ProtocolType::rating);
   CHECK(s.protocol.scale_points == 7);
   CHECK(s.protocol.questions.at(0).id == "q");
   CHECK_FALSE(s.outputs.video);
-  CHECK_FALSE(s.render.contact_sheet);
+  CHECK_FALSE(s.outputs.contact_sheet);
 }
 
 TEST_CASE("the shipped specs load and mirror their papers' designs") {
@@ -98,7 +98,7 @@ TEST_CASE("the shipped specs load and mirror their papers' designs") {
   CHECK(enumerate_conditions(st).size() == 40);
 
   const ExperimentSpec pairs = load_experiment_spec((dir / "hoyet2016_pairs.yaml").string());
-  CHECK(pairs.protocol.type == "2afc");
+  CHECK(pairs.protocol.type == ProtocolType::two_afc);
   CHECK(pairs.protocol.questions.at(0).kind == "yesno");
   CHECK(pairs.protocol.questions.at(1).kind == "scale");
   CHECK(pairs.protocol.scale_points == 7);
@@ -240,6 +240,13 @@ TEST_CASE("every section's keys, types and ranges are checked") {
       {"crowd: {agent_radius_m: 1.5}\n", "crowd.agent_radius_m: must be in (0, 1]"},
       {"crowd: {max_neighbours: 3}\n", "did you mean 'max_neighbors'?"},
       {"crowd: {cost_weights: {goal: -1}}\n", "crowd.cost_weights.goal: must be >= 0"},
+      // Checked by the spec layer, not minutes into `run` by the cost model (issue 30).
+      {"crowd: {cost_weights: {separatoin: 1}}\n",
+       "crowd.cost_weights.separatoin: unknown key (did you mean 'separation'?)"},
+      {"crowd: {cost_weights: {sigma_m: 0}}\n", "crowd.cost_weights.sigma_m: must be > 0"},
+      {"crowd: {cost_weights: {iterations: 500}}\n", "crowd.cost_weights.iterations: must be in [1, 100]"},
+      {"crowd: {model: cost}\nscenario: {type: manifold, mesh: floor_wall}\n",
+       "crowd.model: a manifold scenario needs 'orca' or 'social', not 'cost'"},
       {"animation: {female_fraction: 1.2}\n", "animation.female_fraction: must be in [0, 1]"},
       {"animation: {motion: clips}\n", "motion: clips needs walk_clips or dance_clips"},
       {"animation: {body_model: smpl}\n", "animation.body_model: invalid value 'smpl'"},

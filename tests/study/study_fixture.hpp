@@ -77,7 +77,7 @@ inline ExperimentSpec likert_spec() {
   s.name = "test-likert";
   s.source_hash = "hash-likert";
   s.seed = 1234;
-  s.protocol.type = "likert";
+  s.protocol.type = ProtocolType::likert;
   s.protocol.composites = {{"Q_CR", {"Q1", "Q2"}}, {"Q_CA", {"Q3", "Q4"}}, {"Q_OR", {"Q5", "Q6"}}};
   return s;
 }
@@ -87,7 +87,7 @@ inline ExperimentSpec afc_spec() {
   s.name = "test-2afc";
   s.source_hash = "hash-2afc";
   s.seed = 99;
-  s.protocol.type = "2afc";
+  s.protocol.type = ProtocolType::two_afc;
   s.protocol.loop_video = false;
   return s;
 }

@@ -13,9 +13,9 @@ using namespace crowdlab::study;
 
 TEST_CASE("trial screen layout: targets inside the canvas, disjoint, found by hit_test", "[study]") {
   ProtocolSpec likert, afc;
-  afc.type = "2afc";
+  afc.type = ProtocolType::two_afc;
   ProtocolSpec eleven;  // 11-point scales in the narrow cells of a 3-column grid
-  eleven.type = "rating";
+  eleven.type = ProtocolType::rating;
   eleven.questions = {{"A", "a", false, "scale", 11, {}},
                       {"B", "b", false, "scale", 11, {}},
                       {"C", "c", false, "scale", 11, {}},
@@ -27,7 +27,7 @@ TEST_CASE("trial screen layout: targets inside the canvas, disjoint, found by hi
       for (double share : {0.0, 0.3, 0.5, 0.9}) {
         const auto qs = resolve_questions(*p);
         const TrialLayout L = layout_trial_screen(size, qs, share);
-        INFO(p->type << " " << size.width << "x" << size.height << " share " << share);
+        INFO(kind_name(p->type) << " " << size.width << "x" << size.height << " share " << share);
         const cv::Rect canvas({0, 0}, size);
         CHECK((L.video_area & canvas) == L.video_area);
         CHECK(L.video_area.height >= size.height / 5);
@@ -128,7 +128,7 @@ TEST_CASE("frame interval statistics: mean, nearest-rank p99 and max of consecut
 
 TEST_CASE("keyboard answers reach every point of 10- and 11-point scales", "[study]") {
   ProtocolSpec p;
-  p.type = "rating";
+  p.type = ProtocolType::rating;
   p.questions = {{"A", "a", false, "scale", 11, {}},
                  {"B", "b", false, "scale", 10, {}},
                  {"C", "c", false, "scale", 7, {}}};

@@ -32,6 +32,7 @@ using namespace crowdlab::study;
 namespace fs = std::filesystem;
 using crowdlab::test::slurp;
 using namespace crowdlab::test::web;
+using crowdlab::test::source_dir;
 
 namespace {
 
@@ -76,8 +77,9 @@ TEST_CASE("web trial orders equal the native session's for embedded ids, other i
   const auto qs = resolve_questions(test::likert_spec().protocol);
   const auto script = write_script(dir / "script.csv", scripted_answers(m, qs), qs);
   const std::vector<std::string> ids = {"P01", "P02", "P03", "P17", "lab_A"};
-  for (const std::string order : {"random", "latin_square", "fixed"}) {
-    const ExperimentSpec spec = blocked_spec(order);
+  for (const BlockOrder block_order : {BlockOrder::random, BlockOrder::latin_square, BlockOrder::fixed}) {
+    const ExperimentSpec spec = blocked_spec(block_order);
+    const std::string order(kind_name(block_order));
     const nlohmann::json timeline = web_timeline(spec, m, "sha", ids);
     for (const std::string& id : ids) {
       // The native session's sequence of (trial, stimulus, block) from its P.csv, one per trial.
@@ -109,7 +111,7 @@ TEST_CASE("import-web of web records equals the native scripted session's table"
   const auto m = test::make_stimuli(dir / "stimuli",
                                     {{"density", {"2.22", "6.66"}}, {"method", {"baseline", "ours"}}}, 2);
   for (const bool afc : {false, true}) {
-    const ExperimentSpec spec = afc ? test::afc_spec() : blocked_spec("latin_square");
+    const ExperimentSpec spec = afc ? test::afc_spec() : blocked_spec(BlockOrder::latin_square);
     const auto qs = resolve_questions(spec.protocol);
     const auto answers = scripted_answers(m, qs);
     const fs::path sub = dir / (afc ? "afc" : "likert");

@@ -111,7 +111,7 @@ inline std::vector<std::vector<std::string>> comparable_rows(const std::string& 
   return out;
 }
 
-inline ExperimentSpec blocked_spec(const std::string& block_order) {
+inline ExperimentSpec blocked_spec(BlockOrder block_order) {
   ExperimentSpec spec = test::likert_spec();
   spec.protocol.block_by = "density";
   spec.protocol.block_order = block_order;

@@ -15,8 +15,7 @@ using namespace crowdlab;
 
 namespace {
 
-ExperimentSpec manifold_spec(const std::string& mesh, const std::string& model, int agents,
-                             double duration_s) {
+ExperimentSpec manifold_spec(const std::string& mesh, CrowdModel model, int agents, double duration_s) {
   ExperimentSpec spec;
   spec.scenario.type = ScenarioKind::manifold;
   spec.scenario.mesh = mesh;
@@ -112,8 +111,8 @@ TEST_CASE("orient_to_surface stands a body upside down on a ceiling and sideways
 }
 
 TEST_CASE("a manifold scenario animates walkers standing on the floor and the wall, never through them") {
-  const std::string model = GENERATE(std::string("social"), std::string("orca"));
-  INFO("model " << model);
+  const CrowdModel model = GENERATE(CrowdModel::social, CrowdModel::orca);
+  INFO("model " << kind_name(model));
   const ExperimentSpec spec = manifold_spec("floor_wall", model, 12, test::kSanitized ? 0.6 : 2.0);
   const ManifoldScenario m = generate_manifold_scenario(spec, condition(5));
   REQUIRE(m.surface.agents.size() == 12);
@@ -161,17 +160,20 @@ TEST_CASE("a manifold scenario animates walkers standing on the floor and the wa
 }
 
 TEST_CASE("a manifold scenario is deterministic and refuses crowd models it cannot run") {
-  const ExperimentSpec spec = manifold_spec("floor_ceiling", "orca", 10, 0.5);
+  const ExperimentSpec spec = manifold_spec("floor_ceiling", CrowdModel::orca, 10, 0.5);
   const ManifoldScenario a = generate_manifold_scenario(spec, condition(9));
   const ManifoldScenario b = generate_manifold_scenario(spec, condition(9));
   const ManifoldScenario c = generate_manifold_scenario(spec, condition(10));
   for (size_t i = 0; i < a.surface.agents.size(); ++i)
     CHECK(a.surface.agents[i].feet_m == b.surface.agents[i].feet_m);
   CHECK(a.surface.agents[0].feet_m != c.surface.agents[0].feet_m);
-  CHECK_THROWS_AS(generate_manifold_scenario(manifold_spec("floor_ceiling", "cost", 10, 0.5), condition(1)),
-                  InputError);
-  CHECK_THROWS_AS(generate_manifold_scenario(manifold_spec("no_such_scene", "orca", 10, 0.5), condition(1)),
-                  InputError);
-  CHECK_THROWS_AS(generate_manifold_scenario(manifold_spec("floor_ceiling", "orca", 0, 0.5), condition(1)),
-                  InputError);
+  CHECK_THROWS_AS(
+      generate_manifold_scenario(manifold_spec("floor_ceiling", CrowdModel::cost, 10, 0.5), condition(1)),
+      InputError);
+  CHECK_THROWS_AS(
+      generate_manifold_scenario(manifold_spec("no_such_scene", CrowdModel::orca, 10, 0.5), condition(1)),
+      InputError);
+  CHECK_THROWS_AS(
+      generate_manifold_scenario(manifold_spec("floor_ceiling", CrowdModel::orca, 0, 0.5), condition(1)),
+      InputError);
 }

@@ -1,0 +1,91 @@
+#pragma once
+// The recipes of a crowd group's four stages (crowd_group.hpp), issue 30: plain structs holding exactly
+// the spec values and parameters each stage's computation reads, built from the typed spec in one place
+// (crowd_group_recipes()). A stage's input hash is its recipe's canonical bytes (stage.hpp), so a value
+// outside its recipe (the protocol's wording, the render settings, the YAML's comments) never redoes it,
+// and a value inside it always does. Adding a value a stage reads is one line: a field here, filled in
+// crowd_group_recipes().
+//   recipe           stage        read by
+//   CrowdRecipe      crowd        generate_scenario / generate_manifold_scenario (via recipe_spec())
+//   AnimationRecipe  animation    animate_scenario (animate_scenario.hpp)
+//   CorrectionRecipe correction   correct_crowd (framework/correction)
+//   MetricsRecipe    metrics      measure_crowd, measure_correction_quality (framework/metrics)
+// Files a stage reads are its inputs, hashed by content (Stage::inputs): the manifold mesh file of the
+// crowd stage, the motion clips of the animation stage, the crowd files of the later stages.
+// Units: metres, seconds, frames per second, as in experiment_spec.hpp.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "framework/spec/experiment_spec.hpp"
+
+namespace crowdlab {
+
+/// The crowd stage: where the characters are and how they move (trajectories.csv).
+struct CrowdRecipe {
+  static constexpr std::string_view kStage = "crowd";
+  static constexpr std::string_view kCodeVersion = "1";
+  ScenarioSpec scenario;
+  CrowdSpec crowd;
+  double duration_s = 10.0;
+  double fps = 30.0;
+  /// The group's levels; the presentation factors (viewpoint, method) stay at their defaults, since every
+  /// viewpoint and method of a group shows this crowd (crowd_key.hpp).
+  ConditionParams params;
+  std::uint64_t seed = 0;  ///< the group's seed (crowd_condition())
+};
+
+/// The animation stage: full-body motion on the crowd's trajectories (baseline.glb).
+struct AnimationRecipe {
+  static constexpr std::string_view kStage = "animation";
+  static constexpr std::string_view kCodeVersion = "1";
+  AnimationSpec animation;  ///< body_model_path only with MPFB2 bodies (empty for procedural ones)
+  ScenarioKind scenario = ScenarioKind::stationary;  ///< stationary: dancing; otherwise walking
+  std::optional<int> shoulder_count;                 ///< `shoulder` factor
+  double trigger_probability = 0.0;                  ///< `trigger` factor / 100
+  std::uint64_t seed = 0;                            ///< the group's seed
+  std::string key;                                   ///< crowd key, recorded in the crowd file
+};
+
+/// The correction stage: the collision corrector on baseline.glb (ours.glb).
+struct CorrectionRecipe {
+  static constexpr std::string_view kStage = "correction";
+  static constexpr std::string_view kCodeVersion = "1";
+  CorrectionSpec correction;
+};
+
+/// The metrics stage of one method's crowd file (<method>.metrics.json).
+struct MetricsRecipe {
+  static constexpr std::string_view kStage = "metrics";
+  static constexpr std::string_view kCodeVersion = "1";
+  CrowdMethod method = CrowdMethod::baseline;  ///< the animation measured (against the baseline)
+  bool surface_ground = false;  ///< manifold crowds: the feet's ground is the surface, not y = 0
+};
+
+/// Every recipe of one crowd group, and the files its stages read besides the crowd files.
+struct CrowdGroupRecipes {
+  CrowdRecipe crowd;
+  AnimationRecipe animation;
+  CorrectionRecipe correction;
+  std::vector<std::filesystem::path> crowd_files;      ///< the manifold mesh file, when it is one
+  std::vector<std::filesystem::path> animation_files;  ///< walk and dance clips
+  std::string source_path;  ///< the spec file, named in error messages only (not hashed)
+};
+
+/// The recipes of the group whose first condition is `first` (crowd_condition() gives its seed).
+CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Condition& first);
+
+/// The metrics recipe of `method`'s crowd file in a group.
+MetricsRecipe metrics_recipe(const CrowdRecipe& crowd, CrowdMethod method);
+
+/// What the scenario generators see: a spec holding only the recipe's values (every other section at
+/// its defaults), so they cannot read anything the crowd stage's hash does not cover. `source_path`
+/// names the spec in their error messages.
+ExperimentSpec recipe_spec(const CrowdRecipe& recipe, const std::string& source_path);
+/// The group's condition as the generators see it: the recipe's levels and seed.
+Condition recipe_condition(const CrowdRecipe& recipe);
+
+}  // namespace crowdlab

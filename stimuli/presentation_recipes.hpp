@@ -1,0 +1,53 @@
+#pragma once
+// The recipes of the stages that present a condition (stimuli/presentation_stages.hpp), issue 30: plain
+// structs holding exactly what render_clip and write_contact_sheet (render_clip.hpp) read, built from the
+// spec's render section in one place (presentation_recipes()). Their canonical bytes are the stages'
+// input hashes (framework/pipeline/stage.hpp), so a change of the look (background, fog, overlap mode,
+// MSAA, characters, viewpoint overrides, image size) redoes both clips and contact sheets, a change of
+// the encoding (crf) only the clips, and a change outside (the protocol's text) neither.
+//   StimulusLook        what an image of the crowd looks like (both stages)
+//   RenderRecipe        render: clip.mp4 and clip.json of one condition (the look, viewpoint, encoding)
+//   ContactSheetRecipe  contact_sheet: <method>.contact_sheet.png of a crowd group (the look; V1-V4 at
+//                       the middle frame)
+// The character files' contents are the stages' input files, not recipe values.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "framework/spec/experiment_spec.hpp"
+#include "stimuli/render_clip.hpp"
+
+namespace crowdlab::stimuli {
+
+struct StimulusLook {
+  int width = 1920, height = 1080;  ///< pixels
+  SceneOptions scene;               ///< overlap mode, background, fog, MSAA, shadow map size
+  ViewpointOverrides viewpoint_overrides;
+  std::vector<std::string> character_files;  ///< skinned glTF characters (resolved paths)
+};
+
+struct RenderRecipe {
+  static constexpr std::string_view kStage = "render";
+  /// Bump when the framing rule (viewpoint.hpp, crowd_extent.hpp) or the clip's making changes.
+  static constexpr std::string_view kCodeVersion = "shared-extent/1";
+  StimulusLook look;
+  std::string viewpoint = "V1";  ///< catalogue name (framework/core/viewpoint_catalogue.hpp)
+  int crf = 18;
+  std::string x264_preset = RenderOptions{}.x264_preset;
+  bool frames_png = false;  ///< also write the frames as PNG (render.frames_png)
+};
+
+struct ContactSheetRecipe {
+  static constexpr std::string_view kStage = "contact_sheet";
+  static constexpr std::string_view kCodeVersion = "shared-extent/1";
+  StimulusLook look;
+};
+
+/// The look of the spec's stimuli. Throws InputError for a malformed render.background.
+StimulusLook stimulus_look(const RenderSpec& render);
+/// The render recipe of a condition shown from `viewpoint`.
+RenderRecipe render_recipe(const ExperimentSpec& spec, const std::string& viewpoint);
+/// The options render_clip and write_contact_sheet take for `look` (the encoding at its defaults).
+RenderOptions render_options(const StimulusLook& look);
+
+}  // namespace crowdlab::stimuli

@@ -1,0 +1,120 @@
+#include "stimuli/presentation_stages.hpp"
+
+#include <memory>
+#include <optional>
+
+#include "framework/core/write_file.hpp"
+#include "stimuli/clip_sidecar.hpp"
+#include "stimuli/crowd_extent.hpp"
+#include "stimuli/presentation_recipes.hpp"
+#include "stimuli/renderer.hpp"
+
+namespace crowdlab::stimuli {
+namespace fs = std::filesystem;
+
+namespace {
+
+/// What the stages of one run share: the renderer, and the framing extent of the current crowd group.
+class PresentationContext {
+ public:
+  Renderer& renderer() {
+    if (!renderer_) renderer_ = std::make_unique<Renderer>();
+    return *renderer_;
+  }
+
+  /// What every clip of the group is framed by: the crowd stage's trajectories (3D surface frames for
+  /// manifold crowds) and the body heights of the animation stage, which the correction stage keeps.
+  const CrowdExtent& extent(CrowdGroup& g) {
+    if (extent_ && extent_key_ == g.dir()) return *extent_;
+    const std::vector<double> heights = body_heights_m(g.animation(CrowdMethod::baseline));
+    const ScenarioResult& s = g.scenario();
+    const SurfaceTrajectories& surface = g.surface();
+    extent_ = crowd_extent(
+        surface.empty() ? character_tracks(s.trajectories, heights) : character_tracks(surface, heights),
+        s.trajectories.fps);
+    extent_key_ = g.dir();
+    return *extent_;
+  }
+
+ private:
+  std::unique_ptr<Renderer> renderer_;
+  fs::path extent_key_;
+  std::optional<CrowdExtent> extent_;
+};
+
+/// The files a presentation stage of `method`'s crowd reads: the animation shown, what frames it (the
+/// baseline's body heights and the crowd's trajectories) and the character files.
+std::vector<fs::path> presentation_inputs(CrowdGroup& g, CrowdMethod method, const StimulusLook& look) {
+  std::vector<fs::path> inputs{g.animation_path(method), g.animation_path(CrowdMethod::baseline)};
+  for (const fs::path& p : g.crowd_paths()) inputs.push_back(p);
+  for (const std::string& f : look.character_files) inputs.emplace_back(f);
+  return inputs;
+}
+
+Stage render_stage(const std::shared_ptr<PresentationContext>& ctx, const RenderRecipe& recipe, CrowdGroup& g,
+                   CrowdMethod method, const fs::path& condition_dir) {
+  const CrowdAnimation& crowd = g.animation(method);
+  auto view = std::make_shared<std::optional<Viewpoint>>();
+  RenderOptions ro = render_options(recipe.look);
+  ro.crf = recipe.crf;
+  ro.x264_preset = recipe.x264_preset;
+  // render.frames_png: the rendered frames themselves, before H.264 (tests hash their pixels).
+  if (recipe.frames_png) ro.frames_png_dir = (condition_dir / "frames").string();
+  Stage s = stage_for(recipe);
+  s.inputs = presentation_inputs(g, method, recipe.look);
+  s.compute = [ctx, &g, view, recipe] {
+    const StimulusLook& l = recipe.look;
+    view->emplace(recipe.viewpoint, ctx->extent(g), l.width, l.height, l.viewpoint_overrides);
+  };
+  const fs::path clip = condition_dir / "clip.mp4";
+  s.outputs.push_back({clip, [ctx, &crowd, view, ro](const fs::path& tmp) {
+                         render_clip(ctx->renderer(), crowd, ro, **view, tmp.string());
+                       }});
+  s.outputs.push_back({clip_sidecar_path(clip), [&crowd, view](const fs::path& tmp) {
+                         write_text_file(tmp,
+                                         clip_sidecar(**view, crowd.frame_count(), crowd).dump(2) + "\n");
+                       }});
+  return s;
+}
+
+Stage contact_sheet_stage(const std::shared_ptr<PresentationContext>& ctx, const ContactSheetRecipe& recipe,
+                          CrowdGroup& g, CrowdMethod method) {
+  const CrowdAnimation& crowd = g.animation(method);
+  Stage s = stage_for(recipe);
+  s.inputs = presentation_inputs(g, method, recipe.look);
+  const RenderOptions ro = render_options(recipe.look);
+  s.outputs.push_back({g.dir() / (std::string(kind_name(method)) + ".contact_sheet.png"),
+                       [ctx, &g, &crowd, ro](const fs::path& tmp) {
+                         write_contact_sheet(ctx->renderer(), crowd, ro, crowd.frame_count() / 2,
+                                             tmp.string(), &ctx->extent(g));
+                       }});
+  return s;
+}
+
+}  // namespace
+
+std::vector<PresentationStage> presentation_stages(const ExperimentSpec& spec) {
+  auto ctx = std::make_shared<PresentationContext>();
+  std::vector<PresentationStage> stages;
+  const RenderRecipe clip = render_recipe(spec, ConditionParams{}.viewpoint);
+  stages.push_back(
+      {std::string(RenderRecipe::kStage),
+       [ctx, clip](CrowdGroup& g, const Condition& c, const fs::path& dir) -> std::optional<Stage> {
+         RenderRecipe recipe = clip;
+         recipe.viewpoint = c.params.viewpoint;
+         return render_stage(ctx, recipe, g, c.params.method, dir);
+       },
+       true});
+  ContactSheetRecipe sheet{stimulus_look(spec.render)};
+  const bool sheets = spec.outputs.contact_sheet;
+  stages.push_back(
+      {std::string(ContactSheetRecipe::kStage),
+       [ctx, sheet, sheets](CrowdGroup& g, const Condition& c, const fs::path&) -> std::optional<Stage> {
+         if (!sheets) return std::nullopt;
+         return contact_sheet_stage(ctx, sheet, g, c.params.method);
+       },
+       false});
+  return stages;
+}
+
+}  // namespace crowdlab::stimuli

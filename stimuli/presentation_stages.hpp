@@ -1,0 +1,23 @@
+#pragma once
+// The stimuli module's stages of `crowdlab run`, contributed as data to the framework's run pipeline
+// (framework/pipeline/run_experiment.hpp: PresentationStage), in the order they run per condition:
+//   stage          output                                              recipe; inputs
+//   render         DIR/conditions/<id>/clip.mp4 and its sidecar       RenderRecipe; the animation shown,
+//                  clip.json (the condition's stimulus)                baseline.glb and trajectories.csv
+//                                                                      (framing), the character files
+//   contact_sheet  DIR/crowds/<key>/<method>.contact_sheet.png        ContactSheetRecipe; the same
+//                  (only with outputs.contact_sheet)
+// Both methods of a condition are framed by the crowd group's shared extent (the crowd stage's
+// trajectories and the animation stage's body heights), so `baseline` and `ours` get the same camera.
+// One Renderer (an EGL context and its mesh cache) serves every stage of the run.
+#include <vector>
+
+#include "framework/pipeline/run_experiment.hpp"
+
+namespace crowdlab::stimuli {
+
+/// The render and contact-sheet stages of `spec`'s run. Throws InputError for a malformed
+/// render.background.
+std::vector<PresentationStage> presentation_stages(const ExperimentSpec& spec);
+
+}  // namespace crowdlab::stimuli

@@ -1,0 +1,147 @@
+// The stage recipes (framework/pipeline/crowd_recipes.hpp, stimuli/presentation_recipes.hpp) hold
+// exactly what each stage reads (issue 30): every spec value is edited in turn and the recipes whose
+// canonical bytes change, i.e. the stages whose input hash changes, must be exactly the stages that
+// read it. Values no stage reads (the protocol, the outputs' switches, the name) change no recipe.
+#include <catch2/catch.hpp>
+#include <functional>
+#include <map>
+#include <set>
+
+#include "framework/core/canonical_bytes.hpp"
+#include "framework/pipeline/crowd_recipes.hpp"
+#include "framework/spec/load_experiment_spec.hpp"
+#include "stimuli/presentation_recipes.hpp"
+#include "tests/support/test_paths.hpp"
+
+using namespace crowdlab;
+using namespace crowdlab::test;
+
+namespace {
+
+/// The paths of a stage's input files as text (they are hashed by content when the stage runs; here,
+/// which files a stage reads is what counts).
+std::string files(const std::vector<std::filesystem::path>& paths) {
+  std::vector<std::string> text;
+  for (const auto& p : paths) text.push_back(p.string());
+  return canonical_bytes(text);
+}
+
+/// Each stage's recipe bytes for the spec's first condition.
+std::map<std::string, std::string> recipe_bytes(const ExperimentSpec& spec) {
+  const CrowdGroupRecipes r = crowd_group_recipes(spec, enumerate_conditions(spec).front());
+  return {
+      {"crowd", canonical_bytes(r.crowd) + files(r.crowd_files)},
+      {"animation", canonical_bytes(r.animation) + files(r.animation_files)},
+      {"correction", canonical_bytes(r.correction)},
+      {"metrics", canonical_bytes(metrics_recipe(r.crowd, CrowdMethod::corrected))},
+      {"render", canonical_bytes(stimuli::render_recipe(spec, "V4"))},
+      {"contact_sheet", canonical_bytes(stimuli::ContactSheetRecipe{stimuli::stimulus_look(spec.render)})}};
+}
+
+struct Edit {
+  const char* what;
+  std::function<void(ExperimentSpec&)> apply;
+  std::set<std::string> stages;  ///< whose recipes must change
+};
+
+}  // namespace
+
+TEST_CASE("stage recipes: every spec value changes exactly the recipes of the stages that read it") {
+  const ExperimentSpec base = load_experiment_spec(tiny_spec());
+  const std::set<std::string> none, crowd{"crowd"}, animation{"animation"}, look{"render", "contact_sheet"};
+  const std::vector<Edit> edits{
+      {"scenario.width_m", [](ExperimentSpec& s) { s.scenario.width_m += 1; }, crowd},
+      {"scenario.depth_m", [](ExperimentSpec& s) { s.scenario.depth_m += 1; }, crowd},
+      {"scenario.stage_direction_deg", [](ExperimentSpec& s) { s.scenario.stage_direction_deg = 90; }, crowd},
+      {"scenario.walk_speed_mps", [](ExperimentSpec& s) { s.scenario.walk_speed_mps = 1.1; }, crowd},
+      {"scenario.initial_spacing_m", [](ExperimentSpec& s) { s.scenario.initial_spacing_m = 0.8; }, crowd},
+      {"scenario.passing_side", [](ExperimentSpec& s) { s.scenario.passing_side = PassingSide::right; },
+       crowd},
+      {"scenario.agents", [](ExperimentSpec& s) { s.scenario.agents = 12; }, crowd},
+      {"crowd.model", [](ExperimentSpec& s) { s.crowd.model = CrowdModel::social; }, crowd},
+      {"crowd.agent_radius_m", [](ExperimentSpec& s) { s.crowd.agent_radius_m = 0.2; }, crowd},
+      {"crowd.neighbor_distance_m", [](ExperimentSpec& s) { s.crowd.neighbor_distance_m = 3; }, crowd},
+      {"crowd.max_neighbors", [](ExperimentSpec& s) { s.crowd.max_neighbors = 5; }, crowd},
+      {"crowd.time_horizon_s", [](ExperimentSpec& s) { s.crowd.time_horizon_s = 3; }, crowd},
+      {"crowd.obstacle_time_horizon_s", [](ExperimentSpec& s) { s.crowd.obstacle_time_horizon_s = 3; },
+       crowd},
+      {"crowd.max_speed_mps", [](ExperimentSpec& s) { s.crowd.max_speed_mps = 2; }, crowd},
+      {"crowd.dt_s", [](ExperimentSpec& s) { s.crowd.dt_s = 0.05; }, crowd},
+      {"crowd.overlap_free", [](ExperimentSpec& s) { s.crowd.overlap_free = true; }, crowd},
+      {"crowd.cost_weights", [](ExperimentSpec& s) { s.crowd.cost_weights["goal"] = 2; }, crowd},
+      {"duration_s", [](ExperimentSpec& s) { s.duration_s = 2; }, crowd},
+      {"fps", [](ExperimentSpec& s) { s.fps = 30; }, crowd},
+      {"seed", [](ExperimentSpec& s) { s.seed = 8; }, {"crowd", "animation"}},
+      {"animation.body_model", [](ExperimentSpec& s) { s.animation.body_model = BodyModel::mpfb2; },
+       animation},
+      {"animation.female_fraction", [](ExperimentSpec& s) { s.animation.female_fraction = 0.3; }, animation},
+      {"animation.ttca_threshold_s", [](ExperimentSpec& s) { s.animation.ttca_threshold_s = 1; }, animation},
+      {"animation.dtca_threshold_m", [](ExperimentSpec& s) { s.animation.dtca_threshold_m = 1; }, animation},
+      {"animation.motion", [](ExperimentSpec& s) { s.animation.motion = MotionSource::clips; }, animation},
+      {"animation.dance_clips", [](ExperimentSpec& s) { s.animation.dance_clips = {"d.bvh"}; }, animation},
+      {"animation.walk_clips", [](ExperimentSpec& s) { s.animation.walk_clips = {"w.bvh"}; }, animation},
+      {"animation.walk_clip_speeds_mps", [](ExperimentSpec& s) { s.animation.walk_clip_speeds_mps = {1}; },
+       animation},
+      {"correction.stiffness", [](ExperimentSpec& s) { s.correction.stiffness = 10; }, {"correction"}},
+      {"correction.damping", [](ExperimentSpec& s) { s.correction.damping = 0.01; }, {"correction"}},
+      {"correction.collision_stiffness",
+       [](ExperimentSpec& s) { s.correction.collision_stiffness = 5; },
+       {"correction"}},
+      {"render.width", [](ExperimentSpec& s) { s.render.width = 320; }, look},
+      {"render.height", [](ExperimentSpec& s) { s.render.height = 192; }, look},
+      {"render.msaa", [](ExperimentSpec& s) { s.render.msaa = 4; }, look},
+      {"render.overlap", [](ExperimentSpec& s) { s.render.overlap = true; }, look},
+      {"render.background", [](ExperimentSpec& s) { s.render.background = "#000000"; }, look},
+      {"render.fog", [](ExperimentSpec& s) { s.render.fog = true; }, look},
+      {"render.viewpoints",
+       [](ExperimentSpec& s) { s.render.viewpoint_overrides["V4"] = {0, 9, 1, 0, 0, 0, 40}; }, look},
+      {"render.characters", [](ExperimentSpec& s) { s.render.characters = {"c.glb"}; }, look},
+      {"render.crf", [](ExperimentSpec& s) { s.render.crf = 23; }, {"render"}},
+      {"render.frames_png", [](ExperimentSpec& s) { s.render.frames_png = true; }, {"render"}},
+      {"protocol.instructions", [](ExperimentSpec& s) { s.protocol.instructions = "Watch."; }, none},
+      {"protocol.questions", [](ExperimentSpec& s) { s.protocol.questions.at(0).text = "Other"; }, none},
+      {"protocol.type", [](ExperimentSpec& s) { s.protocol.type = ProtocolType::rating; }, none},
+      {"protocol.break_every", [](ExperimentSpec& s) { s.protocol.break_every = 3; }, none},
+      {"outputs.contact_sheet", [](ExperimentSpec& s) { s.outputs.contact_sheet = true; }, none},
+      {"outputs.metrics", [](ExperimentSpec& s) { s.outputs.metrics = false; }, none},
+      {"name", [](ExperimentSpec& s) { s.name = "other"; }, none},
+      {"description", [](ExperimentSpec& s) { s.description = "other"; }, none},
+      {"the YAML text", [](ExperimentSpec& s) { s.source_hash = "0000"; }, none},
+  };
+  const auto before = recipe_bytes(base);
+  for (const Edit& e : edits) {
+    INFO(e.what);
+    ExperimentSpec spec = base;
+    e.apply(spec);
+    std::set<std::string> changed;
+    for (const auto& [stage, bytes] : recipe_bytes(spec))
+      if (bytes != before.at(stage)) changed.insert(stage);
+    CHECK(changed == e.stages);
+  }
+}
+
+TEST_CASE("stage recipes: the MPFB2 folder is part of the animation recipe only with MPFB2 bodies") {
+  ExperimentSpec spec = load_experiment_spec(tiny_spec());
+  const Condition first = enumerate_conditions(spec).front();
+  const std::string procedural = canonical_bytes(crowd_group_recipes(spec, first).animation);
+  spec.animation.body_model_path = "/elsewhere";
+  CHECK(canonical_bytes(crowd_group_recipes(spec, first).animation) == procedural);
+  spec.animation.body_model = BodyModel::mpfb2;
+  const std::string mpfb2 = canonical_bytes(crowd_group_recipes(spec, first).animation);
+  spec.animation.body_model_path = "/other";
+  CHECK(canonical_bytes(crowd_group_recipes(spec, first).animation) != mpfb2);
+}
+
+TEST_CASE("stage recipes: every viewpoint and method of a crowd group share its crowd recipes") {
+  const ExperimentSpec spec = load_experiment_spec(tiny_spec());
+  std::map<std::string, std::set<std::string>> by_key;  // crowd key -> crowd + animation recipe bytes
+  for (const Condition& c : enumerate_conditions(spec)) {
+    const CrowdGroupRecipes r = crowd_group_recipes(spec, c);
+    by_key[r.animation.key].insert(canonical_bytes(r.crowd) + canonical_bytes(r.animation));
+  }
+  CHECK(by_key.size() == 3);
+  for (const auto& [key, recipes] : by_key) {
+    INFO(key);
+    CHECK(recipes.size() == 1);
+  }
+}
