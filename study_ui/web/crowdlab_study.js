@@ -287,15 +287,6 @@
   const validId = (timeline, id) => new RegExp(timeline.participant_id.pattern).test(id);
   const idMessage = (timeline, id) => `The participant id '${id}' ${timeline.participant_id.rule}.`;
 
-  /// Likert labels under the circles: the end labels under the first and last point.
-  function scaleLabels(q) {
-    if (q.point_labels && q.point_labels.length === q.points) return q.point_labels;
-    const labels = new Array(q.points).fill("");
-    labels[0] = q.low_label || "";
-    labels[q.points - 1] = q.high_label || labels[q.points - 1];
-    return labels;
-  }
-
   function run(timeline, participant) {
     const study = timeline.study;
     const questions = timeline.questions;
@@ -541,18 +532,27 @@
             scale.append(b);
           }
         } else {
-          const labels = scaleLabels(q);
+          // Every point labelled (labels.points), or, as natively, the end labels under the first and
+          // the last circle, aligned with their outer edges.
+          const perPoint = q.point_labels && q.point_labels.length === q.points;
           for (let v = 1; v <= q.points; v++) {
             const point = element("div", "crowdlab-point");
             const b = element("button", "crowdlab-circle", String(v));
             b.type = "button";
             b.dataset.q = String(i);
             b.dataset.v = String(v);
-            point.append(b, element("div", "crowdlab-point-label", labels[v - 1]));
+            point.append(b);
+            if (perPoint) point.append(element("div", "crowdlab-point-label", q.point_labels[v - 1]));
             scale.append(point);
           }
+          if (!perPoint) {
+            const ends = element("div", "crowdlab-ends");
+            ends.style.width = `calc(${q.points} * var(--crowdlab-step) - (var(--crowdlab-step) - var(--crowdlab-circle)))`;
+            ends.append(element("span", "crowdlab-point-label", q.low_label || ""), element("span", "crowdlab-point-label", q.high_label || ""));
+            cell.append(scale, ends);
+          }
         }
-        cell.append(scale);
+        if (!cell.contains(scale)) cell.append(scale);
         grid.append(cell);
         return cell;
       });

@@ -221,7 +221,14 @@ try {
       fs.writeFileSync(path.join(outDir, "jspsych-1.csv"), await jspsychCsv(page));
       transcripts.push(await page.evaluate(() => window.crowdlab.transcript));
       await page.reload();
-      const first = await page.waitForSelector(".crowdlab-trial", { timeout: 60000 }).catch(() => null);
+      // Resumed: the first trial screen after the reload must be the next unanswered trial. Play the
+      // screens before it (preload, full screen, instructions) without answering any trial.
+      let first = null;
+      for (let g = 0; g < 50 && !first; g++) {
+        await page.waitForSelector(ANY_SCREEN, { timeout: 30000 });
+        first = await page.$(".crowdlab-trial");
+        if (!first) await step(page, answered);
+      }
       resume.first_trial_after_reload = first ? Number(await first.evaluate((el) => el.dataset.trial)) : 0;
     }
   }
