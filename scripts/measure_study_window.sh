@@ -5,14 +5,16 @@
 # answers open, so each trial ends right after its minimum viewing time), then prints the per-trial
 # inter_trial_ms and frames_dropped (median, p95, max), and the process's peak memory.
 #
-# usage: scripts/measure_study_window.sh CROWDLAB SPEC STIMULI OUT [WIDTHxHEIGHT] [PARTICIPANT]
+# usage: [NICE=-10] scripts/measure_study_window.sh CROWDLAB SPEC STIMULI OUT [WIDTHxHEIGHT] [PARTICIPANT]
+#   NICE: the window's scheduling priority (a negative value needs root; it stands for a study machine
+#   that runs nothing else while other users' jobs keep the CPUs busy).
 #   SPEC: a 2AFC or Likert spec (2AFC: the yes/no question answers Y, the rating 5; Likert: 5 5 5 ...);
 #   STIMULI: a folder with manifest.csv; OUT: a fresh response folder.
 set -euo pipefail
 CROWDLAB=$1 SPEC=$2 STIMULI=$3 OUT=$4 SIZE=${5:-1920x1080} PARTICIPANT=${6:-M01}
 source "$(dirname "$0")/../tests/study/xvfb_session.sh"
 start_xvfb "$SIZE"
-/usr/bin/time -v -o "$OUT.time" "$CROWDLAB" -q study "$SPEC" --participant "$PARTICIPANT" --stimuli "$STIMULI" \
+/usr/bin/time -v -o "$OUT.time" nice -n "${NICE:-0}" "$CROWDLAB" -q study "$SPEC" --participant "$PARTICIPANT" --stimuli "$STIMULI" \
   --out "$OUT" >"$OUT.log" 2>&1 &
 APP_PID=$!
 sleep 2

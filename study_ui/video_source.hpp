@@ -1,11 +1,13 @@
 #pragma once
 // VideoSource: the frames of one stimulus clip for the study window, streamed. A decoder thread opens
-// the clip (cv::VideoCapture, FFmpeg) and decodes ahead a few frames, scaled to their on-screen size,
-// into a bounded queue; the window takes them in order. Memory is bounded by `ahead` frames (plus
-// the one on screen), whatever the clip's length: a 210-frame 1920x1200 clip no longer has to be
-// decoded whole (about 776 MB at 1404x878) before it starts (issue 29, finding 12). Constructing a
-// VideoSource returns at once, so the window can prefetch the next trial's clip while the participant
-// answers: its first frames are then ready at the next onset.
+// the clip (cv::VideoCapture, FFmpeg) and decodes ahead into a small bounded queue of raw frames; a
+// scaler thread scales them to their on-screen size into a bounded queue of `ahead` frames; the window
+// takes them in order. Two threads, because decoding and scaling a 1920x1200 frame each take about as
+// long as a 60 fps frame period on the study machine (docs/study.md): pipelined, they keep up. Memory is
+// bounded by `ahead` frames (plus the one on screen), whatever the clip's length: a 210-frame 1920x1200 clip
+// no longer has to be decoded whole (about 776 MB at 1404x878) before it starts (issue 29, finding 12).
+// Constructing a VideoSource returns at once, so the window can prefetch the next trial's clip while the
+// participant answers: its first frames are then ready at the next onset.
 //
 // Looping: frame indices count on across loops (frame k shows the clip's frame k mod frame_count());
 // at the end of the file the thread opens it again and keeps decoding ahead, so the wrap costs no
@@ -21,6 +23,9 @@
 #include <utility>
 
 namespace crowdlab::study {
+
+/// The interpolation that scales a frame of size `from` to `to` (cv::INTER_*).
+int scale_interpolation(cv::Size from, cv::Size to);
 
 class VideoSource {
  public:
@@ -44,6 +49,7 @@ class VideoSource {
 
  private:
   void decode();
+  void scale();
   void wait_open(std::unique_lock<std::mutex>& lock);
   std::string path_;
   cv::Rect area_;
@@ -57,10 +63,15 @@ class VideoSource {
   std::string error_;
   double fps_ = 30.0;
   long count_ = 0;
+  cv::Size display_;
+  long wanted_ = 0;                             // the highest index the window asked for
+  std::deque<std::pair<long, cv::Mat>> raw_;    // decoded, not yet scaled (at most kRawAhead)
+  bool raw_ended_ = false;                      // the decoder is done (end of a play-once clip, or failed)
   std::deque<std::pair<long, cv::Mat>> queue_;  // (presentation index, frame), ascending
   long current_index_ = -1;
   cv::Mat current_;
-  std::thread thread_;  // last: started once every member above exists
+  std::thread decoder_;  // last: started once every member above exists
+  std::thread scaler_;
 };
 
 }  // namespace crowdlab::study

@@ -455,6 +455,8 @@
           const firstUnanswered = (kind) => questions.findIndex((q, i) => q.kind === kind && answers[i] === null);
           const stop = listen(
             (e) => {
+              // A focused button would also turn Enter or Space into a click: the key alone counts.
+              if (e.key === "Enter" || e.key === " ") e.preventDefault();
               if (!unlocked) return;  // before onset + min_view_ms: dropped, as natively
               const key = e.key;
               if (/^[0-9]$/.test(key)) {
@@ -475,19 +477,20 @@
               else answer(Number(target.dataset.q), Number(target.dataset.v));
             },
           );
-          /// Number keys (scale_keys.hpp): 1..9 answer at once; on a 10- or 11-point scale a 1 followed
-          /// by 0 or 1 turns into 10 or 11, and 0 followed by a digit d answers d.
+          /// Number keys, exactly as natively (scale_keys.cpp): 1..9 answer the first unanswered scale
+          /// question at once; on a 10- or 11-point scale a 1 answers 1 and a following 0 or 1 turns it
+          /// into 10 or 11, and 0 followed by d answers d.
           function enterDigit(d) {
-            const q = digit !== null ? digit.q : firstUnanswered("scale");
+            if (digit !== null) {
+              const open = digit;
+              digit = null;
+              const value = open.first * 10 + d;
+              if (value >= (open.first === 1 ? 10 : 1) && value <= questions[open.q].points) return answer(open.q, value);
+            }
+            const q = firstUnanswered("scale");
             if (q < 0) return;
             const points = questions[q].points;
-            if (digit !== null) {
-              const value = digit.first * 10 + d;
-              digit = null;
-              if (value >= 1 && value <= points) answer(q, value);
-              return;
-            }
-            if (points >= 10 && (d === 0 || d === 1)) {
+            if (points >= 10 && d <= 1) {
               digit = { q, first: d };
               if (d === 1) answer(q, 1);
               return;

@@ -105,7 +105,8 @@ TEST_CASE("video source: streamed frames equal the clip's frames, looping, memor
   cv::VideoCapture cap(clip, cv::CAP_FFMPEG);
   for (cv::Mat raw; cap.read(raw);) {
     cv::Mat scaled;
-    cv::resize(raw, scaled, fit_rect(raw.size(), {0, 0, 320, 180}).size(), 0, 0, cv::INTER_AREA);
+    const cv::Size size = fit_rect(raw.size(), {0, 0, 320, 180}).size();
+    cv::resize(raw, scaled, size, 0, 0, scale_interpolation(raw.size(), size));
     expected.push_back(scaled);
   }
   REQUIRE(expected.size() == 12);

@@ -725,6 +725,8 @@ TEST_CASE(
                                       .get<std::vector<std::pair<std::string, std::uint32_t>>>())
     CHECK(hash == fnv1a32(text));
 
+  // The end page says what to do with the download (finding 14).
+  CHECK(slurp(dir / "browser" / "end.json").find("send it to the experimenter") != std::string::npos);
   // After the reload the page resumed by the plan's rule: the instructions again, no consent.
   const auto transcript = nlohmann::json::parse(slurp(dir / "browser" / "transcript.json"));
   REQUIRE(transcript.size() == 2);
