@@ -281,6 +281,11 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
         ms_since(onset) >= req.min_view_ms) {
       state.questions_enabled = true, static_dirty = panel_dirty = true;
       digits = {};
+      // The clip has been seen: the next one opens and decodes its first frames on its own threads
+      // while the participant answers (not earlier, so it takes no CPU from this clip's playback).
+      if (!req.next_video_path.empty())
+        m.prefetched = std::make_unique<VideoSource>(req.next_video_path, layout.video_area, req.fps,
+                                                     req.loop_video, m.options.decode_ahead);
     }
     const cv::Mat* frame = nullptr;
     const bool new_frame = due != shown;
@@ -317,10 +322,6 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
         out.timing.onset_utc = iso8601_utc_now();
         out.timing.inter_trial_ms =
             std::chrono::duration<double, std::milli>(onset - inter_trial_start).count();
-        // The next clip opens and decodes its first frames on its own thread while this one plays.
-        if (!req.next_video_path.empty())
-          m.prefetched = std::make_unique<VideoSource>(req.next_video_path, layout.video_area, req.fps,
-                                                       req.loop_video, m.options.decode_ahead);
       }
       if (new_frame) handover_ms.push_back(ms_since(onset));
       if (snap_onset) m.snapshot(canvas, tag + "_onset"), snap_onset = false;
