@@ -143,7 +143,6 @@ async function playTrial(page, root, answered) {
   await page.waitForFunction(() => document.querySelector("#crowdlab-video").currentTime > 0.02, { timeout: 20000 });
   if (options.early_input && early.after_onset === null) {
     const locked = await root.evaluate((el) => el.classList.contains("crowdlab-locked"));
-    await screenshot(page, "trial-locked");
     await page.keyboard.press("2");
     await page.keyboard.press("y");
     await page.click('[data-q="0"][data-v="1"]').catch(() => {});
@@ -154,6 +153,7 @@ async function playTrial(page, root, answered) {
       selected: await selectedCount(page),
       still_here: await root.evaluate((el) => el.isConnected),
     };
+    await screenshot(page, "trial-locked");
     if (early.during_inter_trial) early.during_inter_trial.selected = early.after_onset.selected;
   }
   await page.waitForFunction((el) => !el.classList.contains("crowdlab-locked"), { timeout: 30000 }, root);
