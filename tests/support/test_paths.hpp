@@ -19,9 +19,6 @@ std::filesystem::path crowdlab_exe();
 inline std::string tiny_spec() {
   return (source_dir() / "tests/data/pipeline/tiny.yaml").string();
 }
-#ifndef CROWDLAB_SANITIZED  // test_paths.cpp (compiled without the test executables' definitions)
-#define CROWDLAB_SANITIZED 0
-#endif
 inline constexpr bool kSanitized = CROWDLAB_SANITIZED;
 
 /// `../shared/data/<sub>` beside the checkout, or empty when absent (a message is printed).
