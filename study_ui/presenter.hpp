@@ -9,11 +9,10 @@
 
 #include "study_ui/build_trial_list.hpp"
 #include "study_ui/frame_interval_stats.hpp"
+#include "study_ui/session_plan.hpp"
 #include "study_ui/study_question.hpp"
 
 namespace crowdlab::study {
-
-enum class ScreenKind { instructions, consent, practice_intro, block_intro, break_screen, finished };
 
 /// How the participant left a text screen: on to the next step, quit (Esc confirmed, window closed),
 /// or, on the consent screen only, declined to take part.
@@ -31,14 +30,15 @@ struct TrialRequest {
   const Trial* trial = nullptr;
   std::string video_path;  ///< absolute path of the stimulus file
   const std::vector<StudyQuestion>* questions = nullptr;
-  int trial_count = 0;  ///< total trials in the session, practice included
-  int number = 0;       ///< 1-based position among the trials of its kind (test or practice), for the header
-  int count = 0;        ///< trials of its kind: "Trial 3 of 40" counts test trials only
-  bool loop_video = true;  ///< loop until answered; otherwise play once, then ask
-  double fps = 30.0;       ///< playback rate when the file does not say
+  int trial_count = 0;       ///< total trials in the session, practice included
+  std::string header;        ///< from the plan: "Trial 3 of 40" (test trials only) or "Practice trial 1 of 2"
+  double min_view_ms = 0.0;  ///< from the plan: answers before onset + this are not accepted
+  std::string next_video_path;  ///< the clip of the trial after this one ("" = none): prefetched
+  bool loop_video = true;       ///< loop until answered; otherwise play once, then ask
+  double fps = 30.0;            ///< playback rate when the file does not say
   InterTrialScreen inter_trial_screen = InterTrialScreen::fixation;  ///< shown while the clip loads
-  double inter_trial_min_ms = 500.0;  ///< the inter-trial screen's minimum duration
-  double video_share = 0.0;           ///< video's share of the screen height; 0 = automatic
+  double inter_trial_min_ms = 500.0;            ///< the inter-trial screen's minimum duration
+  double video_share = 0.0;                     ///< video's share of the screen height; 0 = automatic
 };
 
 /// What a presenter measured of one trial's presentation (headless presenters measure nothing).
@@ -66,14 +66,11 @@ class Presenter {
  public:
   virtual ~Presenter() = default;
   virtual ScreenInfo screen() const = 0;
-  /// Shows a text screen and waits for the participant.
-  virtual ScreenReply show_screen(ScreenKind kind, const std::string& title, const std::string& text) = 0;
+  /// Shows a text screen of the plan (title, body, hint line) and waits for the participant.
+  virtual ScreenReply show_screen(const PlanScreen& screen) = 0;
   /// Plays the stimulus and collects one answer per question.
   virtual TrialOutcome run_trial(const TrialRequest& request) = 0;
 };
-
-/// The trial screen's header: "Trial k of N" (test trials only) or "Practice trial k of P".
-std::string trial_header(const TrialRequest& request);
 
 /// Current UTC time as ISO 8601 with milliseconds, e.g. 2026-11-22T02:13:07.123Z.
 std::string iso8601_utc_now();

@@ -17,18 +17,12 @@
 #include "framework/core/sha256.hpp"
 #include "framework/io/untrusted_json.hpp"
 #include "study_ui/response_log.hpp"
-#include "study_ui/session_texts.hpp"
+#include "study_ui/session_plan.hpp"
 #include "study_ui/verify_stimuli.hpp"
 
 namespace crowdlab::study {
 namespace fs = std::filesystem;
 namespace {
-
-std::string ascii_lower(std::string s) {
-  for (char& c : s)
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  return s;
-}
 
 /// A duration in ms to 0.1 ms; negative (not measured) as an empty cell.
 std::string ms_text(double ms) {
@@ -92,21 +86,6 @@ void check_answers(const TrialOutcome& outcome, const std::vector<StudyQuestion>
   }
 }
 
-int count_of_kind(const std::vector<Trial>& trials, bool practice) {
-  return static_cast<int>(
-      std::count_if(trials.begin(), trials.end(), [&](const Trial& t) { return t.practice == practice; }));
-}
-
-/// 1-based position of `trial` among the trials of its kind (test or practice), in session order.
-int position_of_kind(const std::vector<Trial>& trials, const Trial& trial) {
-  int k = 0;
-  for (const Trial& t : trials) {
-    k += t.practice == trial.practice;
-    if (t.index == trial.index) break;
-  }
-  return k;
-}
-
 }  // namespace
 
 std::vector<std::vector<std::string>> response_rows(const std::string& participant, int session,
@@ -145,19 +124,6 @@ std::vector<std::vector<std::string>> response_rows(const std::string& participa
   return rows;
 }
 
-void check_participant_id(const std::string& participant) {
-  auto alnum = [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
-  };
-  // A letter or digit first: an id never reads as a command-line option or a hidden file.
-  bool ok = !participant.empty() && participant.size() <= 64 && alnum(participant.front());
-  for (char c : participant) ok = ok && (alnum(c) || c == '_' || c == '-');
-  if (!ok)
-    throw InputError(SourceLocation{"", 0, 0, "--participant"},
-                     "participant id '" + participant +
-                         "' must be 1-64 characters of A-Z a-z 0-9 _ -, starting with a letter or digit");
-}
-
 void check_session_exists_as_asked(const std::string& out_dir, const std::string& participant, bool resume) {
   const fs::path dir(out_dir);
   const bool used = fs::exists(dir / (participant + ".csv")) || fs::exists(dir / (participant + ".json"));
@@ -169,17 +135,11 @@ void check_session_exists_as_asked(const std::string& out_dir, const std::string
     throw InputError(SourceLocation{"", 0, 0, "--resume"},
                      "participant '" + participant + "' has no session in " + out_dir +
                          " to resume (a typo? drop --resume to start a new session)");
-  if (used || !fs::is_directory(dir)) return;
-  // One id per person whatever the case: P01 and p01 are one file on a case-insensitive disk.
-  const std::string folded = ascii_lower(participant);
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    const fs::path name = entry.path().filename();
-    const std::string ext = name.extension().string();
-    if ((ext == ".csv" || ext == ".json") && ascii_lower(name.stem().string()) == folded)
-      throw InputError(SourceLocation{"", 0, 0, "--participant"},
-                       "participant '" + participant + "' clashes with '" + name.stem().string() + "' in " +
-                           out_dir + ": ids differing only in case are one participant");
-  }
+  if (used) return;
+  if (const auto other = case_clash(out_dir, participant))
+    throw InputError(SourceLocation{"", 0, 0, "--participant"},
+                     "participant '" + participant + "' clashes with '" + *other + "' in " + out_dir +
+                         ": ids differing only in case are one participant");
 }
 
 std::vector<std::string> response_header(const std::vector<std::string>& factor_names) {
@@ -225,7 +185,8 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
                           const SessionOptions& opt, Presenter& presenter) {
   check_session_inputs(spec, manifest, opt);
   const std::vector<StudyQuestion> questions = resolve_questions(spec.protocol);
-  const std::vector<Trial> trials = build_trial_list(spec.protocol, manifest, spec.seed, opt.participant);
+  const SessionPlan plan = session_plan(spec, manifest, opt.participant);
+  const std::vector<Trial>& trials = plan.trials;
   const std::vector<std::string> header = response_header(manifest.factor_names);
 
   SessionResult result;
@@ -310,57 +271,45 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
                  result.trials_already_done + result.trials_done_now);
     return result;
   };
-  auto stopped = [&](ScreenKind kind, const std::string& title, const std::string& text) {
-    return presenter.show_screen(kind, title, text) != ScreenReply::proceed;
-  };
+  // The plan's steps in order, resumed per skip_on_resume (session_plan.hpp): the same rule the web
+  // page applies.
   const ProtocolSpec& p = spec.protocol;
-  if (!p.instructions.empty() && stopped(ScreenKind::instructions, "Instructions", p.instructions))
-    return abort_session();
-  if (result.trials_already_done == 0 && !p.consent.empty()) {
-    const ScreenReply consent = presenter.show_screen(ScreenKind::consent, "Consent", p.consent);
-    if (consent == ScreenReply::abort) return abort_session();
-    // Given or declined, with when and in which run: part of the record a study must keep.
-    const bool given = consent == ScreenReply::proceed;
-    meta["consent"] = {{"given", given}, {"utc", iso8601_utc_now()}, {"session", session}};
-    if (!given) {
-      result.declined = true;
-      save_meta("declined");
-      spdlog::info("participant {}: declined to take part; no trial was shown", opt.participant);
-      return result;
+  std::vector<const PlanStep*> shown;
+  for (const PlanStep& step : plan.steps)
+    if (!skip_on_resume(step, recovered.completed_trials)) shown.push_back(&step);
+  for (size_t k = 0; k < shown.size(); ++k) {
+    const PlanStep& step = *shown[k];
+    if (step.kind == StepKind::screen) {
+      if (step.screen.kind == ScreenKind::finished) break;  // after the session is saved complete
+      const ScreenReply reply = presenter.show_screen(step.screen);
+      if (reply == ScreenReply::abort) return abort_session();
+      if (step.screen.kind != ScreenKind::consent) continue;
+      // Given or declined, with when and in which run: part of the record a study must keep.
+      const bool given = reply == ScreenReply::proceed;
+      meta["consent"] = {{"given", given}, {"utc", iso8601_utc_now()}, {"session", session}};
+      if (!given) {
+        result.declined = true;
+        save_meta("declined");
+        spdlog::info("participant {}: declined to take part; no trial was shown", opt.participant);
+        return result;
+      }
+      save_meta("running");
+      continue;
     }
-    save_meta("running");
-  }
-
-  std::string current_block;
-  bool in_practice = false;
-  int test_done = 0;  // test trials done (all runs), for breaks
-  for (const Trial& t : trials)
-    if (!t.practice && recovered.completed_trials.count(t.index)) ++test_done;
-  bool multiple_blocks = false;
-  for (const Trial& t : trials) multiple_blocks = multiple_blocks || (!t.practice && t.block_number > 1);
-
-  for (const Trial& t : trials) {
-    if (recovered.completed_trials.count(t.index)) continue;
-    if (t.practice && !in_practice) {
-      if (stopped(ScreenKind::practice_intro, texts::kPracticeTitle, texts::kPracticeIntro))
-        return abort_session();
-    }
-    if (!t.practice && (in_practice || t.block != current_block) && (multiple_blocks || in_practice)) {
-      const std::string title = multiple_blocks ? texts::kPartTitlePrefix + std::to_string(t.block_number)
-                                                : std::string(texts::kMainPartTitle);
-      const std::string body = in_practice ? texts::kAfterPractice : texts::kBlockIntro;
-      if (stopped(ScreenKind::block_intro, title, body)) return abort_session();
-    }
-    in_practice = t.practice;
-    current_block = t.block;
-
+    const Trial& t = plan.trials[static_cast<size_t>(step.trial - 1)];
     TrialRequest req;
     req.trial = &t;
     req.video_path = stimulus_path(opt.stimuli_dir, t.stimulus);
+    for (size_t n = k + 1; n < shown.size(); ++n)
+      if (shown[n]->kind == StepKind::trial) {
+        req.next_video_path =
+            stimulus_path(opt.stimuli_dir, plan.trials[static_cast<size_t>(shown[n]->trial - 1)].stimulus);
+        break;
+      }
     req.questions = &questions;
     req.trial_count = static_cast<int>(trials.size());
-    req.number = position_of_kind(trials, t);
-    req.count = count_of_kind(trials, t.practice);
+    req.header = step.header;
+    req.min_view_ms = step.min_view_ms;
     req.loop_video = p.loop_video;
     req.fps = spec.fps;
     req.inter_trial_screen = p.inter_trial_screen;
@@ -378,16 +327,11 @@ SessionResult run_session(const ExperimentSpec& spec, const StimulusManifest& ma
       spdlog::info("trial {} ({}): {} of {} frame(s) dropped", t.index, t.stimulus.id,
                    outcome.timing.frames_dropped,
                    outcome.timing.frames_shown + outcome.timing.frames_dropped);
-    if (!t.practice) ++test_done;
     save_meta("running");  // progress and dropped frames survive a kill too
-    const bool last = t.index == static_cast<int>(trials.size());
-    if (!last && !t.practice && p.break_every > 0 && test_done % p.break_every == 0) {
-      if (stopped(ScreenKind::break_screen, texts::kBreakTitle, p.break_text)) return abort_session();
-    }
   }
   result.complete = true;
   save_meta("complete");
-  presenter.show_screen(ScreenKind::finished, texts::kFinishedTitle, texts::kFinished);
+  presenter.show_screen(plan.steps.back().screen);
   spdlog::info("participant {}: complete, responses in {}", opt.participant, result.csv_path);
   return result;
 }

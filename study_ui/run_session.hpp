@@ -28,6 +28,7 @@
 
 #include "framework/core/stimulus_manifest.hpp"
 #include "framework/spec/experiment_spec.hpp"
+#include "study_ui/participant_id.hpp"
 #include "study_ui/presenter.hpp"
 
 namespace crowdlab::study {
@@ -56,10 +57,6 @@ struct SessionResult {
   long frames_dropped = 0;
   long frames_shown = 0;
 };
-
-/// Validates a participant id: 1-64 characters of [A-Za-z0-9_-], the first a letter or digit; throws
-/// InputError otherwise.
-void check_participant_id(const std::string& participant);
 
 /// Refuses (InputError) a used id without `resume`, `resume` of an id with no session in out_dir (a
 /// typo would otherwise start a new one), and a new id equal to a used one but for case.

@@ -66,7 +66,17 @@ void ScriptedPresenter::check(const StimulusManifest& manifest,
   throw InputError(msg);
 }
 
+ScreenReply ScriptedPresenter::show_screen(const PlanScreen& screen) {
+  transcript_.push_back({{"screen", screen_kind_name(screen.kind)},
+                         {"title", screen.title},
+                         {"text", screen.text},
+                         {"hint", screen.hint}});
+  return ScreenReply::proceed;
+}
+
 TrialOutcome ScriptedPresenter::run_trial(const TrialRequest& request) {
+  transcript_.push_back({{"inter_trial", kind_name(request.inter_trial_screen)}});
+  transcript_.push_back({{"trial", request.trial->index}, {"header", request.header}});
   const auto onset = std::chrono::steady_clock::now();
   if (delay_ms_ > 0) std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms_));
   TrialOutcome out;

@@ -8,6 +8,7 @@
 // `delay_ms` sleeps that long in every trial before answering (a slow participant; used by the
 // kill-and-resume tests to have time to kill the process mid-session).
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,10 +26,13 @@ class ScriptedPresenter final : public Presenter {
   void check(const StimulusManifest& manifest, const std::vector<StudyQuestion>& questions) const;
 
   ScreenInfo screen() const override { return {0, 0, "scripted"}; }
-  ScreenReply show_screen(ScreenKind, const std::string&, const std::string&) override {
-    return ScreenReply::proceed;
-  }
+  /// Agrees to everything (consent included) and notes the screen in the transcript.
+  ScreenReply show_screen(const PlanScreen& screen) override;
   TrialOutcome run_trial(const TrialRequest& request) override;
+  /// What the session asked this presenter to show, in order: {"screen", "title", "text", "hint"} per
+  /// text screen, {"inter_trial"} and then {"trial", "header"} per trial; the native side of the
+  /// lab/online parity test (the page keeps the same transcript).
+  const nlohmann::json& transcript() const { return transcript_; }
 
  private:
   struct Entry {
@@ -39,6 +43,7 @@ class ScriptedPresenter final : public Presenter {
   std::string path_;
   int delay_ms_ = 0;
   std::map<std::pair<std::string, std::string>, Entry> answers_;
+  nlohmann::json transcript_ = nlohmann::json::array();
   static bool parse_response(const StudyQuestion& q, const std::string& text, int& raw);
 };
 

@@ -13,9 +13,7 @@ class SimulatedPresenter final : public Presenter {
   SimulatedPresenter(ObserverModel model, std::uint64_t observer_seed)
       : model_(std::move(model)), observer_(draw_observer(model_, observer_seed)) {}
   ScreenInfo screen() const override { return {0, 0, "simulated"}; }
-  ScreenReply show_screen(ScreenKind, const std::string&, const std::string&) override {
-    return ScreenReply::proceed;
-  }
+  ScreenReply show_screen(const PlanScreen&) override { return ScreenReply::proceed; }
   TrialOutcome run_trial(const TrialRequest& request) override {
     Rng rng(derive_seed(observer_.seed, "trial:" + request.trial->stimulus.id));
     TrialOutcome out;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <opencv2/imgproc.hpp>
 
+#include "study_ui/session_texts.hpp"
+
 namespace crowdlab::study {
 namespace {
 
@@ -203,8 +205,10 @@ void draw_trial_answers(cv::Mat& img, const TrialLayout& L, const std::vector<St
   }
   const bool ready = state.all_answered();
   fill_round_rect(img, L.next_button, margin / 2, ready ? kGreen : kDisabled);
-  draw_centered(img, text, ready ? "Next (Enter)" : "Answer every question", L.next_button, L.small_px,
-                cv::Scalar(255, 255, 255));
+  const char* label = ready                      ? "Next (Enter)"
+                      : !state.questions_enabled ? texts::kLockedLabel
+                                                 : "Answer every question";
+  draw_centered(img, text, label, L.next_button, L.small_px, cv::Scalar(255, 255, 255));
 }
 
 void draw_trial_panel(cv::Mat& img, const TrialLayout& L, const std::vector<StudyQuestion>& questions,

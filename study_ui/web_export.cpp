@@ -12,6 +12,7 @@
 #include "study_ui/build_trial_list.hpp"
 #include "study_ui/response_log.hpp"
 #include "study_ui/run_session.hpp"
+#include "study_ui/session_plan.hpp"
 #include "study_ui/session_texts.hpp"
 #include "study_ui/study_question.hpp"
 #include "study_ui/verify_stimuli.hpp"
@@ -22,6 +23,9 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* const kWebSourceFiles[] = {"index.html", "crowdlab_study.js", "crowdlab_study.css"};
+/// jsPsych's MIT licence (its npm packages carry the licence only as package.json's "license" field), as
+/// the licence asks: its copyright and permission notice go with every copy of the software.
+const char* const kJspsychLicence = "LICENSE-jspsych.txt";
 
 nlohmann::json question_json(const StudyQuestion& q) {
   return {{"id", q.id},
@@ -45,7 +49,16 @@ nlohmann::json order_json(const std::vector<Trial>& trials) {
   return out;
 }
 
-/// Hard link when source and destination share a file system, else a copy.
+/// A copy: the page files must never share an inode with crowdlab's source (an experimenter editing
+/// the exported page would edit the source and every other export).
+long copy_page_file(const fs::path& from, const fs::path& to) {
+  fs::create_directories(to.parent_path());
+  fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+  return static_cast<long>(fs::file_size(to));
+}
+
+/// Hard link when source and destination share a file system, else a copy (the clips: large, and
+/// checked by sha256 at import).
 long place_file(const fs::path& from, const fs::path& to) {
   fs::create_directories(to.parent_path());
   std::error_code ec;
@@ -179,7 +192,7 @@ nlohmann::json web_timeline(const ExperimentSpec& spec, const StimulusManifest& 
   const ProtocolSpec& p = spec.protocol;
   nlohmann::json j;
   j["format"] = "crowdlab-web-timeline";
-  j["format_version"] = 1;
+  j["format_version"] = 2;
   j["study"] = {{"name", spec.name},
                 {"spec_hash", spec.source_hash},
                 {"spec_seed", spec.seed},
@@ -190,12 +203,9 @@ nlohmann::json web_timeline(const ExperimentSpec& spec, const StimulusManifest& 
                 {"fps", spec.fps},
                 {"break_every", p.break_every},
                 {"completion_url", p.completion_url}};
-  j["screens"] = {{"instructions", p.instructions},           {"consent", p.consent},
-                  {"break_title", texts::kBreakTitle},        {"break_text", p.break_text},
-                  {"practice_title", texts::kPracticeTitle},  {"practice_intro", texts::kPracticeIntro},
-                  {"after_practice", texts::kAfterPractice},  {"block_intro", texts::kBlockIntro},
-                  {"main_part_title", texts::kMainPartTitle}, {"part_title_prefix", texts::kPartTitlePrefix},
-                  {"finished_title", texts::kFinishedTitle},  {"finished", texts::kFinished}};
+  j["inter_trial"] = {{"screen", kind_name(p.inter_trial_screen)}, {"min_ms", p.inter_trial_min_ms}};
+  j["participant_id"] = {{"pattern", kParticipantIdPattern}, {"rule", kParticipantIdRule}};
+  j["texts"] = {{"locked", texts::kLockedLabel}};
   j["questions"] = nlohmann::json::array();
   for (const StudyQuestion& q : resolve_questions(p)) j["questions"].push_back(question_json(q));
   j["factor_names"] = manifest.factor_names;
@@ -205,9 +215,12 @@ nlohmann::json web_timeline(const ExperimentSpec& spec, const StimulusManifest& 
         {"file", e.file}, {"sha256", e.sha256}, {"factors", e.factors}, {"practice", e.practice}};
   j["order_ids"] = participants;
   j["orders"] = nlohmann::json::object();
+  j["plans"] = nlohmann::json::object();
   for (const std::string& id : participants) {
     check_participant_id(id);
-    j["orders"][id] = order_json(build_trial_list(p, manifest, spec.seed, id));
+    const SessionPlan plan = session_plan(spec, manifest, id);
+    j["orders"][id] = order_json(plan.trials);
+    j["plans"][id] = plan_steps_json(plan);
   }
   return j;
 }
@@ -215,10 +228,8 @@ nlohmann::json web_timeline(const ExperimentSpec& spec, const StimulusManifest& 
 std::vector<std::pair<std::string, std::string>> jspsych_bundle_files() {
   std::vector<std::pair<std::string, std::string>> files = {
       {"jspsych/dist/index.browser.min.js", "lib/jspsych.js"},
-      {"jspsych/css/jspsych.css", "lib/jspsych.css"},
-      {"jspsych/LICENSE", "lib/LICENSE-jspsych.txt"}};
-  for (const char* plugin : {"fullscreen", "preload", "instructions", "html-keyboard-response",
-                             "html-button-response", "survey-likert", "video-keyboard-response"})
+      {"jspsych/css/jspsych.css", "lib/jspsych.css"}};
+  for (const char* plugin : {"fullscreen", "preload"})
     files.push_back({std::string("@jspsych/plugin-") + plugin + "/dist/index.browser.min.js",
                      std::string("lib/plugin-") + plugin + ".js"});
   return files;
@@ -230,10 +241,10 @@ WebExportResult export_web(const ExperimentSpec& spec, const StimulusManifest& m
     throw InputError(SourceLocation{"", 0, 0, "--participants"}, "no participant ids to embed");
   const fs::path modules(opt.node_modules_dir);
   for (const auto& [from, to] : jspsych_bundle_files())
-    if (!fs::is_regular_file(modules / from) && from.find("LICENSE") == std::string::npos)
+    if (!fs::is_regular_file(modules / from))
       throw InputError(SourceLocation{"", 0, 0, "--jspsych"},
                        (modules / from).string() + ": missing; install jsPsych with `make web-deps`");
-  for (const char* f : kWebSourceFiles)
+  for (const char* f : {kWebSourceFiles[0], kWebSourceFiles[1], kWebSourceFiles[2], kJspsychLicence})
     if (!fs::is_regular_file(fs::path(opt.web_source_dir) / f))
       throw InputError((fs::path(opt.web_source_dir) / f).string() +
                        ": missing (crowdlab's web study source)");
@@ -249,11 +260,12 @@ WebExportResult export_web(const ExperimentSpec& spec, const StimulusManifest& m
   fs::create_directories(out);
   WebExportResult r;
   for (const char* f : kWebSourceFiles) {
-    r.bytes += place_file(fs::path(opt.web_source_dir) / f, out / f);
+    r.bytes += copy_page_file(fs::path(opt.web_source_dir) / f, out / f);
     ++r.files;
   }
+  r.bytes += copy_page_file(fs::path(opt.web_source_dir) / kJspsychLicence, out / "lib" / kJspsychLicence);
+  ++r.files;
   for (const auto& [from, to] : jspsych_bundle_files()) {
-    if (!fs::is_regular_file(modules / from)) continue;  // a missing LICENSE only
     fs::create_directories((out / to).parent_path());
     fs::copy_file(modules / from, out / to, fs::copy_options::overwrite_existing);
     r.bytes += static_cast<long>(fs::file_size(out / to));

@@ -3,9 +3,14 @@
 // the same protocol and the same per-participant trial order as the native session (run_session).
 //
 // Output folder (WEBDIR):
-//   index.html, crowdlab_study.js, crowdlab_study.css   our page and script (copied from study_ui/web)
-//   lib/jspsych.js, lib/jspsych.css, lib/plugin-*.js     jsPsych 8 and its official plugins, copied from
-//                                                       the build tree's node_modules (make web-deps)
+//   index.html, crowdlab_study.js, crowdlab_study.css   our page and script, copied from study_ui/web
+//                                                       (copies, never links: editing an export must
+//                                                       not edit the source or other exports)
+//   lib/jspsych.js, lib/jspsych.css, lib/plugin-*.js     jsPsych 8 and the plugins the page uses
+//                                                       (preload, fullscreen), copied from the build
+//                                                       tree's node_modules (make web-deps)
+//   lib/LICENSE-jspsych.txt                             jsPsych's MIT notice (study_ui/web), which the
+//                                                       licence requires with every copy
 //   <manifest file paths>                               the clips, hard-linked (copied across devices)
 //   timeline.json                                       web_timeline() below
 // Trial orders: computed here by build_trial_list for every id in `participants` and embedded, so the
@@ -41,8 +46,10 @@ std::uint32_t fnv1a32(const std::string& text);
 /// The embedded id whose order a participant runs: the id itself when embedded, else the hashed slot.
 std::string web_order_participant(const std::string& participant, const std::vector<std::string>& embedded);
 
-/// The timeline.json object: study settings, questions, screen texts, stimuli and one trial order
-/// per embedded id. Throws InputError (via build_trial_list / resolve_questions) on a bad protocol.
+/// The timeline.json object: study settings, questions, the participant id rule (participant_id.hpp),
+/// the inter-trial screen, stimuli, and per embedded id its trial order ("orders") and its session
+/// plan ("plans", session_plan.hpp's plan_steps_json), which the page interprets. Throws InputError
+/// (via build_trial_list / resolve_questions) on a bad protocol.
 nlohmann::json web_timeline(const ExperimentSpec& spec, const StimulusManifest& manifest,
                             const std::string& manifest_sha256, const std::vector<std::string>& participants);
 

@@ -9,6 +9,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <type_traits>
 
@@ -19,6 +20,8 @@
 #include "framework/core/sha256.hpp"
 #include "framework/io/untrusted_json.hpp"
 #include "study_ui/build_trial_list.hpp"
+#include "study_ui/frame_interval_stats.hpp"
+#include "study_ui/participant_id.hpp"
 #include "study_ui/response_log.hpp"
 #include "study_ui/run_session.hpp"
 
@@ -72,6 +75,7 @@ void collect_records(const nlohmann::json& value, const std::string& file, int l
     if (!value["records"].is_array())
       throw InputError(SourceLocation{file, line, 0, "records"}, "expected a list of trial records");
     for (const auto& record : value["records"]) out.push_back({file, line, record});
+    if (value.contains("consent_record")) out.push_back({file, line, value["consent_record"]});
   } else {
     out.push_back({file, line, value});
   }
@@ -232,72 +236,172 @@ std::vector<Answer> record_answers(const WebRecord& r, const std::vector<StudyQu
   return out;
 }
 
+/// A consent record (the page writes one when the consent screen is answered): {"format", "kind":
+/// "consent", "participant", "order_of", "spec_hash", "consent": {"given", "utc", "session"}}.
+bool is_consent_record(const WebRecord& r) {
+  return r.json.is_object() && r.json.value("kind", "") == "consent";
+}
+
 struct ParticipantData {
   std::string order_of;
   std::map<int, WebRecord> by_trial;
+  std::optional<WebRecord> consent;
+  bool declined() const { return consent && !consent->json["consent"]["given"].get<bool>(); }
+};
+
+/// An input that is not imported: the participant it concerns ("" when the file names none) and why,
+/// with file, line and key.
+struct Problem {
+  std::string participant;
+  std::string text;
+  std::string file;  ///< where (for collapsing one participant's repeated problems in one file)
 };
 
 struct Checked {
   std::map<std::string, ParticipantData> participants;
+  std::vector<Problem> problems;
   int records = 0, merged = 0;
 };
 
-Checked check_records(const ExperimentSpec& spec, const StimulusManifest& manifest,
-                      const std::vector<WebRecord>& records, const std::vector<StudyQuestion>& questions) {
-  std::map<std::string, const StimulusEntry*> stimuli;
-  for (const StimulusEntry& e : manifest.entries) stimuli[e.id] = &e;
-  std::map<std::string, std::vector<Trial>> orders;
-  Checked out;
-  for (const WebRecord& r : records) {
-    ++out.records;
-    if (field<std::string>(r, "spec_hash") != spec.source_hash)
-      bad(r, "spec_hash",
-          "recorded with another spec (sha256 " + field<std::string>(r, "spec_hash") + ", this spec's is " +
-              spec.source_hash + ")");
-    const auto participant = field<std::string>(r, "participant");
-    const auto order_of = field<std::string>(r, "order_of");
-    try {
-      check_participant_id(participant);
-      check_participant_id(order_of);
-    } catch (const InputError& e) {
-      bad(r, "participant", e.what());
-    }
-    if (!orders.count(order_of))
-      orders[order_of] = build_trial_list(spec.protocol, manifest, spec.seed, order_of);
-    const std::vector<Trial>& order = orders[order_of];
-    const int trial = field<int>(r, "trial");
-    if (trial < 1 || trial > static_cast<int>(order.size()))
-      bad(r, "trial", "trial " + std::to_string(trial) + " is outside 1.." + std::to_string(order.size()));
-    const Trial& expected = order[static_cast<size_t>(trial - 1)];
-    const auto stimulus = field<std::string>(r, "stimulus");
-    if (stimulus != expected.stimulus.id || field<std::string>(r, "block") != expected.block ||
-        field<bool>(r, "practice") != expected.practice)
-      bad(r, "stimulus",
-          "trial " + std::to_string(trial) + " shows '" + stimulus + "' but the order of " + order_of +
-              " has '" + expected.stimulus.id + "' (block " + expected.block + ") there");
-    const std::string sha = field<std::string>(r, "stimulus_sha256");
-    if (!expected.stimulus.sha256.empty() && sha != expected.stimulus.sha256)
-      bad(r, "stimulus_sha256",
-          stimulus + ": the clip shown (sha256 " + sha + ") is not the manifest's (" +
-              expected.stimulus.sha256 + ")");
-    if (field<int>(r, "session") < 1) bad(r, "session", "expected a session number >= 1");
-    record_answers(r, questions);
+/// The participant a record names, when it names one as a string ("" otherwise).
+std::string named_participant(const WebRecord& r) {
+  if (r.json.is_object() && r.json.contains("participant") && r.json["participant"].is_string())
+    return r.json["participant"].get<std::string>();
+  return "";
+}
 
-    ParticipantData& p = out.participants[participant];
+/// Keeps `r` as the participant's record for `slot` (a trial, or the consent); an identical copy is
+/// merged, a different one refused.
+void keep_once(std::optional<WebRecord>& slot, const WebRecord& r, const std::string& what, int& merged) {
+  if (!slot) {
+    slot = r;
+    return;
+  }
+  if (slot->json != r.json)
+    bad(r, what,
+        named_participant(r) + " answered " + what + " differently in " + slot->file + ":" +
+            std::to_string(slot->line) + "; refusing to choose");
+  ++merged;
+}
+
+void check_consent(const WebRecord& r, ParticipantData& p, int& merged) {
+  const auto c = field<nlohmann::json>(r, "consent");
+  if (!c.is_object() || !c.contains("given") || !c["given"].is_boolean() || !c.contains("utc") ||
+      !c["utc"].is_string() || !c.contains("session") || !c["session"].is_number_integer())
+    bad(r, "consent", "expected {\"given\": true or false, \"utc\": time, \"session\": n}, got " + c.dump());
+  keep_once(p.consent, r, "consent", merged);
+}
+
+/// One record's checks (spec, ids, order, stimulus, answers); adds it to its participant.
+void check_record(const ExperimentSpec& spec, const StimulusManifest& manifest, const WebRecord& r,
+                  const std::vector<StudyQuestion>& questions,
+                  std::map<std::string, std::vector<Trial>>& orders, Checked& out) {
+  if (field<std::string>(r, "spec_hash") != spec.source_hash)
+    bad(r, "spec_hash",
+        "recorded with another spec (sha256 " + field<std::string>(r, "spec_hash") + ", this spec's is " +
+            spec.source_hash + ")");
+  const auto participant = field<std::string>(r, "participant");
+  const auto order_of = field<std::string>(r, "order_of");
+  if (!valid_participant_id(participant))
+    bad(r, "participant", "participant id '" + participant + "' " + kParticipantIdRule);
+  if (!valid_participant_id(order_of)) bad(r, "order_of", "id '" + order_of + "' " + kParticipantIdRule);
+  if (!orders.count(order_of))
+    orders[order_of] = build_trial_list(spec.protocol, manifest, spec.seed, order_of);
+  auto check_order_of = [&](ParticipantData& p) {
     if (p.order_of.empty()) p.order_of = order_of;
     if (p.order_of != order_of)
       bad(r, "order_of",
           participant + " ran the order of " + order_of + " here and of " + p.order_of + " elsewhere");
-    auto [it, inserted] = p.by_trial.emplace(trial, r);
-    if (!inserted) {
-      if (it->second.json != r.json)
-        bad(r, "trial",
-            participant + " answered trial " + std::to_string(trial) + " differently in " + it->second.file +
-                ":" + std::to_string(it->second.line) + "; refusing to choose");
-      ++out.merged;
+  };
+  if (is_consent_record(r)) {
+    ParticipantData& p = out.participants[participant];
+    check_order_of(p);
+    check_consent(r, p, out.merged);
+    return;
+  }
+  const std::vector<Trial>& order = orders[order_of];
+  const int trial = field<int>(r, "trial");
+  if (trial < 1 || trial > static_cast<int>(order.size()))
+    bad(r, "trial", "trial " + std::to_string(trial) + " is outside 1.." + std::to_string(order.size()));
+  const Trial& expected = order[static_cast<size_t>(trial - 1)];
+  const auto stimulus = field<std::string>(r, "stimulus");
+  if (stimulus != expected.stimulus.id || field<std::string>(r, "block") != expected.block ||
+      field<bool>(r, "practice") != expected.practice)
+    bad(r, "stimulus",
+        "trial " + std::to_string(trial) + " shows '" + stimulus + "' but the order of " + order_of +
+            " has '" + expected.stimulus.id + "' (block " + expected.block + ") there");
+  const std::string sha = field<std::string>(r, "stimulus_sha256");
+  if (!expected.stimulus.sha256.empty() && sha != expected.stimulus.sha256)
+    bad(r, "stimulus_sha256",
+        stimulus + ": the clip shown (sha256 " + sha + ") is not the manifest's (" +
+            expected.stimulus.sha256 + ")");
+  if (field<int>(r, "session") < 1) bad(r, "session", "expected a session number >= 1");
+  record_answers(r, questions);
+  ParticipantData& p = out.participants[participant];
+  check_order_of(p);
+  std::optional<WebRecord> slot;
+  if (auto it = p.by_trial.find(trial); it != p.by_trial.end()) slot = it->second;
+  keep_once(slot, r, "trial " + std::to_string(trial), out.merged);
+  p.by_trial.insert_or_assign(trial, *slot);
+}
+
+/// Every record checked on its own: a record that fails is a problem of its participant (who is then
+/// not imported), never of the others.
+Checked check_records(const ExperimentSpec& spec, const StimulusManifest& manifest,
+                      const std::vector<WebRecord>& records, const std::vector<StudyQuestion>& questions) {
+  std::map<std::string, std::vector<Trial>> orders;
+  std::map<std::ptrdiff_t, int> repeats;  // problem index -> further failing records
+  Checked out;
+  for (const WebRecord& r : records) {
+    ++out.records;
+    try {
+      check_record(spec, manifest, r, questions, orders, out);
+    } catch (const InputError& e) {
+      // One line per participant and file: the first problem, and how many records share its fate.
+      const std::string who = named_participant(r);
+      auto same = std::find_if(out.problems.begin(), out.problems.end(), [&](const Problem& p) {
+        return !who.empty() && p.participant == who && p.file == r.file;
+      });
+      if (same == out.problems.end())
+        out.problems.push_back({who, e.what(), r.file});
+      else
+        ++repeats[&*same - &out.problems[0]];
     }
   }
+  for (const auto& [index, n] : repeats)
+    out.problems[index].text += " (and " + std::to_string(n) + " more record(s) of " +
+                                out.problems[index].participant + " in this file)";
+  for (const auto& [id, p] : out.participants)
+    if (p.declined() && !p.by_trial.empty())
+      out.problems.push_back({id,
+                              p.consent->file + ":" + std::to_string(p.consent->line) + ": " + id +
+                                  " declined consent but has " + std::to_string(p.by_trial.size()) +
+                                  " answered trial(s); refusing to import either",
+                              p.consent->file});
   return out;
+}
+
+/// The presentation timing of a record's clip, as the native columns hold it (empty when the page
+/// measured none): onset, inter-trial gap, frames presented and dropped, and the intervals between
+/// the presented frames (frame_interval_stats of their display times, as natively).
+TrialTiming record_timing(const WebRecord& r) {
+  TrialTiming t;
+  const nlohmann::json v = r.json.value("video", nlohmann::json());
+  if (!v.is_object() || !v.contains("onset_utc") || !v["onset_utc"].is_string()) return t;
+  t.onset_utc = v["onset_utc"].get<std::string>();
+  auto number = [&](const char* key, double fallback) {
+    return v.contains(key) && v[key].is_number() ? v[key].get<double>() : fallback;
+  };
+  t.inter_trial_ms = number("inter_trial_ms", -1.0);
+  t.frames_shown = static_cast<long>(number("frames_presented", 0.0));
+  t.frames_dropped = static_cast<long>(number("frames_dropped", 0.0));
+  if (v.contains("frame_times_ms") && v["frame_times_ms"].is_array()) {
+    std::vector<double> times;
+    for (const auto& x : v["frame_times_ms"])
+      if (x.is_number()) times.push_back(x.get<double>());
+    t.intervals = frame_interval_stats(times);
+  }
+  return t;
 }
 
 std::string participant_csv(const ExperimentSpec& spec, const StimulusManifest& manifest,
@@ -307,7 +411,8 @@ std::string participant_csv(const ExperimentSpec& spec, const StimulusManifest& 
   std::string text = csv_line(response_header(manifest.factor_names));
   for (const auto& [trial, record] : p.by_trial) {
     const auto rows = response_rows(id, field<int>(record, "session"), order[static_cast<size_t>(trial - 1)],
-                                    manifest.factor_names, questions, record_answers(record, questions));
+                                    manifest.factor_names, questions, record_answers(record, questions),
+                                    false, record_timing(record));
     for (const auto& row : rows) text += csv_line(row);
   }
   return text;
@@ -316,6 +421,9 @@ std::string participant_csv(const ExperimentSpec& spec, const StimulusManifest& 
 nlohmann::json participant_metadata(const ExperimentSpec& spec, const std::string& id,
                                     const ParticipantData& p, const std::vector<StudyQuestion>& questions,
                                     size_t trials, const std::string& manifest_sha256) {
+  const std::string status = p.declined()                  ? "declined"
+                             : p.by_trial.size() == trials ? "complete"
+                                                           : "incomplete";
   nlohmann::json meta = {{"participant", id},
                          {"source", "web"},
                          {"order_of", p.order_of},
@@ -329,9 +437,11 @@ nlohmann::json participant_metadata(const ExperimentSpec& spec, const std::strin
                          {"trials", trials},
                          {"trials_done", p.by_trial.size()},
                          {"manifest_sha256", manifest_sha256},
-                         {"status", p.by_trial.size() == trials ? "complete" : "incomplete"},
+                         {"status", status},
                          {"questions", nlohmann::json::array()},
                          {"video", nlohmann::json::array()}};
+  // The native session's consent object, field for field (run_session.cpp).
+  if (p.consent) meta["consent"] = p.consent->json["consent"];
   for (const auto& q : questions) meta["questions"].push_back({{"id", q.id}, {"reverse", q.reverse}});
   for (const auto& [trial, r] : p.by_trial)
     meta["video"].push_back({{"trial", trial},
@@ -366,6 +476,21 @@ void check_existing_participant(const std::string& out_dir, const std::string& i
   if (!fs::exists(csv) && fs::exists(json)) refuse(json, "already holds the metadata of another session");
 }
 
+/// One participant's files to write.
+struct Output {
+  std::string id;
+  std::string csv_text;
+  std::string json_text;
+  bool already_there = false;  ///< an identical P.csv is in the output folder
+  bool complete = false;
+};
+
+std::string problems_text(const std::vector<Problem>& problems) {
+  std::string text;
+  for (const Problem& p : problems) text += "\n  " + p.text;
+  return text;
+}
+
 }  // namespace
 
 WebImportResult import_web(const ExperimentSpec& spec, const StimulusManifest& manifest,
@@ -373,37 +498,91 @@ WebImportResult import_web(const ExperimentSpec& spec, const StimulusManifest& m
   const std::vector<StudyQuestion> questions = resolve_questions(spec.protocol);
   WebImportResult result;
   std::vector<WebRecord> records;
+  std::vector<Problem> file_problems;
   for (const std::string& file : result_files(inputs)) {
-    auto some = read_result_file(file, web_json_limits(opt));
-    records.insert(records.end(), some.begin(), some.end());
     ++result.files;
+    try {
+      auto some = read_result_file(file, web_json_limits(opt));
+      records.insert(records.end(), some.begin(), some.end());
+    } catch (const InputError& e) {
+      file_problems.push_back({"", e.what(), file});
+    }
   }
-  if (records.empty()) throw InputError("no trial records in the given results");
-  const Checked checked = check_records(spec, manifest, records, questions);
+  if (records.empty() && file_problems.empty()) throw InputError("no trial records in the given results");
+  Checked checked = check_records(spec, manifest, records, questions);
+  checked.problems.insert(checked.problems.begin(), file_problems.begin(), file_problems.end());
   result.records = checked.records;
   result.duplicates_merged = checked.merged;
+  std::set<std::string> refused;
+  for (const Problem& p : checked.problems)
+    if (!p.participant.empty()) refused.insert(p.participant);
 
   const std::string manifest_csv = (fs::path(opt.stimuli_dir) / "manifest.csv").string();
   const std::string manifest_sha = fs::exists(manifest_csv) ? sha256_file_hex(manifest_csv) : "";
-  std::map<std::string, std::string> csv_text;
+  // Ids differing only in case within these results: one participant twice, or two people; neither
+  // is imported (a human decides), as the native study refuses the second.
+  std::map<std::string, std::vector<std::string>> by_folded;
   for (const auto& [id, p] : checked.participants) {
-    csv_text[id] = participant_csv(spec, manifest, id, p, questions);
-    check_existing_participant(opt.out_dir, id, csv_text[id], p.by_trial.begin()->second);
+    if (refused.count(id)) continue;
+    std::string lower = id;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    by_folded[lower].push_back(id);
   }
-  fs::create_directories(opt.out_dir);
+  for (const auto& [lower, ids] : by_folded)
+    for (size_t i = 0; ids.size() > 1 && i < ids.size(); ++i) {
+      refused.insert(ids[i]);
+      checked.problems.push_back({ids[i],
+                                  "participant '" + ids[i] + "' clashes with '" + ids[(i + 1) % ids.size()] +
+                                      "' in these results: ids differing only in case are one participant",
+                                  ""});
+    }
+  std::vector<Output> outputs;
   for (const auto& [id, p] : checked.participants) {
-    const fs::path csv = fs::path(opt.out_dir) / (id + ".csv");
-    ++result.participants;
-    const size_t trials = build_trial_list(spec.protocol, manifest, spec.seed, p.order_of).size();
-    if (p.by_trial.size() == trials) ++result.complete;
-    result.csv_paths.push_back(csv.string());
-    if (fs::exists(csv)) {  // byte for byte the same records (checked above): nothing to write
-      ++result.already_imported;
+    if (refused.count(id)) continue;
+    auto refuse = [&](const std::string& why) { checked.problems.push_back({id, why, ""}); };
+    if (const auto other = case_clash(opt.out_dir, id)) {
+      refuse("participant '" + id + "' clashes with '" + *other + "' in " + opt.out_dir +
+             ": ids differing only in case are one participant");
       continue;
     }
-    write_file_atomically(csv.string(), csv_text[id]);
-    const nlohmann::json meta = participant_metadata(spec, id, p, questions, trials, manifest_sha);
-    write_file_atomically((fs::path(opt.out_dir) / (id + ".json")).string(), meta.dump(2) + "\n");
+    Output o;
+    o.id = id;
+    o.csv_text = participant_csv(spec, manifest, id, p, questions);
+    const fs::path csv = fs::path(opt.out_dir) / (id + ".csv");
+    try {
+      check_existing_participant(opt.out_dir, id, o.csv_text, p.by_trial.begin()->second);
+    } catch (const InputError& e) {
+      refuse(e.what());
+      continue;
+    }
+    o.already_there = fs::exists(csv);  // byte for byte the records imported now (checked above)
+    const size_t trials = build_trial_list(spec.protocol, manifest, spec.seed, p.order_of).size();
+    o.complete = p.by_trial.size() == trials;
+    o.json_text = participant_metadata(spec, id, p, questions, trials, manifest_sha).dump(2) + "\n";
+    if (p.declined()) ++result.declined;
+    outputs.push_back(std::move(o));
+  }
+  for (const Problem& p : checked.problems) result.problems.push_back(p.text);
+
+  if (outputs.empty())
+    throw InputError("nothing imported: no participant's data passed the checks (nothing written):" +
+                     problems_text(checked.problems));
+  if (opt.strict && !checked.problems.empty())
+    throw InputError("--strict: " + std::to_string(checked.problems.size()) +
+                     " input problem(s), nothing written:" + problems_text(checked.problems));
+  for (const Output& o : outputs) {
+    ++result.participants;
+    if (o.complete) ++result.complete;
+    const fs::path csv = fs::path(opt.out_dir) / (o.id + ".csv");
+    result.csv_paths.push_back(csv.string());
+    if (o.already_there) ++result.already_imported;
+  }
+  if (opt.dry_run) return result;
+  fs::create_directories(opt.out_dir);
+  for (const Output& o : outputs) {
+    if (o.already_there) continue;
+    write_file_atomically((fs::path(opt.out_dir) / (o.id + ".csv")).string(), o.csv_text);
+    write_file_atomically((fs::path(opt.out_dir) / (o.id + ".json")).string(), o.json_text);
   }
   return result;
 }

@@ -42,24 +42,6 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-const char* screen_name(ScreenKind kind) {
-  switch (kind) {
-    case ScreenKind::instructions:
-      return "instructions";
-    case ScreenKind::consent:
-      return "consent";
-    case ScreenKind::practice_intro:
-      return "practice";
-    case ScreenKind::block_intro:
-      return "block";
-    case ScreenKind::break_screen:
-      return "break";
-    case ScreenKind::finished:
-      return "finished";
-  }
-  return "screen";
-}
-
 /// Polls the window's image rectangle for up to `tries` x 50 ms until `done` holds (the window system
 /// applies full screen and resizes asynchronously).
 template <typename Done>
@@ -123,6 +105,7 @@ struct WindowPresenter::Impl {
   TextRenderer text;
   cv::Size canvas_size;
   std::deque<cv::Point> clicks;
+  std::unique_ptr<VideoSource> prefetched;  ///< the next trial's clip, decoding its first frames
 
   explicit Impl(const WindowOptions& o) : options(o), text(o.font_path) {}
 
@@ -192,16 +175,15 @@ ScreenInfo WindowPresenter::screen() const {
   return {impl_->canvas_size.width, impl_->canvas_size.height, "window"};
 }
 
-ScreenReply WindowPresenter::show_screen(ScreenKind kind, const std::string& title, const std::string& body) {
+ScreenReply WindowPresenter::show_screen(const PlanScreen& screen) {
   Impl& m = *impl_;
+  const ScreenKind kind = screen.kind;
   const bool consent = kind == ScreenKind::consent;
-  const std::string hint =
-      consent ? "Press Y if you agree to take part, N if you do not" : "Press any key (or click) to continue";
   cv::Mat canvas(m.canvas_size, CV_8UC3);
-  draw_text_screen(canvas, title, body, hint, m.text);
+  draw_text_screen(canvas, screen.title, screen.text, screen.hint, m.text);
   cv::Mat shown = canvas.clone();
   cv::imshow(kWindow, shown);
-  m.snapshot(shown, std::string("screen_") + screen_name(kind));
+  m.snapshot(shown, std::string("screen_") + screen_kind_name(kind));
   const auto t0 = Clock::now();
   bool confirming = false;
   m.clicks.clear();
@@ -250,11 +232,20 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
     cv::waitKey(1);
     m.snapshot(blank, tag + "_inter_trial");
   }
-  VideoSource video(req.video_path, layout.video_area, req.fps, m.options.frame_cache_mb);
+  std::unique_ptr<VideoSource> clip =
+      m.prefetched && m.prefetched->path() == req.video_path
+          ? std::move(m.prefetched)
+          : std::make_unique<VideoSource>(req.video_path, layout.video_area, req.fps, req.loop_video,
+                                          m.options.decode_ahead);
+  m.prefetched.reset();
+  VideoSource& video = *clip;
   TrialScreenState state;
+  DigitEntry digits;  // an open first digit on a 10- or 11-point scale
   state.answers.assign(qs.size(), -1);
-  state.questions_enabled = req.loop_video;
-  state.header = trial_header(req);
+  // Locked until the minimum viewing time has passed (and a play-once clip has ended): keys and
+  // clicks before then are dropped, and the panel says so.
+  state.questions_enabled = false;
+  state.header = req.header;
   std::vector<Answer> answers(qs.size());
 
   TrialOutcome out;
@@ -272,7 +263,6 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
                std::chrono::microseconds(static_cast<long>(req.inter_trial_min_ms * 1000)));
   m.clicks.clear();
 
-  DigitEntry digits;  // an open first digit on a 10- or 11-point scale
   auto answer = [&](int q, int value, double rt_ms) {
     state.answers[static_cast<size_t>(q)] = value;
     answers[static_cast<size_t>(q)] = Answer{qs[static_cast<size_t>(q)].id, value, rt_ms, iso8601_utc_now()};
@@ -285,7 +275,17 @@ TrialOutcome WindowPresenter::run_trial(const TrialRequest& req) {
     long due = static_cast<long>(std::floor(ms_since(onset) / period_ms));
     if (!req.loop_video && due >= video.frame_count()) {
       due = video.frame_count() - 1;
-      if (!video_done) video_done = true, state.questions_enabled = true, static_dirty = panel_dirty = true;
+      video_done = true;
+    }
+    if (!state.questions_enabled && !onset_pending && (req.loop_video || video_done) &&
+        ms_since(onset) >= req.min_view_ms) {
+      state.questions_enabled = true, static_dirty = panel_dirty = true;
+      digits = {};
+      // The clip has been seen: the next one opens and decodes its first frames on its own threads
+      // while the participant answers (not earlier, so it takes no CPU from this clip's playback).
+      if (!req.next_video_path.empty())
+        m.prefetched = std::make_unique<VideoSource>(req.next_video_path, layout.video_area, req.fps,
+                                                     req.loop_video, m.options.decode_ahead);
     }
     const cv::Mat* frame = nullptr;
     const bool new_frame = due != shown;

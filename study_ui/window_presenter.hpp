@@ -8,6 +8,7 @@
 // Between trials: the inter-trial screen (protocol.inter_trial: blank, or a fixation cross where the
 // video will appear) replaces the answered screen at once and stays while the next clip decodes and
 // for at least inter_trial.min_ms; the measured gap (inter-trial screen shown -> onset) is logged.
+// Text screens show the plan's title, body and hint line (session_plan.hpp).
 // Trial screen: the video on top, the questions below (statement left, answer scale right), a
 // "Next" button bottom right that is enabled only when every question is answered.
 //   - Answers: mouse click on a scale point or yes/no button; number keys (top row or keypad)
@@ -16,12 +17,17 @@
 //     change an answer within the trial (its RT is then the time of the last change); there is no
 //     going back to an earlier trial. Enter or Space (or a click on Next) moves on.
 //   - Esc shows "Quit the session?"; only Y confirms, any other key resumes the trial.
-//   - Video: decoded once into memory (scaled to the video area) when it fits the memory budget,
-//     otherwise streamed with cv::VideoCapture. Frames are scheduled against std::chrono::steady_clock:
-//     frame k is due at onset + k / fps; when the loop falls behind, late frames are skipped so the
-//     clip keeps real time, and every skipped frame is counted as dropped (logged per trial and
-//     summed in the session metadata). In memory the loop wraps from the last frame to frame 0 at
-//     the regular frame period, so a clip rendered to loop shows no seam.
+//   - Video: streamed by a decoder thread a few frames ahead (video_source.hpp), scaled to the video
+//     area; the next trial's clip is opened and its first frames decoded while the participant
+//     answers (TrialRequest::next_video_path), so the inter-trial screen lasts inter_trial.min_ms,
+//     not a clip's decoding. Frames are scheduled against std::chrono::steady_clock: frame k is due
+//     at onset + k / fps; when the loop falls behind, late frames are skipped so the clip keeps real
+//     time, and every skipped frame is counted as dropped (logged per trial and summed in the session
+//     metadata). The loop wraps from the last frame to frame 0 at the regular frame period (the
+//     decoder reopens the file ahead of time), so a clip rendered to loop shows no seam.
+//   - Minimum viewing time (TrialRequest::min_view_ms, from the plan): the answers are locked until
+//     onset + min_view_ms (and, for a play-once clip, its end); keys and clicks before then are
+//     dropped, and the Next button reads "Watch the clip".
 //   - loop_video = false (seed 001 §3.1.5: questions "after each trial"): the clip plays once, and the
 //     questions are enabled when it ends.
 //   - Response time: from stimulus onset to each answer. Onset: the first frame has been handed to
@@ -45,7 +51,7 @@ struct WindowOptions {
   int height = 720;
   std::string font_path = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
   std::string snapshot_dir;
-  double frame_cache_mb = 768.0;  ///< memory budget for decoded frames of one clip
+  int decode_ahead = 6;  ///< frames decoded ahead of the screen (the memory a clip costs)
 };
 
 class WindowPresenter final : public Presenter {
@@ -57,7 +63,7 @@ class WindowPresenter final : public Presenter {
   WindowPresenter& operator=(const WindowPresenter&) = delete;
 
   ScreenInfo screen() const override;
-  ScreenReply show_screen(ScreenKind kind, const std::string& title, const std::string& text) override;
+  ScreenReply show_screen(const PlanScreen& screen) override;
   TrialOutcome run_trial(const TrialRequest& request) override;
 
  private:

@@ -122,12 +122,15 @@ struct ProtocolSpec {
   int break_every = 0;  ///< a break screen every N trials (0 = none)
   std::string instructions;
   std::string consent;
-  std::string break_text = "Take a short break. Press any key to continue.";
+  std::string break_text = "Take a short break.";
   bool loop_video = true;  ///< loop until answered (Likert)
   /// Between trials, while the next clip loads (protocol.inter_trial): blank (background only) or
   /// fixation (a cross where the video will be), shown for at least inter_trial_min_ms.
   InterTrialScreen inter_trial_screen = InterTrialScreen::fixation;
   double inter_trial_min_ms = 500.0;
+  /// Minimum viewing time (protocol.min_view_ms): answers before stimulus onset + this are not
+  /// accepted. < 0 (the default): the clip's duration (one loop for Likert, the whole clip for 2AFC).
+  double min_view_ms = -1.0;
   /// Share of the screen height given to the video (protocol.video_share); 0 = as large as the
   /// questions allow.
   double video_share = 0.0;

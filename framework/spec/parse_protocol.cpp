@@ -171,6 +171,7 @@ void parse_study_window(YamlSection& s, ProtocolSpec& p) {
   iti.choice("screen", p.inter_trial_screen);
   iti.number("min_ms", p.inter_trial_min_ms, Range::non_negative(10000.0));
   s.number("video_share", p.video_share, Range{0.0, 0.9});
+  s.number("min_view_ms", p.min_view_ms, Range::non_negative(600000.0));
   if (p.video_share > 0.0 && p.video_share < 0.3)
     s.diagnostics().error(s.get("video_share"), s.child_path("video_share"),
                           "expected 0 (as large as the questions allow) or a share in [0.3, 0.9], got " +
@@ -185,7 +186,7 @@ void parse_protocol(YamlSection s, ExperimentSpec& spec) {
   if (!s.present()) return;  // no study: crowds and stimuli only
   s.allow_keys({"type", "scale", "questions", "composites", "practice", "block_by", "block_order",
                 "break_every", "instructions", "consent", "break_text", "loop_video", "completion_url",
-                "inter_trial", "video_share"});
+                "inter_trial", "video_share", "min_view_ms"});
   s.choice("type", p.type);
   YamlSection scale = s.section("scale");
   scale.allow_keys({"points", "labels"});

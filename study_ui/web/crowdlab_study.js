@@ -1,29 +1,41 @@
-// crowdlab web study: runs timeline.json (written by `crowdlab export-web`) with jsPsych 8.
+// crowdlab web study: interprets the session plan in timeline.json (written by `crowdlab export-web`)
+// with jsPsych 8.
 //
-// Protocol: the same screens, texts and trial order as the native session (study_ui/run_session.cpp):
-// instructions, consent (first session only), practice intro, part intros, a break every
-// break_every test trials, one trial per stimulus, the end screen. The order is not computed here:
-// timeline.json embeds the orders that crowdlab computed in C++ (build_trial_list). A participant id
-// that is not embedded runs the order of embedded id fnv1a32(id) mod n (see web_export.hpp).
+// Protocol: nothing is decided here. timeline.json holds, per embedded participant id, the plan that
+// crowdlab computed in C++ (study_ui/session_plan.hpp) and that the native window interprets too: the
+// screens with their titles, texts and hint lines, the trials with their headers and minimum viewing
+// times, in order; the inter-trial screen; the participant id rule. A participant id that is not
+// embedded runs the plan of embedded id fnv1a32(id) mod n (see web_export.hpp). What only a browser
+// does (loading the clips first, asking for full screen, the end page's download) is in docs/online.md.
+//
+// Trial screen (as the native one, trial_screen.hpp): the header, the clip as large as the questions
+// leave, the questions in a grid of up to three columns (filled column by column on two rows, so seed
+// 000's item pairs share a column) and the Next button at the grid's right. Answers: a click on a scale
+// point or a Yes/No button, number keys for the first unanswered scale question (10 and 11 as two
+// digits), Y / N for the yes/no question, Enter or Space for Next. Before the minimum viewing time has
+// passed since the onset (and before a play-once clip has ended) the answers are locked: nothing is
+// accepted and Next reads "Watch the clip". Keys and clicks before the onset never reach a trial.
 //
 // Data safety: every trial's record is written to localStorage when the trial ends (and appended to
 // the JATOS result data when jatos.js is present), so a reload or crash resumes at the first
-// unanswered trial, with nothing lost or duplicated (each record carries its trial number; a trial
-// with a record is never shown again). Without JATOS the end screen offers the data as a download.
+// unanswered trial, with nothing lost or duplicated. The consent decision is a record of its own.
 //
-// Video timing (per trial): requestVideoFrameCallback where the browser has it
-// (https://wicg.github.io/video-rvfc/): onset = expectedDisplayTime of the first presented frame,
-// frames presented = span of metadata.presentedFrames; dropped frames from
-// HTMLVideoElement.getVideoPlaybackQuality(); the display refresh rate from the median interval of
-// requestAnimationFrame callbacks during the trial. Response times run from that onset.
-/* global initJsPsych, jsPsychPreload, jsPsychFullscreen, jsPsychInstructions, jsPsychHtmlKeyboardResponse,
-   jsPsychHtmlButtonResponse, jsPsychSurveyLikert, jsPsychVideoKeyboardResponse, jatos */
+// Video timing (per trial): requestVideoFrameCallback (https://wicg.github.io/video-rvfc/): onset =
+// expectedDisplayTime of the first presented frame; every presented frame's display time is kept
+// (frame_times_ms, from the onset) so that import-web computes the native frame-interval columns;
+// frames presented = span of metadata.presentedFrames; dropped frames from getVideoPlaybackQuality();
+// the display refresh rate from the median requestAnimationFrame interval. Response times run from the
+// onset.
+/* global initJsPsych, jsPsychModule, jsPsychPreload, jsPsychFullscreen, jatos */
 (function () {
   "use strict";
 
   const DATA_FORMAT = "crowdlab-web-data";
-  const ID_PATTERN = /^[A-Za-z0-9_-]{1,64}$/;
+  const DEBOUNCE_MS = 300;  // keys on a text screen this soon after it appeared are ignored (native too)
   const hasJatos = () => typeof jatos !== "undefined";
+  /// What the page showed, in order: the web side of the lab/online parity test (ScriptedPresenter's
+  /// transcript is the native side).
+  const transcript = [];
 
   function fnv1a32(text) {
     let h = 0x811c9dc5;
@@ -42,9 +54,19 @@
     return String(text).replace(/[&<>"']/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&#39;" })[c]);
   }
 
-  function textPage(title, body) {
-    const paragraphs = escapeHtml(body).split("\n").join("<br>");
-    return `<div class="crowdlab-text"><h2>${escapeHtml(title)}</h2><p>${paragraphs}</p></div>`;
+  function element(tag, className, text) {
+    const el = document.createElement(tag);
+    if (className) el.className = className;
+    if (text !== undefined) el.textContent = text;
+    return el;
+  }
+
+  /// A text screen as the native one draws it: title, body (line breaks kept), hint line at the bottom.
+  function textPage(title, text, hint) {
+    const page = element("div", "crowdlab-text");
+    page.append(element("h2", "crowdlab-title", title), element("p", "crowdlab-body", text));
+    if (hint) page.append(element("p", "crowdlab-hint", hint));
+    return page;
   }
 
   /// localStorage record of one participant's answers, keyed by study (spec hash) and participant.
@@ -54,7 +76,7 @@
       const saved = this.read();
       this.data = saved || {
         format: DATA_FORMAT,
-        format_version: 1,
+        format_version: 2,
         study: study.name,
         spec_hash: study.spec_hash,
         manifest_sha256: study.manifest_sha256,
@@ -89,55 +111,60 @@
       this.write();
       return this.data.sessions.length;
     }
-    add(record) {
-      if (this.doneTrials().has(record.trial)) return false;
-      this.data.records.push(record);
-      this.write();
-      // One request at a time, in trial order; the study ends only after the last one (finish()).
+    /// JATOS: one request at a time, in order; the study ends only after the last one (finish()).
+    submit(record) {
       if (hasJatos() && jatos.appendResultData)
         this.pending = this.pending
           .catch((e) => console.error("crowdlab: JATOS appendResultData failed (localStorage keeps the data)", e))
           .then(() => jatos.appendResultData(JSON.stringify(record) + "\n"));
+    }
+    add(record) {
+      if (this.doneTrials().has(record.trial)) return false;
+      this.data.records.push(record);
+      this.write();
+      this.submit(record);
       return true;
+    }
+    setConsent(record) {
+      this.data.consent_record = record;
+      this.write();
+      this.submit(record);
     }
   }
 
-  /// Presentation timing of the clip(s) of one trial, over all of its screens.
+  /// Presentation timing of one trial's clip.
   class VideoTiming {
     constructor() {
       this.onset = null;
       this.onsetUtc = null;
-      this.framesPresented = 0;
-      this.framesDropped = 0;
+      this.frameTimes = [];
+      this.span = { first: null, last: null };
       this.rafIntervals = [];
-      this.usedRvfc = false;
+      this.usedRvfc = "requestVideoFrameCallback" in HTMLVideoElement.prototype;
       this.video = null;
+      this.onOnset = () => {};
+    }
+    setOnset(t) {
+      if (this.onset !== null) return;
+      this.onset = t;
+      this.onsetUtc = new Date(performance.timeOrigin + t).toISOString();
+      this.onOnset();
     }
     attach(video) {
-      if (!video) return;
       this.video = video;
-      const span = { first: null, last: null };
-      this.span = span;
-      if ("requestVideoFrameCallback" in HTMLVideoElement.prototype) {
-        this.usedRvfc = true;
+      if (this.usedRvfc) {
         const onFrame = (now, meta) => {
           if (this.video !== video) return;
-          if (this.onset === null) {
-            this.onset = meta.expectedDisplayTime || now;
-            this.onsetUtc = new Date(performance.timeOrigin + this.onset).toISOString();
-          }
-          if (span.first === null) span.first = meta.presentedFrames;
-          span.last = meta.presentedFrames;
+          const shown = meta.expectedDisplayTime || now;
+          this.setOnset(shown);
+          this.frameTimes.push(Math.round((shown - this.onset) * 10) / 10);
+          if (this.span.first === null) this.span.first = meta.presentedFrames;
+          this.span.last = meta.presentedFrames;
           video.requestVideoFrameCallback(onFrame);
         };
         video.requestVideoFrameCallback(onFrame);
       } else {
-        video.addEventListener("playing", () => {
-          if (this.onset === null) {
-            this.onset = performance.now();
-            this.onsetUtc = new Date().toISOString();
-          }
-        }, { once: true });
+        video.addEventListener("playing", () => this.setOnset(performance.now()), { once: true });
       }
       let previous = null;
       const onAnimationFrame = (t) => {
@@ -151,21 +178,53 @@
     detach() {
       const video = this.video;
       if (!video) return;
-      if (this.span && this.span.first !== null) this.framesPresented += this.span.last - this.span.first + 1;
-      if (video.getVideoPlaybackQuality) this.framesDropped += video.getVideoPlaybackQuality().droppedVideoFrames;
+      this.framesDropped = video.getVideoPlaybackQuality ? video.getVideoPlaybackQuality().droppedVideoFrames : 0;
       this.video = null;
     }
-    summary() {
+    summary(interTrialMs) {
       const sorted = this.rafIntervals.slice().sort((a, b) => a - b);
       const median = sorted.length ? sorted[Math.floor(sorted.length / 2)] : 0;
       return {
         onset_utc: this.onsetUtc,
-        frames_presented: this.framesPresented,
-        frames_dropped: this.framesDropped,
+        inter_trial_ms: interTrialMs,
+        frames_presented: this.span.first === null ? 0 : this.span.last - this.span.first + 1,
+        frames_dropped: this.framesDropped || 0,
+        frame_times_ms: this.frameTimes,
         refresh_hz: median > 0 ? Math.round((1000 / median) * 10) / 10 : null,
         timing_api: this.usedRvfc ? "requestVideoFrameCallback" : "playing-event",
       };
     }
+  }
+
+  /// A jsPsych plugin that hands the display to a function: every screen of the plan is drawn here, so
+  /// the page needs no jsPsych plugin whose behaviour would differ from the native window's.
+  class CrowdlabScreenPlugin {
+    constructor(jsPsych) {
+      this.jsPsych = jsPsych;
+    }
+    trial(displayElement, trial) {
+      trial.run(displayElement, (data) => this.jsPsych.finishTrial(data));
+    }
+  }
+  CrowdlabScreenPlugin.info = {
+    name: "crowdlab-screen",
+    version: "2",
+    parameters: { run: { type: jsPsychModule.ParameterType.FUNCTION, default: undefined } },
+    data: {},
+  };
+
+  /// Listens to keys (and clicks) on the document until `stop()`: key repeats never count.
+  function listen(onKey, onClick) {
+    const key = (e) => {
+      if (e.repeat) return;
+      onKey(e);
+    };
+    document.addEventListener("keydown", key);
+    if (onClick) document.addEventListener("click", onClick);
+    return () => {
+      document.removeEventListener("keydown", key);
+      if (onClick) document.removeEventListener("click", onClick);
+    };
   }
 
   function participantId(params) {
@@ -177,46 +236,65 @@
     return id;
   }
 
-  function showMessage(html) {
-    document.getElementById("crowdlab-study").innerHTML = `<div class="crowdlab-text">${html}</div>`;
+  /// A text screen as the participant sees it (read back from the page), for the transcript.
+  function shownScreen(kind, page) {
+    const hint = page.querySelector(".crowdlab-hint");
+    return {
+      screen: kind,
+      title: page.querySelector(".crowdlab-title").textContent,
+      text: page.querySelector(".crowdlab-body").textContent,
+      hint: hint ? hint.textContent : null,
+    };
   }
 
-  /// Pilot helper: no id in the URL and no JATOS: ask for one (an experimenter trying the study).
+  function showMessage(title, text) {
+    const root = document.getElementById("crowdlab-study");
+    root.replaceChildren(textPage(title, text));
+    return root.firstChild;
+  }
+
+  /// No id in the link and no JATOS: an empty field, checked with the study's id rule (a pilot, or an
+  /// experimenter starting a participant). It is never pre-filled: several people following a bare link
+  /// must not all become the same participant.
   function askForId(timeline) {
-    const example = timeline.order_ids[0];
-    showMessage(
-      "<h2>Participant id</h2><p>This link has no <code>?participant=</code> (or <code>PROLIFIC_PID</code>).</p>" +
-        `<form id="crowdlab-id-form"><input id="crowdlab-id" value="${escapeHtml(example)}" pattern="[A-Za-z0-9_-]{1,64}" required>` +
-        ' <button class="jspsych-btn" type="submit">Start</button></form>',
-    );
-    document.getElementById("crowdlab-id-form").addEventListener("submit", (event) => {
+    const page = showMessage("Participant id", "This link has no participant id. Type the id you were given.");
+    const form = element("form");
+    form.id = "crowdlab-id-form";
+    const input = element("input");
+    input.id = "crowdlab-id";
+    input.value = "";
+    input.autocomplete = "off";
+    const error = element("p", "crowdlab-error");
+    error.id = "crowdlab-id-error";
+    const button = element("button", "jspsych-btn", "Start");
+    button.type = "submit";
+    form.append(input, " ", button, error);
+    page.append(form);
+    input.focus();
+    form.addEventListener("submit", (event) => {
       event.preventDefault();
+      const id = input.value.trim();
+      if (!validId(timeline, id)) {
+        error.textContent = idMessage(timeline, id);
+        return;
+      }
       const url = new URL(window.location.href);
-      url.searchParams.set("participant", document.getElementById("crowdlab-id").value);
+      url.searchParams.set("participant", id);
       window.location.href = url.toString();
     });
   }
 
-  function likertLabels(q) {
-    if (q.point_labels && q.point_labels.length === q.points) return q.point_labels.map((l, i) => `${i + 1}<br>${escapeHtml(l)}`);
-    const labels = [];
-    for (let i = 1; i <= q.points; i++) {
-      let label = String(i);
-      if (i === 1 && q.low_label) label += `<br>${escapeHtml(q.low_label)}`;
-      if (i === q.points && q.high_label) label += `<br>${escapeHtml(q.high_label)}`;
-      labels.push(label);
-    }
-    return labels;
-  }
+  const validId = (timeline, id) => new RegExp(timeline.participant_id.pattern).test(id);
+  const idMessage = (timeline, id) => `The participant id '${id}' ${timeline.participant_id.rule}.`;
 
   function run(timeline, participant) {
     const study = timeline.study;
-    const screens = timeline.screens;
     const questions = timeline.questions;
     const orderOf = orderParticipant(participant, timeline.order_ids);
-    const order = timeline.orders[orderOf];
+    const plan = timeline.plans[orderOf];
     const store = new AnswerStore(study, participant, orderOf);
     const done = store.doneTrials();
+    const consentRecord = store.data.consent_record;
     const session = store.startSession({
       start_utc: new Date().toISOString(),
       resumed_at_trials_done: done.size,
@@ -224,188 +302,333 @@
       user_agent: navigator.userAgent,
       jatos: hasJatos(),
     });
-    document.getElementById("crowdlab-study").innerHTML = "";
+    document.getElementById("crowdlab-study").replaceChildren();
     const jsPsych = initJsPsych({
       display_element: "crowdlab-study",
-      on_finish: () => finish(jsPsych, store, study, screens),
+      on_finish: () => finish(jsPsych, store, study, plan),
     });
     window.crowdlab.jsPsych = jsPsych;  // for jsPsych.data.get().csv() / .json() (pilots, the browser test)
     const clipUrl = (stimulusId) => timeline.stimuli[stimulusId].file;
-    const videoHtml = (src, loop) => {
-      const url = jsPsych.pluginAPI.getVideoBuffer(src) || src;
-      return `<video class="crowdlab-video" src="${url}" autoplay muted playsinline${loop ? " loop" : ""}></video>`;
-    };
-    const keyScreen = (title, body) => ({
-      type: jsPsychHtmlKeyboardResponse,
-      stimulus: textPage(title, body),
-      choices: "ALL_KEYS",
-      data: { crowdlab_screen: title },
-    });
+    const recordBase = () => ({ format: DATA_FORMAT, participant, order_of: orderOf, session, spec_hash: study.spec_hash });
 
-    const remaining = order.filter((t) => !done.has(t.trial));
-    const tl = [];
-    if (remaining.length === 0) {
-      tl.push(keyScreen(screens.finished_title, screens.finished));
-      jsPsych.run(tl);
+    // The resume rule of session_plan.hpp (skip_on_resume), exactly.
+    const skipOnResume = (step) => (step.first_session_only && done.size > 0) || (step.skip_if_done > 0 && done.has(step.skip_if_done));
+    const steps = plan.filter((step) => !skipOnResume(step));
+    if (consentRecord && !consentRecord.consent.given) {
+      declinedPage(store);
       return;
     }
-    tl.push({
-      type: jsPsychPreload,
-      video: [...new Set(remaining.map((t) => clipUrl(t.stimulus)))],
-      show_progress_bar: true,
-      message: "<p>Loading the videos...</p>",
-      continue_after_error: false,
-      error_message: "<p>The videos could not be loaded. Please check your connection and reload this page.</p>",
-    });
-    tl.push({
-      type: jsPsychFullscreen,
-      fullscreen_mode: true,
-      message: "<p>The study runs in full screen. Please keep this window in full screen until the end.</p>",
-      button_label: "Continue",
-    });
-    if (screens.instructions)
-      tl.push({ type: jsPsychInstructions, pages: [textPage("Instructions", screens.instructions)], show_clickable_nav: true, button_label_next: "Continue", allow_backward: false });
-    if (screens.consent && done.size === 0)
+    const tl = [];
+    const remaining = steps.filter((s) => s.kind === "trial");
+    if (remaining.length > 0) {
       tl.push({
-        type: jsPsychHtmlButtonResponse,
-        stimulus: textPage("Consent", screens.consent),
-        choices: ["I agree", "I do not agree"],
-        on_finish: (data) => {
-          if (data.response !== 0) jsPsych.abortExperiment(textPage("Thank you", "You did not agree, so the study ends here. You may close this window."));
-        },
+        type: jsPsychPreload,
+        video: [...new Set(remaining.map((t) => clipUrl(t.stimulus)))],
+        show_progress_bar: true,
+        message: "<p>Loading the videos...</p>",
+        continue_after_error: false,
+        error_message: "<p>The videos could not be loaded. Please check your connection and reload this page.</p>",
       });
-
-    const multipleBlocks = order.some((t) => !t.practice && t.block_number > 1);
-    let testDone = order.filter((t) => !t.practice && done.has(t.trial)).length;
-    let inPractice = false;
-    let currentBlock = "";
-    for (const t of order) {
-      if (done.has(t.trial)) continue;
-      if (t.practice && !inPractice) tl.push(keyScreen(screens.practice_title, screens.practice_intro));
-      if (!t.practice && (inPractice || t.block !== currentBlock) && (multipleBlocks || inPractice)) {
-        const title = multipleBlocks ? screens.part_title_prefix + t.block_number : screens.main_part_title;
-        tl.push(keyScreen(title, inPractice ? screens.after_practice : screens.block_intro));
-      }
-      inPractice = t.practice;
-      currentBlock = t.block;
-      tl.push(...trialScreens(t));
-      if (!t.practice) ++testDone;
-      const last = t.trial === order.length;
-      if (!last && !t.practice && study.break_every > 0 && testDone % study.break_every === 0)
-        tl.push(keyScreen(screens.break_title, screens.break_text));
+      tl.push({
+        type: jsPsychFullscreen,
+        fullscreen_mode: true,
+        message: "<p>The study runs in full screen. Please keep this window in full screen until the end.</p>",
+        button_label: "Continue",
+      });
     }
-    tl.push(keyScreen(screens.finished_title, screens.finished));
+    for (const step of steps) {
+      if (step.kind === "trial") tl.push(trialScreen(step));
+      else if (step.screen === "finished") break;  // finish() shows it, after the data are safe
+      else tl.push(textScreen(step));
+    }
     jsPsych.run(tl);
 
-    /// The screens of one trial: the clip (played once, when loop_video is false), then one screen per
-    /// yes/no question (keys Y / N) and one page per run of scale questions, in question order. With
-    /// loop_video the clip loops on every question screen, as on the native trial screen.
-    function trialScreens(t) {
-      const src = clipUrl(t.stimulus);
-      const timing = new VideoTiming();
-      const answers = [];
-      const header = t.practice ? `Practice: trial ${t.trial} of ${order.length}` : `Trial ${t.trial} of ${order.length}`;
-      const headerHtml = `<div class="crowdlab-header">${escapeHtml(header)}</div>`;
-      const media = study.loop_video ? videoHtml(src, true) : "";
-      const sinceOnset = (screenStart) => {
-        const now = performance.now();
-        const from = timing.onset !== null ? timing.onset : screenStart;
-        return Math.max(0, Math.round((now - from) * 10) / 10);
-      };
-      const out = [];
-      let screenStart = 0;
-      const onLoad = () => {
-        screenStart = performance.now();
-        timing.attach(document.querySelector("#crowdlab-study video"));
-      };
-      if (!study.loop_video)
-        out.push({
-          type: jsPsychVideoKeyboardResponse,
-          stimulus: [src],
-          prompt: headerHtml,
-          choices: "NO_KEYS",
-          trial_ends_after_video: true,
-          autoplay: true,
-          controls: false,
-          on_load: onLoad,
-          on_finish: () => timing.detach(),
-          data: { crowdlab_trial: t.trial, crowdlab_part: "video" },
-        });
-      for (let i = 0; i < questions.length; ) {
-        const q = questions[i];
-        if (q.kind === "yesno") {
-          out.push({
-            type: jsPsychHtmlKeyboardResponse,
-            css_classes: media ? ["crowdlab-video-page"] : [],
-            stimulus: `${headerHtml}${media}<p class="crowdlab-question">${escapeHtml(q.text)}</p>` +
-              `<p class="crowdlab-keys">Press <kbd>Y</kbd> for ${escapeHtml(q.high_label || "yes")}, <kbd>N</kbd> for ${escapeHtml(q.low_label || "no")}.</p>`,
-            choices: ["y", "n"],
-            on_load: onLoad,
-            on_finish: (data) => {
-              answers.push({ question: q.id, response: data.response === "y" ? 1 : 0, rt_ms: sinceOnset(screenStart), timestamp: new Date().toISOString() });
-              timing.detach();
+    function textScreen(step) {
+      const consent = step.screen === "consent";
+      return {
+        type: CrowdlabScreenPlugin,
+        data: { crowdlab_screen: step.screen },
+        run: (display, end) => {
+          const page = textPage(step.title, step.text, step.hint);
+          display.replaceChildren(page);
+          transcript.push(shownScreen(step.screen, page));
+          const shown = performance.now();
+          const ready = () => performance.now() - shown > DEBOUNCE_MS;
+          const stop = listen(
+            (e) => {
+              if (!ready()) return;
+              const key = e.key.toLowerCase();
+              if (!consent) return finishWith({ response: key });
+              if (key !== "y" && key !== "n") return;
+              const record = Object.assign(recordBase(), {
+                kind: "consent",
+                consent: { given: key === "y", utc: new Date().toISOString(), session },
+              });
+              store.setConsent(record);
+              if (key === "y") return finishWith({ response: key, crowdlab_record: record });
+              stop();  // declined: the session ends here (finish() shows the page and delivers the record)
+              jsPsych.abortExperiment("", { response: key, crowdlab_record: record });
             },
-            data: { crowdlab_trial: t.trial, crowdlab_part: q.id },
-          });
-          ++i;
-          continue;
-        }
-        const page = [];
-        while (i < questions.length && questions[i].kind !== "yesno") page.push(questions[i++]);
-        // Layout (crowdlab_study.css): the statements in a grid of up to three columns, each scale as
-        // wide as its column (scale_width null), and, with the looping clip, the page filling the
-        // window: the clip gets the height the statements leave, so nothing scrolls.
-        const columns = page.length >= 5 ? 3 : page.length >= 2 ? 2 : 1;
-        out.push({
-          type: jsPsychSurveyLikert,
-          css_classes: [`crowdlab-scale-columns-${columns}`].concat(media ? ["crowdlab-video-page"] : []),
-          preamble: `${headerHtml}${media}`,
-          questions: page.map((pq) => ({ prompt: escapeHtml(pq.text), labels: likertLabels(pq), required: true, name: pq.id })),
-          button_label: "Next",
-          scale_width: columns > 1 ? null : 720,
-          on_load: onLoad,
-          on_finish: (data) => {
-            const rt = sinceOnset(screenStart);
-            const stamp = new Date().toISOString();
-            for (const pq of page) answers.push({ question: pq.id, response: data.response[pq.id] + 1, rt_ms: rt, timestamp: stamp });
-            timing.detach();
-          },
-          data: { crowdlab_trial: t.trial, crowdlab_part: page.map((pq) => pq.id).join(",") },
-        });
-      }
-      // The record is saved when the trial's last screen ends.
-      const lastScreen = out[out.length - 1];
-      const answerFinish = lastScreen.on_finish;
-      lastScreen.on_finish = (data) => {
-        answerFinish(data);
-        const record = {
-          format: DATA_FORMAT,
-          participant,
-          order_of: orderOf,
-          session,
-          spec_hash: study.spec_hash,
-          trial: t.trial,
-          stimulus: t.stimulus,
-          stimulus_sha256: timeline.stimuli[t.stimulus].sha256,
-          block: t.block,
-          practice: t.practice,
-          answers,
-          video: timing.summary(),
-        };
-        store.add(record);
-        data.crowdlab_record = record;
+            consent ? null : () => ready() && finishWith({ response: "click" }),
+          );
+          function finishWith(data) {
+            stop();
+            end(data);
+          }
+        },
       };
-      return out;
+    }
+
+    /// One trial: the inter-trial screen while the clip gets ready (at least inter_trial.min_ms), then
+    /// the clip and the questions, locked until the minimum viewing time has passed.
+    function trialScreen(step) {
+      return {
+        type: CrowdlabScreenPlugin,
+        data: { crowdlab_trial: step.trial },
+        run: (display, end) => {
+          const timing = new VideoTiming();
+          const answers = new Array(questions.length).fill(null);
+          const view = trialView(display, step);
+          const interStart = performance.now();
+          let unlocked = false;
+          let videoEnded = study.loop_video;
+          let digit = null;  // an open first digit on a 10- or 11-point scale
+          view.showInterTrial(timeline.inter_trial.screen === "fixation");
+          transcript.push({ inter_trial: timeline.inter_trial.screen });
+          const video = view.video;
+          video.src = jsPsych.pluginAPI.getVideoBuffer(clipUrl(step.stimulus)) || clipUrl(step.stimulus);
+          video.loop = study.loop_video;
+          video.muted = true;
+          video.playsInline = true;
+          video.addEventListener("ended", () => {
+            videoEnded = true;
+            updateLock();
+          });
+          const ready = new Promise((resolve) => {
+            if (video.readyState >= 3) resolve();
+            else video.addEventListener("canplay", resolve, { once: true });
+          });
+          const minimum = new Promise((resolve) => setTimeout(resolve, timeline.inter_trial.min_ms));
+          let interTrialMs = null;
+          timing.onOnset = () => {
+            interTrialMs = Math.round((timing.onset - interStart) * 10) / 10;
+            transcript.push({ trial: step.trial, header: view.header.textContent });
+          };
+          Promise.all([ready, minimum]).then(() => {
+            view.showTrial();
+            timing.attach(video);
+            video.play().catch((e) => console.error("crowdlab: play failed", e));
+          });
+          const lockTimer = setInterval(updateLock, 20);
+          function updateLock() {
+            if (unlocked || timing.onset === null || !videoEnded) return;
+            if (performance.now() - timing.onset < step.min_view_ms) return;
+            unlocked = true;
+            digit = null;
+            clearInterval(lockTimer);
+            view.setLocked(false, answers);
+          }
+          const sinceOnset = () => Math.max(0, Math.round((performance.now() - timing.onset) * 10) / 10);
+          function answer(q, value) {
+            if (!unlocked) return;
+            answers[q] = { question: questions[q].id, response: value, rt_ms: sinceOnset(), timestamp: new Date().toISOString() };
+            view.showAnswers(answers);
+          }
+          function next() {
+            if (!unlocked || answers.some((a) => a === null)) return;
+            stop();
+            clearInterval(lockTimer);
+            timing.detach();
+            video.pause();
+            const record = Object.assign(recordBase(), {
+              trial: step.trial,
+              stimulus: step.stimulus,
+              stimulus_sha256: timeline.stimuli[step.stimulus].sha256,
+              block: step.block,
+              practice: step.practice,
+              answers,
+              video: timing.summary(interTrialMs),
+            });
+            store.add(record);
+            end({ crowdlab_record: record });
+          }
+          const firstUnanswered = (kind) => questions.findIndex((q, i) => q.kind === kind && answers[i] === null);
+          const stop = listen(
+            (e) => {
+              // A focused button would also turn Enter or Space into a click: the key alone counts.
+              if (e.key === "Enter" || e.key === " ") e.preventDefault();
+              if (!unlocked) return;  // before onset + min_view_ms: dropped, as natively
+              const key = e.key;
+              if (/^[0-9]$/.test(key)) {
+                enterDigit(Number(key));
+                return;
+              }
+              digit = null;
+              const yn = firstUnanswered("yesno");
+              if (yn >= 0 && (key === "y" || key === "Y")) answer(yn, 1);
+              else if (yn >= 0 && (key === "n" || key === "N")) answer(yn, 0);
+              else if (key === "Enter" || key === " ") next();
+            },
+            (e) => {
+              const target = e.target.closest("[data-q], #crowdlab-next");
+              if (!target || !unlocked) return;
+              digit = null;
+              if (target.id === "crowdlab-next") next();
+              else answer(Number(target.dataset.q), Number(target.dataset.v));
+            },
+          );
+          /// Number keys, exactly as natively (scale_keys.cpp): 1..9 answer the first unanswered scale
+          /// question at once; on a 10- or 11-point scale a 1 answers 1 and a following 0 or 1 turns it
+          /// into 10 or 11, and 0 followed by d answers d.
+          function enterDigit(d) {
+            if (digit !== null) {
+              const open = digit;
+              digit = null;
+              const value = open.first * 10 + d;
+              if (value >= (open.first === 1 ? 10 : 1) && value <= questions[open.q].points) return answer(open.q, value);
+            }
+            const q = firstUnanswered("scale");
+            if (q < 0) return;
+            const points = questions[q].points;
+            if (points >= 10 && d <= 1) {
+              digit = { q, first: d };
+              if (d === 1) answer(q, 1);
+              return;
+            }
+            if (d >= 1 && d <= points) answer(q, d);
+          }
+        },
+      };
+    }
+
+    /// The trial screen's elements, laid out like the native window's (trial_screen.cpp).
+    function trialView(display, step) {
+      const root = element("div", "crowdlab-trial crowdlab-inter-trial");
+      root.dataset.trial = String(step.trial);
+      root.dataset.stimulus = step.stimulus;
+      const header = element("div", "crowdlab-header", step.header);
+      const area = element("div", "crowdlab-video-area");
+      const video = element("video", "crowdlab-video");
+      video.id = "crowdlab-video";
+      const cross = element("div", "crowdlab-fixation");
+      area.append(video, cross);
+      const grid = element("div", "crowdlab-questions");
+      const n = questions.length;
+      const columns = Math.max(1, n <= 3 ? n : n === 4 ? 2 : 3);
+      const rows = Math.ceil(n / columns);
+      const columnMajor = rows === 2 && columns === 3;
+      grid.style.gridTemplateColumns = `repeat(${columns}, minmax(0, 1fr)) auto`;
+      const cells = questions.map((q, i) => {
+        const r = columnMajor ? i % rows : Math.floor(i / columns);
+        const c = columnMajor ? Math.floor(i / rows) : i % columns;
+        const cell = element("div", "crowdlab-cell");
+        cell.style.gridRow = String(r + 1);
+        cell.style.gridColumn = String(c + 1);
+        cell.append(element("div", "crowdlab-statement", q.text));
+        const scale = element("div", q.kind === "yesno" ? "crowdlab-yesno" : "crowdlab-scale");
+        if (q.kind === "yesno") {
+          for (const [value, label] of [[1, "Yes (Y)"], [0, "No (N)"]]) {
+            const b = element("button", "crowdlab-choice", label);
+            b.type = "button";
+            b.dataset.q = String(i);
+            b.dataset.v = String(value);
+            scale.append(b);
+          }
+        } else {
+          // Every point labelled (labels.points), or, as natively, the end labels under the first and
+          // the last circle, aligned with their outer edges.
+          const perPoint = q.point_labels && q.point_labels.length === q.points;
+          for (let v = 1; v <= q.points; v++) {
+            const point = element("div", "crowdlab-point");
+            const b = element("button", "crowdlab-circle", String(v));
+            b.type = "button";
+            b.dataset.q = String(i);
+            b.dataset.v = String(v);
+            point.append(b);
+            if (perPoint) point.append(element("div", "crowdlab-point-label", q.point_labels[v - 1]));
+            scale.append(point);
+          }
+          if (!perPoint) {
+            const ends = element("div", "crowdlab-ends");
+            ends.style.width = `calc(${q.points} * var(--crowdlab-step) - (var(--crowdlab-step) - var(--crowdlab-circle)))`;
+            ends.append(element("span", "crowdlab-point-label", q.low_label || ""), element("span", "crowdlab-point-label", q.high_label || ""));
+            cell.append(scale, ends);
+          }
+        }
+        if (!cell.contains(scale)) cell.append(scale);
+        grid.append(cell);
+        return cell;
+      });
+      const nextButton = element("button", "crowdlab-next", timeline.texts.locked);
+      nextButton.id = "crowdlab-next";
+      nextButton.type = "button";
+      nextButton.disabled = true;
+      nextButton.style.gridColumn = String(columns + 1);
+      nextButton.style.gridRow = `${rows} / ${rows + 1}`;
+      grid.append(nextButton);
+      root.append(header, area, grid);
+      display.replaceChildren(root);
+      const view = {
+        header,
+        video,
+        showInterTrial(fixation) {
+          root.classList.add("crowdlab-inter-trial");
+          cross.hidden = !fixation;
+        },
+        showTrial() {
+          root.classList.remove("crowdlab-inter-trial");
+          cross.hidden = true;
+          view.setLocked(true, []);
+        },
+        setLocked(locked, answers) {
+          root.classList.toggle("crowdlab-locked", locked);
+          for (const b of grid.querySelectorAll("button[data-q]")) b.disabled = locked;
+          view.showAnswers(answers);
+        },
+        showAnswers(answers) {
+          const locked = root.classList.contains("crowdlab-locked");
+          const firstScale = questions.findIndex((q, i) => q.kind === "scale" && !answers[i]);
+          const firstYesNo = questions.findIndex((q, i) => q.kind === "yesno" && !answers[i]);
+          cells.forEach((cell, i) => {
+            cell.classList.toggle("crowdlab-focus", !locked && (i === firstScale || i === firstYesNo));
+            for (const b of cell.querySelectorAll("button[data-q]"))
+              b.classList.toggle("crowdlab-selected", !!answers[i] && answers[i].response === Number(b.dataset.v));
+          });
+          const all = questions.length > 0 && questions.every((q, i) => !!answers[i]);
+          nextButton.disabled = !all;
+          nextButton.classList.toggle("crowdlab-ready", all);
+          nextButton.textContent = all ? "Next (Enter)" : locked ? timeline.texts.locked : "Answer every question";
+        },
+      };
+      return view;
     }
   }
 
-  function finish(jsPsych, store, study, screens) {
-    const complete = store.data.records.length === window.crowdlabTimeline.orders[store.data.order_of].length;
+  /// The end screen of the plan, then what a browser must do with the data: under JATOS submit them
+  /// (and go to the completion link); otherwise offer the download and say what to do with it.
+  function finish(jsPsych, store, study, plan) {
+    const order = window.crowdlabTimeline.orders[store.data.order_of];
+    const complete = store.data.records.length === order.length;
     store.data.complete = complete;
     store.data.sessions[store.data.sessions.length - 1].end_utc = new Date().toISOString();
     store.write();
-    if (!complete) return;  // consent declined: abortExperiment already showed its message
+    if (store.data.consent_record && !store.data.consent_record.consent.given) return declinedPage(store);
+    if (!complete) return;
+    const end = plan[plan.length - 1];
+    const page = showMessage(end.title, end.text);
+    transcript.push(shownScreen(end.screen, page));
+    deliver(store, study, page);
+  }
+
+  function declinedPage(store) {
+    const page = showMessage("Thank you", "You did not agree to take part, so the study ends here.");
+    transcript.push({ screen: "declined" });
+    deliver(store, window.crowdlabTimeline.study, page);
+  }
+
+  function deliver(store, study, page) {
     if (hasJatos()) {
+      page.append(element("p", "crowdlab-hint", "Saving your answers..."));
       store.pending.catch(() => {}).then(() => {
         if (study.completion_url) jatos.endStudyAndRedirect(study.completion_url);
         else jatos.endStudy();
@@ -414,14 +637,23 @@
     }
     const file = new Blob([JSON.stringify(store.data, null, 1)], { type: "application/json" });
     const name = `${study.name}_${store.data.participant}.json`;
-    const link = study.completion_url
-      ? `<p><a class="jspsych-btn" id="crowdlab-complete" href="${escapeHtml(study.completion_url)}">Finish and return to the panel</a></p>`
-      : "";
-    showMessage(
-      `<h2>${escapeHtml(screens.finished_title)}</h2><p>The session is complete. Thank you for taking part!</p>` +
-        `<p><a class="jspsych-btn" id="crowdlab-download" download="${escapeHtml(name)}" href="${URL.createObjectURL(file)}">Download the data (${escapeHtml(name)})</a></p>` +
-        link,
+    page.append(
+      element("p", "crowdlab-body",
+        "Your answers are in a data file. Please download it with the button below and send it to the " +
+          "experimenter as they asked you to (for example by e-mail or through the upload link you were given). " +
+          "Then you may close this window."),
     );
+    const link = element("a", "jspsych-btn", `Download the data (${name})`);
+    link.id = "crowdlab-download";
+    link.download = name;
+    link.href = URL.createObjectURL(file);
+    page.append(link);
+    if (study.completion_url) {
+      const back = element("a", "jspsych-btn", "Finish and return to the panel");
+      back.id = "crowdlab-complete";
+      back.href = study.completion_url;
+      page.append(element("p", "crowdlab-body", "After the download:"), back);
+    }
   }
 
   function start() {
@@ -434,13 +666,20 @@
         window.crowdlabTimeline = timeline;
         const id = participantId(new URLSearchParams(window.location.search));
         if (!id) return askForId(timeline);
-        if (!ID_PATTERN.test(id)) return showMessage(`<h2>Invalid participant id</h2><p>'${escapeHtml(id)}' must be 1-64 characters of A-Z a-z 0-9 _ -.</p>`);
+        // The study's id rule (participant_id.hpp, embedded in timeline.json): what import-web would
+        // refuse never starts.
+        if (!validId(timeline, id)) {
+          const page = showMessage("Invalid participant id", `${idMessage(timeline, id)} Please contact the experimenter.`);
+          page.id = "crowdlab-invalid-id";
+          return;
+        }
         run(timeline, id);
       })
-      .catch((error) => showMessage(`<h2>The study could not start</h2><p>${escapeHtml(error.message)}</p><p>Open it through a web server (see docs/online.md), not as a file.</p>`));
+      .catch((error) =>
+        showMessage("The study could not start", `${error.message}\nOpen it through a web server (see docs/online.md), not as a file.`));
   }
 
-  window.crowdlab = { fnv1a32, orderParticipant };
+  window.crowdlab = { fnv1a32, orderParticipant, transcript };
   if (hasJatos()) jatos.onLoad(start);
   else start();
 })();

@@ -45,10 +45,15 @@ wait_file "$SNAP/W01/screen_instructions.png"
 WID=$(window)
 key space
 wait_file "$SNAP/W01/trial_1_onset.png"
+log "keys and a click at once after the onset, before min_view_ms (1200): locked, they answer nothing"
+key 6 6
+click_target 0 1
+sleep 1.0
 key 4 2 5 1 6 3
 wait_file "$SNAP/W01/trial_1_answered.png"
 key Return
 wait_file "$SNAP/W01/trial_2_onset.png"
+sleep 1.0
 click_target 0 6; click_target 1 1; click_target 2 5; click_target 3 2; click_target 4 6; click_target 5 1
 click_target 2 4   # change an answer within the trial (allowed; no going back to earlier trials)
 wait_file "$SNAP/W01/trial_2_answered.png"
@@ -70,11 +75,13 @@ wait_file "$SNAP/W01/trial_3_onset.png"
 key Escape
 sleep 0.3
 key n           # any key but Y continues
+sleep 1.0
 key 2 2 2 5 5 5
 wait_file "$SNAP/W01/trial_3_answered.png"
 log "Next, and a 3 typed 100 ms later, before trial 4's clip is on screen: it must not answer trial 4"
 xdotool key --delay 100 Return 3
 wait_file "$SNAP/W01/trial_4_onset.png"
+sleep 1.0
 key 1 6 1 6 1 6 Return
 wait_file "$SNAP/W01/screen_finished.png"
 key space

@@ -36,6 +36,7 @@ protocol:
   scale: {points: 6, labels: ["I strongly disagree", "I fully agree"]}
   instructions: "You will watch short videos of crowds. Answer the six statements below each video, then press Next."
   inter_trial: {screen: fixation, min_ms: 300}
+  min_view_ms: 1200
   questions:
     - {id: Q1, text: "Contacts made by characters between them seem natural to me"}
     - {id: Q2, text: "Character bodies overlap, it is not physically realistic to me", reverse: true}
@@ -360,7 +361,9 @@ TEST_CASE("participant test: the real window under Xvfb, driven by xdotool, kill
     if (trial == "2") trial2[q] = t.cell(r, t.column("response"));
     if (trial == "4") trial4[q] = t.cell(r, t.column("response"));
     sessions.insert(t.cell(r, t.column("session")));
-    CHECK(std::stod(t.cell(r, t.column("rt_ms"))) > 0.0);
+    // Nothing is accepted before the minimum viewing time (min_view_ms: 1200): the keys typed at once
+    // after each onset answered nothing.
+    CHECK(std::stod(t.cell(r, t.column("rt_ms"))) >= 1200.0);
     // The measured inter-trial gap respects the spec's minimum; the onset is logged.
     CHECK(std::stod(t.cell(r, t.column("inter_trial_ms"))) >= 300.0);
     CHECK(t.cell(r, t.column("onset_utc")).size() == 24);

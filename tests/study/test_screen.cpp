@@ -1,6 +1,12 @@
 // The window's drawing, layout and video source, headless (no display needed): click targets,
-// the Next rule, and that streamed and in-memory playback give the same frames.
+// the Next rule, and that the streamed playback gives the clip's frames with bounded memory.
+#include <chrono>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+#include <thread>
+
+#include "framework/core/error.hpp"
 
 #include "study_ui/frame_interval_stats.hpp"
 #include "study_ui/scale_keys.hpp"
@@ -89,24 +95,40 @@ TEST_CASE("fit_rect keeps the aspect ratio and centres", "[study]") {
   CHECK(r.y == 20);
 }
 
-TEST_CASE("video source: streamed frames equal in-memory frames, looping", "[study]") {
+TEST_CASE("video source: streamed frames equal the clip's frames, looping, memory bounded by a few frames",
+          "[study]") {
   const auto dir = test::scratch_dir("study-video");
   const std::string clip = (dir / "clip.mp4").string();
   test::write_test_clip(clip, 3, 12);
-  VideoSource memory(clip, {0, 0, 320, 180}, 30.0, 512.0);
-  VideoSource stream(clip, {0, 0, 320, 180}, 30.0, 0.0);
-  CHECK(memory.in_memory());
-  CHECK_FALSE(stream.in_memory());
-  CHECK(memory.frame_count() == 12);
-  CHECK(memory.fps() == Approx(30.0));
-  for (long k : {0L, 1L, 2L, 5L, 11L, 12L, 13L, 20L, 25L, 25L, 30L}) {  // includes skips, a repeat and wraps
-    const cv::Mat a = memory.frame(k).clone();
-    const cv::Mat b = stream.frame(k).clone();
-    REQUIRE(a.size() == cv::Size(320, 180));
-    REQUIRE(a.size() == b.size());
-    CHECK(cv::norm(a, b, cv::NORM_INF) == 0.0);
+  // The clip decoded directly, scaled as the window shows it.
+  std::vector<cv::Mat> expected;
+  cv::VideoCapture cap(clip, cv::CAP_FFMPEG);
+  for (cv::Mat raw; cap.read(raw);) {
+    cv::Mat scaled;
+    const cv::Size size = fit_rect(raw.size(), {0, 0, 320, 180}).size();
+    cv::resize(raw, scaled, size, 0, 0, scale_interpolation(raw.size(), size));
+    expected.push_back(scaled);
   }
-  CHECK_THROWS(VideoSource((dir / "missing.mp4").string(), {0, 0, 320, 180}, 30.0, 512.0));
+  REQUIRE(expected.size() == 12);
+  VideoSource looping(clip, {0, 0, 320, 180}, 30.0, true, 3);
+  CHECK(looping.fps() == Approx(30.0));
+  CHECK(looping.frame_count() == 12);
+  for (long k : {0L, 1L, 2L, 5L, 11L, 12L, 13L, 20L, 25L, 25L, 30L, 47L}) {  // skips, a repeat, wraps
+    CAPTURE(k);
+    const cv::Mat a = looping.frame(k).clone();
+    REQUIRE(a.size() == cv::Size(320, 180));
+    CHECK(cv::norm(a, expected[static_cast<size_t>(k % 12)], cv::NORM_INF) == 0.0);
+  }
+  // The decoder stays at most `ahead` frames in front, however long the clip plays.
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  CHECK(looping.frames_buffered() <= 3);
+  // Played once: past the end, the last frame stays.
+  VideoSource once(clip, {0, 0, 320, 180}, 30.0, false, 3);
+  CHECK(cv::norm(once.frame(4), expected[4], cv::NORM_INF) == 0.0);
+  CHECK(cv::norm(once.frame(40), expected[11], cv::NORM_INF) == 0.0);
+  CHECK(once.frame_count() == 12);
+  VideoSource missing((dir / "missing.mp4").string(), {0, 0, 320, 180}, 30.0, true);
+  CHECK_THROWS_AS(missing.frame(0), RuntimeError);
 }
 
 TEST_CASE("frame interval statistics: mean, nearest-rank p99 and max of consecutive differences", "[study]") {

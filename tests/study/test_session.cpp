@@ -275,13 +275,13 @@ class RecordingPresenter final : public Presenter {
   std::vector<std::string> headers;
   ScreenReply consent_reply = ScreenReply::proceed;
   ScreenInfo screen() const override { return {800, 600, "recording"}; }
-  ScreenReply show_screen(ScreenKind kind, const std::string&, const std::string&) override {
-    screens.push_back(kind);
-    return kind == ScreenKind::consent ? consent_reply : ScreenReply::proceed;
+  ScreenReply show_screen(const PlanScreen& s) override {
+    screens.push_back(s.kind);
+    return s.kind == ScreenKind::consent ? consent_reply : ScreenReply::proceed;
   }
   TrialOutcome run_trial(const TrialRequest& r) override {
     trial_indices.push_back(r.trial->index);
-    headers.push_back(trial_header(r));
+    headers.push_back(r.header);
     TrialOutcome out;
     for (const auto& q : *r.questions)
       out.answers.push_back({q.id, q.min_response(), 100.0, iso8601_utc_now()});

@@ -1,26 +1,30 @@
 // A scripted participant for crowdlab's web study (export-web), in headless Chromium through the
 // DevTools protocol (puppeteer-core, pointed at the system chromium). Used by tests/study/test_web.cpp.
 //
-// node web_participant.mjs WEBDIR CHROMIUM NODE_MODULES ANSWERS.json OUTDIR PARTICIPANT RELOAD_AFTER
-//   serves WEBDIR on 127.0.0.1 (a tiny static server, no dependency), opens
-//   index.html?participant=PARTICIPANT, answers every screen (answers: {stimulus: {question: raw}}),
-//   reloads the page once after RELOAD_AFTER answered trials and checks that the study resumes at the
-//   next trial, and writes to OUTDIR: download.json (the end screen's download), localstorage.json,
-//   fnv.json (the page's FNV-1a of test strings), resume.json, jspsych-1.csv and jspsych-2.csv
-//   (jsPsych.data.get().csv() before the reload and at the end), layout.json with likert-1920x1080.png
-//   and likert-1440x900.png (the first Likert screen at both window sizes) and one screenshot per kind
-//   of screen (at 1440x900).
+// node web_participant.mjs OPTIONS.json
+//   OPTIONS: {web_dir, chromium, node_modules, answers (a JSON file {stimulus: {question: raw}}),
+//   out_dir, participant, reload_after (0: no reload), layout_sizes ([[w, h], ...]: the first trial
+//   screen is measured and photographed at each), early_input (try to answer before the lock opens and
+//   during the inter-trial screen), decline (answer N at the consent), id_checks (open the page with ids
+//   that import-web refuses, and with no id)}.
+// Serves web_dir on 127.0.0.1 (a tiny static server, no dependency), opens
+// index.html?participant=PARTICIPANT, plays every screen (scale answers by number keys, yes/no by Y/N,
+// Next by Enter), reloads once after reload_after answered trials, and writes to out_dir:
+// download.json, localstorage.json, transcript.json (the page's transcript per page load), resume.json,
+// jspsych-1.csv / jspsych-2.csv (jsPsych.data.get().csv() before the reload and at the end),
+// layout.json with likert-WxH.png, early.json, ids.json and one screenshot per kind of screen.
 // Exit code: 0 done, 1 failure (message on stderr).
 import fs from "node:fs";
 import http from "node:http";
 import path from "node:path";
 import { createRequire } from "node:module";
 
-const [webDir, chromium, nodeModules, answersPath, outDir, participant, reloadAfterText] = process.argv.slice(2);
-const reloadAfter = Number(reloadAfterText);
+const options = JSON.parse(fs.readFileSync(process.argv[2], "utf8"));
+const { web_dir: webDir, chromium, node_modules: nodeModules, out_dir: outDir, participant } = options;
+const reloadAfter = options.reload_after || 0;
 const require = createRequire(path.join(nodeModules, "noop.js"));
 const puppeteer = require("puppeteer-core");
-const answers = JSON.parse(fs.readFileSync(answersPath, "utf8"));
+const answers = JSON.parse(fs.readFileSync(options.answers, "utf8"));
 fs.mkdirSync(outDir, { recursive: true });
 
 const types = { ".html": "text/html", ".js": "text/javascript", ".css": "text/css", ".json": "application/json", ".mp4": "video/mp4" };
@@ -36,7 +40,7 @@ const server = http.createServer((req, res) => {
   fs.createReadStream(file).pipe(res);
 });
 await new Promise((resolve) => server.listen(0, "127.0.0.1", resolve));
-const base = `http://127.0.0.1:${server.address().port}/index.html?participant=${participant}`;
+const origin = `http://127.0.0.1:${server.address().port}/index.html`;
 
 const browser = await puppeteer.launch({
   executablePath: chromium,
@@ -44,8 +48,8 @@ const browser = await puppeteer.launch({
   args: ["--no-sandbox", "--autoplay-policy=no-user-gesture-required", "--window-size=1920,1080"],
   defaultViewport: { width: 1440, height: 900 },
 });
-const sizes = [[1920, 1080], [1440, 900]];
 const shots = new Set();
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 const fail = (message) => {
   throw new Error(message);
 };
@@ -56,20 +60,40 @@ async function screenshot(page, kind) {
   await page.screenshot({ path: path.join(outDir, `screen-${kind}.png`) });
 }
 
-const ANY_SCREEN =
-  "#jspsych-fullscreen-btn, #jspsych-instructions-next, #jspsych-html-button-response-btngroup button, " +
-  "#jspsych-survey-likert-form, #jspsych-html-keyboard-response-stimulus, #crowdlab-download";
+/// The ids import-web refuses must not start the study; a bare link shows an empty id field.
+async function idChecks(page) {
+  const out = {};
+  for (const bad of ["_P07", "-P07", "P 07"]) {
+    await page.goto(`${origin}?participant=${encodeURIComponent(bad)}`);
+    const shown = await page.waitForSelector("#crowdlab-invalid-id, .crowdlab-trial, #jspsych-fullscreen-btn, #jspsych-loading-progress-bar", { timeout: 20000 });
+    out[bad] = { refused: (await shown.evaluate((el) => el.id)) === "crowdlab-invalid-id", text: await shown.evaluate((el) => el.textContent) };
+    await screenshot(page, "invalid-id");
+  }
+  await page.goto(origin);
+  const input = await page.waitForSelector("#crowdlab-id", { timeout: 20000 });
+  out.bare = { value: await input.evaluate((el) => el.value) };
+  await screenshot(page, "ask-id");
+  await input.type("_P07");
+  await page.click("#crowdlab-id-form button");
+  await sleep(200);
+  out.bare.error = await page.$eval("#crowdlab-id-error", (el) => el.textContent);
+  out.bare.url_after_bad = page.url();
+  const emptyKeys = await page.evaluate(() => Object.keys(localStorage).length);
+  out.bare.storage_keys = emptyKeys;
+  await page.evaluate(() => localStorage.clear());
+  fs.writeFileSync(path.join(outDir, "ids.json"), JSON.stringify(out));
+}
 
-/// The Likert screen at each window size: whether anything scrolls, the clip's box and the picture
-/// in it (object-fit: contain), the statements' positions; one screenshot per size.
-async function probeLikertLayout(page) {
+/// The first trial screen at each window size: scrolling, the clip's box and the picture in it
+/// (object-fit: contain), the Next button, the cells; one screenshot per size.
+async function probeLayout(page) {
   const layout = {};
-  for (const [width, height] of sizes) {
+  for (const [width, height] of options.layout_sizes || []) {
     await page.setViewport({ width, height });
-    await new Promise((r) => setTimeout(r, 400));
+    await sleep(400);
     layout[`${width}x${height}`] = await page.evaluate(() => {
       const rect = (el) => el.getBoundingClientRect();
-      const v = document.querySelector("#crowdlab-study video");
+      const v = document.querySelector("#crowdlab-video");
       const box = rect(v);
       const scale = Math.min(box.width / v.videoWidth, box.height / v.videoHeight);
       return {
@@ -77,9 +101,9 @@ async function probeLikertLayout(page) {
         scroll: [document.scrollingElement.scrollWidth, document.scrollingElement.scrollHeight],
         video_box: [box.width, box.height],
         picture: [v.videoWidth * scale, v.videoHeight * scale],
-        next_bottom: rect(document.querySelector("#jspsych-survey-likert-next")).bottom,
-        statements: [...document.querySelectorAll(".jspsych-survey-likert-statement")].map((e) => [rect(e).left, rect(e).top]),
-        scales: [...document.querySelectorAll(".jspsych-survey-likert-opts")].map((e) => [rect(e).left, rect(e).top, rect(e).width]),
+        next_bottom: rect(document.querySelector("#crowdlab-next")).bottom,
+        cells: [...document.querySelectorAll(".crowdlab-cell")].map((e) => [rect(e).left, rect(e).top, rect(e).bottom]),
+        background: getComputedStyle(document.body).backgroundColor,
       };
     });
     await page.screenshot({ path: path.join(outDir, `likert-${width}x${height}.png`) });
@@ -89,74 +113,91 @@ async function probeLikertLayout(page) {
 }
 
 const jspsychCsv = (page) => page.evaluate(() => window.crowdlab.jsPsych.data.get().csv());
-
-/// The trial number in the header of the current trial screen (0 when none).
-async function currentTrial(page) {
-  return page.evaluate(() => {
-    const h = document.querySelector(".crowdlab-header");
-    const m = h ? h.textContent.match(/rial (\d+) of/) : null;
-    return m ? Number(m[1]) : 0;
-  });
-}
-
-async function stimulusOf(page, trial) {
-  return page.evaluate((t) => {
-    const tl = window.crowdlabTimeline;
-    const id = new URLSearchParams(location.search).get("participant");
-    return tl.orders[window.crowdlab.orderParticipant(id, tl.order_ids)][t - 1].stimulus;
-  }, trial);
-}
+const selectedCount = (page) => page.$$eval(".crowdlab-selected", (els) => els.length);
 
 async function waitGone(page, handle) {
   for (let i = 0; i < 400; i++) {
     if (!(await handle.evaluate((el) => el.isConnected))) return;
-    await new Promise((r) => setTimeout(r, 25));
+    await sleep(25);
   }
   fail("a screen did not end after its answer");
 }
 
-/// Plays one screen; returns "done" at the end screen, "trial" after a trial's last screen.
+const ANY_SCREEN = "#jspsych-fullscreen-btn, .crowdlab-text .crowdlab-hint, .crowdlab-trial, #crowdlab-download";
+const early = { during_inter_trial: null, after_onset: null };
+
+/// Plays one trial: waits for its onset, (optionally) tries to answer too early, waits for the lock to
+/// open, answers with number keys and Y / N, moves on with Enter.
+async function playTrial(page, root, answered) {
+  const trial = Number(await root.evaluate((el) => el.dataset.trial));
+  const stimulus = await root.evaluate((el) => el.dataset.stimulus);
+  if (options.early_input && early.during_inter_trial === null) {
+    // Keys typed on the inter-trial screen (straight through the trial change) must not answer.
+    if (await root.evaluate((el) => el.classList.contains("crowdlab-inter-trial"))) {
+      await screenshot(page, "inter-trial");
+      await page.keyboard.press("3");
+      early.during_inter_trial = { was_inter_trial: true };
+    }
+  }
+  await page.waitForFunction((el) => !el.classList.contains("crowdlab-inter-trial"), { timeout: 20000 }, root);
+  await page.waitForFunction(() => document.querySelector("#crowdlab-video").currentTime > 0.02, { timeout: 20000 });
+  if (options.early_input && early.after_onset === null) {
+    const locked = await root.evaluate((el) => el.classList.contains("crowdlab-locked"));
+    await page.keyboard.press("2");
+    await page.keyboard.press("y");
+    await page.click('[data-q="0"][data-v="1"]').catch(() => {});
+    await page.keyboard.press("Enter");
+    early.after_onset = {
+      locked,
+      next_label: await page.$eval("#crowdlab-next", (b) => b.textContent),
+      selected: await selectedCount(page),
+      still_here: await root.evaluate((el) => el.isConnected),
+    };
+    await screenshot(page, "trial-locked");
+    if (early.during_inter_trial) early.during_inter_trial.selected = early.after_onset.selected;
+  }
+  await page.waitForFunction((el) => !el.classList.contains("crowdlab-locked"), { timeout: 30000 }, root);
+  if (options.layout_sizes && !shots.has("trial")) await probeLayout(page);
+  await screenshot(page, "trial");
+  const questions = await page.evaluate(() => window.crowdlabTimeline.questions);
+  for (const q of questions) {
+    const raw = answers[stimulus][q.id];
+    if (q.kind === "yesno") await page.keyboard.press(raw === 1 ? "y" : "n");
+    else if (raw <= 9) await page.keyboard.press(String(raw));
+    else await page.click(`[data-q="${questions.indexOf(q)}"][data-v="${raw}"]`);
+  }
+  await screenshot(page, "trial-answered");
+  await page.keyboard.press("Enter");
+  await waitGone(page, root);
+  answered.push(trial);
+}
+
+/// Plays one screen; returns "done" at the end page, "trial" after a trial.
 async function step(page, answered) {
   const found = await page.waitForSelector(ANY_SCREEN, { timeout: 30000 });
-  const id = await found.evaluate((el) => el.id || el.className);
-  if (id === "crowdlab-download") return "done";
-  if (id === "jspsych-fullscreen-btn") {
+  const kind = await found.evaluate((el) => (el.id ? el.id : el.className));
+  if (kind === "crowdlab-download") return "done";
+  if (kind === "jspsych-fullscreen-btn") {
     await screenshot(page, "fullscreen");
     await found.click();
-  } else if (id === "jspsych-instructions-next") {
-    await screenshot(page, "instructions");
-    await found.click();
-  } else if (id === "jspsych-survey-likert-form") {
-    const trial = await currentTrial(page);
-    const stimulus = await stimulusOf(page, trial);
-    await page.waitForFunction(() => {
-      const v = document.querySelector("#crowdlab-study video");
-      return !v || v.currentTime > 0.05;  // a looping clip plays above the questions
-    }, { timeout: 10000 });
-    if (!shots.has("trial-likert")) await probeLikertLayout(page);
-    await screenshot(page, "trial-likert");
-    const names = await page.$$eval("ul.jspsych-survey-likert-opts", (uls) => uls.map((u) => u.dataset.name));
-    for (const q of names) await page.click(`ul[data-name="${q}"] input[value="${answers[stimulus][q] - 1}"]`);
-    await page.click("#jspsych-survey-likert-next");
     await waitGone(page, found);
-    answered.push(trial);
+    return "screen";
+  }
+  if (kind.startsWith("crowdlab-trial")) {
+    await playTrial(page, found, answered);
     return "trial";
-  } else if (id.startsWith("jspsych-html-keyboard-response")) {
-    const yesno = await page.$(".crowdlab-keys");
-    if (yesno) {
-      const trial = await currentTrial(page);
-      const stimulus = await stimulusOf(page, trial);
-      await screenshot(page, "trial-yesno");
-      const q = Object.keys(answers[stimulus]).find((k) => answers[stimulus][k] === "yes" || answers[stimulus][k] === "no");
-      await page.keyboard.press(answers[stimulus][q] === "yes" ? "y" : "n");
-    } else {
-      const title = await page.$eval(".crowdlab-text h2", (h) => h.textContent).catch(() => "text");
-      await screenshot(page, "text-" + title.replace(/[^A-Za-z0-9]+/g, "_"));
-      await page.keyboard.press("Space");
+  }
+  const title = await page.$eval(".crowdlab-title", (h) => h.textContent);
+  await screenshot(page, "text-" + title.replace(/[^A-Za-z0-9]+/g, "_"));
+  await sleep(350);  // keys within 300 ms of a text screen are ignored, as natively
+  if (title === "Consent") {
+    await page.keyboard.press(options.decline ? "n" : "y");
+    if (options.decline) {
+      await page.waitForSelector("#crowdlab-download", { timeout: 20000 });
+      return "done";
     }
   } else {
-    await screenshot(page, "consent");
-    await found.click();
+    await page.keyboard.press("Space");
   }
   await waitGone(page, found);
   return "screen";
@@ -167,30 +208,35 @@ try {
   page = await browser.newPage();
   page.on("pageerror", (e) => console.error("page error:", e.message));
   if (process.env.CROWDLAB_WEB_DEBUG) page.on("console", (m) => console.error("page console:", m.text()));
-  await page.goto(base);
-  const first = await page.waitForSelector("#jspsych-loading-progress-bar, #jspsych-fullscreen-btn", { timeout: 20000 });
-  if ((await first.evaluate((el) => el.id)) === "jspsych-loading-progress-bar") await screenshot(page, "preload");
+  if (options.id_checks) await idChecks(page);
+  await page.goto(`${origin}?participant=${encodeURIComponent(participant)}`);
   const answered = [];
   const resume = {};
-  for (let guard = 0; guard < 500; guard++) {
+  const transcripts = [];
+  for (let guard = 0; guard < 1000; guard++) {
     const what = await step(page, answered);
     if (what === "done") break;
     if (what === "trial" && answered.length === reloadAfter && resume.before === undefined) {
       resume.before = answered.slice();
       fs.writeFileSync(path.join(outDir, "jspsych-1.csv"), await jspsychCsv(page));
+      transcripts.push(await page.evaluate(() => window.crowdlab.transcript));
       await page.reload();
       // Resumed: the first trial screen after the reload must be the next unanswered trial. Play the
       // screens before it (preload, full screen, instructions) without answering any trial.
-      for (let g = 0; g < 50; g++) {
+      let first = null;
+      for (let g = 0; g < 50 && !first; g++) {
         await page.waitForSelector(ANY_SCREEN, { timeout: 30000 });
-        if (await page.$("#jspsych-survey-likert-form, .crowdlab-keys, .crowdlab-header")) break;
-        await step(page, answered);
+        first = await page.$(".crowdlab-trial");
+        if (!first) await step(page, answered);
       }
-      resume.first_trial_after_reload = await currentTrial(page);
+      resume.first_trial_after_reload = first ? Number(await first.evaluate((el) => el.dataset.trial)) : 0;
     }
   }
   await screenshot(page, "end");
-  fs.writeFileSync(path.join(outDir, "jspsych-2.csv"), await jspsychCsv(page));
+  transcripts.push(await page.evaluate(() => window.crowdlab.transcript));
+  fs.writeFileSync(path.join(outDir, "transcript.json"), JSON.stringify(transcripts));
+  fs.writeFileSync(path.join(outDir, "end.json"), JSON.stringify(await page.evaluate(() => document.querySelector("#crowdlab-study").innerText)));
+  if (!options.decline) fs.writeFileSync(path.join(outDir, "jspsych-2.csv"), await jspsychCsv(page));
   const download = await page.$eval("#crowdlab-download", async (a) => (await fetch(a.href)).text());
   fs.writeFileSync(path.join(outDir, "download.json"), download);
   const storage = await page.evaluate(() => {
@@ -203,6 +249,7 @@ try {
   fs.writeFileSync(path.join(outDir, "fnv.json"), JSON.stringify(fnv));
   resume.answered = answered;
   fs.writeFileSync(path.join(outDir, "resume.json"), JSON.stringify(resume));
+  fs.writeFileSync(path.join(outDir, "early.json"), JSON.stringify(early));
   await browser.close();
   server.close();
 } catch (e) {
