@@ -3,8 +3,9 @@
 //   * area: scenario.width_m x depth_m centred on the origin; N Poisson-disk positions
 //     (place_poisson_disk), so 9 m^2 at 2.22..6.66 per m^2 holds 20..60 characters; centres must
 //     end up at least crowd.agent_radius_m apart, else InputError (N too large for the area);
-//   * stage: a 0.6 m high box, as wide as the area, 1.5 m deep, whose near edge is 1.5 m beyond the
-//     area's front edge in the stage direction (stage_direction_deg, 0 = +Z);
+//   * stage: a club stage, 1.0 m high, 3 m deep and 8 m (or twice the area) wide, whose near edge is
+//     3 m beyond the area's front edge in the stage direction (stage_direction_deg, 0 = +Z): far enough
+//     that a front camera (V1) stands between stage and crowd instead of looking over the stage's edge;
 //   * sway: each root moves on a small Lissajous path, amplitude 2-4 cm (<= 10 % of the spacing)
 //     and 0.2-0.5 Hz, a typical in-place weight shift of standing/dancing people (postural sway of
 //     standing adults is centimetres; Winter 1995, "Human balance and posture control");
@@ -33,13 +34,14 @@ ScenarioResult generate_stationary_scenario(const ExperimentSpec& spec, const Co
   const Vec2 forward(std::sin(theta), std::cos(theta));  // (x, z)
   // Distance from the centre to the area's edge along `forward` (rectangle support function).
   const double reach = 0.5 * (std::fabs(forward.x()) * sc.width_m + std::fabs(forward.y()) * sc.depth_m);
-  const double stage_depth = 1.5, stage_height = 0.6, stage_gap = 1.5;
+  const double stage_depth = 3.0, stage_height = 1.0, stage_gap = 3.0;
   const Vec2 stage_center = forward * (reach + stage_gap + 0.5 * stage_depth);
 
   ScenarioResult r;
   Box stage;
   stage.center_m = Vec3(stage_center.x(), 0.5 * stage_height, stage_center.y());
-  stage.half_extents_m = Vec3(0.5 * std::max(sc.width_m, sc.depth_m), 0.5 * stage_height, 0.5 * stage_depth);
+  stage.half_extents_m =
+      Vec3(std::max(4.0, std::max(sc.width_m, sc.depth_m)), 0.5 * stage_height, 0.5 * stage_depth);
   stage.rotation = Quat(Eigen::AngleAxisd(theta, Vec3::UnitY()));
   r.environment.boxes.push_back(stage);
 
