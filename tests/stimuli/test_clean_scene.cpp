@@ -8,6 +8,7 @@
 #include "framework/core/mpfb2_asset_dir.hpp"
 #include "stimuli/decode_luma.hpp"
 #include "stimuli/render_clip.hpp"
+#include "stimuli/render_quality.hpp"
 #include "stimuli/scene_set.hpp"
 #include "stimuli/skinned_body_mesh.hpp"
 #include "stimuli/synthetic_crowd.hpp"
@@ -70,7 +71,7 @@ TEST_CASE("a dressed MPFB2 body renders eyes, lips, brows, hair, garments and sh
   // The palette colours the new regions: dark iris on a light sclera, brows darker than the hair.
   const Palette p = palette(0);
   const auto lum = [](const Rgb& c) { return c[0] + c[1] + c[2]; };
-  CHECK(lum(p.colour(SkinRegion::kIris)) < 0.5 * lum(p.colour(SkinRegion::kEyeWhite)));
+  CHECK(lum(p.colour(SkinRegion::kIris)) < 0.5f * lum(p.colour(SkinRegion::kEyeWhite)));
   CHECK(lum(p.colour(SkinRegion::kBrow)) < lum(p.colour(SkinRegion::kHair)));
   CHECK(lum(p.colour(SkinRegion::kLips)) < lum(p.colour(SkinRegion::kSkin)));
 }
