@@ -13,8 +13,9 @@ namespace crowdlab {
 namespace {
 
 constexpr double kDecimetre = 0.1;                                            // OBJ units -> metres
-constexpr double kLipHalfWidthM = 0.024, kLipHalfHeightM = 0.011;             // see mouth_surface
-constexpr double kLipRaiseM = 0.0055, kLipDepthM = 0.05, kLipFrontM = 0.085;  // from the mouth cube
+// Lips relative to the eyes on the base mesh (see mouth_surface).
+constexpr double kBaseEyeDistanceM = 0.0616, kLipDropM = 0.0375, kLipHalfWidthM = 0.024, kLipHalfHeightM = 0.0075;
+constexpr double kLipThicknessM = 0.012, kLipAheadOfEyesM = 0.025;
 
 constexpr std::array<const char*, kJointCount> kMixamoForJoint = {
     "Hips",        "LeftUpLeg",    "RightUpLeg",    "Spine",     "LeftLeg",         "RightLeg",
@@ -403,27 +404,46 @@ std::vector<Vec3> anchored_vertices_dm(const Mpfb2Model& model, const std::vecto
   return out;
 }
 
-/// Surface labels of the body's vertices: skin, and lips where a vertex lies 5 to 8.5 cm in front of the
-/// mouth landmark (the centre of the base mesh's joint-mouth cube, inside the mouth; the lips' front is
-/// about 7 cm ahead of it on shaped bodies, a nose tip further) and within an ellipse 2.4 cm wide and
-/// 1.1 cm high either side of a point 5.5 mm above it (the lips span about 0.5 cm below to 1.1 cm above
-/// the cube's centre; an adult mouth is about 5 cm wide).
+/// Surface labels of the body's vertices: skin, and lips, found from the eyes (the base mesh's eyeball
+/// groups, anchored like all helper geometry; the eyes are where any face's proportions start). On
+/// MakeHuman's base mesh the lips are the face's foremost points 3.0 to 4.5 cm below the eyes' midpoint,
+/// and the eyes are 6.16 cm apart; on a shaped body these lengths scale with its eye distance s. Lips:
+/// within an ellipse 2.4 s wide and 0.75 s high either side of the point 3.75 s below the eyes' midpoint
+/// (an adult mouth is about 5 cm wide), at most 1.2 s behind the ellipse's foremost vertex and at least
+/// 2.5 s in front of the eyes (not the mouth's inside).
 std::vector<std::uint8_t> mouth_surface(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm,
                                         const Vec3& shift, const std::vector<Vec3>& verts_m) {
   std::vector<std::uint8_t> out(verts_m.size(), static_cast<std::uint8_t>(SurfaceKind::kSkin));
-  const int g = model.base().group_index("joint-mouth");
-  if (g < 0) return out;
-  Vec3 mouth = Vec3::Zero();
-  const std::vector<int> ids = model.base().group_vertices(g);
-  for (int v : ids) mouth += shaped_dm[static_cast<size_t>(v)];
-  mouth = kDecimetre * mouth / static_cast<double>(ids.size()) + shift;
+  const std::vector<Vec3>& base = model.base().vertices;
+  const auto centre_m = [&](const char* group, bool& found) {
+    const int g = model.base().group_index(group);
+    found = g >= 0;
+    Vec3 c = Vec3::Zero();
+    if (!found) return c;
+    const std::vector<int> ids = model.base().group_vertices(g);
+    for (int v : ids) {
+      const auto a = static_cast<size_t>(model.shape_anchor()[static_cast<size_t>(v)]);
+      c += base[static_cast<size_t>(v)] + (shaped_dm[a] - base[a]);
+    }
+    return Vec3(kDecimetre * c / static_cast<double>(ids.size()) + shift);
+  };
+  bool left_found = false, right_found = false;
+  const Vec3 left = centre_m("helper-l-eye", left_found), right = centre_m("helper-r-eye", right_found);
+  if (!left_found || !right_found) return out;
+  const double s = std::abs(left.x() - right.x()) / kBaseEyeDistanceM;
+  const Vec3 lips = 0.5 * (left + right) - Vec3(0.0, kLipDropM * s, 0.0);
+  std::vector<double> depth(verts_m.size(), -HUGE_VAL);
+  double front = -HUGE_VAL;
   for (size_t i = 0; i < verts_m.size(); ++i) {
-    const Vec3 d = verts_m[i] - mouth - Vec3(0.0, kLipRaiseM, 0.0);
-    const double e = (d.x() / kLipHalfWidthM) * (d.x() / kLipHalfWidthM) +
-                     (d.y() / kLipHalfHeightM) * (d.y() / kLipHalfHeightM);
-    if (e < 1.0 && d.z() > kLipDepthM && d.z() < kLipFrontM)
-      out[i] = static_cast<std::uint8_t>(SurfaceKind::kLips);
+    const Vec3 d = verts_m[i] - lips;
+    const double ex = d.x() / (kLipHalfWidthM * s), ey = d.y() / (kLipHalfHeightM * s);
+    if (ex * ex + ey * ey < 1.0 && d.z() > kLipAheadOfEyesM * s) {
+      depth[i] = d.z();
+      front = std::max(front, d.z());
+    }
   }
+  for (size_t i = 0; i < verts_m.size(); ++i)
+    if (depth[i] > front - kLipThicknessM * s) out[i] = static_cast<std::uint8_t>(SurfaceKind::kLips);
   return out;
 }
 
