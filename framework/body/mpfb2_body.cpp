@@ -14,7 +14,7 @@ namespace {
 
 constexpr double kDecimetre = 0.1;                                            // OBJ units -> metres
 // Lips relative to the eyes on the base mesh (see mouth_surface).
-constexpr double kBaseEyeDistanceM = 0.0616, kLipDropM = 0.0375, kLipHalfWidthM = 0.024, kLipHalfHeightM = 0.0075;
+constexpr double kBaseEyeDistanceM = 0.0616, kLipDropM = 0.061, kLipHalfWidthM = 0.024, kLipHalfHeightM = 0.008;
 constexpr double kLipThicknessM = 0.012, kLipAheadOfEyesM = 0.025;
 
 constexpr std::array<const char*, kJointCount> kMixamoForJoint = {
@@ -406,11 +406,11 @@ std::vector<Vec3> anchored_vertices_dm(const Mpfb2Model& model, const std::vecto
 
 /// Surface labels of the body's vertices: skin, and lips, found from the eyes (the base mesh's eyeball
 /// groups, anchored like all helper geometry; the eyes are where any face's proportions start). On
-/// MakeHuman's base mesh the lips are the face's foremost points 3.0 to 4.5 cm below the eyes' midpoint,
-/// and the eyes are 6.16 cm apart; on a shaped body these lengths scale with its eye distance s. Lips:
-/// within an ellipse 2.4 s wide and 0.75 s high either side of the point 3.75 s below the eyes' midpoint
-/// (an adult mouth is about 5 cm wide), at most 1.2 s behind the ellipse's foremost vertex and at least
-/// 2.5 s in front of the eyes (not the mouth's inside).
+/// MakeHuman's base mesh the face's profile has the nose tip 3.5 cm below the eyes' midpoint, the lips'
+/// bulge 5.3 to 7.0 cm below it (3.6 cm in front), the chin below that, and the eyes are 6.16 cm apart; on a
+/// shaped body these lengths scale with its eye distance s. Lips: within an ellipse 2.4 s wide and 0.8 s
+/// high either side of the point 6.1 s below the eyes' midpoint (an adult mouth is about 5 cm wide), at
+/// most 1.2 s behind the ellipse's foremost vertex and at least 2.5 s in front of the eyes.
 std::vector<std::uint8_t> mouth_surface(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm,
                                         const Vec3& shift, const std::vector<Vec3>& verts_m) {
   std::vector<std::uint8_t> out(verts_m.size(), static_cast<std::uint8_t>(SurfaceKind::kSkin));
