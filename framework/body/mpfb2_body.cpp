@@ -12,9 +12,10 @@
 namespace crowdlab {
 namespace {
 
-constexpr double kDecimetre = 0.1;                                            // OBJ units -> metres
+constexpr double kDecimetre = 0.1;  // OBJ units -> metres
 // Lips relative to the eyes on the base mesh (see mouth_surface).
-constexpr double kBaseEyeDistanceM = 0.0616, kLipDropM = 0.061, kLipHalfWidthM = 0.024, kLipHalfHeightM = 0.008;
+constexpr double kBaseEyeDistanceM = 0.0616, kLipDropM = 0.061, kLipHalfWidthM = 0.024,
+                 kLipHalfHeightM = 0.008;
 constexpr double kLipThicknessM = 0.012, kLipAheadOfEyesM = 0.025;
 
 constexpr std::array<const char*, kJointCount> kMixamoForJoint = {

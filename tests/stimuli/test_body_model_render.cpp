@@ -133,7 +133,8 @@ TEST_CASE("MPFB2 bodies: clothing regions by mesh position, rendered where the c
     // dressed body's labels).
     std::array<int, static_cast<size_t>(SkinRegion::kCount)> count{};
     for (const MannequinVertex& v : r.vertices) ++count[v.region];
-    for (int k = 0; k < static_cast<int>(SkinRegion::kEyeWhite); ++k) CHECK(count[static_cast<size_t>(k)] > 50);
+    for (int k = 0; k < static_cast<int>(SkinRegion::kEyeWhite); ++k)
+      CHECK(count[static_cast<size_t>(k)] > 50);
     for (int k = static_cast<int>(SkinRegion::kEyeWhite); k < static_cast<int>(SkinRegion::kCount); ++k)
       CHECK(count[static_cast<size_t>(k)] == 0);
   }

@@ -58,7 +58,8 @@ TEST_CASE("a dressed MPFB2 body renders eyes, lips, brows, hair, garments and sh
     const MannequinMesh r = skinned_body_mesh(s.body.mesh);
     CHECK(r.two_sided);
     int lips = 0;
-    for (const std::uint8_t k : s.body.mesh.surface) lips += k == static_cast<std::uint8_t>(SurfaceKind::kLips);
+    for (const std::uint8_t k : s.body.mesh.surface)
+      lips += k == static_cast<std::uint8_t>(SurfaceKind::kLips);
     INFO("lips vertices " << lips);
     std::set<int> regions;
     for (const MannequinVertex& v : r.vertices) regions.insert(v.region);
