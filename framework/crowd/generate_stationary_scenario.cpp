@@ -9,7 +9,8 @@
 //   * sway: each root moves on a small Lissajous path, amplitude 2-4 cm (<= 10 % of the spacing)
 //     and 0.2-0.5 Hz, a typical in-place weight shift of standing/dancing people (postural sway of
 //     standing adults is centimetres; Winter 1995, "Human balance and posture control");
-//   * heading: toward the stage centre, plus a slow +-5..15 degree look-around oscillation.
+//   * heading: toward a point on the stage's axis 2.25 m beyond the area's front edge (so everyone faces the
+//     stage), plus a slow +-5..15 degree look-around oscillation.
 #include <cmath>
 #include <numbers>
 
@@ -36,6 +37,9 @@ ScenarioResult generate_stationary_scenario(const ExperimentSpec& spec, const Co
   const double reach = 0.5 * (std::fabs(forward.x()) * sc.width_m + std::fabs(forward.y()) * sc.depth_m);
   const double stage_depth = 3.0, stage_height = 1.0, stage_gap = 3.0;
   const Vec2 stage_center = forward * (reach + stage_gap + 0.5 * stage_depth);
+  // Where the dancers look: a point on the stage's axis 2.25 m beyond the area's front edge (the centre of
+  // the smaller stage before issue 28, so the crowd, its animation and metrics stay what they were).
+  const Vec2 focus = forward * (reach + 2.25);
 
   ScenarioResult r;
   Box stage;
@@ -57,7 +61,7 @@ ScenarioResult generate_stationary_scenario(const ExperimentSpec& spec, const Co
     const double look_amp = (5.0 + 10.0 * uniform01(rng)) * std::numbers::pi / 180.0;
     const double look_f = 0.05 + 0.1 * uniform01(rng), look_p = 2.0 * std::numbers::pi * uniform01(rng);
     const Vec2 base = placement.positions[static_cast<std::size_t>(i)];
-    const Vec2 to_stage = stage_center - base;
+    const Vec2 to_stage = focus - base;
     const double facing = heading_of(to_stage.x(), to_stage.y());
     AgentTrajectory& a = r.trajectories.agents[static_cast<std::size_t>(i)];
     a.radius_m = spec.crowd.agent_radius_m;
