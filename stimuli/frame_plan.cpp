@@ -115,7 +115,10 @@ void cut_away_boxes(const CrowdAnimation& crowd, int frame, const Camera& camera
   plan.box_hidden.assign(scene.boxes.size(), 0);
   for (std::size_t b = 0; b < scene.boxes.size(); ++b)
     for (const CharacterAnimation& c : crowd.characters) {
-      if (segment_hits_box(camera.eye, root_at(c, frame) + Vec3(0, 0.35, 0), scene.boxes[b])) {
+      // The chest and the feet: a stage edge or a barrier below the chest still hides the feet.
+      const Vec3 root = root_at(c, frame);
+      if (segment_hits_box(camera.eye, root + Vec3(0, 0.35, 0), scene.boxes[b]) ||
+          segment_hits_box(camera.eye, Vec3(root.x(), 0.1, root.z()), scene.boxes[b])) {
         plan.box_hidden[b] = 1;
         break;
       }
@@ -190,6 +193,12 @@ void prepare_frame(const CrowdAnimation& crowd, int frame, const Camera& camera,
   choose_levels_of_detail(crowd, frame, camera, options, scene, plan);
   sort_near_to_far(crowd, frame, camera, plan);
   if (!options.characters) plan.order.clear();
+  plan.contacts.clear();
+  for (const std::size_t i : plan.order) {
+    const Vec3& r = root_at(crowd.characters[i], frame);
+    plan.contacts.insert(plan.contacts.end(),
+                         {static_cast<float>(r.x()), static_cast<float>(r.z()), 0.0f, 0.0f});
+  }
 }
 
 }  // namespace crowdlab::stimuli

@@ -57,6 +57,7 @@ struct FramePlan {
   std::vector<char> box_hidden;     ///< per environment box: 1 = cut away this frame
   std::vector<std::uint64_t> mesh;  ///< per character: the mesh-cache key of the level drawn
   std::vector<std::size_t> order;   ///< characters near to far from the eye (stable); empty without them
+  std::vector<float> contacts;      ///< per drawn character: root x, z, 0, 0 (contact darkening)
 };
 
 /// Fills `plan` (its buffers are reused across frames). Throws InputError when `frame` is out of range.

@@ -53,6 +53,7 @@ GpuMesh upload_mannequin(const MannequinMesh& mesh) {
   glVertexArrayAttribIFormat(m.vao, 4, 1, GL_UNSIGNED_BYTE, offsetof(MannequinVertex, region));
   glVertexArrayAttribFormat(m.vao, 5, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(MannequinVertex, colour));
   m.count = static_cast<GLsizei>(mesh.indices.size());
+  m.two_sided = mesh.two_sided;
   return m;
 }
 

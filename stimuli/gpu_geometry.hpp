@@ -12,7 +12,8 @@ namespace crowdlab::stimuli {
 
 struct GpuMesh {
   unsigned vao = 0, vbo = 0, ibo = 0;
-  int count = 0;  ///< number of indices
+  int count = 0;           ///< number of indices
+  bool two_sided = false;  ///< MannequinMesh::two_sided
 };
 
 /// Static vertex: position and normal (world or model frame, metres).

@@ -32,8 +32,14 @@ enum class SkinRegion : std::uint8_t {
   kTrousers,
   kLowerLeg,
   kShoes,
+  kEyeWhite,  ///< the regions below come from a dressed mesh's surface labels (SkinnedMesh::surface)
+  kIris,
+  kLips,
+  kBrow,
   kCount
 };
+/// Size of the renderer's per-character colour table (>= kCount).
+inline constexpr int kPaletteSlots = 12;
 
 struct MannequinVertex {
   std::array<float, 3> position;        ///< bind pose, character frame (metres), rest pose standing at origin
@@ -48,6 +54,8 @@ struct MannequinVertex {
 struct MannequinMesh {
   std::vector<MannequinVertex> vertices;
   std::vector<std::uint32_t> indices;  ///< triangles, counter-clockwise seen from outside
+  /// Open sheets (hair, eyebrows, garments) are seen from both sides: drawn without back-face culling.
+  bool two_sided = false;
 };
 
 struct MannequinOptions {

@@ -56,6 +56,14 @@ Rgb Palette::colour(SkinRegion region) const {
       return long_trousers ? trousers : skin;
     case SkinRegion::kShoes:
       return shoes;
+    case SkinRegion::kEyeWhite:
+      return rgb(226, 222, 214);  // sclera: off-white, a little darker than paper white
+    case SkinRegion::kIris:
+      return rgb(58, 40, 30);  // dark brown, the world's most common iris colour
+    case SkinRegion::kLips:    // lips: the skin, redder and darker
+      return {skin[0] * 0.82f, skin[1] * 0.58f, skin[2] * 0.58f};
+    case SkinRegion::kBrow:  // brows: the hair colour, a little darker
+      return {hair[0] * 0.75f, hair[1] * 0.75f, hair[2] * 0.75f};
     default:
       return skin;
   }

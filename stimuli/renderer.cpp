@@ -26,6 +26,7 @@
 #include "stimuli/gltf_character.hpp"
 #include "stimuli/gpu_geometry.hpp"
 #include "stimuli/level_of_detail.hpp"
+#include "stimuli/scene_set.hpp"
 #include "stimuli/shaders.hpp"
 
 namespace crowdlab::stimuli {
@@ -37,6 +38,16 @@ constexpr double kShadowVoxelM = 0.045;
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+/// Back-face culling for closed surfaces (`face` culled), none for open sheets (hair, garments).
+void set_culling(bool two_sided, GLenum face) {
+  if (two_sided) {
+    glDisable(GL_CULL_FACE);
+  } else {
+    glEnable(GL_CULL_FACE);
+    glCullFace(face);
+  }
 }
 
 }  // namespace
@@ -136,6 +147,12 @@ void Renderer::set_size(int width, int height, int samples, int shadow_map_size)
   for (GLuint fbo : {g.msaa_fbo, g.resolve_fbo, g.shadow_fbo, g.ground_fbo})
     if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw RuntimeError("OpenGL: a framebuffer is incomplete (" + device() + ")");
+  glCreateTextures(GL_TEXTURE_2D, 1, &g.aa_tex);
+  glTextureStorage2D(g.aa_tex, 1, GL_RGBA8, width, height);
+  glTextureParameteri(g.aa_tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(g.aa_tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(g.aa_tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(g.aa_tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glCreateBuffers(2, g.pbo);
   for (GLuint pbo : g.pbo)
     glNamedBufferData(pbo, static_cast<GLsizeiptr>(width) * height * 4, nullptr, GL_STREAM_READ);
@@ -241,6 +258,17 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
   // of a condition (bodies a few centimetres apart) must get the same shadow map and ground.
   scene.bounds_lo = (2.0 * (0.5 * lo).array().floor()).matrix();
   scene.bounds_hi = (2.0 * (0.5 * hi).array().ceil()).matrix();
+  // Set dressing (stimuli/scene_set.hpp) after the environment's boxes, which keep indices 0..n-1.
+  g.physical_boxes = crowd.environment.boxes.size();
+  g.decor = make_scene_set(crowd, scene.bounds_lo, scene.bounds_hi);
+  for (const DecorBox& d : g.decor) {
+    Mat4 model = Mat4::Identity();
+    model.block<3, 3>(0, 0) =
+        d.box.rotation.normalized().toRotationMatrix() * d.box.half_extents_m.asDiagonal();
+    model.block<3, 1>(0, 3) = d.box.center_m;
+    g.box_models.push_back(model);
+    scene.boxes.push_back(d.box);
+  }
   destroy(g.ground);
   const Vec3 c = 0.5 * (scene.bounds_lo + scene.bounds_hi);
   const float half = 150.0f, cx = static_cast<float>(c.x()), cz = static_cast<float>(c.z());
@@ -307,6 +335,7 @@ void Renderer::set_frame_uniforms(Gl& g, const Camera& camera, const SceneOption
     glProgramUniform1f(id, prog->uniform("u_shadow_texel"), 1.0f / static_cast<float>(g.shadow_size));
     set_rgb(id, prog->uniform("u_background"), options.background);
     glProgramUniform1f(id, prog->uniform("u_fog_density"), static_cast<float>(options.fog_density));
+    glProgramUniform1i(id, prog->uniform("u_soft_shadows"), options.clean_image ? 1 : 0);
   }
 }
 
@@ -331,6 +360,7 @@ void Renderer::shadow_pass(Gl& g, const SceneOptions& options) {
                                      : g.lod_sets.at(g.character_shadow_mesh[i]).front().key;
     const GpuMesh& m = g.mesh_cache.at(caster);
     glProgramUniform1i(p, depth_base, static_cast<int>(i * kJointCount));
+    set_culling(m.two_sided, GL_FRONT);
     glBindVertexArray(m.vao);
     glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
   }
@@ -338,7 +368,7 @@ void Renderer::shadow_pass(Gl& g, const SceneOptions& options) {
   glUseProgram(p);
   set_mat4(p, g.static_depth.uniform("u_view_proj"), plan.lights.light_view_proj);
   glDisable(GL_CULL_FACE);
-  draw_environment(g, p, g.static_depth.uniform("u_model"));
+  draw_environment(g, p, g.static_depth.uniform("u_model"), -1, -1, nullptr);
   glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
@@ -371,12 +401,13 @@ void Renderer::colour_pass(Gl& g, const Camera& camera, const SceneOptions& opti
   draw_characters(g, options);
   const GLuint p = g.flat_lit.id();
   glUseProgram(p);
-  set_rgb(p, g.flat_lit.uniform("u_base_color"), options.environment);
-  draw_environment(g, p, g.flat_lit.uniform("u_model"));
+  draw_environment(g, p, g.flat_lit.uniform("u_model"), g.flat_lit.uniform("u_base_color"),
+                   g.flat_lit.uniform("u_emission"), &options.environment);
   if (cached_ground)
     draw_ground_shadows(options.ground, g.plan.lights.key_dir);
   else if (crowd_->environment.ground_plane)
     draw_ground(g, options.ground);
+  if (options.clean_image && crowd_->environment.ground_plane) draw_contacts(g, options);
   glBindVertexArray(0);
 }
 
@@ -395,18 +426,19 @@ void Renderer::draw_characters(Gl& g, const SceneOptions& options) {
   for (const size_t i : plan.order) {
     const GpuMesh& m = g.mesh_cache.at(plan.mesh[i]);
     const Palette pal = character_palette(crowd_->characters[i].palette);
-    float colours[8 * 3];
-    for (int r = 0; r < 8; ++r) {
+    float colours[kPaletteSlots * 3];
+    for (int r = 0; r < kPaletteSlots; ++r) {
       const Rgb c =
           pal.colour(static_cast<SkinRegion>(std::min(r, static_cast<int>(SkinRegion::kCount) - 1)));
       for (int k = 0; k < 3; ++k)
         colours[3 * r + k] = c[static_cast<size_t>(k)] * c[static_cast<size_t>(k)];  // gamma 2.0 -> linear
     }
-    glProgramUniform3fv(p, palette_loc, 8, colours);
+    glProgramUniform3fv(p, palette_loc, kPaletteSlots, colours);
     glProgramUniform1i(p, lit_base, static_cast<int>(i * kJointCount));
     glProgramUniform1i(p, offset_loc, plan.cap_offset[i]);
     glProgramUniform1i(p, count_loc, plan.cap_count[i]);
     glProgramUniform1i(p, own_loc, plan.own_offset[i]);
+    set_culling(m.two_sided, GL_BACK);
     glBindVertexArray(m.vao);
     glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
     triangles_ += static_cast<size_t>(m.count) / 3;
@@ -418,6 +450,11 @@ void Renderer::draw_characters(Gl& g, const SceneOptions& options) {
 // one sample per pixel, where the frame is read from the drawn target itself.
 void Renderer::resolve_pass(Gl& g, const SceneOptions& options) {
   overlap_drawn_ = options.overlap;
+  g.post_aa = !g.multisampled && options.clean_image;
+  if (g.post_aa) {
+    fxaa_pass(g, options);
+    return;
+  }
   const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   for (int k = 0; k < (!g.multisampled ? 0 : options.overlap ? 2 : 1); ++k) {
     const GLenum attachment = attachments[k];
@@ -429,16 +466,75 @@ void Renderer::resolve_pass(Gl& g, const SceneOptions& options) {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+// Contact darkening: one multiplied quad on the ground per drawn character (shaders.cpp), only colour
+// attachment 0, over the depth buffer without writing it.
+void Renderer::draw_contacts(Gl& g, const SceneOptions& options) {
+  if (g.plan.contacts.empty()) return;
+  Gl::upload(g.contact_ssbo, g.contact_capacity, g.plan.contacts);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, g.contact_ssbo);
+  const GLuint p = g.contact.id();
+  glUseProgram(p);
+  set_mat4(p, g.contact.uniform("u_view_proj"), g.plan.view_proj);
+  const GLenum first = GL_COLOR_ATTACHMENT0;
+  glNamedFramebufferDrawBuffers(g.msaa_fbo, 1, &first);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_DST_COLOR, GL_ZERO);
+  glBindVertexArray(g.empty_vao);
+  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(g.plan.contacts.size() / 4));
+  glDisable(GL_BLEND);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
+  (void)options;
+}
+
+// FXAA from the single-sample colour target into the resolve target (shaders.cpp), and in overlap mode the
+// mask copied beside it, so that everything reads the frame from output_fbo() as after an MSAA resolve.
+void Renderer::fxaa_pass(Gl& g, const SceneOptions& options) {
+  glCopyImageSubData(g.msaa_color, GL_RENDERBUFFER, 0, 0, 0, 0, g.aa_tex, GL_TEXTURE_2D, 0, 0, 0, 0, width_,
+                     height_, 1);
+  if (options.overlap)
+    glCopyImageSubData(g.msaa_mask, GL_RENDERBUFFER, 0, 0, 0, 0, g.resolve_mask, GL_RENDERBUFFER, 0, 0, 0, 0,
+                       width_, height_, 1);
+  glBindFramebuffer(GL_FRAMEBUFFER, g.resolve_fbo);
+  glNamedFramebufferDrawBuffer(g.resolve_fbo, GL_COLOR_ATTACHMENT0);
+  glViewport(0, 0, width_, height_);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glUseProgram(g.fxaa.id());
+  glBindTextureUnit(2, g.aa_tex);
+  glProgramUniform1i(g.fxaa.id(), g.fxaa.uniform("u_image"), 2);
+  glBindVertexArray(g.empty_vao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glEnable(GL_DEPTH_TEST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
 // The static environment (visible boxes, then meshes in world coordinates), drawn the same way by the
 // shadow pass and the colour pass; only the program and its model-matrix uniform differ.
-void Renderer::draw_environment(Gl& g, unsigned program, int model_location) {
-  for (size_t b = 0; b < g.box_models.size(); ++b) {
+void Renderer::draw_environment(Gl& g, unsigned program, int model_location, int colour_location,
+                                int emission_location, const Rgb* environment) {
+  // The shadow pass (no colour) draws the environment's own boxes; the set dressing casts no shadow.
+  const size_t boxes = environment ? g.box_models.size() : g.physical_boxes;
+  for (size_t b = 0; b < boxes; ++b) {
     if (g.plan.box_hidden[b]) continue;
+    if (environment) {
+      const bool decor = b >= g.physical_boxes;
+      set_rgb(program, colour_location, decor ? g.decor[b - g.physical_boxes].colour : *environment);
+      glProgramUniform1f(program, emission_location, decor ? g.decor[b - g.physical_boxes].emission : 0.0f);
+    }
     set_mat4(program, model_location, g.box_models[b]);
     glBindVertexArray(g.cube.vao);
     glDrawElements(GL_TRIANGLES, g.cube.count, GL_UNSIGNED_INT, nullptr);
   }
   set_mat4(program, model_location, Mat4::Identity());
+  if (environment) {
+    set_rgb(program, colour_location, *environment);
+    glProgramUniform1f(program, emission_location, 0.0f);
+  }
   for (const GpuMesh& m : g.environment_meshes) {
     glBindVertexArray(m.vao);
     glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);

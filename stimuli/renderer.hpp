@@ -44,6 +44,9 @@ struct SceneOptions {
   bool characters =
       true;  ///< false: the scene without its characters (the fixed per-frame cost, for benchmarks)
   bool time_passes = false;  ///< finish each pass before the next to time it (benchmarks; slower)
+  /// The clean image (docs/stimuli.md): FXAA on the single-sample path, soft shadow edges (four bilinear
+  /// shadow taps) and contact darkening under every character. false: the raw draw (benchmarks compare).
+  bool clean_image = true;
 };
 
 /// Wall time of each stage of the last draw(), milliseconds. The GPU passes (shadow, colour, resolve) are
@@ -117,8 +120,13 @@ class Renderer {
   void colour_pass(Gl& g, const Camera& camera, const SceneOptions& options);
   void draw_characters(Gl& g, const SceneOptions& options);
   void resolve_pass(Gl& g, const SceneOptions& options);
+  void fxaa_pass(Gl& g, const SceneOptions& options);
+  void draw_contacts(Gl& g, const SceneOptions& options);
   static GlProgram& character_program(Gl& g, const SceneOptions& options);
-  void draw_environment(Gl& g, unsigned program, int model_location);
+  /// Visible boxes (with the set dressing and colours when `environment`, the environment's colour, is
+  /// given; the environment's own boxes only for the shadow pass, environment == nullptr), then meshes.
+  void draw_environment(Gl& g, unsigned program, int model_location, int colour_location,
+                        int emission_location, const Rgb* environment);
   void draw_ground(Gl& g, const Rgb& colour);
   void begin_shadow_pass(Gl& g);
   bool uses_ground_cache(const SceneOptions& options) const;

@@ -16,6 +16,7 @@
 #include "stimuli/gpu_geometry.hpp"
 #include "stimuli/level_of_detail.hpp"
 #include "stimuli/renderer.hpp"
+#include "stimuli/scene_set.hpp"
 #include "stimuli/shaders.hpp"
 
 namespace crowdlab::stimuli {
@@ -49,6 +50,13 @@ struct Renderer::Gl {
   GlProgram ground_unshadowed{glsl::kStaticVertex,
                               glsl::specialise(glsl::kLitFragment, "MATERIAL_GROUND NO_SHADOW").c_str(),
                               "ground_unshadowed"};
+  GlProgram fxaa{glsl::kFullscreenVertex, glsl::kFxaaFragment, "fxaa"};
+  GlProgram contact{glsl::kContactVertex, glsl::kContactFragment, "contact"};
+  GLuint aa_tex = 0;     ///< the single-sample frame, sampled by the FXAA pass
+  GLuint empty_vao = 0;  ///< full-screen and instanced passes take no vertex attributes
+  GLuint contact_ssbo = 0;
+  GLsizeiptr contact_capacity = 0;
+  bool post_aa = false;  ///< the last frame went through FXAA into the resolve targets
   GlProgram ground_shadow{glsl::kStaticVertex,
                           glsl::specialise(glsl::kLitFragment, "MATERIAL_GROUND_SHADOW").c_str(),
                           "ground_shadow"};
@@ -56,7 +64,9 @@ struct Renderer::Gl {
   GpuMesh cube = make_unit_cube();
   GpuMesh ground;
   std::vector<GpuMesh> environment_meshes;
-  std::vector<Mat4> box_models;
+  std::vector<Mat4> box_models;    ///< the environment's boxes, then the set dressing's
+  std::size_t physical_boxes = 0;  ///< how many of box_models are the environment's own
+  std::vector<DecorBox> decor;     ///< the set dressing (stimuli/scene_set.hpp)
   std::map<std::uint64_t, std::vector<LodLevel>> lod_sets;  ///< mesh-set key -> its levels, finest first
   std::vector<std::uint64_t> character_lods;                ///< per character: its mesh-set key
   /// Per character: a one-level set of its shadow caster, or 0 when the caster is the level the colour pass
@@ -82,11 +92,13 @@ struct Renderer::Gl {
   std::vector<std::uint8_t> mask_pixels;
 
   /// The framebuffer whose colour attachment 0 holds the finished frame (1: the overlap mask).
-  GLuint output_fbo() const { return multisampled ? resolve_fbo : msaa_fbo; }
+  GLuint output_fbo() const { return multisampled || post_aa ? resolve_fbo : msaa_fbo; }
 
   Gl() {
     glCreateBuffers(1, &skin_ssbo);
     glCreateBuffers(1, &caps_ssbo);
+    glCreateBuffers(1, &contact_ssbo);
+    glCreateVertexArrays(1, &empty_vao);
     noise_tex = make_noise_texture();
   }
   ~Gl() {
@@ -97,6 +109,8 @@ struct Renderer::Gl {
     free_targets();
     glDeleteBuffers(1, &skin_ssbo);
     glDeleteBuffers(1, &caps_ssbo);
+    glDeleteBuffers(1, &contact_ssbo);
+    glDeleteVertexArrays(1, &empty_vao);
     glDeleteTextures(1, &noise_tex);
   }
   void free_targets() {
@@ -111,6 +125,8 @@ struct Renderer::Gl {
     const GLuint rbs[] = {msaa_color, msaa_mask, msaa_depth, resolve_color, resolve_mask};
     glDeleteRenderbuffers(5, rbs);
     glDeleteTextures(1, &shadow_tex);
+    glDeleteTextures(1, &aa_tex);
+    aa_tex = 0;
     glDeleteBuffers(2, pbo);
     msaa_fbo = resolve_fbo = shadow_fbo = shadow_tex = 0;
     pbo[0] = pbo[1] = 0;

@@ -44,6 +44,7 @@ out vec3 v_world;
 out vec3 v_normal;
 flat out uint v_region;
 out vec4 v_colour;
+out vec3 v_rest;
 void main() {
   mat4 m = a_weights.x * skin[u_skin_base + int(a_bones.x)] + a_weights.y * skin[u_skin_base + int(a_bones.y)] +
            a_weights.z * skin[u_skin_base + int(a_bones.z)] + a_weights.w * skin[u_skin_base + int(a_bones.w)];
@@ -52,6 +53,7 @@ void main() {
   v_normal = mat3(m) * a_normal;
   v_region = a_region;
   v_colour = a_colour;
+  v_rest = a_position;
   gl_Position = u_view_proj * world;
 }
 )";
@@ -65,8 +67,10 @@ out vec3 v_world;
 out vec3 v_normal;
 flat out uint v_region;
 out vec4 v_colour;
+out vec3 v_rest;
 void main() {
   vec4 world = u_model * vec4(a_position, 1.0);
+  v_rest = a_position;
   v_world = world.xyz;
   v_normal = mat3(u_model) * a_normal;
   v_region = 0u;
@@ -84,17 +88,20 @@ in vec3 v_world;
 in vec3 v_normal;
 flat in uint v_region;
 in vec4 v_colour;
+in vec3 v_rest;  // the rest-pose position (character frame, metres): procedural detail that moves with the body
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out float o_overlap;
 layout(std430, binding = 1) readonly buffer OverlapCapsules { vec4 caps[]; };  // (a, r), (b, 0) pairs
-uniform vec3 u_palette[8];       // LINEAR colour per SkinRegion
+uniform vec3 u_palette[12];      // LINEAR colour per SkinRegion (kPaletteSlots)
 uniform vec3 u_base_color;       // sRGB, material 2
+uniform float u_emission;        // MATERIAL_FLAT: 1 = a lamp, drawn at its own colour
 uniform vec3 u_eye;
 uniform vec3 u_key_dir, u_fill_dir, u_rim_dir;  // unit, toward the lights
 uniform mat4 u_light_view_proj;
 uniform sampler2DShadow u_shadow_map;
 uniform sampler2D u_ground_noise;  // tiling value noise in [0, 1], 1 texel = 5 cm
 uniform float u_shadow_texel;
+uniform int u_soft_shadows;      // 1: four bilinear taps (soft edges); 0: one (hard, the raw path)
 uniform vec3 u_background;       // sRGB
 uniform float u_fog_density;     // 0 = no fog (1/m)
 uniform int u_cap_offset;
@@ -110,7 +117,16 @@ float shadow(vec3 p, vec3 n) {
   vec4 l = u_light_view_proj * vec4(p + n * 0.02, 1.0);
   vec3 s = l.xyz / l.w * 0.5 + 0.5;
   if (s.x < 0.0 || s.x > 1.0 || s.y < 0.0 || s.y > 1.0 || s.z > 1.0) return 1.0;
-  return texture(u_shadow_map, vec3(s.xy, s.z - 0.0015));  // bilinear depth compare = 2x2 PCF
+  // Slope-scaled bias: more where the surface turns away from the light, so grazing surfaces keep no acne
+  // and lit ones no light leaks (pinholes) from a bias larger than needed.
+  float bias = 0.0008 + 0.0022 * (1.0 - clamp(dot(n, u_key_dir), 0.0, 1.0));
+  if (u_soft_shadows == 0) return texture(u_shadow_map, vec3(s.xy, s.z - bias));  // bilinear = 2x2 PCF
+  // Four bilinear taps on a rotated grid 1.5 texels out: 16 depth compares, a ~4-texel penumbra.
+  float t = u_shadow_texel;
+  return 0.25 * (texture(u_shadow_map, vec3(s.xy + vec2(-0.6, -1.4) * t, s.z - bias)) +
+                 texture(u_shadow_map, vec3(s.xy + vec2(1.4, -0.6) * t, s.z - bias)) +
+                 texture(u_shadow_map, vec3(s.xy + vec2(0.6, 1.4) * t, s.z - bias)) +
+                 texture(u_shadow_map, vec3(s.xy + vec2(-1.4, 0.6) * t, s.z - bias)));
 }
 
 #ifdef OVERLAP
@@ -171,7 +187,16 @@ void main() {
   float specular = 0.06;
   bool overlap = false;
 #if defined(MATERIAL_CHARACTER)
-  albedo = v_colour.a > 0.5 ? to_linear(v_colour.rgb) : u_palette[min(v_region, 7u)];
+  albedo = v_colour.a > 0.5 ? to_linear(v_colour.rgb) : u_palette[min(v_region, 11u)];
+  // Procedural material detail from one noise lookup in rest-pose coordinates (no textures ship): hair gets
+  // streaks along its fall (fine across, long down), garments a soft mottle like folds and weave, skin
+  // nothing; the eyes get a wet highlight.
+  bool hair = v_region == 1u || v_region == 10u;
+  bool cloth = v_region >= 2u && v_region <= 6u;
+  vec2 uv = hair ? vec2((v_rest.x + v_rest.z) * 9.0, v_rest.y * 0.9) : v_rest.xy * 1.6 + v_rest.z * 0.7;
+  float detail = texture(u_ground_noise, uv).r;
+  albedo *= hair ? 0.62 + 0.76 * detail : cloth ? 0.94 + 0.12 * detail : 1.0;
+  specular = hair ? 0.10 : (v_region == 7u || v_region == 8u) ? 0.6 : cloth ? 0.03 : 0.06;
 #ifdef OVERLAP
   overlap = ray_hits_overlap(v_world);
 #endif
@@ -187,6 +212,9 @@ void main() {
   vec3 v = normalize(u_eye - v_world);
   float sh = shadow(v_world, n);
   vec3 color = light(albedo, n, v, sh, specular);
+#ifdef MATERIAL_FLAT
+  color = mix(color, to_linear(u_base_color), u_emission);
+#endif
 #if defined(MATERIAL_CHARACTER)
   float grazing = 1.0 - max(dot(n, v), 0.0);
   float rim = grazing * grazing * grazing * max(dot(n, u_rim_dir) + 0.3, 0.0);
@@ -202,6 +230,73 @@ void main() {
   }
   o_color = vec4(sqrt(clamp(color, 0.0, 1.0)), 1.0);  // gamma 2.0 encode (sqrt: far cheaper than pow on llvmpipe)
   o_overlap = overlap ? 1.0 : 0.0;
+}
+)";
+
+// Fast approximate anti-aliasing (after Lottes, "FXAA", NVIDIA white paper, 2009): a pixel whose 3x3
+// neighbourhood's luma range (from four bilinear taps at the pixel's corners) is below max(1/24, 1/8 of the
+// brightest) is kept; otherwise it is blended along the edge, the direction being perpendicular to the luma
+// gradient of the corner taps, with two taps at +-1/6 of the span and, unless their mean leaves the
+// neighbourhood's luma range, two more at +-1/2. One full-screen pass over the resolved single-sample image.
+const char* const kFullscreenVertex = R"(#version 450 core
+void main() {
+  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+const char* const kFxaaFragment = R"(#version 450 core
+uniform sampler2D u_image;
+layout(location = 0) out vec4 o_color;
+float luma(vec3 c) { return dot(c, vec3(0.299, 0.587, 0.114)); }
+void main() {
+  vec2 texel = 1.0 / vec2(textureSize(u_image, 0));
+  vec2 uv = gl_FragCoord.xy * texel;  // the pixel's centre
+  vec3 m = texelFetch(u_image, ivec2(gl_FragCoord.xy), 0).rgb;
+  float nw = luma(texture(u_image, uv + vec2(-0.5, 0.5) * texel).rgb);
+  float ne = luma(texture(u_image, uv + vec2(0.5, 0.5) * texel).rgb);
+  float sw = luma(texture(u_image, uv + vec2(-0.5, -0.5) * texel).rgb);
+  float se = luma(texture(u_image, uv + vec2(0.5, -0.5) * texel).rgb);
+  float lm = luma(m);
+  float lo = min(lm, min(min(nw, ne), min(sw, se)));
+  float hi = max(lm, max(max(nw, ne), max(sw, se)));
+  if (hi - lo < max(1.0 / 24.0, hi * 0.125)) {
+    o_color = vec4(m, 1.0);
+    return;
+  }
+  vec2 dir = vec2((sw + se) - (nw + ne), (nw + sw) - (ne + se));
+  float reduce = max((nw + ne + sw + se) * (0.25 / 8.0), 1.0 / 128.0);
+  dir = clamp(dir / (min(abs(dir.x), abs(dir.y)) + reduce), vec2(-8.0), vec2(8.0)) * texel;
+  vec3 near = 0.5 * (texture(u_image, uv - dir / 6.0).rgb + texture(u_image, uv + dir / 6.0).rgb);
+  vec3 wide = 0.5 * near + 0.25 * (texture(u_image, uv - dir * 0.5).rgb + texture(u_image, uv + dir * 0.5).rgb);
+  float lw = luma(wide);
+  o_color = vec4(lw < lo || lw > hi ? near : wide, 1.0);
+}
+)";
+
+// Contact darkening: a soft dark disc on the ground under each character (the occlusion of the sky by a
+// body standing on the floor, which the key light's shadow map does not give where that shadow falls
+// elsewhere), drawn as one instanced quad per character and multiplied into the framebuffer:
+// factor = 1 - 0.32 exp(-d^2 / (2 * 0.22^2)), d the horizontal distance from the character's root (m);
+// strength and width chosen on rendered frames so feet read as standing on the floor.
+const char* const kContactVertex = R"(#version 450 core
+layout(std430, binding = 2) readonly buffer Contacts { vec4 contacts[]; };  // root x, z per character
+uniform mat4 u_view_proj;
+out vec2 v_offset;
+void main() {
+  vec2 corner = vec2((gl_VertexID & 1) == 0 ? -1.0 : 1.0, (gl_VertexID & 2) == 0 ? -1.0 : 1.0) * 0.6;
+  vec4 c = contacts[gl_InstanceID];
+  v_offset = corner;
+  gl_Position = u_view_proj * vec4(c.x + corner.x, 0.004, c.y + corner.y, 1.0);
+}
+)";
+
+const char* const kContactFragment = R"(#version 450 core
+in vec2 v_offset;
+layout(location = 0) out vec4 o_color;
+void main() {
+  float d2 = dot(v_offset, v_offset);
+  o_color = vec4(vec3(1.0 - 0.32 * exp(-d2 / (2.0 * 0.22 * 0.22))), 1.0);
 }
 )";
 

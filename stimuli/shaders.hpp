@@ -16,7 +16,16 @@ extern const char* const kDepthFragment;
 /// OVERLAP.
 extern const char* const kLitFragment;
 
+/// The clean-image passes (SceneOptions::clean_image): a full-screen triangle (draw 3 vertices, no
+/// attributes) with the FXAA fragment shader over `u_image`; the contact-darkening quads (4 vertices per
+/// instance, a triangle strip; instance i reads root (x, z) from SSBO binding 2).
+extern const char* const kFullscreenVertex;
+extern const char* const kFxaaFragment;
+extern const char* const kContactVertex;
+extern const char* const kContactFragment;
+
 /// "#version 450 core", one "#define NAME" per space-separated word of `defines`, then `source`.
+
 std::string specialise(const char* source, const std::string& defines);
 
 }  // namespace crowdlab::stimuli::glsl

@@ -44,6 +44,7 @@ std::vector<CharacterLod> simplify_character_mesh(const MannequinMesh& full, int
     indices.resize(count);
     previous = count;
     out.push_back({compact(full.vertices, std::move(indices)), static_cast<double>(error) * scale_m});
+    out.back().mesh.two_sided = full.two_sided;
   }
   return out;
 }

@@ -26,6 +26,36 @@ bool on_arm(int j) {
   }
 }
 
+SkinRegion region_of_surface(std::uint8_t surface) {
+  switch (static_cast<SurfaceKind>(surface)) {
+    case SurfaceKind::kLips:
+      return SkinRegion::kLips;
+    case SurfaceKind::kEyeWhite:
+      return SkinRegion::kEyeWhite;
+    case SurfaceKind::kIris:
+      return SkinRegion::kIris;
+    case SurfaceKind::kBrow:
+      return SkinRegion::kBrow;
+    case SurfaceKind::kHair:
+      return SkinRegion::kHair;
+    case SurfaceKind::kUpperGarment:
+      return SkinRegion::kShirt;
+    case SurfaceKind::kLowerGarment:
+      return SkinRegion::kTrousers;
+    case SurfaceKind::kShoes:
+      return SkinRegion::kShoes;
+    default:
+      return SkinRegion::kSkin;
+  }
+}
+
+/// A labelled triangle's region: the label two of its vertices share, else its first vertex's.
+SkinRegion labelled_triangle_region(const SkinnedMesh& mesh, const Eigen::Vector3i& t) {
+  const auto label = [&](int k) { return mesh.surface[static_cast<size_t>(t[k])]; };
+  const std::uint8_t s = label(1) == label(2) ? label(1) : label(0);
+  return region_of_surface(s);
+}
+
 }  // namespace
 
 SkinRegion body_mesh_region(const Vec3& p, int joint, const std::array<Vec3, kJointCount>& rest_joints,
@@ -104,6 +134,7 @@ MannequinMesh skinned_body_mesh(const SkinnedMesh& mesh, double inset_m) {
   std::vector<std::array<std::int32_t, kRegions>> copy(base.size());
   for (auto& c : copy) c.fill(-1);
   MannequinMesh out;
+  out.two_sided = !mesh.surface.empty();  // a dressed body: hair, brows and garments are open sheets
   out.vertices.reserve(base.size() + base.size() / 8);
   out.indices.reserve(3 * mesh.triangles.size());
   for (const Eigen::Vector3i& t : mesh.triangles) {
@@ -112,7 +143,9 @@ MannequinMesh skinned_body_mesh(const SkinnedMesh& mesh, double inset_m) {
          mesh.rest_vertices_m[static_cast<size_t>(t[2])]) /
         3.0;
     const auto region = static_cast<size_t>(
-        body_mesh_region(centroid, base[static_cast<size_t>(t[0])].bones[0], mesh.rest_joints_m, top));
+        mesh.surface.empty()
+            ? body_mesh_region(centroid, base[static_cast<size_t>(t[0])].bones[0], mesh.rest_joints_m, top)
+            : labelled_triangle_region(mesh, t));
     for (int k = 0; k < 3; ++k) {
       const auto v = static_cast<size_t>(t[k]);
       if (copy[v][region] < 0) {
@@ -135,6 +168,7 @@ std::uint64_t skinned_body_mesh_key(const SkinnedMesh& mesh, double inset_m) {
     for (size_t k = 0; k < 4; ++k) data.insert(data.end(), {mesh.weights[i][k], double(mesh.joints[i][k])});
   for (const Eigen::Vector3i& t : mesh.triangles)
     data.insert(data.end(), {double(t[0]), double(t[1]), double(t[2])});
+  for (const std::uint8_t label : mesh.surface) data.push_back(double(label));  // none on a bare body
   data.insert(data.end(), {inset_m, -1.0});  // -1: never equal to a mannequin key's data layout
   return stable_hash(
       std::string_view(reinterpret_cast<const char*>(data.data()), data.size() * sizeof(double)));

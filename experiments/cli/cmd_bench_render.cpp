@@ -54,7 +54,7 @@ struct Args {
   std::string viewpoint = "V3", preset = "veryfast", out, frames_png;
   int msaa = 1, shadow_map = 2048;
   double lod_pixels = 6.0;
-  bool overlap = false, json = false, empty = false, stages = false, quality = false;
+  bool overlap = false, json = false, empty = false, stages = false, quality = false, raw = false;
 };
 
 CrowdAnimation make_crowd(const Args& a) {
@@ -118,6 +118,7 @@ void run(const Args& a) {
   ro.scene.shadow_map_size = a.shadow_map;
   ro.scene.characters = !a.empty;
   ro.scene.lod_pixels = a.lod_pixels;
+  ro.scene.clean_image = !a.raw;
   ro.frames_png_dir = a.frames_png;
   const std::string out =
       a.out.empty() ? (std::filesystem::temp_directory_path() / "crowdlab_bench_render.mp4").string() : a.out;
@@ -165,6 +166,7 @@ void run(const Args& a) {
         {"overlap", a.overlap},
         {"empty", a.empty},
         {"msaa", a.msaa},
+        {"clean_image", !a.raw},
         {"shadow_map", a.shadow_map},
         {"lod_pixels", a.lod_pixels},
         {"x264_preset", a.preset},
@@ -227,9 +229,14 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--crf", args->crf, "x264 CRF")->capture_default_str();
   cmd->add_option("--preset", args->preset, "x264 preset")->capture_default_str();
   cmd->add_option("--out", args->out, "Keep the clip at this path (default: temporary, deleted)");
+  cmd->add_flag("--raw", args->raw,
+                "The raw draw: no FXAA, hard shadow edges, no contact darkening (to compare with the clean "
+                "image, the default)");
   cmd->add_option("--frames-png", args->frames_png, "Also write every frame as DIR/frame_NNNNN.png (slower)");
   cmd->add_flag("--overlap", args->overlap, "Overlap mode (red pixels)");
-  cmd->add_option("--msaa", args->msaa, "MSAA samples (1: the stimuli's fast path, the default of render.msaa; 4: the quality reference)")
+  cmd->add_option(
+         "--msaa", args->msaa,
+         "MSAA samples (1: the stimuli's fast path, the default of render.msaa; 4: the quality reference)")
       ->capture_default_str()
       ->check(CLI::Range(1, 16));
   cmd->add_option("--shadow-map", args->shadow_map, "Shadow map size (pixels)")

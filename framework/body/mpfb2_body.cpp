@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <string>
 
@@ -12,6 +13,10 @@ namespace crowdlab {
 namespace {
 
 constexpr double kDecimetre = 0.1;  // OBJ units -> metres
+// Lips relative to the eyes on the base mesh (see mouth_surface).
+constexpr double kBaseEyeDistanceM = 0.0616, kLipDropM = 0.061, kLipHalfWidthM = 0.024,
+                 kLipHalfHeightM = 0.008;
+constexpr double kLipThicknessM = 0.012, kLipAheadOfEyesM = 0.025;
 
 constexpr std::array<const char*, kJointCount> kMixamoForJoint = {
     "Hips",        "LeftUpLeg",    "RightUpLeg",    "Spine",     "LeftLeg",         "RightLeg",
@@ -126,6 +131,83 @@ BodyLandmarks place_landmarks(const Mpfb2Model& model, const std::vector<Vec3>& 
   return lm;
 }
 
+/// Step 2b: a relaxed hand. MakeHuman's base mesh holds its fingers straight and spread; a hand at rest
+/// is flexed a little at every finger joint, more toward the little finger (the hand's resting "cascade").
+/// Each finger (index..pinky) bends about the knuckle line (index to pinky knuckle) by kFingerCurlDeg per
+/// joint (MCP, PIP, DIP), toward the palm (the side facing the body's midline in the A-pose), and the
+/// skin follows by linear blend skinning with the rig's finger weights; first each finger closes 60 % of its
+/// spread toward the middle finger (kFingerCloseFraction). The thumb is left as it is.
+/// Landmarks (the middle fingertip that aims the hand in to_t_pose) are not moved.
+constexpr std::array<std::array<double, 3>, 4> kFingerCurlDeg = {{{12, 20, 10},    // index
+                                                                  {16, 24, 12},    // middle
+                                                                  {20, 28, 12},    // ring
+                                                                  {24, 30, 12}}};  // pinky
+
+constexpr double kFingerCloseFraction = 0.6;
+
+void relax_fingers(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm, const std::vector<int>& ids,
+                   std::vector<Vec3>& verts) {
+  // Per base vertex: total rig weight, and per finger bone its affine transform.
+  std::vector<double> total(model.base().vertices.size(), 0.0);
+  for (const auto& [name, list] : model.weights())
+    for (const auto& [v, w] : list) total[static_cast<size_t>(v)] += std::max(w, 0.0);
+  std::map<std::string, Eigen::Affine3d> transform;
+  static const std::array<const char*, 4> kFingers = {"Index", "Middle", "Ring", "Pinky"};
+  for (const char* side : {"Left", "Right"}) {
+    const std::string hand = std::string(side) + "Hand";
+    const Vec3 index1 = place(bone(model, hand + "Index1").head, shaped_dm);
+    const Vec3 pinky1 = place(bone(model, hand + "Pinky1").head, shaped_dm);
+    const Vec3 wrist = place(bone(model, hand).head, shaped_dm);
+    const Vec3 axis = (pinky1 - index1).normalized();
+    const Vec3 medial(-wrist.x(), 0.0, 0.0);  // toward the midline
+    const auto finger_dir = [&](const char* finger) {
+      return Vec3(place(bone(model, hand + finger + "3").tail, shaped_dm) -
+                  place(bone(model, hand + finger + "1").head, shaped_dm));
+    };
+    const Vec3 middle_dir = finger_dir("Middle");
+    const Vec3 palm_normal = axis.cross(middle_dir).normalized();
+    for (size_t f = 0; f < kFingers.size(); ++f) {
+      // Spread: the base mesh's fingers fan out; a resting hand holds them closer (kFingerCloseFraction of
+      // the angle to the middle finger closed, at the knuckle, about the palm's normal).
+      const Vec3 dir = finger_dir(kFingers[f]);
+      const double spread = std::atan2(dir.cross(middle_dir).dot(palm_normal), dir.dot(middle_dir));
+      Eigen::Affine3d chain = Eigen::Affine3d::Identity();
+      for (int k = 1; k <= 3; ++k) {
+        const RigBone& b = bone(model, hand + kFingers[f] + std::to_string(k));
+        const Vec3 head = place(b.head, shaped_dm), tail = place(b.tail, shaped_dm);
+        const double angle = kFingerCurlDeg[f][static_cast<size_t>(k - 1)] * std::numbers::pi / 180.0;
+        // The sign that moves this bone's tail toward the palm.
+        const Vec3 moved = Eigen::AngleAxisd(angle, axis) * (tail - head);
+        const double sign = (moved - (tail - head)).dot(medial) >= 0.0 ? 1.0 : -1.0;
+        Eigen::Affine3d bend =
+            Eigen::Translation3d(head) * Eigen::AngleAxisd(sign * angle, axis) * Eigen::Translation3d(-head);
+        if (k == 1)
+          bend = bend * Eigen::Translation3d(head) *
+                 Eigen::AngleAxisd(kFingerCloseFraction * spread, palm_normal) * Eigen::Translation3d(-head);
+        chain = chain * bend;
+        transform[b.name] = chain;
+      }
+    }
+  }
+  std::vector<Vec3> moved(verts.size(), Vec3::Zero());
+  std::vector<double> moved_weight(verts.size(), 0.0);
+  std::vector<int> to_local(model.base().vertices.size(), -1);
+  for (size_t i = 0; i < ids.size(); ++i) to_local[static_cast<size_t>(ids[i])] = static_cast<int>(i);
+  for (const auto& [name, xf] : transform) {
+    const auto it = model.weights().find(name);
+    if (it == model.weights().end()) continue;
+    for (const auto& [v, w] : it->second) {
+      const int local = to_local[static_cast<size_t>(v)];
+      if (local < 0 || w <= 0.0 || total[static_cast<size_t>(v)] <= 0.0) continue;
+      const double share = w / total[static_cast<size_t>(v)];
+      moved[static_cast<size_t>(local)] += share * (xf * verts[static_cast<size_t>(local)]);
+      moved_weight[static_cast<size_t>(local)] += share;
+    }
+  }
+  for (size_t i = 0; i < verts.size(); ++i)
+    if (moved_weight[i] > 0.0) verts[i] = moved[i] + (1.0 - moved_weight[i]) * verts[i];
+}
+
 /// Lowest and highest y of a vertex set (metres).
 struct VerticalRange {
   double min_y = HUGE_VAL, max_y = -HUGE_VAL;
@@ -161,50 +243,58 @@ std::vector<Vec3> body_vertices_m(const Mpfb2Model& model, const std::vector<Vec
   return verts;
 }
 
-/// Step 3: skinning weights, Mixamo bones -> SMPL joints, the 4 largest per vertex renormalised (a
-/// vertex without weight is bound rigidly to its nearest joint); the triangles of the body group.
-void bind_skin(const Mpfb2Model& model, const std::vector<int>& to_local,
-               const std::array<Vec3, kJointCount>& joint, SkinnedMesh& mesh) {
-  const std::vector<Vec3>& verts = mesh.rest_vertices_m;
-  std::vector<std::array<double, kJointCount>> acc(verts.size());
+/// The SMPL joint weights of every base-mesh vertex (Mixamo bones mapped to joints, summed; unnormalised).
+std::vector<std::array<double, kJointCount>> base_joint_weights(const Mpfb2Model& model) {
+  std::vector<std::array<double, kJointCount>> acc(model.base().vertices.size());
   for (auto& a : acc) a.fill(0.0);
   for (const auto& [bone_name, list] : model.weights()) {
     const int j = joint_for_weights(bone_name);
     if (j < 0) continue;
-    for (const auto& [v, w] : list) {
-      const int local = to_local[static_cast<size_t>(v)];
-      if (local >= 0 && w > 0.0) acc[static_cast<size_t>(local)][static_cast<size_t>(j)] += w;
+    for (const auto& [v, w] : list)
+      if (w > 0.0) acc[static_cast<size_t>(v)][static_cast<size_t>(j)] += w;
+  }
+  return acc;
+}
+
+/// Vertex i's 4 largest joint weights of `a`, renormalised (a vertex without weight is bound rigidly to
+/// its nearest joint).
+void set_skin_weights(const std::array<double, kJointCount>& a, const std::array<Vec3, kJointCount>& joint,
+                      SkinnedMesh& mesh, size_t i) {
+  const Vec3& p = mesh.rest_vertices_m[i];
+  std::array<int, kJointCount> order{};
+  for (int j = 0; j < kJointCount; ++j) order[static_cast<size_t>(j)] = j;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int x, int y) { return a[static_cast<size_t>(x)] > a[static_cast<size_t>(y)]; });
+  double total = 0.0;
+  for (size_t k = 0; k < 4; ++k) total += a[static_cast<size_t>(order[k])];
+  if (total <= 0.0) {
+    int nearest = 0;
+    for (int j = 1; j < kJointCount; ++j)
+      if ((p - joint[static_cast<size_t>(j)]).norm() < (p - joint[static_cast<size_t>(nearest)]).norm())
+        nearest = j;
+    mesh.joints[i] = {nearest, 0, 0, 0};
+    mesh.weights[i] = {1.0, 0.0, 0.0, 0.0};
+  } else {
+    for (size_t k = 0; k < 4; ++k) {
+      const double w = a[static_cast<size_t>(order[k])] / total;
+      mesh.joints[i][k] = w > 0.0 ? order[k] : 0;
+      mesh.weights[i][k] = w;
     }
   }
-  mesh.joints.resize(verts.size());
-  mesh.weights.resize(verts.size());
-  mesh.region.resize(verts.size());
-  for (size_t i = 0; i < verts.size(); ++i) {
-    std::array<int, kJointCount> order{};
-    for (int j = 0; j < kJointCount; ++j) order[static_cast<size_t>(j)] = j;
-    const auto& a = acc[i];
-    std::stable_sort(order.begin(), order.end(),
-                     [&](int x, int y) { return a[static_cast<size_t>(x)] > a[static_cast<size_t>(y)]; });
-    double total = 0.0;
-    for (size_t k = 0; k < 4; ++k) total += a[static_cast<size_t>(order[k])];
-    if (total <= 0.0) {
-      // No weight: bind rigidly to the nearest joint.
-      int nearest = 0;
-      for (int j = 1; j < kJointCount; ++j)
-        if ((verts[i] - joint[static_cast<size_t>(j)]).norm() <
-            (verts[i] - joint[static_cast<size_t>(nearest)]).norm())
-          nearest = j;
-      mesh.joints[i] = {nearest, 0, 0, 0};
-      mesh.weights[i] = {1.0, 0.0, 0.0, 0.0};
-    } else {
-      for (size_t k = 0; k < 4; ++k) {
-        const double w = a[static_cast<size_t>(order[k])] / total;
-        mesh.joints[i][k] = w > 0.0 ? order[k] : 0;
-        mesh.weights[i][k] = w;
-      }
-    }
-    mesh.region[i] = mesh.joints[i][0];
-  }
+  mesh.region[i] = mesh.joints[i][0];
+}
+
+/// Step 3: skinning weights, Mixamo bones -> SMPL joints, the 4 largest per vertex renormalised; the
+/// triangles of the body group.
+void bind_skin(const Mpfb2Model& model, const std::vector<int>& to_local,
+               const std::vector<std::array<double, kJointCount>>& base_weights,
+               const std::array<Vec3, kJointCount>& joint, SkinnedMesh& mesh) {
+  const std::vector<int>& ids = model.body_vertices();
+  mesh.joints.resize(ids.size());
+  mesh.weights.resize(ids.size());
+  mesh.region.resize(ids.size());
+  for (size_t i = 0; i < ids.size(); ++i)
+    set_skin_weights(base_weights[static_cast<size_t>(ids[i])], joint, mesh, i);
   for (const auto& t : model.body_triangles())
     mesh.triangles.emplace_back(to_local[static_cast<size_t>(t[0])], to_local[static_cast<size_t>(t[1])],
                                 to_local[static_cast<size_t>(t[2])]);
@@ -303,6 +393,61 @@ void fit_capsules(const SkinnedMesh& mesh, const BodyLandmarks& lm, BodyShape& s
   }
 }
 
+/// Every base-mesh vertex shaped: body vertices as the targets move them, helper geometry by its
+/// anchor's displacement (Mpfb2Model::shape_anchor).
+std::vector<Vec3> anchored_vertices_dm(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm) {
+  const std::vector<Vec3>& base = model.base().vertices;
+  std::vector<Vec3> out(base.size());
+  for (size_t v = 0; v < base.size(); ++v) {
+    const auto a = static_cast<size_t>(model.shape_anchor()[v]);
+    out[v] = base[v] + (shaped_dm[a] - base[a]);
+  }
+  return out;
+}
+
+/// Surface labels of the body's vertices: skin, and lips, found from the eyes (the base mesh's eyeball
+/// groups, anchored like all helper geometry; the eyes are where any face's proportions start). On
+/// MakeHuman's base mesh the face's profile has the nose tip 3.5 cm below the eyes' midpoint, the lips'
+/// bulge 5.3 to 7.0 cm below it (3.6 cm in front), the chin below that, and the eyes are 6.16 cm apart; on a
+/// shaped body these lengths scale with its eye distance s. Lips: within an ellipse 2.4 s wide and 0.8 s
+/// high either side of the point 6.1 s below the eyes' midpoint (an adult mouth is about 5 cm wide), at
+/// most 1.2 s behind the ellipse's foremost vertex and at least 2.5 s in front of the eyes.
+std::vector<std::uint8_t> mouth_surface(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm,
+                                        const Vec3& shift, const std::vector<Vec3>& verts_m) {
+  std::vector<std::uint8_t> out(verts_m.size(), static_cast<std::uint8_t>(SurfaceKind::kSkin));
+  const std::vector<Vec3>& base = model.base().vertices;
+  const auto centre_m = [&](const char* group, bool& found) {
+    const int g = model.base().group_index(group);
+    found = g >= 0;
+    Vec3 c = Vec3::Zero();
+    if (!found) return c;
+    const std::vector<int> ids = model.base().group_vertices(g);
+    for (int v : ids) {
+      const auto a = static_cast<size_t>(model.shape_anchor()[static_cast<size_t>(v)]);
+      c += base[static_cast<size_t>(v)] + (shaped_dm[a] - base[a]);
+    }
+    return Vec3(kDecimetre * c / static_cast<double>(ids.size()) + shift);
+  };
+  bool left_found = false, right_found = false;
+  const Vec3 left = centre_m("helper-l-eye", left_found), right = centre_m("helper-r-eye", right_found);
+  if (!left_found || !right_found) return out;
+  const double s = std::abs(left.x() - right.x()) / kBaseEyeDistanceM;
+  const Vec3 lips = 0.5 * (left + right) - Vec3(0.0, kLipDropM * s, 0.0);
+  std::vector<double> depth(verts_m.size(), -HUGE_VAL);
+  double front = -HUGE_VAL;
+  for (size_t i = 0; i < verts_m.size(); ++i) {
+    const Vec3 d = verts_m[i] - lips;
+    const double ex = d.x() / (kLipHalfWidthM * s), ey = d.y() / (kLipHalfHeightM * s);
+    if (ex * ex + ey * ey < 1.0 && d.z() > kLipAheadOfEyesM * s) {
+      depth[i] = d.z();
+      front = std::max(front, d.z());
+    }
+  }
+  for (size_t i = 0; i < verts_m.size(); ++i)
+    if (depth[i] > front - kLipThicknessM * s) out[i] = static_cast<std::uint8_t>(SurfaceKind::kLips);
+  return out;
+}
+
 }  // namespace
 
 const char* mixamo_bone_for_joint(int joint) {
@@ -342,7 +487,8 @@ std::array<double, kJointCount> body_part_volumes_m3(const SkinnedMesh& mesh,
   return part_volume;
 }
 
-Mpfb2Body make_mpfb2_body(const Mpfb2Model& model, const Mpfb2ShapeParams& params) {
+Mpfb2Body make_mpfb2_body(const Mpfb2Model& model, const Mpfb2ShapeParams& params,
+                          const Mpfb2Outfit* outfit) {
   const std::vector<Vec3> shaped_dm = shaped_vertices_dm(model, params);
   BodyLandmarks lm = place_landmarks(model, shaped_dm);
 
@@ -351,25 +497,64 @@ Mpfb2Body make_mpfb2_body(const Mpfb2Model& model, const Mpfb2ShapeParams& param
   SkinnedMesh& mesh = body.mesh;
   std::vector<int> to_local;
   mesh.rest_vertices_m = body_vertices_m(model, shaped_dm, to_local);
+  relax_fingers(model, shaped_dm, model.body_vertices(), mesh.rest_vertices_m);
   const VerticalRange as_made = vertical_range(mesh.rest_vertices_m);
+  const Vec3 first_shift(-lm.joint[kPelvis].x(), -as_made.min_y, -lm.joint[kPelvis].z());
   stand_on_floor(mesh.rest_vertices_m, lm, as_made.min_y);
-  bind_skin(model, to_local, lm.joint, mesh);
+  const std::vector<std::array<double, kJointCount>> base_weights = base_joint_weights(model);
+  bind_skin(model, to_local, base_weights, lm.joint, mesh);
+  const size_t body_vertex_count = mesh.rest_vertices_m.size();
+  if (outfit) mesh.surface = mouth_surface(model, shaped_dm, first_shift, mesh.rest_vertices_m);
   // Standing height in MakeHuman's own rest pose.
   body.height_m = as_made.max_y - as_made.min_y;
 
+  // Eyes, eyebrows, hair, clothes and shoes (body/mpfb2_outfit.hpp), skinned like the skin they lie on.
+  std::vector<Eigen::Vector3i> outfit_triangles;
+  std::vector<int> hidden;
+  if (outfit) {
+    OutfitGeometry g = outfit_geometry(model, *outfit, anchored_vertices_dm(model, shaped_dm), base_weights);
+    for (size_t v = 0; v < g.vertices_dm.size(); ++v) {
+      mesh.rest_vertices_m.push_back(kDecimetre * g.vertices_dm[v] + first_shift);
+      mesh.joints.emplace_back();
+      mesh.weights.emplace_back();
+      mesh.region.push_back(0);
+      set_skin_weights(g.joint_weights[v], lm.joint, mesh, mesh.rest_vertices_m.size() - 1);
+    }
+    mesh.surface.insert(mesh.surface.end(), g.surface.begin(), g.surface.end());
+    for (const Eigen::Vector3i& t : g.triangles)
+      outfit_triangles.push_back(t + Eigen::Vector3i::Constant(static_cast<int>(body_vertex_count)));
+    hidden = std::move(g.hidden_base_vertices);
+  }
+
   // Step 4: MakeHuman's rest is an A-pose (arms ~45 degrees down and forward, legs apart); crowdlab's
   // rest is a T-pose (body_shape.hpp). Re-pose by skinning (arm bones to +-X, leg bones to -Y) and
-  // stand the T-posed body on the floor again.
+  // stand the T-posed body on the floor again (on its shoes' soles when it wears shoes).
   mesh.rest_joints_m = lm.joint;
   to_t_pose(lm.joint, mesh, lm.finger_tip, lm.toe_tip);
   stand_on_floor(mesh.rest_vertices_m, lm, vertical_range(mesh.rest_vertices_m).min_y);
   mesh.rest_joints_m = lm.joint;
-  mesh.rest_normals = vertex_normals(mesh.rest_vertices_m, mesh.triangles);
 
   BodyShape& shape = body.shape;
   shape.params = {params.gender >= 0.5 ? Sex::kMale : Sex::kFemale, body.height_m, 1.0};
   set_rest_offsets(lm.joint, shape);
+  // Capsules from the skin alone (the body group's closed surface), then the skin an outfit covers goes and
+  // the outfit's sheets join.
+  mesh.rest_normals = vertex_normals(mesh.rest_vertices_m, mesh.triangles);
   fit_capsules(mesh, lm, shape);
+  if (outfit) {
+    std::vector<bool> gone(body_vertex_count, false);
+    for (int v : hidden)
+      if (const int local = to_local[static_cast<size_t>(v)]; local >= 0)
+        gone[static_cast<size_t>(local)] = true;
+    std::erase_if(mesh.triangles, [&](const Eigen::Vector3i& t) {
+      return gone[static_cast<size_t>(t[0])] || gone[static_cast<size_t>(t[1])] ||
+             gone[static_cast<size_t>(t[2])];
+    });
+    mesh.triangles.insert(mesh.triangles.end(), outfit_triangles.begin(), outfit_triangles.end());
+    mesh.rest_normals = vertex_normals(mesh.rest_vertices_m, mesh.triangles);
+    for (size_t i = body_vertex_count; i < mesh.rest_normals.size(); ++i)
+      if (mesh.rest_normals[i].norm() < 0.5) mesh.rest_normals[i] = Vec3::UnitY();
+  }
   compute_rest_contact_pairs(shape);
   validate_body_shape(shape, "MPFB2 body");
   return body;

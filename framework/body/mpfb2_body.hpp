@@ -35,6 +35,7 @@
 #include <memory>
 
 #include "framework/body/mpfb2_model.hpp"
+#include "framework/body/mpfb2_outfit.hpp"
 #include "framework/body/mpfb2_shape.hpp"
 #include "framework/core/body_shape.hpp"
 #include "framework/core/skinned_mesh.hpp"
@@ -54,7 +55,13 @@ struct Mpfb2Body {
 /// the body group's vertices and stand them on the floor, bind the skin, re-pose into the T-pose and
 /// stand it on the floor again, set the skeleton's rest offsets, fit the capsules. Throws InputError on
 /// bad params or broken assets.
-Mpfb2Body make_mpfb2_body(const Mpfb2Model& model, const Mpfb2ShapeParams& params);
+/// With an outfit (body/mpfb2_outfit.hpp) the mesh also carries eyes, eyebrows, hair, clothes and shoes
+/// (SkinnedMesh::surface labels every vertex), placed before the re-pose so they follow it; the capsules
+/// are fitted to the skin alone, and the body then stands on its soles. Without one (nullptr) the mesh is
+/// the bare skin with no labels (renderers then paint clothing on it by position). Either way the fingers
+/// rest slightly flexed (relax_fingers in mpfb2_body.cpp).
+Mpfb2Body make_mpfb2_body(const Mpfb2Model& model, const Mpfb2ShapeParams& params,
+                          const Mpfb2Outfit* outfit = nullptr);
 
 /// Whether bone `joint`'s capsule axis ends at the body's surface (head, feet, hands: the whole
 /// capsule carries the part) rather than at the next joint (the cylinder carries it).

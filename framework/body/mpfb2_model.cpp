@@ -1,5 +1,7 @@
 #include "framework/body/mpfb2_model.hpp"
 
+#include <tbb/parallel_for.h>
+
 // GCC 12 at -O3 reports a false -Wnull-dereference inside nlohmann::json's inlined get<std::string>()
 // (the json value is a reference, never null); silenced for this translation unit only.
 #pragma GCC diagnostic ignored "-Wnull-dereference"
@@ -113,6 +115,28 @@ ShapeTarget read_target_gz(const std::filesystem::path& path, int vertex_count) 
   return t;
 }
 
+namespace {
+
+/// For every vertex, the nearest of `body` (itself when it is one), by brute force (once per model).
+std::vector<int> nearest_body_vertices(const std::vector<Vec3>& vertices, const std::vector<int>& body) {
+  std::vector<int> anchor(vertices.size(), -1);
+  for (int b : body) anchor[static_cast<size_t>(b)] = b;
+  tbb::parallel_for(size_t{0}, vertices.size(), [&](size_t v) {
+    if (anchor[v] >= 0) return;
+    double best = HUGE_VAL;
+    for (int b : body) {
+      const double d = (vertices[static_cast<size_t>(b)] - vertices[v]).squaredNorm();
+      if (d < best) {
+        best = d;
+        anchor[v] = b;
+      }
+    }
+  });
+  return anchor;
+}
+
+}  // namespace
+
 std::shared_ptr<const Mpfb2Model> Mpfb2Model::load(const std::filesystem::path& dir) {
   if (dir.empty() || !std::filesystem::is_directory(dir))
     throw InputError("MPFB2 assets: '" + dir.string() + "' is not a directory");
@@ -128,6 +152,7 @@ std::shared_ptr<const Mpfb2Model> Mpfb2Model::load(const std::filesystem::path& 
     for (size_t k = 1; k + 1 < face.size(); ++k)
       m->body_triangles_.emplace_back(face[0], face[k], face[k + 1]);
   }
+  m->shape_anchor_ = nearest_body_vertices(m->base_.vertices, m->body_vertices_);
 
   const auto rig_path = dir / "rigs" / "standard" / "rig.mixamo.json";
   const nlohmann::json rig = read_json(rig_path);

@@ -61,6 +61,10 @@ class Mpfb2Model {
   const ObjMesh& base() const { return base_; }
   const std::vector<int>& body_vertices() const { return body_vertices_; }  ///< sorted, into base()
   const std::vector<Eigen::Vector3i>& body_triangles() const { return body_triangles_; }  ///< base indices
+  /// Per base-mesh vertex: the body vertex whose shape displacement it takes (itself for body vertices;
+  /// the nearest body vertex of the unshaped mesh for helper geometry: tights, hair and skirt helpers,
+  /// eyeballs). The shipped targets hold body vertices only, so helpers follow the skin they lie on.
+  const std::vector<int>& shape_anchor() const { return shape_anchor_; }
   const std::map<std::string, RigBone>& bones() const { return bones_; }
   const std::map<std::string, std::vector<std::pair<int, double>>>& weights() const { return weights_; }
   const std::map<std::string, std::vector<MacroPart>>& macro_parts() const { return macro_parts_; }
@@ -75,6 +79,7 @@ class Mpfb2Model {
   ObjMesh base_;
   std::vector<int> body_vertices_;
   std::vector<Eigen::Vector3i> body_triangles_;
+  std::vector<int> shape_anchor_;
   std::map<std::string, RigBone> bones_;
   std::map<std::string, std::vector<std::pair<int, double>>> weights_;
   std::map<std::string, std::vector<MacroPart>> macro_parts_;

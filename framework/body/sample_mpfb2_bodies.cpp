@@ -112,13 +112,20 @@ std::vector<Mpfb2ShapeDraw> sample_mpfb2_shapes(const Mpfb2Model& model, int cou
 
 std::vector<Mpfb2Sample> sample_mpfb2_bodies(const Mpfb2Model& model, int count, std::uint64_t seed,
                                              double female_fraction, HeightDistribution female,
-                                             HeightDistribution male) {
+                                             HeightDistribution male, const Mpfb2Wardrobe* wardrobe) {
   const std::vector<Mpfb2ShapeDraw> shapes =
       sample_mpfb2_shapes(model, count, seed, female_fraction, female, male);
   std::vector<Mpfb2Sample> out(shapes.size());
   tbb::parallel_for(size_t{0}, shapes.size(), [&](size_t i) {
     static_cast<Mpfb2ShapeDraw&>(out[i]) = shapes[i];
-    out[i].body = make_mpfb2_body(model, shapes[i].params);
+    if (wardrobe) {
+      const Sex sex = shapes[i].params.gender >= 0.5 ? Sex::kMale : Sex::kFemale;
+      const Mpfb2Outfit outfit =
+          sample_mpfb2_outfit(*wardrobe, sex, derive_seed(seed, "mpfb2-outfit/" + std::to_string(i)));
+      out[i].body = make_mpfb2_body(model, shapes[i].params, &outfit);
+    } else {
+      out[i].body = make_mpfb2_body(model, shapes[i].params);
+    }
   });
   return out;
 }

@@ -66,10 +66,13 @@ std::vector<Mpfb2ShapeDraw> sample_mpfb2_shapes(const Mpfb2Model& model, int cou
                                                 HeightDistribution female = kWorldFemaleHeight,
                                                 HeightDistribution male = kWorldMaleHeight);
 
-/// sample_mpfb2_shapes() and each shape's body (make_mpfb2_body), built in parallel.
+/// sample_mpfb2_shapes() and each shape's body (make_mpfb2_body), built in parallel. With a wardrobe,
+/// body i is dressed in sample_mpfb2_outfit(wardrobe, its sex, derive_seed(seed, "mpfb2-outfit/<i>")): a
+/// stream of its own, so the shapes are the same dressed or not.
 std::vector<Mpfb2Sample> sample_mpfb2_bodies(const Mpfb2Model& model, int count, std::uint64_t seed,
                                              double female_fraction = 0.5,
                                              HeightDistribution female = kWorldFemaleHeight,
-                                             HeightDistribution male = kWorldMaleHeight);
+                                             HeightDistribution male = kWorldMaleHeight,
+                                             const Mpfb2Wardrobe* wardrobe = nullptr);
 
 }  // namespace crowdlab

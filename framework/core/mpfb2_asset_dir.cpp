@@ -15,4 +15,9 @@ std::filesystem::path default_mpfb2_dir() {
   return env && *env ? std::filesystem::path(env) : shipped_mpfb2_dir();
 }
 
+std::filesystem::path default_makehuman_dir() {
+  const char* env = std::getenv("CROWDLAB_MAKEHUMAN");
+  return env && *env ? std::filesystem::path(env) : std::filesystem::path(CROWDLAB_SHIPPED_MAKEHUMAN_DIR);
+}
+
 }  // namespace crowdlab

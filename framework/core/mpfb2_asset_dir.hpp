@@ -14,4 +14,8 @@ std::filesystem::path shipped_mpfb2_dir();
 /// $CROWDLAB_MPFB2 when set and non-empty, else shipped_mpfb2_dir().
 std::filesystem::path default_mpfb2_dir();
 
+/// The MakeHuman wardrobe (eyebrows, hair, clothes, shoes; body/mpfb2_outfit.hpp): $CROWDLAB_MAKEHUMAN when
+/// set and non-empty, else the shipped framework/body/assets/makehuman as configured.
+std::filesystem::path default_makehuman_dir();
+
 }  // namespace crowdlab

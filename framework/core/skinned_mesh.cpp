@@ -30,6 +30,12 @@ void validate_skinned_mesh(const SkinnedMesh& mesh, const std::string& context) 
     if (mesh.region[i] < 0 || mesh.region[i] >= kJointCount)
       throw InputError(v + ": region " + std::to_string(mesh.region[i]) + " outside [0, 24)");
   }
+  if (!mesh.surface.empty() && mesh.surface.size() != n)
+    throw InputError(where + "surface labels must be empty or one per vertex (" + std::to_string(n) + ")");
+  for (size_t i = 0; i < mesh.surface.size(); ++i)
+    if (mesh.surface[i] >= static_cast<std::uint8_t>(SurfaceKind::kCount))
+      throw InputError(where + "vertex " + std::to_string(i) + ": surface label " +
+                       std::to_string(mesh.surface[i]) + " is unknown");
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
     for (int k = 0; k < 3; ++k)
       if (mesh.triangles[t][k] < 0 || static_cast<size_t>(mesh.triangles[t][k]) >= n)

@@ -9,6 +9,7 @@
 // and rest joint positions p_j (rest bone frames are translations only, see body_shape.hpp),
 //   v' = sum_k w_k (R_jk (v - p_jk) + t_jk)
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,13 +17,30 @@
 
 namespace crowdlab {
 
+/// What a vertex's surface is (SkinnedMesh::surface), so a renderer can shade skin, eyes, hair and each
+/// garment apart; fitted garments and hair are separate sheets laid over the skin (body/mpfb2_outfit.hpp).
+enum class SurfaceKind : std::uint8_t {
+  kSkin = 0,
+  kLips,
+  kEyeWhite,
+  kIris,
+  kBrow,
+  kHair,
+  kUpperGarment,
+  kLowerGarment,
+  kShoes,
+  kCount
+};
+
 struct SkinnedMesh {
-  std::vector<Vec3> rest_vertices_m;              ///< (V)
-  std::vector<Vec3> rest_normals;                 ///< (V) unit, area-weighted vertex normals
-  std::vector<Eigen::Vector3i> triangles;         ///< (T) counter-clockwise from outside
-  std::vector<std::array<int, 4>> joints;         ///< (V) SMPL joint indices (unused slots: 0 with weight 0)
-  std::vector<std::array<double, 4>> weights;     ///< (V) sum to 1, descending
-  std::vector<int> region;                        ///< (V) the dominant SMPL joint (body-part label)
+  std::vector<Vec3> rest_vertices_m;           ///< (V)
+  std::vector<Vec3> rest_normals;              ///< (V) unit, area-weighted vertex normals
+  std::vector<Eigen::Vector3i> triangles;      ///< (T) counter-clockwise from outside
+  std::vector<std::array<int, 4>> joints;      ///< (V) SMPL joint indices (unused slots: 0 with weight 0)
+  std::vector<std::array<double, 4>> weights;  ///< (V) sum to 1, descending
+  std::vector<int> region;                     ///< (V) the dominant SMPL joint (body-part label)
+  /// (V) SurfaceKind per vertex, or empty: a bare body whose renderer assigns clothing by position.
+  std::vector<std::uint8_t> surface;
   std::array<Vec3, kJointCount> rest_joints_m{};  ///< rest joint positions, same frame
 };
 

@@ -3,12 +3,14 @@
 //   * area: scenario.width_m x depth_m centred on the origin; N Poisson-disk positions
 //     (place_poisson_disk), so 9 m^2 at 2.22..6.66 per m^2 holds 20..60 characters; centres must
 //     end up at least crowd.agent_radius_m apart, else InputError (N too large for the area);
-//   * stage: a 0.6 m high box, as wide as the area, 1.5 m deep, whose near edge is 1.5 m beyond the
-//     area's front edge in the stage direction (stage_direction_deg, 0 = +Z);
+//   * stage: a club stage, 1.0 m high, 3 m deep and 8 m (or twice the area) wide, whose near edge is
+//     3 m beyond the area's front edge in the stage direction (stage_direction_deg, 0 = +Z): far enough
+//     that a front camera (V1) stands between stage and crowd instead of looking over the stage's edge;
 //   * sway: each root moves on a small Lissajous path, amplitude 2-4 cm (<= 10 % of the spacing)
 //     and 0.2-0.5 Hz, a typical in-place weight shift of standing/dancing people (postural sway of
 //     standing adults is centimetres; Winter 1995, "Human balance and posture control");
-//   * heading: toward the stage centre, plus a slow +-5..15 degree look-around oscillation.
+//   * heading: toward a point on the stage's axis 2.25 m beyond the area's front edge (so everyone faces the
+//     stage), plus a slow +-5..15 degree look-around oscillation.
 #include <cmath>
 #include <numbers>
 
@@ -33,13 +35,17 @@ ScenarioResult generate_stationary_scenario(const ExperimentSpec& spec, const Co
   const Vec2 forward(std::sin(theta), std::cos(theta));  // (x, z)
   // Distance from the centre to the area's edge along `forward` (rectangle support function).
   const double reach = 0.5 * (std::fabs(forward.x()) * sc.width_m + std::fabs(forward.y()) * sc.depth_m);
-  const double stage_depth = 1.5, stage_height = 0.6, stage_gap = 1.5;
+  const double stage_depth = 3.0, stage_height = 1.0, stage_gap = 3.0;
   const Vec2 stage_center = forward * (reach + stage_gap + 0.5 * stage_depth);
+  // Where the dancers look: a point on the stage's axis 2.25 m beyond the area's front edge (the centre of
+  // the smaller stage before issue 28, so the crowd, its animation and metrics stay what they were).
+  const Vec2 focus = forward * (reach + 2.25);
 
   ScenarioResult r;
   Box stage;
   stage.center_m = Vec3(stage_center.x(), 0.5 * stage_height, stage_center.y());
-  stage.half_extents_m = Vec3(0.5 * std::max(sc.width_m, sc.depth_m), 0.5 * stage_height, 0.5 * stage_depth);
+  stage.half_extents_m =
+      Vec3(std::max(4.0, std::max(sc.width_m, sc.depth_m)), 0.5 * stage_height, 0.5 * stage_depth);
   stage.rotation = Quat(Eigen::AngleAxisd(theta, Vec3::UnitY()));
   r.environment.boxes.push_back(stage);
 
@@ -55,7 +61,7 @@ ScenarioResult generate_stationary_scenario(const ExperimentSpec& spec, const Co
     const double look_amp = (5.0 + 10.0 * uniform01(rng)) * std::numbers::pi / 180.0;
     const double look_f = 0.05 + 0.1 * uniform01(rng), look_p = 2.0 * std::numbers::pi * uniform01(rng);
     const Vec2 base = placement.positions[static_cast<std::size_t>(i)];
-    const Vec2 to_stage = stage_center - base;
+    const Vec2 to_stage = focus - base;
     const double facing = heading_of(to_stage.x(), to_stage.y());
     AgentTrajectory& a = r.trajectories.agents[static_cast<std::size_t>(i)];
     a.radius_m = spec.crowd.agent_radius_m;

@@ -199,6 +199,16 @@ std::shared_ptr<const SkinnedMesh> read_body_mesh(const tinygltf::Model& model, 
     mesh->region[v] = mesh->joints[v][static_cast<size_t>(
         std::max_element(mesh->weights[v].begin(), mesh->weights[v].end()) - mesh->weights[v].begin())];
   }
+  if (const auto s = p.attributes.find("_SURFACE"); s != p.attributes.end()) {
+    const std::vector<float> kinds = read_float_accessor(model, s->second, TINYGLTF_TYPE_SCALAR, context);
+    if (kinds.size() != n)
+      throw InputError(who + ": _SURFACE has " + std::to_string(kinds.size()) + " entries");
+    for (const float k : kinds) {
+      if (!(k >= 0.0f && k < static_cast<float>(SurfaceKind::kCount)) || k != std::floor(k))
+        throw InputError(who + ": _SURFACE holds the unknown label " + std::to_string(k));
+      mesh->surface.push_back(static_cast<std::uint8_t>(k));
+    }
+  }
   for (size_t t = 0; t < idx.size(); t += 3)
     mesh->triangles.emplace_back(static_cast<int>(idx[t]), static_cast<int>(idx[t + 1]),
                                  static_cast<int>(idx[t + 2]));

@@ -159,6 +159,13 @@ tinygltf::Primitive skinned_surface_primitive(GltfBuilder& builder, const Charac
   prim.attributes["JOINTS_0"] = it->joints;
   prim.attributes["WEIGHTS_0"] = it->weights;
   prim.indices = it->indices;
+  if (!m.surface.empty()) {
+    // What each vertex is (SurfaceKind), per character (lips follow each face's shape). A float scalar: glTF
+    // wants vertex attributes 4-byte aligned per vertex, so a byte would take as much room.
+    const std::vector<float> kinds(m.surface.begin(), m.surface.end());
+    prim.attributes["_SURFACE"] = builder.add_floats(
+        kinds, TINYGLTF_TYPE_SCALAR, 1, TINYGLTF_TARGET_ARRAY_BUFFER, false, ch.name + "_surface_kind");
+  }
   return prim;
 }
 

@@ -21,6 +21,25 @@ std::shared_ptr<const Mpfb2Model> cached_model(const std::filesystem::path& dir)
   return it->second;
 }
 
+/// The wardrobe of `dir`, loaded once per process (nullptr when the folder has no wardrobe.txt).
+std::shared_ptr<const Mpfb2Wardrobe> cached_wardrobe(const std::filesystem::path& dir,
+                                                     const Mpfb2Model& model) {
+  static std::mutex mutex;
+  static std::map<std::filesystem::path, std::shared_ptr<const Mpfb2Wardrobe>> wardrobes;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto it = wardrobes.find(dir);
+  if (it == wardrobes.end()) {
+    std::shared_ptr<const Mpfb2Wardrobe> w;
+    if (std::filesystem::exists(dir / "wardrobe.txt"))
+      w = Mpfb2Wardrobe::load(dir, static_cast<int>(model.base().vertices.size()));
+    else
+      spdlog::warn("MakeHuman wardrobe '{}' has no wardrobe.txt: bodies are drawn without clothes",
+                   dir.string());
+    it = wardrobes.emplace(dir, std::move(w)).first;
+  }
+  return it->second;
+}
+
 }  // namespace
 
 void apply_body_model(const AnimationSpec& spec, std::size_t agents, AnimationContext& context) {
@@ -29,8 +48,10 @@ void apply_body_model(const AnimationSpec& spec, std::size_t agents, AnimationCo
   // code may leave it empty.
   const auto model = cached_model(spec.body_model_path.empty() ? default_mpfb2_dir()
                                                                : std::filesystem::path(spec.body_model_path));
-  const std::vector<Mpfb2Sample> samples = sample_mpfb2_bodies(
-      *model, static_cast<int>(agents), derive_seed(context.seed, "bodies"), spec.female_fraction);
+  const auto wardrobe = cached_wardrobe(default_makehuman_dir(), *model);
+  const std::vector<Mpfb2Sample> samples =
+      sample_mpfb2_bodies(*model, static_cast<int>(agents), derive_seed(context.seed, "bodies"),
+                          spec.female_fraction, kWorldFemaleHeight, kWorldMaleHeight, wardrobe.get());
   context.shapes.clear();
   context.meshes.clear();
   context.skin_tones.clear();

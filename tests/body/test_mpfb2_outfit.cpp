@@ -1,0 +1,183 @@
+// Dressed MPFB2 bodies (body/mpfb2_outfit.hpp, body/mhclo_proxy.hpp) on the shipped assets: MakeHuman's proxy
+// fitting, eyes, hair, garments and shoes following the shaped body, and relaxed hands.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <set>
+
+#include "framework/body/mhclo_proxy.hpp"
+#include "framework/body/mpfb2_body.hpp"
+#include "framework/body/mpfb2_model.hpp"
+#include "framework/body/mpfb2_outfit.hpp"
+#include "framework/body/sample_mpfb2_bodies.hpp"
+#include "framework/core/error.hpp"
+#include "framework/core/mpfb2_asset_dir.hpp"
+
+using namespace crowdlab;
+
+namespace {
+
+std::shared_ptr<const Mpfb2Model> model() {
+  static const std::shared_ptr<const Mpfb2Model> m = Mpfb2Model::load(shipped_mpfb2_dir());
+  return m;
+}
+
+std::shared_ptr<const Mpfb2Wardrobe> wardrobe() {
+  static const std::shared_ptr<const Mpfb2Wardrobe> w =
+      Mpfb2Wardrobe::load(default_makehuman_dir(), static_cast<int>(model()->base().vertices.size()));
+  return w;
+}
+
+std::filesystem::path write(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::map<SurfaceKind, int> label_counts(const SkinnedMesh& mesh) {
+  std::map<SurfaceKind, int> count;
+  for (const std::uint8_t s : mesh.surface) ++count[static_cast<SurfaceKind>(s)];
+  return count;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "mhclo: each asset vertex is the weighted sum of three base vertices plus a per-axis scaled offset") {
+  const auto dir = std::filesystem::temp_directory_path() / "crowdlab_mhclo_test";
+  std::filesystem::create_directories(dir);
+  write(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const auto path = write(dir / "tri.mhclo",
+                          "# comment\nname tri\nobj_file tri.obj\nx_scale 0 1 2.0\ny_scale 0 2 1.0\n"
+                          "z_scale 0 3 4.0\nverts 0\n0 1 2 0.5 0.25 0.25 1.0 1.0 1.0\n3\n"
+                          "1 2 3 1 0 0 0 0 0\ndelete_verts\n2 5 - 7\n");
+  const MhcloProxy p = read_mhclo(path, 8);
+  REQUIRE(p.refs.size() == 3);
+  CHECK(p.deleted_base_vertices == std::vector<int>{2, 5, 6, 7});
+  std::vector<Vec3> base(8, Vec3::Zero());
+  base[0] = Vec3(0, 0, 0);
+  base[1] = Vec3(4, 0, 0);  // x scale |4 - 0| / 2 = 2
+  base[2] = Vec3(0, 3, 0);  // y scale 3
+  base[3] = Vec3(0, 0, 8);  // z scale 2
+  const std::vector<Vec3> fit = fit_mhclo_proxy(p, base);
+  CHECK((fit[0] - Vec3(0.5 * 0 + 0.25 * 4 + 2.0, 0.25 * 3 + 3.0, 2.0)).norm() < 1e-12);
+  CHECK((fit[1] - base[3]).norm() < 1e-12);  // a one-number line is that base vertex
+  CHECK((fit[2] - base[1]).norm() < 1e-12);
+  // Bad input names the file and line.
+  const auto bad = write(dir / "bad.mhclo", "obj_file tri.obj\nverts 0\n0 1 2 0.5\n");
+  CHECK_THROWS_WITH(read_mhclo(bad, 8), Catch::Contains("bad.mhclo:3"));
+  const auto out_of_range = write(dir / "range.mhclo", "obj_file tri.obj\nverts 0\n0\n1\n99\n");
+  CHECK_THROWS_WITH(read_mhclo(out_of_range, 8), Catch::Contains("out of range"));
+  const auto count = write(dir / "count.mhclo", "obj_file tri.obj\nverts 0\n0\n1\n");
+  CHECK_THROWS_WITH(read_mhclo(count, 8), Catch::Contains("has 3"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("the shipped wardrobe holds outfits and hair for both sexes, shoes and eyebrows") {
+  const auto w = wardrobe();
+  CHECK(w->outfit_female.size() >= 2);
+  CHECK(w->outfit_male.size() >= 2);
+  CHECK(w->hair_female.size() >= 2);
+  CHECK(w->hair_male.size() >= 2);
+  CHECK(!w->shoes.empty());
+  CHECK(!w->eyebrows.empty());
+}
+
+TEST_CASE(
+    "a dressed body has eyes, brows, hair, a top, a bottom and shoes over a skin that stays closed where "
+    "seen") {
+  const auto m = model();
+  Mpfb2ShapeParams p;
+  p.gender = 0.0;
+  const Mpfb2Outfit outfit = sample_mpfb2_outfit(*wardrobe(), Sex::kFemale, 7);
+  const Mpfb2Body bare = make_mpfb2_body(*m, p);
+  const Mpfb2Body dressed = make_mpfb2_body(*m, p, &outfit);
+  REQUIRE_NOTHROW(validate_skinned_mesh(dressed.mesh, "test"));
+  CHECK(bare.mesh.surface.empty());  // a bare body keeps the renderer's positional clothing
+  REQUIRE(dressed.mesh.surface.size() == dressed.mesh.rest_vertices_m.size());
+  auto count = label_counts(dressed.mesh);
+  for (SurfaceKind k : {SurfaceKind::kSkin, SurfaceKind::kLips, SurfaceKind::kEyeWhite, SurfaceKind::kIris,
+                        SurfaceKind::kBrow, SurfaceKind::kHair, SurfaceKind::kUpperGarment,
+                        SurfaceKind::kLowerGarment, SurfaceKind::kShoes}) {
+    INFO("surface " << static_cast<int>(k));
+    CHECK(count[k] > 0);
+  }
+  // The collision bodies are the skin's alone: the same capsules dressed or not.
+  for (size_t j = 0; j < kJointCount; ++j)
+    CHECK(dressed.shape.capsules[j].radius_m == Approx(bare.shape.capsules[j].radius_m));
+  // Garments lie on the body: every top vertex within 8 cm of the bare skin, most within 3 cm.
+  const std::vector<Vec3>& skin = bare.mesh.rest_vertices_m;
+  const double lift = dressed.shape.joint_offsets_m[kPelvis].y() - bare.shape.joint_offsets_m[kPelvis].y();
+  CHECK(lift >= 0.0);  // standing on the soles
+  CHECK(lift < 0.05);
+  int near = 0, total = 0;
+  double worst = 0.0;
+  for (size_t v = 0; v < dressed.mesh.surface.size(); v += 7) {
+    if (dressed.mesh.surface[v] != static_cast<std::uint8_t>(SurfaceKind::kUpperGarment)) continue;
+    const Vec3 q = dressed.mesh.rest_vertices_m[v] - Vec3(0, lift, 0);
+    double best = HUGE_VAL;
+    for (const Vec3& s : skin) best = std::min(best, (s - q).squaredNorm());
+    best = std::sqrt(best);
+    worst = std::max(worst, best);
+    near += best < 0.03;
+    ++total;
+  }
+  INFO("top vertices checked " << total << ", worst " << worst << " m");
+  CHECK(total > 50);
+  CHECK(worst < 0.08);
+  CHECK(near > 0.9 * total);
+  // The eyes sit in the head, in front: iris vertices ahead of the head joint and above the mouth.
+  const Vec3 head = dressed.mesh.rest_joints_m[kHead];
+  for (size_t v = 0; v < dressed.mesh.surface.size(); ++v)
+    if (dressed.mesh.surface[v] == static_cast<std::uint8_t>(SurfaceKind::kIris)) {
+      CHECK(dressed.mesh.rest_vertices_m[v].z() > head.z() + 0.05);
+      CHECK(std::abs(dressed.mesh.rest_vertices_m[v].y() - head.y()) < 0.12);
+    }
+}
+
+TEST_CASE("outfits are drawn per body from their own stream: the shapes are the same dressed or not") {
+  const auto m = model();
+  const auto plain = sample_mpfb2_bodies(*m, 6, 42);
+  const auto dressed =
+      sample_mpfb2_bodies(*m, 6, 42, 0.5, kWorldFemaleHeight, kWorldMaleHeight, wardrobe().get());
+  std::set<size_t> sizes;
+  for (size_t i = 0; i < plain.size(); ++i) {
+    CHECK(plain[i].params.height == dressed[i].params.height);
+    CHECK(plain[i].body.height_m == dressed[i].body.height_m);
+    CHECK(!dressed[i].body.mesh.surface.empty());
+    sizes.insert(dressed[i].body.mesh.rest_vertices_m.size());
+  }
+  CHECK(sizes.size() > 1);  // not everyone wears the same
+  const auto again =
+      sample_mpfb2_bodies(*m, 6, 42, 0.5, kWorldFemaleHeight, kWorldMaleHeight, wardrobe().get());
+  for (size_t i = 0; i < again.size(); ++i)
+    CHECK(again[i].body.mesh.rest_vertices_m == dressed[i].body.mesh.rest_vertices_m);
+}
+
+TEST_CASE("hands rest slightly flexed: the fingertips hang below the knuckles in the T-pose") {
+  const auto m = model();
+  const Mpfb2Body b = make_mpfb2_body(*m, Mpfb2ShapeParams{});
+  for (const int side : {0, 1}) {
+    const int hand = side == 0 ? kLeftHand : kRightHand;
+    const Vec3 knuckle = b.mesh.rest_joints_m[static_cast<size_t>(hand)];
+    const double sign = side == 0 ? 1.0 : -1.0;
+    double tip_y = 0.0;
+    int n = 0;
+    for (size_t v = 0; v < b.mesh.rest_vertices_m.size(); ++v) {
+      const Vec3& p = b.mesh.rest_vertices_m[v];
+      // The outer finger segments: 5-9 cm beyond the knuckles along the arm, within the hand's width.
+      const double along = sign * (p.x() - knuckle.x());
+      if (along > 0.05 && along < 0.09 && std::abs(p.z() - knuckle.z()) < 0.06 &&
+          std::abs(p.y() - knuckle.y()) < 0.08) {
+        tip_y += p.y();
+        ++n;
+      }
+    }
+    REQUIRE(n > 20);
+    tip_y /= n;
+    INFO("side " << side << ": finger ends " << (knuckle.y() - tip_y) * 100 << " cm below the knuckles");
+    CHECK(knuckle.y() - tip_y > 0.012);
+  }
+}
