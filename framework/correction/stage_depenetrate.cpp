@@ -346,6 +346,7 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
     for (int k : w.tested)
       for (const DeepContact& d : w.per_pair[static_cast<size_t>(k)]) {
         for (int bone : {d.bone_a, d.bone_b}) {
+          mark_touched(s, bone);  // engaged from now on (stage_free_joints.cpp)
           auto& list = w.mine[static_cast<size_t>(bone / kJointCount)];
           if (list.empty()) w.solved.push_back(bone / kJointCount);
           list.push_back(&d);
