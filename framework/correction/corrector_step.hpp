@@ -65,6 +65,11 @@ void stage_record_deviation(const CorrectorModel& model, CorrectorState& state);
 /// params.free_joint_return_radps away from the last output's deviation. Returns whether the rate
 /// limit changed an engaged joint.
 bool release_free_joints(const CorrectorModel& model, const CorrectorState& state, int c, Pose& pose);
+/// How much more (rad) each joint of character c may turn this step: what the rate limit of
+/// stage_free_joints.cpp leaves of it from the last output's deviation to `pose`'s (infinite for the joints
+/// it does not limit, 0 for free joints).
+void rotation_left(const CorrectorModel& model, const CorrectorState& state, int c, const Pose& pose,
+                   std::array<double, kJointCount>& left);
 /// Marks bones of character c in contact this step (the depenetration pass's deep contacts).
 void mark_touched(CorrectorState& state, int global_bone);
 

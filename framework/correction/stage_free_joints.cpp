@@ -25,6 +25,7 @@
 // velocities are those of the released motion (a stronger PD pull in the limit: the free joint follows
 // its input exactly). The free-limb measure (metrics/free_limb_deviation.hpp) uses the same scopes.
 #include <cmath>
+#include <limits>
 
 #include <tbb/parallel_for.h>
 
@@ -53,10 +54,16 @@ void engage(const CorrectorModel& model, CorrectorState& s, int c) {
 /// p99 inter-body depths of 20-21 mm (the trunk and the legs could no longer get out of the way).
 bool rate_limited_joint(int j) {
   switch (j) {
+    case kLeftElbow:
+    case kRightElbow:
     case kLeftWrist:
     case kRightWrist:
     case kLeftHand:
     case kRightHand:
+    case kLeftAnkle:
+    case kRightAnkle:
+    case kLeftFoot:
+    case kRightFoot:
       return true;
     default:
       return false;
@@ -123,6 +130,27 @@ bool release_free_joints(const CorrectorModel& model, const CorrectorState& s, i
     pose.local_rotations[jj] = next;
   }
   return changed;
+}
+
+void rotation_left(const CorrectorModel& model, const CorrectorState& s, int c, const Pose& pose,
+                   std::array<double, kJointCount>& left) {
+  const double step = model.params.free_joint_return_radps * model.h;
+  const Pose& target = s.target[static_cast<size_t>(c)];
+  for (int j = 0; j < kJointCount; ++j) {
+    const auto g = static_cast<size_t>(c * kJointCount + j);
+    const auto jj = static_cast<size_t>(j);
+    if (!model.params.release_free_joints || (s.step_index <= s.engaged_until[g] && !rate_limited_joint(j))) {
+      left[jj] = std::numeric_limits<double>::infinity();
+      continue;
+    }
+    if (s.step_index > s.engaged_until[g]) {
+      left[jj] = 0.0;
+      continue;
+    }
+    const Quat d = (target.local_rotations[jj].conjugate() * pose.local_rotations[jj]).normalized();
+    const double used = 2.0 * std::acos(std::min(1.0, std::abs(s.output_deviation[g].dot(d))));
+    left[jj] = std::max(0.0, step - used);
+  }
 }
 
 void stage_record_deviation(const CorrectorModel& model, CorrectorState& s) {

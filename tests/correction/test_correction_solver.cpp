@@ -263,7 +263,7 @@ TEST_CASE("correction: an arm through a thin barrier comes back out on its own s
   Environment env;
   Box barrier;
   barrier.center_m = 0.5 * (forearm.a + forearm.b);
-  barrier.half_extents_m = Vec3(0.05, 0.3, 1.0);
+  barrier.half_extents_m = Vec3(0.05, 1.0, 1.0);  // 2 m tall and wide: the arm cannot go round it
   env.boxes.push_back(barrier);
   REQUIRE(capsule_box_distance(forearm, barrier).distance_m < -0.05);
   Corrector corrector({body}, {}, env, 30);
