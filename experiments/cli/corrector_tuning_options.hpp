@@ -8,8 +8,8 @@
 namespace crowdlab::cli {
 
 /// Adds --contact-stiffness, --cg-tolerance, --active-set-passes, --depenetration-passes,
-/// --depenetration-tolerance, --foot-pop-budget, --free-joints, --free-joint-margin, --free-joint-hold and
-/// --free-joint-return to `cmd`, writing into `params` (which must outlive the
+/// --depenetration-tolerance, --foot-pop-budget, --free-joints, --free-joint-margin, --free-joint-hold,
+/// --free-joint-return and --light-joint-rate-limit to `cmd`, writing into `params` (which must outlive the
 /// parse).
 inline void add_corrector_tuning_options(CLI::App* cmd, CorrectorParams& params) {
   cmd->add_option("--contact-stiffness", params.contact_stiffness, "Collision penalty k_delta (N/m)")
@@ -47,6 +47,9 @@ inline void add_corrector_tuning_options(CLI::App* cmd, CorrectorParams& params)
   cmd->add_option("--free-joint-return", params.free_joint_return_radps,
                   "Rate (rad/s) at which a released joint returns to its input")
       ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--light-joint-rate-limit", params.rate_limit_light_joints,
+                  "Wrists, hands, ankles and balls turn at most --free-joint-return while in contact (true/false)")
       ->capture_default_str();
 }
 

@@ -223,7 +223,11 @@ struct CorrectorParams {
   /// Rate (rad/s) at which a released joint's deviation from its input returns to zero. 3 rad/s is
   /// 5.7 deg per frame at 30 fps: 17 deg within 3 frames, under the flip measure's 20 deg
   /// (metrics/joint_flips.hpp), and a 45 deg deviation is gone in a quarter of a second.
-  double free_joint_return_radps = 3.0;
+  double free_joint_return_radps = 3.4;
+  /// Whether the light distal joints (wrists, hands, ankles, balls of the feet) also turn at most
+  /// free_joint_return_radps while engaged, in the step and in the depenetration pass, so that they
+  /// never flip (stage_free_joints.cpp, rate_limited_joint). false: engaged joints follow the solve.
+  bool rate_limit_light_joints = true;
 };
 
 /// Throws InputError naming the field when a parameter is out of range or not finite.

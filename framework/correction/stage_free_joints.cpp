@@ -27,8 +27,6 @@
 #include <cmath>
 #include <limits>
 
-#include <tbb/parallel_for.h>
-
 #include "framework/correction/corrector_step.hpp"
 
 namespace crowdlab {
@@ -48,14 +46,13 @@ void engage(const CorrectorModel& model, CorrectorState& s, int c) {
     if (touched & contact_scope(j)) s.engaged_until[static_cast<size_t>(c * kJointCount + j)] = until;
 }
 
-/// The joints whose engaged deviation is rate-limited: elbows, wrists, hands, ankles and balls of the
-/// feet. Measured on gomez2024 at 6.66 /m^2 (3 s) without a limit: of 11,467 flips in the corridor,
-/// 7,774 were hands, 2,204 wrists, 1,177 balls, 218 ankles, 41 elbows; limiting every joint instead left
-/// p99 inter-body depths of 20-21 mm (the trunk and the legs could no longer get out of the way).
+/// The joints whose engaged deviation is rate-limited: wrists, hands, ankles and balls of the feet.
+/// Measured on gomez2024 at 6.66 /m^2 (3 s) without a limit: of 11,467 flips in the corridor, 7,774
+/// were hands, 2,204 wrists, 1,177 balls, 218 ankles, 41 elbows; limiting every joint instead left p99
+/// inter-body depths of 20-21 mm (the trunk and the legs could no longer get out of the way), limiting
+/// the elbows too 11-17 mm in the stationary crowd (docs/correction.md).
 bool rate_limited_joint(int j) {
   switch (j) {
-    case kLeftElbow:
-    case kRightElbow:
     case kLeftWrist:
     case kRightWrist:
     case kLeftHand:
@@ -70,6 +67,10 @@ bool rate_limited_joint(int j) {
   }
 }
 
+bool limited(const CorrectorModel& model, int j) {
+  return model.params.rate_limit_light_joints && rate_limited_joint(j);
+}
+
 }  // namespace
 
 void mark_touched(CorrectorState& s, int global_bone) {
@@ -82,7 +83,8 @@ void stage_contact_scope(const CorrectorModel& model, CorrectorState& s) {
   const size_t pairs = s.body_pairs.size();
   if (s.pair_touched.size() < pairs) s.pair_touched.resize(pairs);
   const double margin = model.params.free_joint_margin_m;
-  tbb::parallel_for(size_t{0}, pairs, [&](size_t k) {
+  // Serial: a few capsule distances per near pair; a parallel region costs more than that under load.
+  for (size_t k = 0; k < pairs; ++k) {
     const auto [ci, cj] = s.body_pairs[k];
     std::array<BoneMask, 2> t{0, 0};
     for (const auto& [a, b] : s.per_pair_near[k]) {
@@ -94,7 +96,7 @@ void stage_contact_scope(const CorrectorModel& model, CorrectorState& s) {
       }
     }
     s.pair_touched[k] = t;
-  });
+  }
   for (size_t k = 0; k < pairs; ++k) {
     s.touched[static_cast<size_t>(s.body_pairs[k].first)] |= s.pair_touched[k][0];
     s.touched[static_cast<size_t>(s.body_pairs[k].second)] |= s.pair_touched[k][1];
@@ -123,7 +125,7 @@ bool release_free_joints(const CorrectorModel& model, const CorrectorState& s, i
     const double angle = 2.0 * std::acos(std::min(1.0, std::abs(d_old.dot(want))));
     // Engaged trunk, shoulder and leg joints follow the solve at any rate (they carry the pushes);
     // the light distal ones are rate-limited (rate_limited_joint).
-    if (engaged && (angle <= step || !rate_limited_joint(j))) continue;
+    if (engaged && (angle <= step || !limited(model, j))) continue;
     const Quat d = angle <= step ? want : d_old.slerp(step / angle, want);
     const Quat next = (target.local_rotations[jj] * d).normalized();
     if (std::abs(next.dot(pose.local_rotations[jj])) < 1.0 - 1e-12) changed = true;
@@ -139,7 +141,7 @@ void rotation_left(const CorrectorModel& model, const CorrectorState& s, int c, 
   for (int j = 0; j < kJointCount; ++j) {
     const auto g = static_cast<size_t>(c * kJointCount + j);
     const auto jj = static_cast<size_t>(j);
-    if (!model.params.release_free_joints || (s.step_index <= s.engaged_until[g] && !rate_limited_joint(j))) {
+    if (!model.params.release_free_joints || (s.step_index <= s.engaged_until[g] && !limited(model, j))) {
       left[jj] = std::numeric_limits<double>::infinity();
       continue;
     }
@@ -155,19 +157,19 @@ void rotation_left(const CorrectorModel& model, const CorrectorState& s, int c, 
 
 void stage_record_deviation(const CorrectorModel& model, CorrectorState& s) {
   if (!model.params.release_free_joints) return;
-  tbb::parallel_for(0, model.characters(), [&](int c) {
+  for (int c = 0; c < model.characters(); ++c) {  // serial: ~24 quaternion products per character
     engage(model, s, c);  // the bones the depenetration pass moved apart this step
     const auto cc = static_cast<size_t>(c);
     // The pass may have turned joints faster than the rate: limit again, re-plant held feet, and start
-    // the next step from that pose.
-    if (release_free_joints(model, s, c, s.output[cc])) {
+    // the next step from that pose (a rejected step keeps its last stable state as it is).
+    if (!s.stats.rejected && release_free_joints(model, s, c, s.output[cc])) {
       hold_feet(model, s, c, s.output[cc]);
       set_bones_from_pose(model, c, s.output[cc], s.com_m, s.rotation);
     }
     for (size_t j = 0; j < kJointCount; ++j)
       s.output_deviation[cc * kJointCount + j] =
           (s.target[cc].local_rotations[j].conjugate() * s.output[cc].local_rotations[j]).normalized();
-  });
+  }
 }
 
 }  // namespace crowdlab

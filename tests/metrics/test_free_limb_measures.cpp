@@ -42,7 +42,7 @@ CrowdAnimation standing(const std::vector<double>& xs) {
 
 }  // namespace
 
-TEST_CASE("a turned wrist of a character alone is a free-limb deviation; one touching a neighbour is not") {
+TEST_CASE("a turned wrist of a character alone is a free-limb deviation, one touching a neighbour is not") {
   const CrowdAnimation in = standing({0.0, 3.0});
   CrowdAnimation out = in;
   for (Pose& p : out.characters[0].frames) p.local_rotations[kLeftWrist] = about_x(4.0) * p.local_rotations[kLeftWrist];
@@ -84,7 +84,7 @@ TEST_CASE("a limb near something within half a second is not free, farther in ti
   CHECK(deviate_on(40, 40).worst_frame == 40);
 }
 
-TEST_CASE("a wrist that turns 30 deg away from its input within two frames is a flip; a slow turn is not") {
+TEST_CASE("a wrist that turns 30 deg away from its input within two frames is a flip, a slow turn is not") {
   const CrowdAnimation in = standing({0.0});
   CrowdAnimation fast = in, slow = in;
   for (int f = 0; f < kFrames; ++f) {
