@@ -48,8 +48,9 @@ inline void add_corrector_tuning_options(CLI::App* cmd, CorrectorParams& params)
                   "Rate (rad/s) at which a released joint returns to its input")
       ->check(CLI::Range(0.0, 1000.0))
       ->capture_default_str();
-  cmd->add_option("--light-joint-rate-limit", params.rate_limit_light_joints,
-                  "Wrists, hands, ankles and balls turn at most --free-joint-return while in contact (true/false)")
+  cmd->add_option(
+         "--light-joint-rate-limit", params.rate_limit_light_joints,
+         "Wrists, hands, ankles and balls turn at most --free-joint-return while in contact (true/false)")
       ->capture_default_str();
 }
 

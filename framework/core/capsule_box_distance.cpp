@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-
 namespace crowdlab {
 
 double sdf_box(const Box& box, const Vec3& p) {

@@ -120,8 +120,9 @@ bool release_free_joints(const CorrectorModel& model, const CorrectorState& s, i
     const Quat& d_old = s.output_deviation[g];
     // Free: back toward no deviation; engaged: toward what the solve (and the pass) gave it.
     const bool engaged = s.step_index <= s.engaged_until[g];
-    const Quat want = engaged ? (target.local_rotations[jj].conjugate() * pose.local_rotations[jj]).normalized()
-                              : Quat::Identity();
+    const Quat want = engaged
+                          ? (target.local_rotations[jj].conjugate() * pose.local_rotations[jj]).normalized()
+                          : Quat::Identity();
     const double angle = 2.0 * std::acos(std::min(1.0, std::abs(d_old.dot(want))));
     // Engaged trunk, shoulder and leg joints follow the solve at any rate (they carry the pushes);
     // the light distal ones are rate-limited (rate_limited_joint).
@@ -158,7 +159,7 @@ void rotation_left(const CorrectorModel& model, const CorrectorState& s, int c, 
 void stage_record_deviation(const CorrectorModel& model, CorrectorState& s) {
   if (!model.params.release_free_joints) return;
   for (int c = 0; c < model.characters(); ++c) {  // serial: ~24 quaternion products per character
-    engage(model, s, c);  // the bones the depenetration pass moved apart this step
+    engage(model, s, c);                          // the bones the depenetration pass moved apart this step
     const auto cc = static_cast<size_t>(c);
     // The pass may have turned joints faster than the rate: limit again, re-plant held feet, and start
     // the next step from that pose (a rejected step keeps its last stable state as it is).

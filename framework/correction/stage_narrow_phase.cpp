@@ -180,7 +180,8 @@ void single_body_contacts(const CorrectorModel& model, const CorrectorState& sta
     const Vec3 root = state.world_capsule[static_cast<size_t>(base)].a;
     for (int b = 0; b < kJointCount; ++b) {
       const Capsule& cap = state.world_capsule[static_cast<size_t>(base + b)];
-      if (!capsule_box(cap, model.params.contact_offset_m).overlaps(model.environment_box_bounds[k])) continue;
+      if (!capsule_box(cap, model.params.contact_offset_m).overlaps(model.environment_box_bounds[k]))
+        continue;
       if (box_contact(cap, base + b, model.environment_boxes[k], root, model.params.environment_stiffness,
                       model.params.contact_offset_m, c))
         out.push_back(c);

@@ -41,12 +41,14 @@ std::vector<BoneMask> near_in_frame(const CrowdAnimation& crowd, int f, double m
   std::vector<BoneMask> near(n, 0);
   for (size_t i = 0; i < n; ++i) {
     for (size_t j = i + 1; j < n; ++j)
-      if (body[i].overlaps(body[j])) mark_pair(caps[i], caps[j], boxes[i], boxes[j], margin, near[i], near[j]);
+      if (body[i].overlaps(body[j]))
+        mark_pair(caps[i], caps[j], boxes[i], boxes[j], margin, near[i], near[j]);
     for (size_t k = 0; k < env_boxes.size(); ++k) {
       if (!body[i].overlaps(env_boxes[k])) continue;
       for (int b = 0; b < kJointCount; ++b)
         if (boxes[i][static_cast<size_t>(b)].overlaps(env_boxes[k]) &&
-            capsule_box_distance(caps[i][static_cast<size_t>(b)], crowd.environment.boxes[k]).distance_m < margin)
+            capsule_box_distance(caps[i][static_cast<size_t>(b)], crowd.environment.boxes[k]).distance_m <
+                margin)
           near[i] |= BoneMask{1} << b;
     }
   }
@@ -57,7 +59,8 @@ std::vector<BoneMask> near_in_frame(const CrowdAnimation& crowd, int f, double m
 
 std::vector<std::vector<BoneMask>> near_bones(const CrowdAnimation& crowd, double margin_m) {
   const int frames = crowd.frame_count();
-  std::vector<Aabb> env_boxes;  // the boxes' bounds grown by half the margin (the capsules' by the other half)
+  std::vector<Aabb>
+      env_boxes;  // the boxes' bounds grown by half the margin (the capsules' by the other half)
   for (const Box& b : crowd.environment.boxes) {
     Aabb box = box_bounds(b);
     box.lo.array() -= 0.5 * margin_m;
@@ -65,7 +68,8 @@ std::vector<std::vector<BoneMask>> near_bones(const CrowdAnimation& crowd, doubl
     env_boxes.push_back(box);
   }
   std::vector<std::vector<BoneMask>> near(static_cast<size_t>(std::max(0, frames)));
-  tbb::parallel_for(0, frames, [&](int f) { near[static_cast<size_t>(f)] = near_in_frame(crowd, f, margin_m, env_boxes); });
+  tbb::parallel_for(
+      0, frames, [&](int f) { near[static_cast<size_t>(f)] = near_in_frame(crowd, f, margin_m, env_boxes); });
   return near;
 }
 

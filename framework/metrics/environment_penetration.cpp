@@ -45,7 +45,9 @@ EnvironmentPenetration measure_environment_penetration(const CrowdAnimation& cro
   std::vector<Aabb> bounds;
   for (const Box& b : crowd.environment.boxes) bounds.push_back(box_bounds(b));
   std::vector<std::vector<Depth>> per_frame(static_cast<size_t>(frames - first));
-  tbb::parallel_for(first, frames, [&](int f) { per_frame[static_cast<size_t>(f - first)] = frame_depths(crowd, f, bounds); });
+  tbb::parallel_for(first, frames, [&](int f) {
+    per_frame[static_cast<size_t>(f - first)] = frame_depths(crowd, f, bounds);
+  });
   std::vector<double> depths;
   for (size_t i = 0; i < per_frame.size(); ++i)
     for (const Depth& d : per_frame[i]) {

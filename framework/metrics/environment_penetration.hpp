@@ -14,7 +14,7 @@ namespace crowdlab {
 struct EnvironmentPenetration {
   double p99_m = 0.0;
   double max_m = 0.0;
-  long samples = 0;  ///< capsule-box-frame depths > 0
+  long samples = 0;                                             ///< capsule-box-frame depths > 0
   int worst_character = -1, worst_bone = -1, worst_frame = -1;  ///< where max_m is (-1: none)
 };
 

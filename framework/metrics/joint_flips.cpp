@@ -6,7 +6,8 @@
 
 namespace crowdlab {
 
-JointFlips measure_joint_flips(const CrowdAnimation& input, const CrowdAnimation& corrected, int first_frame) {
+JointFlips measure_joint_flips(const CrowdAnimation& input, const CrowdAnimation& corrected,
+                               int first_frame) {
   JointFlips q;
   const int frames = input.frame_count();
   const int first = std::max(0, first_frame);

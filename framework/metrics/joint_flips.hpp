@@ -34,6 +34,7 @@ struct JointFlips {
 };
 
 /// Frames from first_frame on. The animations must match in characters and frames (caller checks).
-JointFlips measure_joint_flips(const CrowdAnimation& input, const CrowdAnimation& corrected, int first_frame = 0);
+JointFlips measure_joint_flips(const CrowdAnimation& input, const CrowdAnimation& corrected,
+                               int first_frame = 0);
 
 }  // namespace crowdlab

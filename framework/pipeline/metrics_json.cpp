@@ -95,16 +95,16 @@ nlohmann::json correction_quality_json(const CorrectionQuality& q) {
           {"free_limb_dev_p99_deg", q.free_limbs.p99_deg},
           {"free_limb_dev_max_deg", q.free_limbs.max_deg},
           {"free_limb_joint_frames", q.free_limbs.free_joint_frames},
-          {"free_limb_dev_worst", worst_json(q.free_limbs.worst_character, q.free_limbs.worst_joint,
-                                             q.free_limbs.worst_frame)},
+          {"free_limb_dev_worst",
+           worst_json(q.free_limbs.worst_character, q.free_limbs.worst_joint, q.free_limbs.worst_frame)},
           {"joint_flips", q.flips.count},
           {"joint_flip_max_change_deg", q.flips.max_change_deg},
           {"joint_flip_first", flips_json(q.flips)},
           {"joint_flips_by_joint", flips_by_joint_json(q.flips)},
           {"env_penetration_p99_m", q.environment.p99_m},
           {"env_penetration_max_m", q.environment.max_m},
-          {"env_penetration_worst", worst_json(q.environment.worst_character, q.environment.worst_bone,
-                                               q.environment.worst_frame)}};
+          {"env_penetration_worst",
+           worst_json(q.environment.worst_character, q.environment.worst_bone, q.environment.worst_frame)}};
 }
 
 }  // namespace crowdlab

@@ -270,12 +270,11 @@ TEST_CASE("correction: joints that touch nobody keep their input, and no joint f
   off.release_free_joints = false;
   const CorrectionQuality without = measure_correction_quality(in, correct_crowd(in, off));
   const CorrectionQuality with = measure_correction_quality(in, correct_crowd(in, CorrectorParams{}));
-  INFO("free-limb deviation p99 / max " << without.free_limbs.p99_deg << " / " << without.free_limbs.max_deg
-                                        << " -> " << with.free_limbs.p99_deg << " / " << with.free_limbs.max_deg
-                                        << " deg over " << with.free_limbs.free_joint_frames
-                                        << " joint-frames; flips " << without.flips.count << " -> "
-                                        << with.flips.count << "; p99 depth " << without.depth_p99_m << " -> "
-                                        << with.depth_p99_m);
+  INFO("free-limb deviation p99 / max "
+       << without.free_limbs.p99_deg << " / " << without.free_limbs.max_deg << " -> "
+       << with.free_limbs.p99_deg << " / " << with.free_limbs.max_deg << " deg over "
+       << with.free_limbs.free_joint_frames << " joint-frames; flips " << without.flips.count << " -> "
+       << with.flips.count << "; p99 depth " << without.depth_p99_m << " -> " << with.depth_p99_m);
   REQUIRE(with.free_limbs.free_joint_frames > 1000);
   CHECK(without.free_limbs.max_deg > 5.0);
   CHECK(without.flips.count > 0);

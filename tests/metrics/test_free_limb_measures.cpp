@@ -45,7 +45,8 @@ CrowdAnimation standing(const std::vector<double>& xs) {
 TEST_CASE("a turned wrist of a character alone is a free-limb deviation, one touching a neighbour is not") {
   const CrowdAnimation in = standing({0.0, 3.0});
   CrowdAnimation out = in;
-  for (Pose& p : out.characters[0].frames) p.local_rotations[kLeftWrist] = about_x(4.0) * p.local_rotations[kLeftWrist];
+  for (Pose& p : out.characters[0].frames)
+    p.local_rotations[kLeftWrist] = about_x(4.0) * p.local_rotations[kLeftWrist];
   FreeLimbDeviation q = measure_free_limb_deviation(in, out);
   CHECK(q.max_deg == Approx(4.0).epsilon(1e-6));
   CHECK(q.p99_deg == Approx(4.0).epsilon(1e-6));
