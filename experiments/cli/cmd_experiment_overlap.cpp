@@ -7,8 +7,10 @@
 // (scenario,characters,density,overlap_reduction,depth_p99_m,depth_max_m,rotation_dev_mean_deg,
 // rotation_dev_p99_deg,foot_skate_max_m,joint_speed_max_mps,cg_iterations_mean,rejected_steps,
 // stance_foot_drift_p99_m,stance_foot_drift_max_m,foot_pops,foot_pop_excess_max_m,
-// foot_ground_penetration_max_m,foot_float_p99_m; the foot measures are defined in
-// framework/metrics/foot_contact_quality.hpp).
+// foot_ground_penetration_max_m,foot_float_p99_m,free_limb_dev_p99_deg,free_limb_dev_max_deg,joint_flips,
+// env_penetration_p99_m,env_penetration_max_m; the foot measures are defined in
+// framework/metrics/foot_contact_quality.hpp, the last five (issue 27) in free_limb_deviation.hpp,
+// joint_flips.hpp and environment_penetration.hpp).
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -107,6 +109,12 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
         1000 * qr.quality.feet.stance_drift_p99_m, 1000 * qr.quality.feet.stance_drift_max_m,
         qr.quality.feet.foot_pops, 100 * qr.quality.feet.pop_excess_max_m, qr.quality.joint_speed_max_mps,
         report.cg_iterations_mean, report.rejected_steps);
+    std::printf(
+        "%-10s %3d characters: free-limb deviation p99 %.2f deg (max %.2f), joint flips %ld, environment "
+        "penetration p99 %.1f mm (max %.1f), floating p99 %.1f mm, feet below ground max %.1f mm\n",
+        scenario.c_str(), n, qr.quality.free_limbs.p99_deg, qr.quality.free_limbs.max_deg,
+        qr.quality.flips.count, 1000 * qr.quality.environment.p99_m, 1000 * qr.quality.environment.max_m,
+        1000 * qr.quality.feet.float_p99_m, 1000 * qr.quality.feet.ground_penetration_max_m);
     quality.push_back(qr);
   }
 }
@@ -117,21 +125,53 @@ void run(const Options& o) {
   run_scenario(o.stationary, o, rows, quality);
   run_scenario(o.corridor, o, rows, quality);
   write_overlap_vs_density(rows, o.out);
-  std::string qcsv =
-      csv_line({"scenario", "characters", "density", "overlap_reduction", "depth_p99_m", "depth_max_m",
-                "rotation_dev_mean_deg", "rotation_dev_p99_deg", "foot_skate_max_m", "joint_speed_max_mps",
-                "cg_iterations_mean", "rejected_steps", "stance_foot_drift_p99_m", "stance_foot_drift_max_m",
-                "foot_pops", "foot_pop_excess_max_m", "foot_ground_penetration_max_m", "foot_float_p99_m"});
+  std::string qcsv = csv_line({"scenario",
+                               "characters",
+                               "density",
+                               "overlap_reduction",
+                               "depth_p99_m",
+                               "depth_max_m",
+                               "rotation_dev_mean_deg",
+                               "rotation_dev_p99_deg",
+                               "foot_skate_max_m",
+                               "joint_speed_max_mps",
+                               "cg_iterations_mean",
+                               "rejected_steps",
+                               "stance_foot_drift_p99_m",
+                               "stance_foot_drift_max_m",
+                               "foot_pops",
+                               "foot_pop_excess_max_m",
+                               "foot_ground_penetration_max_m",
+                               "foot_float_p99_m",
+                               "free_limb_dev_p99_deg",
+                               "free_limb_dev_max_deg",
+                               "joint_flips",
+                               "env_penetration_p99_m",
+                               "env_penetration_max_m"});
   for (const QualityRow& r : quality)
-    qcsv += csv_line(
-        {r.scenario, std::to_string(r.characters), csv_number(r.density), csv_number(r.overlap_reduction),
-         csv_number(r.quality.depth_p99_m), csv_number(r.quality.depth_max_m),
-         csv_number(r.quality.rotation_dev_mean_deg), csv_number(r.quality.rotation_dev_p99_deg),
-         csv_number(r.quality.foot_skate_max_m), csv_number(r.quality.joint_speed_max_mps),
-         csv_number(r.report.cg_iterations_mean), std::to_string(r.report.rejected_steps),
-         csv_number(r.quality.feet.stance_drift_p99_m), csv_number(r.quality.feet.stance_drift_max_m),
-         std::to_string(r.quality.feet.foot_pops), csv_number(r.quality.feet.pop_excess_max_m),
-         csv_number(r.quality.feet.ground_penetration_max_m), csv_number(r.quality.feet.float_p99_m)});
+    qcsv += csv_line({r.scenario,
+                      std::to_string(r.characters),
+                      csv_number(r.density),
+                      csv_number(r.overlap_reduction),
+                      csv_number(r.quality.depth_p99_m),
+                      csv_number(r.quality.depth_max_m),
+                      csv_number(r.quality.rotation_dev_mean_deg),
+                      csv_number(r.quality.rotation_dev_p99_deg),
+                      csv_number(r.quality.foot_skate_max_m),
+                      csv_number(r.quality.joint_speed_max_mps),
+                      csv_number(r.report.cg_iterations_mean),
+                      std::to_string(r.report.rejected_steps),
+                      csv_number(r.quality.feet.stance_drift_p99_m),
+                      csv_number(r.quality.feet.stance_drift_max_m),
+                      std::to_string(r.quality.feet.foot_pops),
+                      csv_number(r.quality.feet.pop_excess_max_m),
+                      csv_number(r.quality.feet.ground_penetration_max_m),
+                      csv_number(r.quality.feet.float_p99_m),
+                      csv_number(r.quality.free_limbs.p99_deg),
+                      csv_number(r.quality.free_limbs.max_deg),
+                      std::to_string(r.quality.flips.count),
+                      csv_number(r.quality.environment.p99_m),
+                      csv_number(r.quality.environment.max_m)});
   write_file_atomic(fs::path(o.out) / "correction_quality.csv", qcsv);
   std::printf(
       "wrote %s/overlap_vs_density.csv, correction_quality.csv and "

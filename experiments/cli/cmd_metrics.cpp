@@ -3,7 +3,8 @@
 // litres), V (seed 001 Eq. 1), maximum penetration depth, collision events, per pair and per frame.
 // With `--input BASE.glb` (the animation the crowd was corrected from) also the correction-quality
 // measures (framework/metrics/correction_quality.hpp): inter-body depth p99 / max, joint deviation,
-// stance-foot drift, foot pops, ground penetration and floating of the feet.
+// stance-foot drift, foot pops, ground penetration and floating of the feet, free-limb deviation, joint
+// flips and environment penetration (issue 27).
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -13,6 +14,7 @@
 
 #include "experiments/cli/command_registry.hpp"
 #include "framework/core/progress.hpp"
+#include "framework/core/skeleton.hpp"
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/metrics/correction_quality.hpp"
 #include "framework/metrics/measure_crowd.hpp"
@@ -73,6 +75,23 @@ void print_quality(const CorrectionQuality& q) {
   std::printf("  feet below the ground: max %.1f mm (p99 %.1f); floating in stance: p99 %.1f mm (max %.1f)\n",
               1000 * f.ground_penetration_max_m, 1000 * f.ground_penetration_p99_m, 1000 * f.float_p99_m,
               1000 * f.float_max_m);
+  const FreeLimbDeviation& fl = q.free_limbs;
+  std::printf(
+      "  free-limb deviation (joints 10 cm from everyone for +-0.5 s): p99 / max %.2f / %.2f deg over %ld "
+      "joint-frames",
+      fl.p99_deg, fl.max_deg, fl.free_joint_frames);
+  if (fl.worst_character >= 0)
+    std::printf(" (max: character %d, %s, frame %d)", fl.worst_character,
+                std::string(joint_name(fl.worst_joint)).c_str(), fl.worst_frame);
+  std::printf("\n  joint flips (deviation change > 20 deg within 3 frames): %ld (largest change %.1f deg)\n",
+              q.flips.count, q.flips.max_change_deg);
+  for (const JointFlip& j : q.flips.first)
+    std::printf("    character %d, %s, frame %d: %.1f deg\n", j.character,
+                std::string(joint_name(j.joint)).c_str(), j.frame, j.change_deg);
+  const EnvironmentPenetration& e = q.environment;
+  std::printf(
+      "  environment penetration (capsules behind walls, barriers, stage): p99 / max %.1f / %.1f mm\n",
+      1000 * e.p99_m, 1000 * e.max_m);
 }
 
 void run(const MetricsArgs& args) {
@@ -106,9 +125,11 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("crowd", args->path, "Crowd animation (.glb written by crowdlab)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--input", args->input,
-                  "The uncorrected animation CROWD was corrected from: adds depth p99, joint deviation, "
-                  "stance-foot drift, foot pops, ground penetration and floating of the feet")
+  cmd->add_option(
+         "--input", args->input,
+         "The uncorrected animation CROWD was corrected from: adds depth p99, joint deviation, "
+         "stance-foot drift, foot pops, ground penetration and floating of the feet, free-limb deviation, "
+         "joint flips and environment penetration")
       ->check(CLI::ExistingFile);
   cmd->add_flag("--json", args->json, "Print one JSON object");
   cmd->add_flag("--per-frame", args->per_frame, "Also print the per-frame series");

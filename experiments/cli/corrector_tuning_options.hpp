@@ -8,7 +8,8 @@
 namespace crowdlab::cli {
 
 /// Adds --contact-stiffness, --cg-tolerance, --active-set-passes, --depenetration-passes,
-/// --depenetration-tolerance and --foot-pop-budget to `cmd`, writing into `params` (which must outlive the
+/// --depenetration-tolerance, --foot-pop-budget, --free-joints, --free-joint-margin, --free-joint-hold,
+/// --free-joint-return and --light-joint-rate-limit to `cmd`, writing into `params` (which must outlive the
 /// parse).
 inline void add_corrector_tuning_options(CLI::App* cmd, CorrectorParams& params) {
   cmd->add_option("--contact-stiffness", params.contact_stiffness, "Collision penalty k_delta (N/m)")
@@ -31,6 +32,25 @@ inline void add_corrector_tuning_options(CLI::App* cmd, CorrectorParams& params)
                   "How much farther than its input a foot joint may move per step in the "
                   "depenetration pass (m, 0 = off)")
       ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--free-joints", params.release_free_joints,
+                  "Return joints that touch nobody to their input (true/false; false = the session-8 solver)")
+      ->capture_default_str();
+  cmd->add_option("--free-joint-margin", params.free_joint_margin_m,
+                  "Capsule distance (m) within which a bone counts as in contact for the free-joint release")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--free-joint-hold", params.free_joint_hold_s,
+                  "Seconds a joint stays engaged after its last contact")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
+  cmd->add_option("--free-joint-return", params.free_joint_return_radps,
+                  "Rate (rad/s) at which a released joint returns to its input")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+  cmd->add_option(
+         "--light-joint-rate-limit", params.rate_limit_light_joints,
+         "Wrists, hands, ankles and balls turn at most --free-joint-return while in contact (true/false)")
       ->capture_default_str();
 }
 

@@ -15,16 +15,22 @@ const std::vector<std::string> kTrailing = {"file",   "duration_s", "frames", "w
 /// The clip-quality columns (optional when read: older manifests lack them), in file order.
 struct QualityColumn {
   const char* name;
-  double ClipQuality::*value;  ///< null for foot_pops, the one count
+  double ClipQuality::*value;  ///< null for the counts
+  int ClipQuality::*count;     ///< the count, where value is null
 };
-constexpr std::array<QualityColumn, 7> kQuality = {
-    {{"depth_p99_m", &ClipQuality::depth_p99_m},
-     {"depth_max_m", &ClipQuality::depth_max_m},
-     {"stance_foot_drift_p99_m", &ClipQuality::stance_foot_drift_p99_m},
-     {"stance_foot_drift_max_m", &ClipQuality::stance_foot_drift_max_m},
-     {"foot_pops", nullptr},
-     {"foot_ground_penetration_max_m", &ClipQuality::foot_ground_penetration_max_m},
-     {"foot_float_p99_m", &ClipQuality::foot_float_p99_m}}};
+constexpr std::array<QualityColumn, 12> kQuality = {
+    {{"depth_p99_m", &ClipQuality::depth_p99_m, nullptr},
+     {"depth_max_m", &ClipQuality::depth_max_m, nullptr},
+     {"stance_foot_drift_p99_m", &ClipQuality::stance_foot_drift_p99_m, nullptr},
+     {"stance_foot_drift_max_m", &ClipQuality::stance_foot_drift_max_m, nullptr},
+     {"foot_pops", nullptr, &ClipQuality::foot_pops},
+     {"foot_ground_penetration_max_m", &ClipQuality::foot_ground_penetration_max_m, nullptr},
+     {"foot_float_p99_m", &ClipQuality::foot_float_p99_m, nullptr},
+     {"free_limb_dev_p99_deg", &ClipQuality::free_limb_dev_p99_deg, nullptr},
+     {"free_limb_dev_max_deg", &ClipQuality::free_limb_dev_max_deg, nullptr},
+     {"joint_flips", nullptr, &ClipQuality::joint_flips},
+     {"env_penetration_p99_m", &ClipQuality::env_penetration_p99_m, nullptr},
+     {"env_penetration_max_m", &ClipQuality::env_penetration_max_m, nullptr}}};
 
 std::string optional_cell(double v) {
   return v >= 0 ? csv_number(v) : "";
@@ -56,7 +62,7 @@ void write_manifest(const StimulusManifest& m, const std::string& csv_path) {
     row.push_back(e.practice ? "1" : "0");
     for (const QualityColumn& q : kQuality)
       row.push_back(q.value ? optional_cell(e.quality.*q.value)
-                            : (e.quality.foot_pops >= 0 ? std::to_string(e.quality.foot_pops) : ""));
+                            : (e.quality.*q.count >= 0 ? std::to_string(e.quality.*q.count) : ""));
     out += csv_line(row);
   }
   // Atomically: a manifest is never seen half-written, and a full disk is reported with its reason.
@@ -97,7 +103,7 @@ StimulusManifest read_manifest(const std::string& csv_path) {
       if (kQuality[k].value)
         e.quality.*kQuality[k].value = v;
       else
-        e.quality.foot_pops = static_cast<int>(v);
+        e.quality.*kQuality[k].count = static_cast<int>(v);
     }
     m.entries.push_back(std::move(e));
   }

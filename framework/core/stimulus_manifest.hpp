@@ -3,12 +3,15 @@
 // Stored as DIR/manifest.csv with columns:
 //   id,<factor columns...>,file,duration_s,frames,width,height,sha256,overlap_l,v_i_m,collisions,practice,
 //   depth_p99_m,depth_max_m,stance_foot_drift_p99_m,stance_foot_drift_max_m,foot_pops,
-//   foot_ground_penetration_max_m,foot_float_p99_m
-// (factor columns in spec order; metric columns empty when not computed). The last seven are the
+//   foot_ground_penetration_max_m,foot_float_p99_m,free_limb_dev_p99_deg,free_limb_dev_max_deg,
+//   joint_flips,env_penetration_p99_m,env_penetration_max_m
+// (factor columns in spec order; metric columns empty when not computed). The last twelve are the
 // correction-quality measures of the clip's crowd against its input (issue 18; definitions in
 // framework/metrics/correction_quality.hpp and foot_contact_quality.hpp, names as in
 // correction_quality.csv): for `baseline` the input is the crowd itself, for `ours` the baseline of the
-// same condition. Manifests written before them lack these columns and read as unknown.
+// same condition; the last five (issue 27) are defined in framework/metrics/free_limb_deviation.hpp,
+// joint_flips.hpp and environment_penetration.hpp. Manifests written before them lack these columns
+// and read as unknown.
 #include <map>
 #include <string>
 #include <vector>
@@ -25,6 +28,11 @@ struct ClipQuality {
   int foot_pops = -1;                           ///< foot-joint frames moving > 5 cm more than the input's
   double foot_ground_penetration_max_m = -1.0;  ///< deepest a foot goes below y = 0 (empty on surfaces)
   double foot_float_p99_m = -1.0;               ///< planted feet higher than the input's, p99
+  double free_limb_dev_p99_deg = -1.0;          ///< deviation of joints touching nobody, p99 (degrees)
+  double free_limb_dev_max_deg = -1.0;          ///< and max
+  int joint_flips = -1;                         ///< joint-frames whose deviation jumps > 20 deg in 3 frames
+  double env_penetration_p99_m = -1.0;          ///< capsule depth behind walls / barriers / stage, p99
+  double env_penetration_max_m = -1.0;          ///< and max
 };
 
 struct StimulusEntry {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "framework/core/capsule_box.hpp"
+#include "framework/core/capsule_box_distance.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
 
@@ -41,6 +42,9 @@ void validate_corrector_params(const CorrectorParams& p) {
   check(p.max_bone_speed_mps, "max_bone_speed_mps", 1e-3);
   check(p.max_rotation_step_rad, "max_rotation_step_rad", 0.0);
   check(p.depenetration_tolerance_m, "depenetration_tolerance_m", 0.0);
+  check(p.free_joint_margin_m, "free_joint_margin_m", 0.0);
+  check(p.free_joint_hold_s, "free_joint_hold_s", 0.0);
+  check(p.free_joint_return_radps, "free_joint_return_radps", 0.0);
   if (p.depenetration_passes < 0) throw InputError("corrector parameter depenetration_passes must be >= 0");
   if (p.settle_steps < 0) throw InputError("corrector parameter settle_steps must be >= 0");
   if (p.active_set_passes < 0) throw InputError("corrector parameter active_set_passes must be >= 0");
@@ -180,8 +184,14 @@ CorrectorModel make_corrector_model(std::vector<BodyShape> shapes, const Correct
     validate_body_shape(shapes[c], "corrector: character " + std::to_string(c));
     model.bodies.push_back(make_body(std::move(shapes[c]), params));
   }
+  // Boxes (walls, barriers, the stage) are contacted exactly (capsule_box_distance, issue 27); only
+  // triangle meshes are point-sampled as seed 000 §3.4 does.
+  Environment meshes = env;
+  meshes.boxes.clear();
   model.environment =
-      EnvironmentPointTree(env, params.environment_sample_spacing_m, params.max_environment_points);
+      EnvironmentPointTree(meshes, params.environment_sample_spacing_m, params.max_environment_points);
+  model.environment_boxes = env.boxes;
+  for (const Box& b : env.boxes) model.environment_box_bounds.push_back(box_bounds(b));
   return model;
 }
 

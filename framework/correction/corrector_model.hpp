@@ -46,9 +46,11 @@ struct CorrectorBody {
 struct CorrectorModel {
   CorrectorParams params;
   double fps = 30.0;
-  double h = 1.0 / 30.0;              ///< time step (s) = 1 / fps
-  std::vector<CorrectorBody> bodies;  ///< one per character
-  EnvironmentPointTree environment;
+  double h = 1.0 / 30.0;               ///< time step (s) = 1 / fps
+  std::vector<CorrectorBody> bodies;   ///< one per character
+  EnvironmentPointTree environment;    ///< sample points of the environment's triangle meshes
+  std::vector<Box> environment_boxes;  ///< the environment's boxes, contacted exactly (stage_narrow_phase)
+  std::vector<Aabb> environment_box_bounds;  ///< their world bounds
   bool ground_plane = true;
 
   int characters() const { return static_cast<int>(bodies.size()); }

@@ -204,6 +204,30 @@ struct CorrectorParams {
   /// to the input's height at most at this rate: 0 pops on every 20 s clip of gomez2024.
   /// 0 = off.
   double foot_pop_budget_m = 0.02;
+
+  // ---- Free joints (stage_free_joints.cpp, issue 27): the correction changes only what collides
+  /// Release of free joints: a joint whose contact scope (core/joint_scope.hpp: the bones it moves;
+  /// the whole body for the pelvis and the legs) has not been within free_joint_margin_m of another
+  /// character or an environment box for free_joint_hold_s is returned to its input rotation (at most
+  /// free_joint_return_radps), instead of keeping what the dynamics of a pushed body, self-contacts and
+  /// the ground gave it. false = the session-8 solver (every joint follows the solve).
+  bool release_free_joints = true;
+  /// Capsule distance (m) at the predicted state within which a bone counts as in contact for the
+  /// release: kNearMargin_m (4 cm), the depenetration pass's list, so every bone the pass may move is in
+  /// contact.
+  double free_joint_margin_m = 0.04;
+  /// How long (s) a joint stays engaged after its scope was last in contact. Without a hold, a limb
+  /// leaving a contact would return toward an input that still reaches into the neighbour, be pushed
+  /// again and chatter; 0.2 s is about one contact-response time of the joints (2.5 Hz springs).
+  double free_joint_hold_s = 0.2;
+  /// Rate (rad/s) at which a released joint's deviation from its input returns to zero. 3 rad/s is
+  /// 5.7 deg per frame at 30 fps: 17 deg within 3 frames, under the flip measure's 20 deg
+  /// (metrics/joint_flips.hpp), and a 45 deg deviation is gone in a quarter of a second.
+  double free_joint_return_radps = 3.4;
+  /// Whether the light distal joints (wrists, hands, ankles, balls of the feet) also turn at most
+  /// free_joint_return_radps while engaged, in the step and in the depenetration pass, so that they
+  /// never flip (stage_free_joints.cpp, rate_limited_joint). false: engaged joints follow the solve.
+  bool rate_limit_light_joints = true;
 };
 
 /// Throws InputError naming the field when a parameter is out of range or not finite.

@@ -7,14 +7,18 @@
 // Frames/units: world frame (Y up), metres, seconds, radians. Generalised increments per bone are
 // Vec6 = (dx of the COM in m, dtheta in rad as a world-frame rotation vector).
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/joint_scope.hpp"
 #include "framework/core/pose.hpp"
 #include "framework/correction/corrector_model.hpp"
 
 namespace crowdlab {
+
+enum class ContactKind : std::uint8_t { kInterBody, kIntraBody, kGround, kEnvironment };
 
 /// One penalty contact, linearised (seed 000 §3.4: E = 1/2 k delta^2 on the penetration depth).
 /// It is found at the contact-free predicted state q_old + dq_free (stage_predict) and linearised
@@ -32,6 +36,7 @@ struct Contact {
   Vec3 point_b = Vec3::Zero();  ///< contact point on b's capsule axis (world, m); unused if static
   Vec6 w_a = Vec6::Zero();      ///< d delta / d dq_a (filled by the assemble stage)
   Vec6 w_b = Vec6::Zero();      ///< d delta / d dq_b
+  ContactKind kind = ContactKind::kInterBody;
 };
 
 /// The structured coupling block H[child, parent] of one soft joint plus its Eq. 4 control term
@@ -42,8 +47,6 @@ struct JointCoupling {
   double joint_k = 0.0;            ///< soft joint spring (N/m)
   double rot_k = 0.0;              ///< 2 (k + d/h^2) of Eq. 4 (N m / rad)
 };
-
-enum class ContactKind : std::uint8_t { kInterBody, kIntraBody, kGround, kEnvironment };
 
 /// Per-step statistics (also what the benchmark prints).
 struct StepStats {
@@ -198,6 +201,12 @@ struct CorrectorState {
   std::vector<Quat> new_rotation;
 
   DepenetrationScratch depenetration;
+
+  // ---- free joints (stage_free_joints.cpp)
+  std::vector<BoneMask> touched;                      ///< per character: bones in contact this step
+  std::vector<std::array<BoneMask, 2>> pair_touched;  ///< per body pair: its two characters' touched bones
+  std::vector<std::int64_t> engaged_until;  ///< per bone (joint): last step on which it stays engaged
+  std::vector<Quat> output_deviation;       ///< per bone: target local^-1 * output local, last output
 
   StepStats stats;
 };

@@ -65,6 +65,9 @@ CorrectorState make_corrector_state(const CorrectorModel& model) {
   s.bad_character.assign(n, 0);
   s.new_com_m.assign(bones, Vec3::Zero());
   s.new_rotation.assign(bones, Quat::Identity());
+  s.touched.assign(n, 0);
+  s.engaged_until.assign(bones, -1);
+  s.output_deviation.assign(bones, Quat::Identity());
   return s;
 }
 
@@ -169,10 +172,12 @@ const std::vector<Pose>& corrector_step(const CorrectorModel& model, CorrectorSt
   stage_predict(model, state);
   stage_broad_phase(model, state);
   stage_narrow_phase(model, state);
+  stage_contact_scope(model, state);
   stage_assemble_contacts(model, state);
   stage_solve(model, state);
   stage_integrate(model, state);
   stage_depenetrate(model, state);
+  stage_record_deviation(model, state);
   ++state.step_index;
   return state.output;
 }

@@ -10,13 +10,17 @@
 //                           at the end of the step if nothing touched it
 //   stage_broad_phase       world capsules at that predicted state, body AABBs, sweep -> body pairs
 //   stage_narrow_phase      bounding spheres -> exact capsule-capsule / ground / environment contacts
+//   stage_contact_scope     which bones are within free_joint_margin_m of another character or the
+//                           environment; which joints stay engaged (stage_free_joints.cpp)
 //   stage_assemble_contacts E_collisions linearised at the predicted state (rows w, depth0)
 //   stage_solve             per-character tree factorisation with contact blocks (preconditioner) +
 //                           PCG warm-started at dq_free; pulling contacts removed (active set)
 //   stage_integrate         apply the increment, project to joint rotations + root position,
-//                           re-plant held feet by leg IK, commit
+//                           return free joints to their input (stage_free_joints.cpp), re-plant held
+//                           feet by leg IK, commit
 //   stage_depenetrate       push apart the inter-body capsule pairs the step left deeper than a
 //                           tolerance, by least-energy pose changes (stage_depenetrate.cpp)
+//   stage_record_deviation  every joint's deviation of the output from its input, for the next release
 //
 // Why contacts are found at the predicted state (ours; the paper does not say where its one Newton
 // iteration finds its contacts): contacts found at the start-of-step state miss every contact that a
@@ -53,6 +57,21 @@ void stage_assemble_contacts(const CorrectorModel& model, CorrectorState& state)
 void stage_solve(const CorrectorModel& model, CorrectorState& state);
 void stage_integrate(const CorrectorModel& model, CorrectorState& state);
 void stage_depenetrate(const CorrectorModel& model, CorrectorState& state);
+void stage_contact_scope(const CorrectorModel& model, CorrectorState& state);
+void stage_record_deviation(const CorrectorModel& model, CorrectorState& state);
+
+/// Free joints (stage_free_joints.cpp): in character c's projected pose, every joint that is not
+/// engaged turns back toward its input rotation, and every engaged one toward the pose's, each at most
+/// params.free_joint_return_radps away from the last output's deviation. Returns whether the rate
+/// limit changed an engaged joint.
+bool release_free_joints(const CorrectorModel& model, const CorrectorState& state, int c, Pose& pose);
+/// How much more (rad) each joint of character c may turn this step: what the rate limit of
+/// stage_free_joints.cpp leaves of it from the last output's deviation to `pose`'s (infinite for the joints
+/// it does not limit, 0 for free joints).
+void rotation_left(const CorrectorModel& model, const CorrectorState& state, int c, const Pose& pose,
+                   std::array<double, kJointCount>& left);
+/// Marks bones of character c in contact this step (the depenetration pass's deep contacts).
+void mark_touched(CorrectorState& state, int global_bone);
 
 /// Character c's contact terms: precond = tree diagonal + sum of k w w^T over its contacts, rhs =
 /// rhs_tree - sum of k depth0 w (contacts with stiffness 0 skipped). Used by stage_assemble_contacts

@@ -45,6 +45,10 @@ std::vector<DampingRun> run_damping_experiment(const std::vector<double>& dampin
       throw InputError("damping experiment: damping must be >= 0, got " + std::to_string(d));
     CorrectorParams params = base;
     params.damping = d;
+    // Fig. 4 is the response of Eq. 4's PD alone; the free-joint release of issue 27 returns untouched
+    // joints to the input by a rate rule instead (with d = 0 it left the observed body 5-7 mm off
+    // target before the push), so it is off here.
+    params.release_free_joints = false;
     Corrector corrector({shape, shape}, params, Environment{}, fps);
     DampingRun run;
     run.damping = d;

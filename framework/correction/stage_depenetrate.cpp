@@ -346,6 +346,7 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
     for (int k : w.tested)
       for (const DeepContact& d : w.per_pair[static_cast<size_t>(k)]) {
         for (int bone : {d.bone_a, d.bone_b}) {
+          mark_touched(s, bone);  // engaged from now on (stage_free_joints.cpp)
           auto& list = w.mine[static_cast<size_t>(bone / kJointCount)];
           if (list.empty()) w.solved.push_back(bone / kJointCount);
           list.push_back(&d);
@@ -370,7 +371,18 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
                       J, r);
       Weights dq;
       w.moved[cc] = 0;
-      if (!least_energy_change(J, r, w.inverse_weights[cc], dq)) return;
+      // Rate-limited joints (stage_free_joints.cpp) that have used this step's turn take no part; the
+      // others turn at most what is left of it, so the pass separates with the joints that may move.
+      std::array<double, kJointCount> left{};
+      rotation_left(model, s, c, s.output[cc], left);
+      Weights inv_w = w.inverse_weights[cc];
+      for (int j = 0; j < kJointCount; ++j)
+        if (left[static_cast<size_t>(j)] < 1e-3) inv_w.segment<3>(3 + 3 * j).setZero();
+      if (!least_energy_change(J, r, inv_w, dq)) return;
+      for (int j = 0; j < kJointCount; ++j) {
+        const double angle = dq.segment<3>(3 + 3 * j).norm(), most = left[static_cast<size_t>(j)];
+        if (angle > most) dq.segment<3>(3 + 3 * j) *= most / angle;
+      }
       apply_change(w.bones[cc], dq, s.output[cc]);
       hold_feet(model, s, c, s.output[cc]);
       w.moved[cc] = 1;

@@ -58,6 +58,7 @@ void stage_integrate(const CorrectorModel& model, CorrectorState& s) {
       s.new_rotation[j] = (rotation_from_vector(s.cg_x[j].tail<3>()) * s.rotation[j]).normalized();
     }
     Pose pose = pose_from_bones(model, c, s.new_com_m, s.new_rotation);
+    release_free_joints(model, s, c, pose);
     hold_feet(model, s, c, pose);
     set_bones_from_pose(model, c, pose, s.new_com_m, s.new_rotation);
     bool bad = false;

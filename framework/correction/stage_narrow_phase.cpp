@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "framework/core/capsule_box_distance.hpp"
 #include "framework/correction/corrector_step.hpp"
 
 namespace crowdlab {
@@ -77,6 +78,39 @@ void body_pair_contacts(const CorrectorModel& model, const CorrectorState& state
     }
 }
 
+/// The exact contact of capsule `cap` (bone g) with box `box` (issue 27; seed 000 §3.4 point-samples
+/// the environment, whose contacts cancel when a thin barrier cuts through a capsule's axis: the
+/// sample points on both faces push it both ways). Depth = penetration + contact offset. While the axis
+/// is outside the box the normal is the direction from the box's nearest point to the axis (the
+/// gradient of sdf_box); once the axis is inside, the capsule leaves by the face on its own body's
+/// side (`root`: the pelvis, always outside walls and barriers), so an arm through a barrier comes
+/// back, not out the other side.
+bool box_contact(const Capsule& cap, int g, const Box& box, const Vec3& root, double k, double offset,
+                 Contact& out) {
+  const CapsuleBoxDistance d = capsule_box_distance(cap, box);
+  if (!(offset - d.distance_m > 0.0)) return false;
+  const Vec3 local = box.rotation.conjugate() * (d.axis_point - box.center_m);
+  const Vec3 nearest = local.cwiseMax(-box.half_extents_m).cwiseMin(box.half_extents_m);
+  out = Contact{};
+  out.bone_a = g;
+  out.kind = ContactKind::kEnvironment;
+  out.stiffness = k;
+  out.point_a = d.axis_point;
+  const double gap = (local - nearest).norm();
+  if (gap > 1e-9) {
+    out.normal = box.rotation * ((local - nearest) / gap);
+    out.depth_m = offset - d.distance_m;
+    return true;
+  }
+  const Vec3 r = box.rotation.conjugate() * (root - box.center_m);
+  Eigen::Index axis = 0;
+  (r.cwiseAbs() - box.half_extents_m).maxCoeff(&axis);
+  const double side = r[axis] >= 0.0 ? 1.0 : -1.0;
+  out.normal = box.rotation * (side * Vec3::Unit(axis));
+  out.depth_m = cap.radius_m + box.half_extents_m[axis] - side * local[axis] + offset;
+  return true;
+}
+
 void single_body_contacts(const CorrectorModel& model, const CorrectorState& state, int ci,
                           std::vector<Contact>& out, std::array<int, 3>& counts) {
   out.clear();
@@ -86,8 +120,10 @@ void single_body_contacts(const CorrectorModel& model, const CorrectorState& sta
   // Intra-body (self) contacts.
   for (const auto& [i, j] : body.self_pairs) {
     const int ga = base + i, gb = base + j;
-    if (make_capsule_contact(state, ga, gb, model.params.intra_body_contact_stiffness, 0.0, c))
+    if (make_capsule_contact(state, ga, gb, model.params.intra_body_contact_stiffness, 0.0, c)) {
+      c.kind = ContactKind::kIntraBody;
       out.push_back(c);
+    }
   }
   counts[0] = static_cast<int>(out.size());
   // Ground: each capsule end sphere against y = 0, normal +Y.
@@ -103,6 +139,7 @@ void single_body_contacts(const CorrectorModel& model, const CorrectorState& sta
         c.stiffness = model.params.ground_stiffness;
         c.normal = Vec3::UnitY();
         c.point_a = *end;
+        c.kind = ContactKind::kGround;
         out.push_back(c);
       }
     }
@@ -127,6 +164,7 @@ void single_body_contacts(const CorrectorModel& model, const CorrectorState& sta
         else  // the sample lies on the axis: any direction across the axis separates
           c.normal = (cap.b - cap.a).squaredNorm() > 1e-18 ? any_perpendicular(cap.b - cap.a) : Vec3::UnitY();
         c.point_a = cp.point_on_p;
+        c.kind = ContactKind::kEnvironment;
         out.push_back(c);
       });
       // The capsule's environment stiffness is shared by the points it touches, so the push does not
@@ -134,6 +172,19 @@ void single_body_contacts(const CorrectorModel& model, const CorrectorState& sta
       const size_t count = out.size() - first;
       for (size_t i = first; i < out.size(); ++i)
         out[i].stiffness = model.params.environment_stiffness / static_cast<double>(count);
+    }
+  }
+  // Environment boxes: exact capsule-box contacts (box_contact).
+  for (size_t k = 0; k < model.environment_boxes.size(); ++k) {
+    if (!state.body_box[static_cast<size_t>(ci)].overlaps(model.environment_box_bounds[k])) continue;
+    const Vec3 root = state.world_capsule[static_cast<size_t>(base)].a;
+    for (int b = 0; b < kJointCount; ++b) {
+      const Capsule& cap = state.world_capsule[static_cast<size_t>(base + b)];
+      if (!capsule_box(cap, model.params.contact_offset_m).overlaps(model.environment_box_bounds[k]))
+        continue;
+      if (box_contact(cap, base + b, model.environment_boxes[k], root, model.params.environment_stiffness,
+                      model.params.contact_offset_m, c))
+        out.push_back(c);
     }
   }
   counts[2] = static_cast<int>(out.size()) - counts[0] - counts[1];

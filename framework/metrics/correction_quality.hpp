@@ -12,9 +12,17 @@
 //   feet                       stance-foot drift, foot pops, ground penetration and floating of the
 //                              feet (foot_contact_quality.hpp, where the contact rule is defined)
 //   joint_speed_max_mps        largest joint speed of the corrected animation (m/s, finite differences)
+//   free_limbs                 deviation of joints whose limbs touch nobody (issue 27;
+//                              free_limb_deviation.hpp)
+//   flips                      joint-frames whose deviation from the input jumps (issue 27; joint_flips.hpp)
+//   environment                capsule depth behind walls, barriers and the stage, of the corrected
+//                              animation (issue 27; environment_penetration.hpp)
 // Frames are taken from first_frame on (0 = all), every `frame_stride`-th for the depths.
 #include "framework/core/crowd_animation.hpp"
+#include "framework/metrics/environment_penetration.hpp"
 #include "framework/metrics/foot_contact_quality.hpp"
+#include "framework/metrics/free_limb_deviation.hpp"
+#include "framework/metrics/joint_flips.hpp"
 
 namespace crowdlab {
 
@@ -27,6 +35,9 @@ struct CorrectionQuality {
   double foot_skate_max_m = 0.0;
   double joint_speed_max_mps = 0.0;
   FootContactQuality feet;
+  FreeLimbDeviation free_limbs;
+  JointFlips flips;
+  EnvironmentPenetration environment;
 };
 
 /// Throws InputError when the two animations differ in characters or frames.

@@ -1,6 +1,38 @@
 #include "framework/pipeline/metrics_json.hpp"
 
+#include <string>
+
+#include "framework/core/skeleton.hpp"
+
 namespace crowdlab {
+namespace {
+
+/// {"character", "joint" (SMPL name), "frame"} of a worst case, or null when there is none.
+nlohmann::json worst_json(int character, int joint, int frame) {
+  if (character < 0) return nullptr;
+  return {{"character", character}, {"joint", std::string(joint_name(joint))}, {"frame", frame}};
+}
+
+nlohmann::json flips_json(const JointFlips& flips) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const JointFlip& f : flips.first) {
+    nlohmann::json j = worst_json(f.character, f.joint, f.frame);
+    j["change_deg"] = f.change_deg;
+    list.push_back(std::move(j));
+  }
+  return list;
+}
+
+/// {joint name: flips} for the joints that flipped.
+nlohmann::json flips_by_joint_json(const JointFlips& flips) {
+  nlohmann::json by = nlohmann::json::object();
+  for (int j = 0; j < kJointCount; ++j)
+    if (flips.per_joint[static_cast<size_t>(j)] > 0)
+      by[std::string(joint_name(j))] = flips.per_joint[static_cast<size_t>(j)];
+  return by;
+}
+
+}  // namespace
 
 nlohmann::json crowd_metrics_json(const CrowdMetrics& m, bool per_frame) {
   nlohmann::json j = {{"characters", m.characters},
@@ -59,7 +91,20 @@ nlohmann::json correction_quality_json(const CorrectionQuality& q) {
           {"foot_ground_penetration_max_m", f.ground_penetration_max_m},
           {"foot_ground_penetration_p99_m", f.ground_penetration_p99_m},
           {"foot_float_p99_m", f.float_p99_m},
-          {"foot_float_max_m", f.float_max_m}};
+          {"foot_float_max_m", f.float_max_m},
+          {"free_limb_dev_p99_deg", q.free_limbs.p99_deg},
+          {"free_limb_dev_max_deg", q.free_limbs.max_deg},
+          {"free_limb_joint_frames", q.free_limbs.free_joint_frames},
+          {"free_limb_dev_worst",
+           worst_json(q.free_limbs.worst_character, q.free_limbs.worst_joint, q.free_limbs.worst_frame)},
+          {"joint_flips", q.flips.count},
+          {"joint_flip_max_change_deg", q.flips.max_change_deg},
+          {"joint_flip_first", flips_json(q.flips)},
+          {"joint_flips_by_joint", flips_by_joint_json(q.flips)},
+          {"env_penetration_p99_m", q.environment.p99_m},
+          {"env_penetration_max_m", q.environment.max_m},
+          {"env_penetration_worst",
+           worst_json(q.environment.worst_character, q.environment.worst_bone, q.environment.worst_frame)}};
 }
 
 }  // namespace crowdlab

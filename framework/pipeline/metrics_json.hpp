@@ -16,7 +16,8 @@ namespace crowdlab {
 nlohmann::json crowd_metrics_json(const CrowdMetrics& m, bool per_frame);
 
 /// Depth, joint deviation, stance-foot drift, foot pops (with their frames), ground penetration and
-/// floating of the feet.
+/// floating of the feet; free-limb deviation, joint flips (the first few listed) and environment
+/// penetration (issue 27), with where their worst cases are (character, SMPL joint name, frame).
 nlohmann::json correction_quality_json(const CorrectionQuality& q);
 
 }  // namespace crowdlab

@@ -77,6 +77,11 @@ ClipQuality clip_quality(const nlohmann::json& metrics) {
   q.foot_pops = j.value("foot_pops", -1);
   q.foot_ground_penetration_max_m = j.value("foot_ground_penetration_max_m", -1.0);
   q.foot_float_p99_m = j.value("foot_float_p99_m", -1.0);
+  q.free_limb_dev_p99_deg = j.value("free_limb_dev_p99_deg", -1.0);
+  q.free_limb_dev_max_deg = j.value("free_limb_dev_max_deg", -1.0);
+  q.joint_flips = j.value("joint_flips", -1);
+  q.env_penetration_p99_m = j.value("env_penetration_p99_m", -1.0);
+  q.env_penetration_max_m = j.value("env_penetration_max_m", -1.0);
   return q;
 }
 

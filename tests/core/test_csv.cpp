@@ -79,6 +79,11 @@ TEST_CASE("stimulus manifest carries the clip's correction-quality columns") {
   e.quality.foot_pops = 3;
   e.quality.foot_ground_penetration_max_m = 0.0;
   e.quality.foot_float_p99_m = 0.005;
+  e.quality.free_limb_dev_p99_deg = 0.4;
+  e.quality.free_limb_dev_max_deg = 2.5;
+  e.quality.joint_flips = 7;
+  e.quality.env_penetration_p99_m = 0.003;
+  e.quality.env_penetration_max_m = 0.011;
   m.entries = {e};
   const auto dir = test::scratch_dir("manifest_quality");
   const std::string path = (dir / "manifest.csv").string();
@@ -86,7 +91,8 @@ TEST_CASE("stimulus manifest carries the clip's correction-quality columns") {
   const std::string header = test::slurp(path).substr(0, test::slurp(path).find('\n'));
   CHECK(
       header.ends_with(",practice,depth_p99_m,depth_max_m,stance_foot_drift_p99_m,stance_foot_drift_max_m,"
-                       "foot_pops,foot_ground_penetration_max_m,foot_float_p99_m"));
+                       "foot_pops,foot_ground_penetration_max_m,foot_float_p99_m,free_limb_dev_p99_deg,"
+                       "free_limb_dev_max_deg,joint_flips,env_penetration_p99_m,env_penetration_max_m"));
   const ClipQuality q = read_manifest(path).entries.at(0).quality;
   CHECK(q.depth_p99_m == 0.0042);
   CHECK(q.depth_max_m == 0.02);
@@ -95,6 +101,11 @@ TEST_CASE("stimulus manifest carries the clip's correction-quality columns") {
   CHECK(q.foot_pops == 3);
   CHECK(q.foot_ground_penetration_max_m == 0.0);
   CHECK(q.foot_float_p99_m == 0.005);
+  CHECK(q.free_limb_dev_p99_deg == 0.4);
+  CHECK(q.free_limb_dev_max_deg == 2.5);
+  CHECK(q.joint_flips == 7);
+  CHECK(q.env_penetration_p99_m == 0.003);
+  CHECK(q.env_penetration_max_m == 0.011);
   // A manifest written before these columns existed still reads, with the measures unknown.
   std::ofstream(path, std::ios::trunc)
       << "id,file,duration_s,frames,width,height,sha256,overlap_l,v_i_m,collisions,practice\n"
@@ -103,4 +114,6 @@ TEST_CASE("stimulus manifest carries the clip's correction-quality columns") {
   CHECK(old.mean_overlap_l == 0.1);
   CHECK(old.quality.foot_pops == -1);
   CHECK(old.quality.foot_float_p99_m == -1.0);
+  CHECK(old.quality.joint_flips == -1);
+  CHECK(old.quality.free_limb_dev_max_deg == -1.0);
 }

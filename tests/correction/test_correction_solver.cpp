@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 
+#include "framework/core/capsule_box_distance.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/sha256.hpp"
 #include "framework/correction/correct_crowd.hpp"
@@ -249,4 +250,30 @@ TEST_CASE("correction: an unconverged solve is reported", "[correction]") {
   CHECK(report.unconverged_steps > 0);
   for (const auto& ch : out.characters)  // and the output is still a valid animation
     for (const Pose& p : ch.frames) CHECK_NOTHROW(validate_pose(p, "test"));
+}
+
+TEST_CASE("correction: an arm through a thin barrier comes back out on its own side", "[correction]") {
+  // Issue 27 (seed 000 §3.4 body-environment contact): a 10 cm barrier cuts through the T-pose left
+  // forearm. Point samples on both faces lie inside the capsule and push it both ways, so with the
+  // environment point-sampled the arm stayed through the barrier; the exact capsule-box contact pushes
+  // it out by the face on the body's side.
+  const BodyShape body = make_procedural_body({});
+  const WorldCapsules rest = world_capsules(body, Pose::rest(body));
+  const Capsule& forearm = rest[kLeftElbow];
+  Environment env;
+  Box barrier;
+  barrier.center_m = 0.5 * (forearm.a + forearm.b);
+  barrier.half_extents_m = Vec3(0.05, 1.0, 1.0);  // 2 m tall and wide: the arm cannot go round it
+  env.boxes.push_back(barrier);
+  REQUIRE(capsule_box_distance(forearm, barrier).distance_m < -0.05);
+  Corrector corrector({body}, {}, env, 30);
+  Pose out;
+  for (int f = 0; f < 60; ++f) out = corrector.step({Pose::rest(body)})[0];
+  const WorldCapsules caps = world_capsules(body, out);
+  double deepest = 0.0;
+  for (const Capsule& c : caps) deepest = std::max(deepest, -capsule_box_distance(c, barrier).distance_m);
+  INFO("deepest capsule behind the barrier: " << deepest << " m");
+  CHECK(deepest < 0.005);
+  // Out on the body's side: the hand is nearer the body than the barrier's inner face.
+  CHECK(caps[kLeftHand].b.x() < barrier.center_m.x());
 }

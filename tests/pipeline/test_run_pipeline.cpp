@@ -58,6 +58,11 @@ TEST_CASE("run makes every condition's crowd, metrics and clip, then reuses them
     CHECK(q.foot_pops >= 0);
     CHECK(q.foot_ground_penetration_max_m >= 0.0);
     CHECK(q.foot_float_p99_m >= 0.0);
+    CHECK(q.free_limb_dev_max_deg >= q.free_limb_dev_p99_deg);  // issue 27
+    CHECK(q.free_limb_dev_p99_deg >= 0.0);
+    CHECK(q.joint_flips >= 0);
+    CHECK(q.env_penetration_max_m >= q.env_penetration_p99_m);
+    CHECK(q.env_penetration_p99_m >= 0.0);
     quality[e.factors.at("density")][e.factors.at("method")] = q;
   }
   for (const auto& [density, by_method] : quality) {
@@ -68,6 +73,8 @@ TEST_CASE("run makes every condition's crowd, metrics and clip, then reuses them
     CHECK(base.stance_foot_drift_max_m < 0.002);
     CHECK(base.foot_pops == 0);
     CHECK(base.foot_float_p99_m == 0.0);
+    CHECK(base.joint_flips == 0);
+    CHECK(base.free_limb_dev_max_deg < 1e-3);
     // The corrected crowd is measured against the baseline, not against itself: it moved somebody.
     const ClipQuality& ours = by_method.at("ours");
     CHECK(ours.depth_max_m <= base.depth_max_m + 1e-9);

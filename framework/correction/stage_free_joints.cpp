@@ -1,0 +1,176 @@
+// Free joints (issue 27; ours): the correction changes only what collides.
+//
+// A study comparing a corrected crowd with its input attributes every difference to resolved
+// collisions. The one Newton step of seed 000 Eq. 3 also turns joints that touch nobody: a push on the
+// torso swings the arms through their PD springs, the input's own self-contacts (forearms 1-2 cm inside
+// the torso) and feet below the floor are pushed out, and every joint lags a little behind a fast
+// input. Measured before this stage on gomez2024 (docs/correction.md): joints touching nobody for
+// +-0.5 s deviated from their input by up to tens of degrees. Here every joint is either ENGAGED, and
+// keeps what the solve gave it, or FREE, and returns to its input:
+//
+//   touched_c(t)   the bones b of character c whose capsule, at the predicted state of step t, is within
+//                  free_joint_margin_m of a capsule of another character (the narrow phase's near list)
+//                  or touches an environment box (an environment contact), or that the depenetration
+//                  pass separated at step t. The character's own capsules and the ground do not count.
+//   engaged_j(t)   touched_c(t') ∩ scope_j ≠ ∅ for some t' in [t - H, t], H = free_joint_hold_s x fps,
+//                  scope_j = contact_scope(j) (core/joint_scope.hpp: the bones joint j moves; the whole
+//                  body for the pelvis and the legs)
+//   release        for a joint that is not engaged, with D_j(t) = R̂_j(t)^-1 R_j(t) its deviation from
+//                  the input's local rotation R̂_j:
+//                      D_j(t) = slerp(D_j(t-1), I, min(1, ω h / ∠D_j(t-1))),   R_j(t) = R̂_j(t) D_j(t),
+//                  i.e. the deviation of the last output turned back toward none at ω =
+//                  free_joint_return_radps, whatever the solve gave the joint this step.
+// It runs after the projection and before the foot holds (stage_integrate), so held feet are still
+// re-planted; the bones are rebuilt from the released pose, so the next step starts from it and its
+// velocities are those of the released motion (a stronger PD pull in the limit: the free joint follows
+// its input exactly). The free-limb measure (metrics/free_limb_deviation.hpp) uses the same scopes.
+#include <cmath>
+#include <limits>
+
+#include "framework/correction/corrector_step.hpp"
+
+namespace crowdlab {
+namespace {
+
+/// Steps a joint stays engaged after its scope was last touched.
+std::int64_t hold_steps(const CorrectorModel& model) {
+  return static_cast<std::int64_t>(std::lround(model.params.free_joint_hold_s * model.fps));
+}
+
+/// Engages, until step + hold, every joint of c whose scope meets the touched bones.
+void engage(const CorrectorModel& model, CorrectorState& s, int c) {
+  const BoneMask touched = s.touched[static_cast<size_t>(c)];
+  if (touched == 0) return;
+  const std::int64_t until = s.step_index + hold_steps(model);
+  for (int j = 0; j < kJointCount; ++j)
+    if (touched & contact_scope(j)) s.engaged_until[static_cast<size_t>(c * kJointCount + j)] = until;
+}
+
+/// The joints whose engaged deviation is rate-limited: wrists, hands, ankles and balls of the feet.
+/// Measured on gomez2024 at 6.66 /m^2 (3 s) without a limit: of 11,467 flips in the corridor, 7,774
+/// were hands, 2,204 wrists, 1,177 balls, 218 ankles, 41 elbows; limiting every joint instead left p99
+/// inter-body depths of 20-21 mm (the trunk and the legs could no longer get out of the way), limiting
+/// the elbows too 11-17 mm in the stationary crowd (docs/correction.md).
+bool rate_limited_joint(int j) {
+  switch (j) {
+    case kLeftWrist:
+    case kRightWrist:
+    case kLeftHand:
+    case kRightHand:
+    case kLeftAnkle:
+    case kRightAnkle:
+    case kLeftFoot:
+    case kRightFoot:
+      return true;
+    default:
+      return false;
+  }
+}
+
+bool limited(const CorrectorModel& model, int j) {
+  return model.params.rate_limit_light_joints && rate_limited_joint(j);
+}
+
+}  // namespace
+
+void mark_touched(CorrectorState& s, int global_bone) {
+  s.touched[static_cast<size_t>(global_bone / kJointCount)] |= BoneMask{1} << (global_bone % kJointCount);
+}
+
+void stage_contact_scope(const CorrectorModel& model, CorrectorState& s) {
+  std::fill(s.touched.begin(), s.touched.end(), BoneMask{0});
+  if (!model.params.release_free_joints) return;
+  const size_t pairs = s.body_pairs.size();
+  if (s.pair_touched.size() < pairs) s.pair_touched.resize(pairs);
+  const double margin = model.params.free_joint_margin_m;
+  // Serial: a few capsule distances per near pair; a parallel region costs more than that under load.
+  for (size_t k = 0; k < pairs; ++k) {
+    const auto [ci, cj] = s.body_pairs[k];
+    std::array<BoneMask, 2> t{0, 0};
+    for (const auto& [a, b] : s.per_pair_near[k]) {
+      const int ga = ci * kJointCount + a, gb = cj * kJointCount + b;
+      if (capsule_contact(s.world_capsule[static_cast<size_t>(ga)], s.world_capsule[static_cast<size_t>(gb)])
+              .depth_m > -margin) {
+        t[0] |= BoneMask{1} << a;
+        t[1] |= BoneMask{1} << b;
+      }
+    }
+    s.pair_touched[k] = t;
+  }
+  for (size_t k = 0; k < pairs; ++k) {
+    s.touched[static_cast<size_t>(s.body_pairs[k].first)] |= s.pair_touched[k][0];
+    s.touched[static_cast<size_t>(s.body_pairs[k].second)] |= s.pair_touched[k][1];
+  }
+  for (const Contact& c : s.contacts)
+    if (c.kind == ContactKind::kEnvironment || c.kind == ContactKind::kInterBody) {
+      mark_touched(s, c.bone_a);
+      if (c.kind == ContactKind::kInterBody) mark_touched(s, c.bone_b);
+    }
+  for (int c = 0; c < model.characters(); ++c) engage(model, s, c);
+}
+
+bool release_free_joints(const CorrectorModel& model, const CorrectorState& s, int c, Pose& pose) {
+  if (!model.params.release_free_joints) return false;
+  const double step = model.params.free_joint_return_radps * model.h;
+  const Pose& target = s.target[static_cast<size_t>(c)];
+  bool changed = false;
+  for (int j = 0; j < kJointCount; ++j) {
+    const auto g = static_cast<size_t>(c * kJointCount + j);
+    const auto jj = static_cast<size_t>(j);
+    const Quat& d_old = s.output_deviation[g];
+    // Free: back toward no deviation; engaged: toward what the solve (and the pass) gave it.
+    const bool engaged = s.step_index <= s.engaged_until[g];
+    const Quat want = engaged
+                          ? (target.local_rotations[jj].conjugate() * pose.local_rotations[jj]).normalized()
+                          : Quat::Identity();
+    const double angle = 2.0 * std::acos(std::min(1.0, std::abs(d_old.dot(want))));
+    // Engaged trunk, shoulder and leg joints follow the solve at any rate (they carry the pushes);
+    // the light distal ones are rate-limited (rate_limited_joint).
+    if (engaged && (angle <= step || !limited(model, j))) continue;
+    const Quat d = angle <= step ? want : d_old.slerp(step / angle, want);
+    const Quat next = (target.local_rotations[jj] * d).normalized();
+    if (std::abs(next.dot(pose.local_rotations[jj])) < 1.0 - 1e-12) changed = true;
+    pose.local_rotations[jj] = next;
+  }
+  return changed;
+}
+
+void rotation_left(const CorrectorModel& model, const CorrectorState& s, int c, const Pose& pose,
+                   std::array<double, kJointCount>& left) {
+  const double step = model.params.free_joint_return_radps * model.h;
+  const Pose& target = s.target[static_cast<size_t>(c)];
+  for (int j = 0; j < kJointCount; ++j) {
+    const auto g = static_cast<size_t>(c * kJointCount + j);
+    const auto jj = static_cast<size_t>(j);
+    if (!model.params.release_free_joints || (s.step_index <= s.engaged_until[g] && !limited(model, j))) {
+      left[jj] = std::numeric_limits<double>::infinity();
+      continue;
+    }
+    if (s.step_index > s.engaged_until[g]) {
+      left[jj] = 0.0;
+      continue;
+    }
+    const Quat d = (target.local_rotations[jj].conjugate() * pose.local_rotations[jj]).normalized();
+    const double used = 2.0 * std::acos(std::min(1.0, std::abs(s.output_deviation[g].dot(d))));
+    left[jj] = std::max(0.0, step - used);
+  }
+}
+
+void stage_record_deviation(const CorrectorModel& model, CorrectorState& s) {
+  if (!model.params.release_free_joints) return;
+  for (int c = 0; c < model.characters(); ++c) {  // serial: ~24 quaternion products per character
+    engage(model, s, c);                          // the bones the depenetration pass moved apart this step
+    const auto cc = static_cast<size_t>(c);
+    // The pass may have turned joints faster than the rate: limit again, re-plant held feet, and start
+    // the next step from that pose (a rejected step keeps its last stable state as it is).
+    if (!s.stats.rejected && release_free_joints(model, s, c, s.output[cc])) {
+      hold_feet(model, s, c, s.output[cc]);
+      set_bones_from_pose(model, c, s.output[cc], s.com_m, s.rotation);
+    }
+    for (size_t j = 0; j < kJointCount; ++j)
+      s.output_deviation[cc * kJointCount + j] =
+          (s.target[cc].local_rotations[j].conjugate() * s.output[cc].local_rotations[j]).normalized();
+  }
+}
+
+}  // namespace crowdlab
