@@ -11,6 +11,11 @@
 // settled before recording; frame 0 of the output is the settled state and the animation then
 // proceeds normally. The settling steps are not part of the output.
 //
+// Loop pre-roll (offline only; params.loop_preroll_s, for clips shown looping): when the input loops, the
+// settling runs on frame N - P's targets and frames N - P .. N - 1 are then stepped without output, so
+// frame 0 continues from (nearly) the state the clip ends in; the corrector's state forgets its start
+// within about a second (the PD springs' ~1 Hz, damped), so P = 2 s makes the seam an ordinary step.
+//
 // Throws InputError for an invalid crowd (validate_crowd: empty crowd, NaN/Inf poses,
 // missing/zero-length bones, unequal frame counts) or invalid params.
 #include "framework/core/crowd_animation.hpp"
@@ -23,7 +28,8 @@ namespace crowdlab {
 /// Summary of an offline correction.
 struct CorrectionReport {
   int frames = 0;
-  int settle_steps = 0;        ///< steps run on frame 0 before the output starts
+  int settle_steps = 0;        ///< steps run on the first target frame before the output starts
+  int preroll_frames = 0;      ///< frames N - P .. N - 1 stepped before frame 0 (loop pre-roll)
   int rejected_steps = 0;      ///< steps whose solve failed (state kept)
   int unconverged_steps = 0;   ///< steps where CG stopped above its tolerance (result still used)
   double contacts_mean = 0.0;  ///< mean contacts per step

@@ -29,9 +29,14 @@ json level_json(const Condition& c) {
   return j;
 }
 
-/// The spec's correction section as corrector parameters (0 keeps the corrector's default).
-CorrectorParams corrector_params(const CorrectionSpec& c) {
+/// Loop pre-roll of the correction when the study shows clips looping (correct_crowd.hpp), seconds.
+constexpr double kLoopPrerollS = 2.0;
+
+/// The spec's correction section as corrector parameters (0 keeps the corrector's default), with the
+/// loop pre-roll when the clips are shown looping (protocol.loop_video).
+CorrectorParams corrector_params(const CorrectionSpec& c, bool clips_loop) {
   CorrectorParams params;
+  if (clips_loop) params.loop_preroll_s = kLoopPrerollS;
   if (c.stiffness > 0) params.stiffness = c.stiffness;
   params.damping = c.damping;
   if (c.collision_stiffness > 0) params.contact_stiffness = c.collision_stiffness;
@@ -120,13 +125,15 @@ Stage CrowdGroup::correction_stage() {
   Stage s = crowd_file_stage("correction", animation_path(CrowdMethod::corrected), animation_[i]);
   s.params = json{{"damping", spec_.correction.damping},
                   {"stiffness", spec_.correction.stiffness},
-                  {"contact_stiffness", spec_.correction.collision_stiffness}};
+                  {"contact_stiffness", spec_.correction.collision_stiffness},
+                  {"loop_preroll_s", spec_.protocol.loop_video ? kLoopPrerollS : 0.0}};
   s.inputs = {animation_path(CrowdMethod::baseline)};
   s.compute = [this, i] {
     const CrowdAnimation& input = animation(CrowdMethod::baseline);
     Progress progress("correct " + key_, static_cast<size_t>(input.frame_count()));
     CorrectionReport report;
-    animation_[i] = correct_crowd(input, corrector_params(spec_.correction), &progress, &report);
+    animation_[i] = correct_crowd(input, corrector_params(spec_.correction, spec_.protocol.loop_video),
+                                  &progress, &report);
     if (report.rejected_steps > 0)
       spdlog::warn("{}: the corrector rejected {} of {} steps and kept the last stable state", key_,
                    report.rejected_steps, report.frames);

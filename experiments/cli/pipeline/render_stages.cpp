@@ -1,14 +1,20 @@
 #include "experiments/cli/pipeline/render_stages.hpp"
 
+#include <fstream>
 #include <memory>
 #include <optional>
 
+#include <spdlog/spdlog.h>
 #include "experiments/cli/pipeline/library_versions.hpp"
+
+#include "framework/core/error.hpp"
 #include "framework/core/sha256.hpp"
 #include "stimuli/clip_sidecar.hpp"
 #include "stimuli/crowd_extent.hpp"
+#include "stimuli/overlap_samples.hpp"
 #include "stimuli/render_clip.hpp"
 #include "stimuli/renderer.hpp"
+#include "stimuli/stimulus_check.hpp"
 
 namespace crowdlab::cli {
 namespace fs = std::filesystem;
@@ -22,11 +28,27 @@ using stimuli::write_contact_sheet;
 namespace {
 
 /// Version of the framing rule; part of the render hashes, so clips framed by an older rule re-render.
-constexpr const char* kFramingRule = "shared-extent/1";
+constexpr const char* kFramingRule = "shared-extent/2";
+/// Version of the stimulus check written into the sidecar (stimuli/stimulus_check.hpp).
+constexpr const char* kStimulusCheck = "stimulus-check/1";
+
+/// A clip's sidecar JSON; RuntimeError naming the file when it cannot be read or parsed.
+nlohmann::json read_sidecar_json(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw RuntimeError(path.string() + ": cannot read the clip's sidecar");
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw RuntimeError(path.string() + ": not valid JSON (" + e.what() + ")");
+  }
+}
 
 class RenderStages final : public PresentationStages {
  public:
   explicit RenderStages(const ExperimentSpec& spec) : spec_(spec) {}
+
+  /// "<condition id>: <reason>" for every clip outside the spec's render.check thresholds.
+  const std::vector<std::string>& check_failures() const { return check_failures_; }
 
   void run(StageRunner& runner, CrowdGroup& g, const Condition& c, const fs::path& out_dir,
            const fs::path& condition_dir, StimulusEntry& e) override {
@@ -35,7 +57,10 @@ class RenderStages final : public PresentationStages {
     // render.frames_png: the rendered frames themselves, before H.264 (tests hash their pixels).
     if (spec_.render.frames_png) ro.frames_png_dir = (condition_dir / "frames").string();
     const fs::path clip = condition_dir / "clip.mp4";
-    runner.run(render_stage(g, method, c.params.viewpoint, ro, clip));
+    auto check = std::make_shared<StimulusCheck>();
+    runner.run(render_stage(g, method, c.params.viewpoint, ro, clip, check));
+    judge(c, *check, ro);
+    e.check = *check;
     if (spec_.outputs.contact_sheet) runner.run(contact_sheet_stage(g, method, ro));
     e.file = fs::relative(clip, out_dir).string();
     e.width = ro.width;
@@ -47,7 +72,7 @@ class RenderStages final : public PresentationStages {
   /// The camera depends on the shared framing data (trajectories and heights: the baseline's file
   /// covers both), the framing rule, the viewpoint, the image size and the overrides (in the spec).
   Stage render_stage(CrowdGroup& g, CrowdMethod method, const std::string& viewpoint, const RenderOptions& ro,
-                     const fs::path& clip) {
+                     const fs::path& clip, const std::shared_ptr<StimulusCheck>& check) {
     auto view = std::make_shared<std::optional<stimuli::Viewpoint>>();
     const CrowdAnimation& crowd = g.animation(method);
     Stage s;
@@ -60,19 +85,60 @@ class RenderStages final : public PresentationStages {
                     {"overlap", ro.scene.overlap},
                     {"characters", ro.character_files},
                     {"framing", kFramingRule},
+                    {"check", kStimulusCheck},
+                    {"check_overlap_every", spec_.render.check.overlap_every_frames},
                     {"spec", spec_.source_hash}};
     s.inputs = {g.animation_path(method), g.animation_path(CrowdMethod::baseline)};
     s.compute = [this, &g, view, viewpoint, ro] {
       view->emplace(viewpoint, extent(g), ro.width, ro.height, ro.viewpoint_overrides);
     };
-    s.outputs.push_back({clip, [this, &crowd, view, ro](const fs::path& tmp) {
-                           render_clip(renderer(), crowd, ro, **view, tmp.string());
+    // The clip's own overlap pixels (render.overlap), handed to the sidecar's stimulus check.
+    auto clip_overlap = std::make_shared<std::optional<std::vector<double>>>();
+    s.outputs.push_back({clip, [this, &crowd, view, ro, clip_overlap](const fs::path& tmp) {
+                           const stimuli::RenderResult r =
+                               render_clip(renderer(), crowd, ro, **view, tmp.string());
+                           if (ro.scene.overlap) *clip_overlap = r.red_fraction;
                          }});
-    s.outputs.push_back({stimuli::clip_sidecar_path(clip), [&crowd, view](const fs::path& tmp) {
-                           write_text_file(
-                               tmp, stimuli::clip_sidecar(**view, crowd.frame_count(), crowd).dump(2) + "\n");
-                         }});
+    // Written after the clip, or alone when only it was lost (then the overlap frames are drawn again).
+    s.outputs.push_back(
+        {stimuli::clip_sidecar_path(clip), [this, &crowd, view, ro, clip_overlap](const fs::path& tmp) {
+           nlohmann::json j = stimuli::clip_sidecar(**view, crowd.frame_count(), crowd);
+           j["stimulus_check"] =
+               stimuli::stimulus_check_json(measure_check(crowd, ro, **view, *clip_overlap));
+           write_text_file(tmp, j.dump(2) + "\n");
+         }});
+    // Up to date or just written: the check is what the sidecar holds.
+    s.load = [clip, check] {
+      const nlohmann::json j = read_sidecar_json(stimuli::clip_sidecar_path(clip));
+      *check = stimuli::stimulus_check_from_json(j.value("stimulus_check", nlohmann::json::object()));
+    };
     return s;
+  }
+
+  /// The stimulus check of a clip: geometry from the crowd and camera path, overlap from the clip's own
+  /// overlap pixels when it was rendered in overlap mode, else from every Nth frame drawn in overlap mode.
+  StimulusCheck measure_check(const CrowdAnimation& crowd, const RenderOptions& ro,
+                              const stimuli::Viewpoint& view,
+                              const std::optional<std::vector<double>>& clip_overlap) {
+    const int frames = crowd.frame_count();
+    StimulusCheck check = stimuli::measure_stimulus_geometry(crowd, view, frames);
+    const int every = ro.scene.overlap ? 1 : spec_.render.check.overlap_every_frames;
+    if (clip_overlap)
+      stimuli::add_overlap_measures(check, *clip_overlap);
+    else if (every > 0)
+      stimuli::add_overlap_measures(
+          check, stimuli::sample_overlap_fractions(renderer(), crowd, ro, view, frames, every));
+    return check;
+  }
+
+  /// Warns about (and records, for --strict) a clip outside the spec's render.check thresholds.
+  void judge(const Condition& c, const StimulusCheck& check, const RenderOptions& ro) {
+    const stimuli::ClipRole role{c.params.viewpoint, c.params.method == CrowdMethod::baseline,
+                                 spec_.protocol.loop_video, ro.height};
+    for (const std::string& why : stimuli::stimulus_check_failures(check, spec_.render.check, role)) {
+      spdlog::warn("{}: stimulus check: {}", c.id, why);
+      check_failures_.push_back(c.id + ": " + why);
+    }
   }
 
   Stage contact_sheet_stage(CrowdGroup& g, CrowdMethod method, const RenderOptions& ro) {
@@ -123,6 +189,7 @@ class RenderStages final : public PresentationStages {
   }
 
   const ExperimentSpec& spec_;
+  std::vector<std::string> check_failures_;
   std::unique_ptr<Renderer> renderer_;
   fs::path extent_key_;
   std::optional<stimuli::CrowdExtent> extent_;
@@ -130,11 +197,20 @@ class RenderStages final : public PresentationStages {
 
 }  // namespace
 
-RunSummary run_with_stimuli(const ExperimentSpec& spec, const RunOptions& options) {
+RunSummary run_with_stimuli(const ExperimentSpec& spec, const RunOptions& options, bool strict) {
   RunOptions with_versions = options;
   with_versions.libraries = library_versions();
   RenderStages render(spec);
-  return run_experiment(spec, with_versions, &render);
+  const RunSummary summary = run_experiment(spec, with_versions, &render);
+  const std::vector<std::string>& failed = render.check_failures();
+  if (strict && !failed.empty()) {
+    std::string list;
+    for (const std::string& f : failed) list += "\n  " + f;
+    throw RuntimeError(
+        "run --strict: " + std::to_string(failed.size()) +
+        " stimulus check(s) outside render.check (the run's outputs and manifest are written):" + list);
+  }
+  return summary;
 }
 
 }  // namespace crowdlab::cli
