@@ -12,9 +12,12 @@
 // proceeds normally. The settling steps are not part of the output.
 //
 // Loop pre-roll (offline only; params.loop_preroll_s, for clips shown looping): when the input loops, the
-// settling runs on frame N - P's targets and frames N - P .. N - 1 are then stepped without output, so
-// frame 0 continues from (nearly) the state the clip ends in; the corrector's state forgets its start
-// within about a second (the PD springs' ~1 Hz, damped), so P = 2 s makes the seam an ordinary step.
+// settling runs on frame N - P's targets and frames N - P .. N - 1 are stepped first (the pre-roll), so
+// frame 0 continues from the pre-roll's state at N - 1. The clip's own frames N - P .. N - 1 differ from
+// the pre-roll's (dense contacts do not forget their history within seconds: measured, a 2 s pre-roll
+// alone left a 3.2x seam), so they blend into the pre-roll's output (weight rising 0 -> 1, raised
+// cosine, rotations slerped): the last frame is then the pre-roll's, whose successor is frame 0, and the
+// loop closes. Both blended states are corrected; a blend of the two may overlap slightly mid-way.
 //
 // Throws InputError for an invalid crowd (validate_crowd: empty crowd, NaN/Inf poses,
 // missing/zero-length bones, unequal frame counts) or invalid params.

@@ -285,9 +285,9 @@ TEST_CASE("correction: a looping input gives a looping output with the loop pre-
   CorrectionReport report;
   const CrowdAnimation plain = correct_crowd(crowd, params, nullptr, &report);
   CHECK(report.preroll_frames == 0);
-  params.loop_preroll_s = 1.0;
+  params.loop_preroll_s = 2.0;
   const CrowdAnimation looped = correct_crowd(crowd, params, nullptr, &report);
-  CHECK(report.preroll_frames == 30);
+  CHECK(report.preroll_frames == 59);
   INFO("seam / median step: " << seam_ratio(plain) << " without, " << seam_ratio(looped)
                               << " with the pre-roll");
   CHECK(seam_ratio(plain) > 2.0);
