@@ -29,6 +29,36 @@ void check_heights(size_t agents, const std::vector<double>& heights_m) {
                      std::to_string(agents) + " characters");
 }
 
+/// The follow path and relative box of a travelling crowd (see crowd_extent.hpp); nothing otherwise.
+void add_follow_path(const std::vector<CharacterTrack>& tracks, CrowdExtent& e) {
+  const size_t frames = tracks.front().feet_m.size();
+  std::vector<Vec3> centroid(frames, Vec3::Zero());
+  for (const CharacterTrack& t : tracks)
+    for (size_t f = 0; f < frames; ++f) centroid[f] += horizontal(t.feet_m[f]);
+  for (Vec3& c : centroid) c /= static_cast<double>(tracks.size());
+  if ((centroid.back() - centroid.front()).norm() <= kFollowTravelM) return;
+  // Symmetric window, shrinking at the ends: the path starts and ends on the centroid itself and has no
+  // lag (a one-sided window would slow the camera down in the first and last second).
+  const long n = static_cast<long>(frames);
+  const long half = std::max(1L, std::lround(e.fps));
+  e.follow_path_m.resize(frames);
+  for (long f = 0; f < n; ++f) {
+    const long h = std::min({half, f, n - 1 - f});
+    Vec3 sum = Vec3::Zero();
+    for (long g = f - h; g <= f + h; ++g) sum += centroid[static_cast<size_t>(g)];
+    e.follow_path_m[static_cast<size_t>(f)] = sum / static_cast<double>(2 * h + 1);
+  }
+  e.follow_lo_m = Vec3::Constant(1e30);
+  e.follow_hi_m = Vec3::Constant(-1e30);
+  for (const CharacterTrack& t : tracks)
+    for (size_t f = 0; f < frames; ++f) {
+      const Vec3 up = t.up.empty() ? Vec3::UnitY() : t.up[f];
+      const Vec3 feet = t.feet_m[f] - e.follow_path_m[f];
+      add_disc(feet, up, kBodyRadiusM, e.follow_lo_m, e.follow_hi_m);
+      add_disc(feet + t.height_m * up, up, kBodyRadiusM, e.follow_lo_m, e.follow_hi_m);
+    }
+}
+
 }  // namespace
 
 CrowdExtent crowd_extent(const std::vector<CharacterTrack>& tracks, double fps) {
@@ -61,6 +91,7 @@ CrowdExtent crowd_extent(const std::vector<CharacterTrack>& tracks, double fps) 
     const Eigen::Vector2d a = eig.eigenvectors().col(1);
     e.walk_axis = Vec3(a.x(), 0.0, a.y()).normalized();
   }
+  add_follow_path(tracks, e);
   e.focal_feet_m = tracks.front().feet_m;
   const Vec3 focal_forward = horizontal(tracks.front().forward.front());
   if (focal_forward.norm() > 1e-6) e.focal_forward = focal_forward.normalized();

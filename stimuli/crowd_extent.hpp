@@ -10,6 +10,12 @@
 // The box is the axis-aligned bound of every character's body cylinder at every frame: radius
 // kBodyRadiusM around the body axis (half a shoulder width plus arm reach), from the feet to the top
 // of the head (height_m along the body's up vector).
+//
+// A crowd that travels (its centroid moves more than kFollowTravelM between the first and the last
+// frame: the corridor's walkers cover ~26 m in 20 s) cannot be framed by one box over the whole clip
+// (issue 28: the crowd starts as a speck, or walks through the camera). For it the extent also holds a
+// follow path, the crowd's centroid smoothed over +-1 s, and the box of the bodies relative to that
+// path: the viewpoints then follow the crowd (viewpoint.hpp).
 #include <vector>
 
 #include "framework/core/crowd_animation.hpp"
@@ -20,6 +26,9 @@ namespace crowdlab::stimuli {
 
 /// Radius of the cylinder that bounds a body around its axis (metres).
 inline constexpr double kBodyRadiusM = 0.4;
+/// Centroid travel over the clip beyond which the framing follows the crowd (metres): a swaying or
+/// dancing crowd moves centimetres, a walking one metres.
+inline constexpr double kFollowTravelM = 1.0;
 
 /// One character's shared motion, per frame.
 struct CharacterTrack {
@@ -36,6 +45,11 @@ struct CrowdExtent {
   std::vector<Vec3> focal_feet_m;  ///< (frames) feet of the focal character (the first, "c000")
   Vec3 focal_forward = Vec3::UnitZ();  ///< horizontal facing of the focal character at frame 0 (unit)
   double fps = 30.0;
+  /// (frames) a travelling crowd's centroid (feet, y = 0), smoothed over +-1 s (a window that shrinks
+  /// symmetrically at the ends); empty when the crowd stays put (travel <= kFollowTravelM).
+  std::vector<Vec3> follow_path_m;
+  /// Box of all body cylinders relative to follow_path_m at their frame (metres; set when following).
+  Vec3 follow_lo_m = Vec3::Zero(), follow_hi_m = Vec3::Zero();
 };
 
 /// The extent of `tracks` (all with the same number of frames >= 1; the first is the focal one).

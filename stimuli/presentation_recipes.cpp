@@ -21,6 +21,7 @@ RenderRecipe render_recipe(const ExperimentSpec& spec, const std::string& viewpo
   r.viewpoint = viewpoint;
   r.crf = spec.render.crf;
   r.frames_png = spec.render.frames_png;
+  r.check_overlap_every_frames = spec.render.check.overlap_every_frames;
   return r;
 }
 

@@ -28,18 +28,23 @@ struct StimulusLook {
 
 struct RenderRecipe {
   static constexpr std::string_view kStage = "render";
-  /// Bump when the framing rule (viewpoint.hpp, crowd_extent.hpp) or the clip's making changes.
-  static constexpr std::string_view kCodeVersion = "shared-extent/1";
+  /// Bump when the framing rule (viewpoint.hpp, crowd_extent.hpp), the clip's making or the stimulus
+  /// check in its sidecar (stimulus_check.hpp) changes. 2: cameras follow a travelling crowd, the stimulus
+  /// check, dressed bodies and the clean image (issue 28).
+  static constexpr std::string_view kCodeVersion = "shared-extent/2+check/1+look/2";
   StimulusLook look;
   std::string viewpoint = "V1";  ///< catalogue name (framework/core/viewpoint_catalogue.hpp)
   int crf = 18;
   std::string x264_preset = RenderOptions{}.x264_preset;
   bool frames_png = false;  ///< also write the frames as PNG (render.frames_png)
+  /// The stimulus check draws every Nth frame again in overlap mode (render.check.overlap_every_frames;
+  /// 0: not measured). Its thresholds only judge the result, so they are not part of the recipe.
+  int check_overlap_every_frames = 10;
 };
 
 struct ContactSheetRecipe {
   static constexpr std::string_view kStage = "contact_sheet";
-  static constexpr std::string_view kCodeVersion = "shared-extent/1";
+  static constexpr std::string_view kCodeVersion = "shared-extent/2+look/2";
   StimulusLook look;
 };
 

@@ -1,13 +1,19 @@
 #include "stimuli/presentation_stages.hpp"
 
+#include <spdlog/spdlog.h>
+
+#include <fstream>
 #include <memory>
 #include <optional>
 
+#include "framework/core/error.hpp"
 #include "framework/core/write_file.hpp"
 #include "stimuli/clip_sidecar.hpp"
 #include "stimuli/crowd_extent.hpp"
+#include "stimuli/overlap_samples.hpp"
 #include "stimuli/presentation_recipes.hpp"
 #include "stimuli/renderer.hpp"
+#include "stimuli/stimulus_check.hpp"
 
 namespace crowdlab::stimuli {
 namespace fs = std::filesystem;
@@ -51,6 +57,33 @@ std::vector<fs::path> presentation_inputs(CrowdGroup& g, CrowdMethod method, con
   return inputs;
 }
 
+/// A clip's sidecar JSON; RuntimeError naming the file when it cannot be read or parsed.
+nlohmann::json read_sidecar_json(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw RuntimeError(path.string() + ": cannot read the clip's sidecar");
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw RuntimeError(path.string() + ": not valid JSON (" + e.what() + ")");
+  }
+}
+
+/// The stimulus check of a clip (issue 28): geometry from the crowd and camera path, overlap from the
+/// clip's own overlap pixels when it was rendered in overlap mode, else from every Nth frame drawn again
+/// in overlap mode.
+StimulusCheck measure_check(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& ro,
+                            const Viewpoint& view, const std::optional<std::vector<double>>& clip_overlap,
+                            int overlap_every_frames) {
+  const int frames = crowd.frame_count();
+  StimulusCheck check = measure_stimulus_geometry(crowd, view, frames);
+  const int every = ro.scene.overlap ? 1 : overlap_every_frames;
+  if (clip_overlap)
+    add_overlap_measures(check, *clip_overlap);
+  else if (every > 0)
+    add_overlap_measures(check, sample_overlap_fractions(renderer, crowd, ro, view, frames, every));
+  return check;
+}
+
 Stage render_stage(const std::shared_ptr<PresentationContext>& ctx, const RenderRecipe& recipe, CrowdGroup& g,
                    CrowdMethod method, const fs::path& condition_dir) {
   const CrowdAnimation& crowd = g.animation(method);
@@ -67,14 +100,36 @@ Stage render_stage(const std::shared_ptr<PresentationContext>& ctx, const Render
     view->emplace(recipe.viewpoint, ctx->extent(g), l.width, l.height, l.viewpoint_overrides);
   };
   const fs::path clip = condition_dir / "clip.mp4";
-  s.outputs.push_back({clip, [ctx, &crowd, view, ro](const fs::path& tmp) {
-                         render_clip(ctx->renderer(), crowd, ro, **view, tmp.string());
+  // The clip's own overlap pixels (render.overlap), handed to the sidecar's stimulus check.
+  auto clip_overlap = std::make_shared<std::optional<std::vector<double>>>();
+  s.outputs.push_back({clip, [ctx, &crowd, view, ro, clip_overlap](const fs::path& tmp) {
+                         const RenderResult r = render_clip(ctx->renderer(), crowd, ro, **view, tmp.string());
+                         if (ro.scene.overlap) *clip_overlap = r.red_fraction;
                        }});
-  s.outputs.push_back({clip_sidecar_path(clip), [&crowd, view](const fs::path& tmp) {
-                         write_text_file(tmp,
-                                         clip_sidecar(**view, crowd.frame_count(), crowd).dump(2) + "\n");
-                       }});
+  // Written after the clip, or alone when only it was lost (then the overlap frames are drawn again).
+  const int every = recipe.check_overlap_every_frames;
+  s.outputs.push_back(
+      {clip_sidecar_path(clip), [ctx, &crowd, view, ro, clip_overlap, every](const fs::path& tmp) {
+         nlohmann::json j = clip_sidecar(**view, crowd.frame_count(), crowd);
+         j["stimulus_check"] =
+             stimulus_check_json(measure_check(ctx->renderer(), crowd, ro, **view, *clip_overlap, every));
+         write_text_file(tmp, j.dump(2) + "\n");
+       }});
   return s;
+}
+
+/// Fills the clip's stimulus check (from its sidecar, up to date or just written) into the manifest
+/// entry, and warns about (and records, for --strict) a clip outside the spec's render.check.
+void describe_clip(const ExperimentSpec& spec, std::vector<std::string>* failures, const Condition& c,
+                   StimulusEntry& e, const fs::path& condition_dir) {
+  const nlohmann::json j = read_sidecar_json(clip_sidecar_path(condition_dir / "clip.mp4"));
+  e.check = stimulus_check_from_json(j.value("stimulus_check", nlohmann::json::object()));
+  const ClipRole role{c.params.viewpoint, c.params.method == CrowdMethod::baseline, spec.protocol.loop_video,
+                      spec.render.height};
+  for (const std::string& why : stimulus_check_failures(e.check, spec.render.check, role)) {
+    spdlog::warn("{}: stimulus check: {}", c.id, why);
+    if (failures) failures->push_back(c.id + ": " + why);
+  }
 }
 
 Stage contact_sheet_stage(const std::shared_ptr<PresentationContext>& ctx, const ContactSheetRecipe& recipe,
@@ -93,7 +148,8 @@ Stage contact_sheet_stage(const std::shared_ptr<PresentationContext>& ctx, const
 
 }  // namespace
 
-std::vector<PresentationStage> presentation_stages(const ExperimentSpec& spec) {
+std::vector<PresentationStage> presentation_stages(const ExperimentSpec& spec,
+                                                   std::vector<std::string>* check_failures) {
   auto ctx = std::make_shared<PresentationContext>();
   std::vector<PresentationStage> stages;
   const RenderRecipe clip = render_recipe(spec, ConditionParams{}.viewpoint);
@@ -104,7 +160,10 @@ std::vector<PresentationStage> presentation_stages(const ExperimentSpec& spec) {
          recipe.viewpoint = c.params.viewpoint;
          return render_stage(ctx, recipe, g, c.params.method, dir);
        },
-       true});
+       true,
+       [spec, check_failures](const Condition& c, const fs::path& dir, StimulusEntry& e) {
+         describe_clip(spec, check_failures, c, e, dir);
+       }});
   ContactSheetRecipe sheet{stimulus_look(spec.render)};
   const bool sheets = spec.outputs.contact_sheet;
   stages.push_back(
@@ -113,7 +172,8 @@ std::vector<PresentationStage> presentation_stages(const ExperimentSpec& spec) {
          if (!sheets) return std::nullopt;
          return contact_sheet_stage(ctx, sheet, g, c.params.method);
        },
-       false});
+       false,
+       {}});
   return stages;
 }
 

@@ -180,6 +180,11 @@ Viewpoint::Viewpoint(const std::string& name, const CrowdExtent& extent, int wid
     fixed_.far_m = 200.0;
     fixed_.width = width;
     fixed_.height = height;
+  } else if (!extent.follow_path_m.empty()) {
+    // A travelling crowd: frame its box relative to the follow path, then ride along that path.
+    fixed_ = fit_box(extent.follow_lo_m, extent.follow_hi_m, view_axes(extent.front, preset), preset.fov_deg,
+                     width, height);
+    follow_path_ = extent.follow_path_m;
   } else {
     fixed_ =
         fit_box(extent.lo_m, extent.hi_m, view_axes(extent.front, preset), preset.fov_deg, width, height);
@@ -187,6 +192,14 @@ Viewpoint::Viewpoint(const std::string& name, const CrowdExtent& extent, int wid
 }
 
 Camera Viewpoint::at(int frame) const {
+  if (!follow_path_.empty()) {
+    Camera cam = fixed_;
+    const Vec3& offset =
+        follow_path_[static_cast<size_t>(std::clamp(frame, 0, static_cast<int>(follow_path_.size()) - 1))];
+    cam.eye += offset;
+    cam.target += offset;
+    return cam;
+  }
   if (!tracking_) return fixed_;
   Camera cam = fixed_;
   const size_t f = static_cast<size_t>(std::clamp(frame, 0, static_cast<int>(focal_path_.size()) - 1));

@@ -21,6 +21,12 @@
 // (4 % margin on each side of that dimension), with all eight box corners inside the image. A 3 x 3 m
 // concert and a long corridor both fill the view.
 //
+// Following (V1-V4, pair stays fixed): when the crowd travels (CrowdExtent::follow_path_m, a walking
+// crowd), the same rule frames the bodies' box RELATIVE to the crowd's smoothed centroid, and the
+// camera rides along that path at a fixed offset: the crowd stays in frame at any clip length, the
+// camera never enters the crowd (the fit keeps every box corner in front of it), and the ground and
+// walls slide past as they would for a camera dolly.
+//
 // One camera per condition: build the Viewpoint from a CrowdExtent computed from the data that the
 // methods of a condition share (see crowd_extent.hpp), so `baseline` and `ours` get the same camera.
 #include <map>
@@ -50,8 +56,9 @@ class Viewpoint {
   /// The camera for frame `frame` (only "tracking" moves).
   Camera at(int frame) const;
   const std::string& name() const { return name_; }
-  /// True when the camera moves with the frame ("tracking"); otherwise at(f) == at(0) for every f.
-  bool moves() const { return tracking_; }
+  /// True when the camera moves with the frame ("tracking", or following a travelling crowd); otherwise
+  /// at(f) == at(0) for every f.
+  bool moves() const { return tracking_ || !follow_path_.empty(); }
 
  private:
   std::string name_;
@@ -59,6 +66,7 @@ class Viewpoint {
   bool tracking_ = false;
   std::vector<Vec3> focal_path_;  ///< smoothed focal root per frame (tracking only)
   Vec3 tracking_offset_ = Vec3::Zero();
+  std::vector<Vec3> follow_path_;  ///< per frame, added to fixed_'s eye and target (following only)
 };
 
 }  // namespace crowdlab::stimuli

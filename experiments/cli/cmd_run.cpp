@@ -20,6 +20,7 @@ struct Options {
   std::string condition;
   bool force = false;
   bool collect = false;
+  bool strict = false;
 };
 
 const CommandRegistration kRegistration([](CLI::App& root) {
@@ -36,6 +37,10 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--condition", o->condition, "Run only the condition with this id");
   cmd->add_flag("--force", o->force, "Re-run every stage even when its outputs are up to date");
+  cmd->add_flag(
+      "--strict", o->strict,
+      "Fail (exit 1, after writing every output) when a clip's stimulus check is outside the spec's "
+      "render.check thresholds; without it such clips are warnings");
   cmd->add_flag(
       "--collect", o->collect,
       "Merge the shard manifests and provenance records of DIR, verifying every condition is present once");
@@ -56,7 +61,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     ro.force = o->force;
     ro.shard = shard;
     ro.only = o->condition;
-    const RunSummary s = run_with_stimuli(spec, ro);
+    const RunSummary s = run_with_stimuli(spec, ro, o->strict);
     std::printf("%d conditions: %d stage outputs made, %d up to date\nmanifest: %s\n", s.conditions,
                 s.stages_run, s.stages_skipped, s.manifest.string().c_str());
   });

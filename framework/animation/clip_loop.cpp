@@ -27,14 +27,6 @@ Pose move_on_ground(const Pose& p, const GroundFrame& from, const GroundFrame& t
 }
 }  // namespace
 
-Pose blend_poses(const Pose& a, const Pose& b, double w) {
-  Pose out;
-  out.root_position_m = (1.0 - w) * a.root_position_m + w * b.root_position_m;
-  for (size_t j = 0; j < a.local_rotations.size(); ++j)
-    out.local_rotations[j] = a.local_rotations[j].slerp(w, b.local_rotations[j]).normalized();
-  return out;
-}
-
 LoopedClip make_seamless_loop(const std::vector<Pose>& frames, int first, int last, int blend) {
   const int n = static_cast<int>(frames.size());
   if (first < 0 || last > n || blend < 0 || blend > first || first + blend >= last)

@@ -13,6 +13,7 @@
 // Requires blend <= first (frames before the loop to blend from) and first + blend < last.
 #include <vector>
 
+#include "framework/core/blend_poses.hpp"  // blend_poses(), used with the loops
 #include "framework/core/pose.hpp"
 
 namespace crowdlab {
@@ -29,8 +30,5 @@ LoopedClip make_seamless_loop(const std::vector<Pose>& frames, int first, int la
 
 /// Frame `k` (any k >= 0) of a loop played repeatedly, each replay continuing the ground motion.
 Pose sample_loop(const LoopedClip& loop, long k);
-
-/// Pose interpolation: root lerp, rotations slerp (shortest path).
-Pose blend_poses(const Pose& a, const Pose& b, double w);
 
 }  // namespace crowdlab

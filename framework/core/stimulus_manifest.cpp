@@ -32,6 +32,18 @@ constexpr std::array<QualityColumn, 12> kQuality = {
      {"env_penetration_p99_m", &ClipQuality::env_penetration_p99_m, nullptr},
      {"env_penetration_max_m", &ClipQuality::env_penetration_max_m, nullptr}}};
 
+/// The stimulus-check columns (optional when read), in file order.
+struct CheckColumn {
+  const char* name;
+  double StimulusCheck::*value;
+};
+constexpr std::array<CheckColumn, 5> kCheck = {
+    {{"crowd_in_frame_min", &StimulusCheck::crowd_in_frame_min},
+     {"character_height_px", &StimulusCheck::character_height_px},
+     {"overlap_frame_share", &StimulusCheck::overlap_frame_share},
+     {"overlap_pixel_fraction", &StimulusCheck::overlap_pixel_fraction},
+     {"seam_step_ratio", &StimulusCheck::seam_step_ratio}}};
+
 std::string optional_cell(double v) {
   return v >= 0 ? csv_number(v) : "";
 }
@@ -43,6 +55,7 @@ void write_manifest(const StimulusManifest& m, const std::string& csv_path) {
   header.insert(header.end(), m.factor_names.begin(), m.factor_names.end());
   header.insert(header.end(), kTrailing.begin(), kTrailing.end());
   for (const QualityColumn& q : kQuality) header.push_back(q.name);
+  for (const CheckColumn& c : kCheck) header.push_back(c.name);
   out += csv_line(header);
   for (const StimulusEntry& e : m.entries) {
     std::vector<std::string> row = {e.id};
@@ -63,6 +76,7 @@ void write_manifest(const StimulusManifest& m, const std::string& csv_path) {
     for (const QualityColumn& q : kQuality)
       row.push_back(q.value ? optional_cell(e.quality.*q.value)
                             : (e.quality.*q.count >= 0 ? std::to_string(e.quality.*q.count) : ""));
+    for (const CheckColumn& c : kCheck) row.push_back(optional_cell(e.check.*c.value));
     out += csv_line(row);
   }
   // Atomically: a manifest is never seen half-written, and a full disk is reported with its reason.
@@ -83,6 +97,8 @@ StimulusManifest read_manifest(const std::string& csv_path) {
   };
   std::vector<bool> has_quality;
   for (const QualityColumn& q : kQuality) has_quality.push_back(t.has_column(q.name));
+  std::vector<bool> has_check;
+  for (const CheckColumn& c : kCheck) has_check.push_back(t.has_column(c.name));
   for (size_t r = 0; r < t.rows.size(); ++r) {
     StimulusEntry e;
     e.id = t.cell(r, id_col);
@@ -105,6 +121,8 @@ StimulusManifest read_manifest(const std::string& csv_path) {
       else
         e.quality.*kQuality[k].count = static_cast<int>(v);
     }
+    for (size_t k = 0; k < kCheck.size(); ++k)
+      if (has_check[k]) e.check.*kCheck[k].value = optional_number(r, kCheck[k].name);
     m.entries.push_back(std::move(e));
   }
   return m;

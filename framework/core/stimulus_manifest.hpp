@@ -4,14 +4,16 @@
 //   id,<factor columns...>,file,duration_s,frames,width,height,sha256,overlap_l,v_i_m,collisions,practice,
 //   depth_p99_m,depth_max_m,stance_foot_drift_p99_m,stance_foot_drift_max_m,foot_pops,
 //   foot_ground_penetration_max_m,foot_float_p99_m,free_limb_dev_p99_deg,free_limb_dev_max_deg,
-//   joint_flips,env_penetration_p99_m,env_penetration_max_m
-// (factor columns in spec order; metric columns empty when not computed). The last twelve are the
+//   joint_flips,env_penetration_p99_m,env_penetration_max_m,crowd_in_frame_min,character_height_px,
+//   overlap_frame_share,overlap_pixel_fraction,seam_step_ratio
+// (factor columns in spec order; metric columns empty when not computed). Seven of them are the
 // correction-quality measures of the clip's crowd against its input (issue 18; definitions in
 // framework/metrics/correction_quality.hpp and foot_contact_quality.hpp, names as in
 // correction_quality.csv): for `baseline` the input is the crowd itself, for `ours` the baseline of the
-// same condition; the last five (issue 27) are defined in framework/metrics/free_limb_deviation.hpp,
-// joint_flips.hpp and environment_penetration.hpp. Manifests written before them lack these columns
-// and read as unknown.
+// same condition; the next five (issue 27) are defined in framework/metrics/free_limb_deviation.hpp,
+// joint_flips.hpp and environment_penetration.hpp. The last five are the stimulus check of the rendered
+// clip (issue 28; definitions in stimuli/stimulus_check.hpp), also in the clip's sidecar JSON.
+// Manifests written before any group lack its columns and read as unknown.
 #include <map>
 #include <string>
 #include <vector>
@@ -35,6 +37,15 @@ struct ClipQuality {
   double env_penetration_max_m = -1.0;          ///< and max
 };
 
+/// The stimulus check of one rendered clip (stimuli/stimulus_check.hpp defines the measures); -1 = unknown.
+struct StimulusCheck {
+  double crowd_in_frame_min = -1.0;      ///< share of characters wholly inside the image, min over frames
+  double character_height_px = -1.0;     ///< median on-screen character height, pixels
+  double overlap_frame_share = -1.0;     ///< share of sampled frames with overlap pixels (overlap mode)
+  double overlap_pixel_fraction = -1.0;  ///< mean share of the image's pixels that show overlap
+  double seam_step_ratio = -1.0;         ///< last-to-first frame step / median frame step
+};
+
 struct StimulusEntry {
   std::string id;                              ///< condition id (+ "_" + viewpoint when rendered per view)
   std::map<std::string, std::string> factors;  ///< factor name -> level text
@@ -49,6 +60,7 @@ struct StimulusEntry {
   int collisions = -1;           ///< colliding character pairs over the clip (-1 = unknown)
   bool practice = false;
   ClipQuality quality;
+  StimulusCheck check;
 };
 
 struct StimulusManifest {

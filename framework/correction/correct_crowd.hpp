@@ -11,6 +11,14 @@
 // settled before recording; frame 0 of the output is the settled state and the animation then
 // proceeds normally. The settling steps are not part of the output.
 //
+// Loop pre-roll (offline only; params.loop_preroll_s, for clips shown looping): when the input loops, the
+// settling runs on frame N - P's targets and frames N - P .. N - 1 are stepped first (the pre-roll), so
+// frame 0 continues from the pre-roll's state at N - 1. The clip's own frames N - P .. N - 1 differ from
+// the pre-roll's (dense contacts do not forget their history within seconds: measured, a 2 s pre-roll
+// alone left a 3.2x seam), so they blend into the pre-roll's output (weight rising 0 -> 1, raised
+// cosine, rotations slerped): the last frame is then the pre-roll's, whose successor is frame 0, and the
+// loop closes. Both blended states are corrected; a blend of the two may overlap slightly mid-way.
+//
 // Throws InputError for an invalid crowd (validate_crowd: empty crowd, NaN/Inf poses,
 // missing/zero-length bones, unequal frame counts) or invalid params.
 #include "framework/core/crowd_animation.hpp"
@@ -23,7 +31,8 @@ namespace crowdlab {
 /// Summary of an offline correction.
 struct CorrectionReport {
   int frames = 0;
-  int settle_steps = 0;        ///< steps run on frame 0 before the output starts
+  int settle_steps = 0;        ///< steps run on the first target frame before the output starts
+  int preroll_frames = 0;      ///< frames N - P .. N - 1 stepped before frame 0 (loop pre-roll)
   int rejected_steps = 0;      ///< steps whose solve failed (state kept)
   int unconverged_steps = 0;   ///< steps where CG stopped above its tolerance (result still used)
   double contacts_mean = 0.0;  ///< mean contacts per step

@@ -143,6 +143,12 @@ struct CorrectorParams {
   /// = 1 s at 30 fps: about two periods of the root's translation spring (natural frequency ~1 Hz,
   /// above), enough for the dense fixture's initial interpenetration to be pushed out.
   int settle_steps = 30;
+  /// Looping clips (issue 28): > 0 and the input loops (every root's last frame within kLoopRootM of its
+  /// first), the corrector settles on frame N - P instead and runs frames N - P .. N - 1 unrecorded
+  /// before frame 0, P = this many seconds of frames (at most N - 1). Frame 0 then continues from the
+  /// state the clip ends in, so the corrected clip loops without a jump from the corrected last frame
+  /// to a freshly settled first one. 0: off (the online corrector and clips that play once).
+  double loop_preroll_s = 0.0;
 
   // ---- Solver
   // One Newton iteration per step, always (seed 000 §3.2: "just one Newton iteration per time step

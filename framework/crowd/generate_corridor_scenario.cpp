@@ -36,6 +36,7 @@ ScenarioResult generate_corridor_scenario(const ExperimentSpec& spec, const Cond
   const Polygon2 area = rectangle_polygon(w - 2.0 * radius_cap, len);
   PlacementOptions opt;
   opt.min_spacing_m = spec.crowd.agent_radius_m;  // as for the stationary crowd: else InputError
+  opt.personal_space_m = spec.crowd.personal_space_m;
   const Placement placement = place_poisson_disk(area, n, derive_seed(condition.seed, "placement"), opt);
   const double radius = std::min(radius_cap, 0.49 * placement.min_spacing_m);
 

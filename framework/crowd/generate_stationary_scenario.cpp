@@ -10,7 +10,10 @@
 //     and 0.2-0.5 Hz, a typical in-place weight shift of standing/dancing people (postural sway of
 //     standing adults is centimetres; Winter 1995, "Human balance and posture control");
 //   * heading: toward a point on the stage's axis 2.25 m beyond the area's front edge (so everyone faces the
-//     stage), plus a slow +-5..15 degree look-around oscillation.
+//     stage), plus a slow +-5..15 degree look-around oscillation;
+//   * loops: every sway and look-around frequency is rounded to a whole number of cycles over the clip
+//     (possibly none: a still offset), so the last frame flows into the first when the clip loops
+//     (issue 28; the dances fit their tempo the same way, dance_animation.hpp).
 #include <cmath>
 #include <numbers>
 
@@ -20,6 +23,14 @@
 #include "framework/crowd/simulate_trajectories.hpp"
 
 namespace crowdlab {
+namespace {
+
+/// `hz` rounded to a whole number of cycles over `duration_s` (0 when less than half a cycle fits).
+double loop_frequency(double hz, double duration_s) {
+  return duration_s > 0.0 ? std::round(hz * duration_s) / duration_s : hz;
+}
+
+}  // namespace
 
 ScenarioResult generate_stationary_scenario(const ExperimentSpec& spec, const Condition& condition) {
   const ScenarioSpec& sc = spec.scenario;
@@ -29,6 +40,7 @@ ScenarioResult generate_stationary_scenario(const ExperimentSpec& spec, const Co
   // what the studies need), but a request denser than that is an input error, not a crowd.
   PlacementOptions opt;
   opt.min_spacing_m = spec.crowd.agent_radius_m;
+  opt.personal_space_m = spec.crowd.personal_space_m;
   const Placement placement = place_poisson_disk(area, n, derive_seed(condition.seed, "placement"), opt);
 
   const double theta = sc.stage_direction_deg * std::numbers::pi / 180.0;
@@ -56,10 +68,13 @@ ScenarioResult generate_stationary_scenario(const ExperimentSpec& spec, const Co
   for (int i = 0; i < n; ++i) {
     Rng rng(derive_seed(condition.seed, "sway/" + std::to_string(i)));
     const double amp = std::min(0.02 + 0.02 * uniform01(rng), sway_cap);
-    const double fx = 0.2 + 0.3 * uniform01(rng), fz = 0.2 + 0.3 * uniform01(rng);
+    const double clip_s = frames / spec.fps;
+    const double fx = loop_frequency(0.2 + 0.3 * uniform01(rng), clip_s);
+    const double fz = loop_frequency(0.2 + 0.3 * uniform01(rng), clip_s);
     const double px = 2.0 * std::numbers::pi * uniform01(rng), pz = 2.0 * std::numbers::pi * uniform01(rng);
     const double look_amp = (5.0 + 10.0 * uniform01(rng)) * std::numbers::pi / 180.0;
-    const double look_f = 0.05 + 0.1 * uniform01(rng), look_p = 2.0 * std::numbers::pi * uniform01(rng);
+    const double look_f = loop_frequency(0.05 + 0.1 * uniform01(rng), clip_s);
+    const double look_p = 2.0 * std::numbers::pi * uniform01(rng);
     const Vec2 base = placement.positions[static_cast<std::size_t>(i)];
     const Vec2 to_stage = focus - base;
     const double facing = heading_of(to_stage.x(), to_stage.y());

@@ -124,7 +124,8 @@ Placement place_poisson_disk(const Polygon2& area, int count, std::uint64_t seed
   std::vector<double> xs, ys;
   xs.reserve(n), ys.reserve(n);
   NeighborGrid grid(d_hex);
-  double r = d_hex;
+  const bool plain_poisson = opt.personal_space_m > 0.0 && opt.personal_space_m < d_hex;
+  double r = plain_poisson ? opt.personal_space_m : d_hex;
   int failures = 0;
   grid.rebuild(xs.data(), ys.data(), 0);
   while (pts.size() < n) {
@@ -149,7 +150,7 @@ Placement place_poisson_disk(const Polygon2& area, int count, std::uint64_t seed
   std::vector<Vec2> best = pts, next(n);
   double best_spacing = min_pairwise_distance(pts);
   const double target = 1.1 * d_hex;
-  for (int it = 0; it < opt.relaxation_iterations && n > 1; ++it) {
+  for (int it = 0; it < (plain_poisson ? 0 : opt.relaxation_iterations) && n > 1; ++it) {
     for (std::size_t i = 0; i < n; ++i) xs[i] = pts[i].x(), ys[i] = pts[i].y();
     NeighborGrid g(target);
     g.rebuild(xs.data(), ys.data(), n);

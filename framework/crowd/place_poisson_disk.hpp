@@ -29,7 +29,11 @@
 namespace crowdlab {
 
 struct PlacementOptions {
-  double min_spacing_m = 0.0;      ///< required minimum centre distance (0 = no requirement)
+  double min_spacing_m = 0.0;  ///< required minimum centre distance (0 = no requirement)
+  /// > 0 and below d_hex: plain Poisson-disk sampling, dart throwing starting at this radius (shrunk as in
+  /// step 1 if it cannot fit) and no relaxation, so spacings vary from it up as in a real crowd rather
+  /// than sitting near d_hex. Otherwise ignored.
+  double personal_space_m = 0.0;
   double boundary_margin_m = 0.0;  ///< keep points this far inside the boundary
   int relaxation_iterations = 300;
 };

@@ -22,9 +22,11 @@ using nlohmann::json;
 
 namespace {
 
-/// The spec's correction section as corrector parameters (0 keeps the corrector's default).
-CorrectorParams corrector_params(const CorrectionSpec& c) {
+/// The spec's correction section as corrector parameters (0 keeps the corrector's default), with the
+/// loop pre-roll (correct_crowd.hpp) of the recipe.
+CorrectorParams corrector_params(const CorrectionSpec& c, double loop_preroll_s) {
   CorrectorParams params;
+  params.loop_preroll_s = loop_preroll_s;
   if (c.stiffness > 0) params.stiffness = c.stiffness;
   params.damping = c.damping;
   if (c.collision_stiffness > 0) params.contact_stiffness = c.collision_stiffness;
@@ -109,8 +111,9 @@ Stage CrowdGroup::correction_stage() {
     const CrowdAnimation& input = animation(CrowdMethod::baseline);
     Progress progress("correct " + key_, static_cast<size_t>(input.frame_count()));
     CorrectionReport report;
-    animation_[i] =
-        correct_crowd(input, corrector_params(recipes_.correction.correction), &progress, &report);
+    animation_[i] = correct_crowd(
+        input, corrector_params(recipes_.correction.correction, recipes_.correction.loop_preroll_s), &progress,
+        &report);
     if (report.rejected_steps > 0)
       spdlog::warn("{}: the corrector rejected {} of {} steps and kept the last stable state", key_,
                    report.rejected_steps, report.frames);

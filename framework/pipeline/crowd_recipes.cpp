@@ -4,6 +4,11 @@
 
 namespace crowdlab {
 
+namespace {
+/// Loop pre-roll of the correction when the study shows clips looping (correct_crowd.hpp), seconds.
+constexpr double kLoopPrerollS = 2.0;
+}  // namespace
+
 CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Condition& first) {
   const Condition group = crowd_condition(spec, first);
   const ConditionParams& p = group.params;
@@ -35,6 +40,7 @@ CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Conditio
   }
 
   r.correction.correction = spec.correction;
+  r.correction.loop_preroll_s = spec.protocol.loop_video ? kLoopPrerollS : 0.0;
   return r;
 }
 

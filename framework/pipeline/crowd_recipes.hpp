@@ -27,7 +27,8 @@ namespace crowdlab {
 /// The crowd stage: where the characters are and how they move (trajectories.csv).
 struct CrowdRecipe {
   static constexpr std::string_view kStage = "crowd";
-  static constexpr std::string_view kCodeVersion = "1";
+  /// 2: stationary sway and look-around loop over the clip, personal-space placement (issue 28).
+  static constexpr std::string_view kCodeVersion = "2";
   ScenarioSpec scenario;
   CrowdSpec crowd;
   double duration_s = 10.0;
@@ -41,7 +42,7 @@ struct CrowdRecipe {
 /// The animation stage: full-body motion on the crowd's trajectories (baseline.glb).
 struct AnimationRecipe {
   static constexpr std::string_view kStage = "animation";
-  static constexpr std::string_view kCodeVersion = "1";
+  static constexpr std::string_view kCodeVersion = "2";  ///< 2: dressed bodies, the new stage (issue 28)
   AnimationSpec animation;  ///< body_model_path only with MPFB2 bodies (empty for procedural ones)
   ScenarioKind scenario = ScenarioKind::stationary;  ///< stationary: dancing; otherwise walking
   std::optional<int> shoulder_count;                 ///< `shoulder` factor
@@ -53,14 +54,17 @@ struct AnimationRecipe {
 /// The correction stage: the collision corrector on baseline.glb (ours.glb).
 struct CorrectionRecipe {
   static constexpr std::string_view kStage = "correction";
-  static constexpr std::string_view kCodeVersion = "1";
+  static constexpr std::string_view kCodeVersion = "2";  ///< 2: issue 27's free joints, issue 28's pre-roll
   CorrectionSpec correction;
+  /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
+  /// (correct_crowd.hpp; issue 28): 2 s when the study shows the clips looping (protocol.loop_video), else 0.
+  double loop_preroll_s = 0.0;
 };
 
 /// The metrics stage of one method's crowd file (<method>.metrics.json).
 struct MetricsRecipe {
   static constexpr std::string_view kStage = "metrics";
-  static constexpr std::string_view kCodeVersion = "1";
+  static constexpr std::string_view kCodeVersion = "2";  ///< 2: free limbs, flips, environment (issue 27)
   CrowdMethod method = CrowdMethod::baseline;  ///< the animation measured (against the baseline)
   bool surface_ground = false;  ///< manifold crowds: the feet's ground is the surface, not y = 0
 };

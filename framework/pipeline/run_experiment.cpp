@@ -94,6 +94,7 @@ void present_condition(const ExperimentSpec& spec, const RunOptions& opt, StageR
     const std::optional<Stage> stage = p.make(g, c, dir);
     if (!stage) continue;
     runner.run(*stage);
+    if (p.describe) p.describe(c, dir, e);
     if (!p.stimulus) continue;
     const fs::path& file = stage->outputs.front().path;
     e.file = fs::relative(file, opt.out_dir).string();

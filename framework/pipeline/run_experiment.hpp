@@ -62,6 +62,10 @@ struct PresentationStage {
   /// Its main output is the condition's stimulus: the manifest entry's file and SHA-256 (its size is
   /// the spec's render.width x render.height).
   bool stimulus = false;
+  /// Optional: after the stage ran (or was up to date), fills what it measured into the condition's
+  /// manifest entry (the render stage's stimulus check, issue 28).
+  std::function<void(const Condition& c, const std::filesystem::path& condition_dir, StimulusEntry& entry)>
+      describe;
 };
 
 /// The names of the run's stages in run order: the crowd group's (crowd, animation, correction,

@@ -56,6 +56,11 @@ struct CrowdSpec {
   /// cost model: goal, smoothness, separation, walls, sigma_m, lookahead_s, iterations (keys and ranges
   /// checked by the spec loader; framework/crowd/cost_gradient_model.hpp)
   std::map<std::string, double> cost_weights;
+  /// Initial placement (stationary, corridor): > 0 places centres by plain Poisson-disk dart throwing
+  /// at this spacing (metres) wherever it is below the hexagonal spacing of the density, so neighbours
+  /// stand at irregular distances from this one up, as people do; 0 spreads them as evenly as the
+  /// count allows (framework/crowd/place_poisson_disk.hpp).
+  double personal_space_m = 0.0;
 };
 
 /// animation.* : bodies and motion.
@@ -78,6 +83,22 @@ struct CorrectionSpec {
   double collision_stiffness = 0.0;  ///< k_delta; 0 = solver default
 };
 
+/// render.check.* : the thresholds of the stimulus check that `run` computes for every clip
+/// (stimuli/stimulus_check.hpp; issue 28's targets are the defaults). A clip outside them is a warning,
+/// or a failure under `run --strict`. Pixel sizes are given for a 1080-pixel-high image and scale with
+/// the image height.
+struct StimulusCheckSpec {
+  double crowd_in_frame_min = 0.95;        ///< share of characters wholly in the image, every frame
+  double character_height_px_min = 150.0;  ///< median on-screen character height (px at 1080p)
+  double overhead_height_px_min = 60.0;    ///< the same for the overhead viewpoint V4
+  double seam_step_ratio_max = 1.5;        ///< looping clips (protocol.loop_video) only
+  double baseline_overlap_frames_min =
+      0.0;  ///< share of a baseline clip's frames with overlap pixels; 0 = off
+  /// The overlap measures render every Nth frame again in overlap mode (0 = skip them); every frame when
+  /// render.overlap is on anyway.
+  int overlap_every_frames = 10;
+};
+
 /// render.* : stimulus rendering.
 struct RenderSpec {
   int width = 1920;
@@ -90,6 +111,7 @@ struct RenderSpec {
   bool fog = false;
   std::map<std::string, std::vector<double>> viewpoint_overrides;  ///< name -> [px,py,pz, tx,ty,tz, fov_deg]
   std::vector<std::string> characters;  ///< skinned glTF character files (resolved); character i uses i mod N
+  StimulusCheckSpec check;
 };
 
 struct QuestionSpec {

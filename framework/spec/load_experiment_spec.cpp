@@ -100,7 +100,8 @@ void parse_cost_weights(YamlSection w, CrowdSpec& c) {
 void parse_crowd(YamlSection s, ExperimentSpec& spec) {
   CrowdSpec& c = spec.crowd;
   s.allow_keys({"model", "agent_radius_m", "neighbor_distance_m", "max_neighbors", "time_horizon_s",
-                "obstacle_time_horizon_s", "max_speed_mps", "dt_s", "cost_weights", "overlap_free"});
+                "obstacle_time_horizon_s", "max_speed_mps", "dt_s", "cost_weights", "overlap_free",
+                "personal_space_m"});
   s.choice("model", c.model);
   s.number("agent_radius_m", c.agent_radius_m, Range::positive(1.0));
   s.number("neighbor_distance_m", c.neighbor_distance_m, Range::positive(100.0));
@@ -110,6 +111,7 @@ void parse_crowd(YamlSection s, ExperimentSpec& spec) {
   s.number("max_speed_mps", c.max_speed_mps, Range::positive(10.0));
   s.number("dt_s", c.dt_s, Range::positive(1.0));
   s.boolean("overlap_free", c.overlap_free);
+  s.number("personal_space_m", c.personal_space_m, Range::non_negative(5.0));
   if (c.overlap_free && c.model != CrowdModel::orca)
     s.diagnostics().error(s.get("overlap_free"), s.child_path("overlap_free"),
                           "applies to model orca only (model is '" + std::string(kind_name(c.model)) + "')");
@@ -194,10 +196,23 @@ void parse_correction(YamlSection s, ExperimentSpec& spec) {
   s.number("collision_stiffness", spec.correction.collision_stiffness, Range::non_negative());
 }
 
+void parse_stimulus_check(YamlSection s, StimulusCheckSpec& c) {
+  if (!s.present()) return;
+  s.allow_keys({"crowd_in_frame_min", "character_height_px_min", "overhead_height_px_min",
+                "seam_step_ratio_max", "baseline_overlap_frames_min", "overlap_every_frames"});
+  s.number("crowd_in_frame_min", c.crowd_in_frame_min, Range{0.0, 1.0});
+  s.number("character_height_px_min", c.character_height_px_min, Range::non_negative(1e5));
+  s.number("overhead_height_px_min", c.overhead_height_px_min, Range::non_negative(1e5));
+  s.number("seam_step_ratio_max", c.seam_step_ratio_max, Range::positive(1e6));
+  s.number("baseline_overlap_frames_min", c.baseline_overlap_frames_min, Range{0.0, 1.0});
+  s.integer("overlap_every_frames", c.overlap_every_frames, 0, 100000);
+}
+
 void parse_render(YamlSection s, ExperimentSpec& spec) {
   RenderSpec& r = spec.render;
   SpecDiagnostics& diag = s.diagnostics();
-  s.allow_keys({"crf", "msaa", "overlap", "frames_png", "background", "fog", "viewpoints", "characters"});
+  s.allow_keys(
+      {"crf", "msaa", "overlap", "frames_png", "background", "fog", "viewpoints", "characters", "check"});
   s.integer("crf", r.crf, 0, 51);   // the H.264 constant-rate-factor range
   s.integer("msaa", r.msaa, 1, 8);  // samples per pixel (the GL driver rounds up to one it has)
   s.boolean("overlap", r.overlap);
@@ -227,6 +242,7 @@ void parse_render(YamlSection s, ExperimentSpec& spec) {
       diag.error(s.get("background"), s.child_path("background"),
                  "expected a colour '#rrggbb', got '" + bg + "'");
   }
+  parse_stimulus_check(s.section("check"), r.check);
   YamlSection vps = s.section("viewpoints");
   if (vps.present()) {
     vps.allow_keys(viewpoint_names());

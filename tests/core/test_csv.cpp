@@ -92,7 +92,9 @@ TEST_CASE("stimulus manifest carries the clip's correction-quality columns") {
   CHECK(
       header.ends_with(",practice,depth_p99_m,depth_max_m,stance_foot_drift_p99_m,stance_foot_drift_max_m,"
                        "foot_pops,foot_ground_penetration_max_m,foot_float_p99_m,free_limb_dev_p99_deg,"
-                       "free_limb_dev_max_deg,joint_flips,env_penetration_p99_m,env_penetration_max_m"));
+                       "free_limb_dev_max_deg,joint_flips,env_penetration_p99_m,env_penetration_max_m,"
+                       "crowd_in_frame_min,character_height_px,overlap_frame_share,overlap_pixel_fraction,"
+                       "seam_step_ratio"));
   const ClipQuality q = read_manifest(path).entries.at(0).quality;
   CHECK(q.depth_p99_m == 0.0042);
   CHECK(q.depth_max_m == 0.02);
@@ -116,4 +118,31 @@ TEST_CASE("stimulus manifest carries the clip's correction-quality columns") {
   CHECK(old.quality.foot_float_p99_m == -1.0);
   CHECK(old.quality.joint_flips == -1);
   CHECK(old.quality.free_limb_dev_max_deg == -1.0);
+}
+
+TEST_CASE("stimulus manifest carries the clip's stimulus-check columns") {
+  StimulusManifest m;
+  StimulusEntry e;
+  e.id = "c1";
+  e.file = "c1.mp4";
+  e.check.crowd_in_frame_min = 0.975;
+  e.check.character_height_px = 212.5;
+  e.check.overlap_frame_share = 0.5;
+  e.check.overlap_pixel_fraction = 0.0031;
+  e.check.seam_step_ratio = 1.25;
+  m.entries = {e};
+  const auto dir = test::scratch_dir("manifest_check");
+  const std::string path = (dir / "manifest.csv").string();
+  write_manifest(m, path);
+  const StimulusCheck c = read_manifest(path).entries.at(0).check;
+  CHECK(c.crowd_in_frame_min == 0.975);
+  CHECK(c.character_height_px == 212.5);
+  CHECK(c.overlap_frame_share == 0.5);
+  CHECK(c.overlap_pixel_fraction == 0.0031);
+  CHECK(c.seam_step_ratio == 1.25);
+  // A manifest without the columns reads with the check unknown.
+  std::ofstream(path, std::ios::trunc)
+      << "id,file,duration_s,frames,width,height,sha256,overlap_l,v_i_m,collisions,practice\n"
+      << "c1,c1.mp4,1,30,64,48,x,,,,0\n";
+  CHECK(read_manifest(path).entries.at(0).check.seam_step_ratio == -1.0);
 }

@@ -2,6 +2,7 @@
 // determinism across thread counts, first-step behaviour, bad input, environment and ground.
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
@@ -9,6 +10,7 @@
 
 #include "framework/core/capsule_box_distance.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/forward_kinematics.hpp"
 #include "framework/core/sha256.hpp"
 #include "framework/correction/correct_crowd.hpp"
 #include "framework/correction/corrector.hpp"
@@ -276,4 +278,50 @@ TEST_CASE("correction: an arm through a thin barrier comes back out on its own s
   CHECK(deepest < 0.005);
   // Out on the body's side: the hand is nearer the body than the barrier's inner face.
   CHECK(caps[kLeftHand].b.x() < barrier.center_m.x());
+}
+
+TEST_CASE("correction: a looping input gives a looping output with the loop pre-roll", "[correction]") {
+  // A dense swaying crowd played forward then backward: the input loops (its last frame is its first).
+  SwayingCrowdOptions o;
+  o.characters = test::kSanitized ? 6 : 9;
+  o.density_per_m2 = 6.66;
+  o.frames = 30;
+  CrowdAnimation crowd = make_swaying_crowd_fixture(o);
+  for (CharacterAnimation& c : crowd.characters) {
+    const std::vector<Pose> forward = c.frames;
+    c.frames.insert(c.frames.end(), forward.rbegin(), forward.rend());
+  }
+  // The mean joint displacement from frame a to frame b, over every character.
+  auto step = [](const CrowdAnimation& a, int fa, int fb) {
+    double sum = 0.0;
+    for (const CharacterAnimation& c : a.characters) {
+      const auto pa = joint_positions(c.shape, c.frames[static_cast<size_t>(fa)]);
+      const auto pb = joint_positions(c.shape, c.frames[static_cast<size_t>(fb)]);
+      for (size_t j = 0; j < pa.size(); ++j) sum += (pa[j] - pb[j]).norm();
+    }
+    return sum;
+  };
+  auto seam_ratio = [&](const CrowdAnimation& out) {
+    const int n = out.frame_count();
+    std::vector<double> steps;
+    for (int f = 1; f < n; ++f) steps.push_back(step(out, f - 1, f));
+    std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
+    return step(out, n - 1, 0) / steps[steps.size() / 2];
+  };
+  CorrectorParams params;
+  CorrectionReport report;
+  const CrowdAnimation plain = correct_crowd(crowd, params, nullptr, &report);
+  CHECK(report.preroll_frames == 0);
+  params.loop_preroll_s = 2.0;
+  const CrowdAnimation looped = correct_crowd(crowd, params, nullptr, &report);
+  CHECK(report.preroll_frames == 59);
+  INFO("seam / median step: " << seam_ratio(plain) << " without, " << seam_ratio(looped)
+                              << " with the pre-roll");
+  CHECK(seam_ratio(plain) > 2.0);
+  CHECK(seam_ratio(looped) <= 1.5);
+  // A crowd that does not come back (everyone walks off 1 m) gets no pre-roll.
+  for (CharacterAnimation& c : crowd.characters)
+    for (size_t f = 0; f < c.frames.size(); ++f) c.frames[f].root_position_m.x() += 1.0 * f / c.frames.size();
+  correct_crowd(crowd, params, nullptr, &report);
+  CHECK(report.preroll_frames == 0);
 }

@@ -73,3 +73,30 @@ TEST_CASE("placement: impossible or malformed requests give clear InputErrors", 
   const Placement ok = place_poisson_disk(area, 20, 3, {.min_spacing_m = 0.55});
   CHECK(ok.min_spacing_m >= 0.55);
 }
+
+TEST_CASE("placement: a personal space gives plain Poisson-disk spacing, neighbours from it up",
+          "[crowd][placement]") {
+  // 20 people on 9 m^2 (seed 000's D1): spread evenly, nobody stands closer than ~0.65 m; with a
+  // 0.45 m personal space (Hall 1966) they stand irregularly, some pairs close to 0.45 m.
+  const Polygon2 area = rectangle_polygon(3.0, 3.0);
+  auto close_pairs = [](const Placement& p, double within) {
+    int count = 0;
+    for (size_t i = 0; i < p.positions.size(); ++i)
+      for (size_t j = i + 1; j < p.positions.size(); ++j)
+        count += (p.positions[i] - p.positions[j]).norm() < within ? 1 : 0;
+    return count;
+  };
+  PlacementOptions personal;
+  personal.personal_space_m = 0.45;
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    const Placement even = place_poisson_disk(area, 20, seed);
+    const Placement poisson = place_poisson_disk(area, 20, seed, personal);
+    INFO("seed " << seed << ": min spacing " << even.min_spacing_m << " vs " << poisson.min_spacing_m);
+    CHECK(poisson.min_spacing_m >= 0.45);
+    CHECK(close_pairs(even, 0.55) == 0);
+    CHECK(close_pairs(poisson, 0.55) >= 3);
+  }
+  // Denser than the personal space allows (60 on 9 m^2: d_hex 0.42 m): placed as without it.
+  const Placement dense = place_poisson_disk(area, 60, 9, personal);
+  CHECK(dense.min_spacing_m == Approx(place_poisson_disk(area, 60, 9).min_spacing_m));
+}

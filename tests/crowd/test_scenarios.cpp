@@ -75,6 +75,16 @@ TEST_CASE("scenarios: the stationary concert at seed 000's densities", "[crowd][
       CHECK(std::fabs(p0.y()) <= 1.5 + 0.05);
     }
   }
+  // The clip loops (issue 28): every sway and look-around runs whole cycles, so the step from the last
+  // frame back to the first is an ordinary step.
+  for (const AgentTrajectory& a : generate(spec, condition({{"density", level(2.22)}})).trajectories.agents) {
+    const size_t n = a.position_m.size();
+    double largest = 0.0;
+    for (size_t f = 1; f < n; ++f)
+      largest = std::max(largest, (a.position_m[f] - a.position_m[f - 1]).norm());
+    CHECK((a.position_m.front() - a.position_m.back()).norm() <= 1.5 * largest + 1e-12);
+    CHECK(std::fabs(a.heading_rad.front() - a.heading_rad.back()) <= 0.02);
+  }
   // The characters factor wins over density.
   CHECK(generate(spec, condition({{"characters", level(25)}})).trajectories.agents.size() == 25);
 }

@@ -59,6 +59,14 @@ TEST_CASE("baseline and ours of a condition are rendered with the identical came
       REQUIRE(base.at("camera_per_frame").size() == 15);
       CHECK(base.at("camera_per_frame") == ours.at("camera_per_frame"));
     }
+    // The stimulus check (issue 28): measured for every clip, the same numbers in the manifest.
+    const json& check = base.at("stimulus_check");
+    CHECK(check.at("crowd_in_frame_min").get<double>() >= 0.0);
+    CHECK(check.at("crowd_in_frame_min").get<double>() <= 1.0);
+    CHECK(check.at("character_height_px").get<double>() > 0.0);
+    CHECK(check.at("overlap_frame_share").get<double>() >= 0.0);
+    CHECK(check.at("overlap_pixel_fraction").get<double>() >= 0.0);
+    CHECK(check.at("seam_step_ratio").get<double>() > 0.0);
     // Every character is listed with its sex and height; the correction changes neither.
     REQUIRE(!base.at("characters").empty());
     CHECK(base.at("characters") == ours.at("characters"));
@@ -78,4 +86,37 @@ TEST_CASE("baseline and ours of a condition are rendered with the identical came
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.out, Catch::Contains("0 stage outputs made"));
   CHECK(read_json(sidecar) == before);
+}
+
+TEST_CASE("run --strict and check-stimuli judge every clip by the spec's render.check") {
+  const fs::path out = scratch_dir("pipeline_stimulus_check");
+  // pair_cameras.yaml with a character-height limit no clip can meet.
+  std::string text = slurp(source_dir() / "tests/data/pipeline/pair_cameras.yaml");
+  text += "\nrender:\n  check: {character_height_px_min: 100000, overhead_height_px_min: 100000}\n";
+  const fs::path spec = out / "strict.yaml";
+  std::ofstream(spec) << text;
+  const fs::path run_dir = out / "run";
+  CliResult r = run_cli({"-q", "run", spec.string(), "--out", run_dir.string(), "--strict"});
+  INFO(r.out << r.err);
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.err, Catch::Contains("character height"));
+  REQUIRE(fs::exists(run_dir / "manifest.csv"));  // everything is written before the failure
+  for (const StimulusEntry& e : read_manifest((run_dir / "manifest.csv").string()).entries)
+    CHECK(e.check.character_height_px > 0.0);
+  // Without --strict the same run only warns.
+  r = run_cli({"-q", "run", spec.string(), "--out", run_dir.string()});
+  CHECK(r.exit_code == 0);
+  // check-stimuli prints one row per clip with the verdict.
+  r = run_cli({"check-stimuli", run_dir.string()});
+  CHECK(r.exit_code == 0);
+  CHECK_THAT(r.out,
+             Catch::Contains("| density-3.5_viewpoint-V3_method-baseline_rep-1 | V3 | baseline | 3.5 |"));
+  CHECK_THAT(r.out, Catch::Contains("4 clip(s): 4 outside render.check, 0 not measured"));
+  r = run_cli({"check-stimuli", run_dir.string(), "--strict"});
+  CHECK(r.exit_code == 1);
+  // Judged by the shipped spec's default limits instead, the same clips pass.
+  r = run_cli({"check-stimuli", run_dir.string(), "--spec",
+               (source_dir() / "tests/data/pipeline/pair_cameras.yaml").string()});
+  CHECK_THAT(r.out, Catch::Contains("4 clip(s): "));
+  CHECK(r.exit_code == 0);
 }

@@ -93,7 +93,12 @@ TEST_CASE("framing rule: at V1-V4 the crowd's box is centred and fills 92 % of t
     for (const char* name : {"V1", "V2", "V3", "V4"}) {
       INFO("crowd " << k << ", viewpoint " << name);
       const Camera cam = Viewpoint(name, extents[k], w, h).at(0);
-      const Rect box = project_box(cam, extents[k].lo_m, extents[k].hi_m);
+      // A travelling crowd (the walkers) is framed by its box relative to the follow path.
+      const CrowdExtent& e = extents[k];
+      const bool follows = !e.follow_path_m.empty();
+      const Rect box =
+          follows ? project_box(cam, e.follow_lo_m + e.follow_path_m[0], e.follow_hi_m + e.follow_path_m[0])
+                  : project_box(cam, e.lo_m, e.hi_m);
       CHECK(box.x0 >= 0.0);
       CHECK(box.y0 >= 0.0);
       CHECK(box.x1 <= w);

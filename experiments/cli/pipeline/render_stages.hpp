@@ -6,7 +6,10 @@
 
 namespace crowdlab::cli {
 
-/// run_experiment() with the renderer's stages and every library's version in the sidecars.
-RunSummary run_with_stimuli(const ExperimentSpec& spec, const RunOptions& options);
+/// run_experiment() with the renderer's stages and every library's version in the sidecars. Every clip
+/// gets the stimulus check (stimuli/stimulus_check.hpp) in its sidecar and manifest row; a clip outside
+/// the spec's render.check is logged as a warning, and with `strict` the run then throws RuntimeError
+/// (after writing everything, manifest included).
+RunSummary run_with_stimuli(const ExperimentSpec& spec, const RunOptions& options, bool strict = false);
 
 }  // namespace crowdlab::cli

@@ -16,6 +16,7 @@
 #include "experiments/cli/figures/overlap_vs_density.hpp"
 #include "experiments/cli/reproduce/correction_quality_section.hpp"
 #include "experiments/cli/reproduce/reproduction_checks.hpp"
+#include "experiments/cli/reproduce/stimulus_check_section.hpp"
 #include "framework/core/error.hpp"
 #include "framework/correction/damping_experiment.hpp"
 #include "framework/pipeline/provenance.hpp"
@@ -233,6 +234,9 @@ void reproduce_gomez2024(const ReproduceOptions& o) {
       "and overlap targets are checked on the paper's 20 s clips only: a short clip is mostly the "
       "corrector's "
       "start-up transient.\n\n";
+
+  stimulus_check_section(stationary, "stationary (§4.4 stage 1)", md);
+  stimulus_check_section(corridor, "corridor (§4.4 stage 2)", md);
 
   damping_section(dir, checks, md);
   if (!o.skip_timing) timing_section(size, dir, md);

@@ -9,6 +9,8 @@
 //            (seed 000 §4.2), via `bench correct`'s measurement;
 //   study    the stationary study (§4.4) answered by simulated observers and the full analysis report
 //            (RM-ANOVA over density x viewpoint x method on the three composites).
+//   stimuli  the stimulus check's geometric measures of every condition (crowd in frame, character
+//            height, loop seam; stimulus_check_section.hpp), reported, not checked.
 // Sizes: full = the specs' 20 s clips at 30 fps, 30 observers (the paper's N), 100 timed steps;
 // --quick = 1 s at 30 fps, 8 observers, 10 timed steps (CI).
 // Checks and tolerances (reproduction_checks.hpp; documented in docs/reproductions.md):
