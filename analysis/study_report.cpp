@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <sstream>
 
 #include "analysis/analysis_json.hpp"
 #include "analysis/apa_format.hpp"
@@ -22,6 +23,7 @@
 #include "analysis/reliability.hpp"
 #include "analysis/study_responses.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/write_file.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
 namespace crowdlab::analysis {
@@ -77,6 +79,12 @@ std::optional<std::string> try_fit(Fit&& fit) {
   } catch (const std::underflow_error& e) {
     return std::string(e.what());
   }
+}
+
+// Every file of the report goes through the framework's atomic writer: a link, device or FIFO under the
+// report's name is refused rather than written through (issue 32), and a full disk is named.
+void write_report_file(const fs::path& path, const std::string& text) {
+  write_file_atomic(path, text, /*durable=*/false);
 }
 
 std::string not_fitted_line(const std::string& why) {
@@ -229,10 +237,11 @@ void normality_section(Context& ctx, const WithinDesign& design, const std::stri
     ctx.md += "Normality of residuals: not tested: " + *why + "\n\n";
     return;
   }
-  std::ofstream qq(ctx.out / "stats" / ("qq_" + safe_name(name) + ".csv"));
+  std::ostringstream qq;
   qq << "theoretical,sample\n";
   for (size_t i = 0; i < normal.sample.size(); ++i)
     qq << normal.theoretical[i] << "," << normal.sample[i] << "\n";
+  write_report_file(ctx.out / "stats" / ("qq_" + safe_name(name) + ".csv"), qq.str());
   ctx.md += "Normality of residuals: Kolmogorov-Smirnov D = " + fmt(normal.ks.statistic, 3) +
             ", p = " + apa_p(normal.ks.p) + " (Q-Q data: stats/qq_" + safe_name(name) + ".csv).\n\n";
 }
@@ -302,7 +311,7 @@ void measure_section(Context& ctx, const std::string& name, const std::vector<st
   }
   for (const auto& item : items) clmm_section(ctx, item, stats);
   if (!anova_why) posthoc_section(ctx, design, anova, name, stats);
-  std::ofstream(ctx.out / "stats" / (safe_name(name) + ".json")) << stats.dump(2) << "\n";
+  write_report_file(ctx.out / "stats" / (safe_name(name) + ".json"), stats.dump(2) + "\n");
   if (design_why) return;
   const int points = ctx.spec.protocol.scale_points;
   interaction_plots(ctx, design, name, "Answer (1-" + std::to_string(points) + " scale)");
@@ -346,8 +355,8 @@ void psychometric_section(Context& ctx, const QuestionSpec& q) {
   req.bootstrap = 0;
   PsychometricAnalysis a;
   if (const auto why = try_fit([&] { a = analyze_psychometric(t, req); })) {
-    std::ofstream(ctx.out / "stats" / ("psychometric_" + safe_name(q.id) + ".json"))
-        << nlohmann::json{{"not_fitted", *why}}.dump(2);
+    write_report_file(ctx.out / "stats" / ("psychometric_" + safe_name(q.id) + ".json"),
+                      nlohmann::json{{"not_fitted", *why}}.dump(2));
     ctx.md += not_fitted_line(*why);
     return;
   }
@@ -360,8 +369,8 @@ void psychometric_section(Context& ctx, const QuestionSpec& q) {
   for (const auto& f : a.fits) separated += f.fit.separated;
   if (separated)
     ctx.md += std::to_string(separated) + " fit(s) had completely separated answers (Firth estimate).\n\n";
-  std::ofstream(ctx.out / "stats" / ("psychometric_" + safe_name(q.id) + ".json"))
-      << psychometric_to_json(a).dump(2);
+  write_report_file(ctx.out / "stats" / ("psychometric_" + safe_name(q.id) + ".json"),
+                    psychometric_to_json(a).dump(2));
   PsychometricPlot plot;
   plot.title = q.id + ": psychometric functions";
   plot.x_label = factor_axis_label(x_factor);
@@ -457,7 +466,7 @@ std::string write_study_report(const std::string& study_dir, const std::string& 
       psychometric_section(ctx, q);
     }
   const fs::path path = ctx.out / "report.md";
-  std::ofstream(path) << ctx.md;
+  write_report_file(path, ctx.md);
   return path.string();
 }
 

@@ -112,8 +112,8 @@ Stage CrowdGroup::correction_stage() {
     Progress progress("correct " + key_, static_cast<size_t>(input.frame_count()));
     CorrectionReport report;
     animation_[i] = correct_crowd(
-        input, corrector_params(recipes_.correction.correction, recipes_.correction.loop_preroll_s), &progress,
-        &report);
+        input, corrector_params(recipes_.correction.correction, recipes_.correction.loop_preroll_s),
+        &progress, &report);
     if (report.rejected_steps > 0)
       spdlog::warn("{}: the corrector rejected {} of {} steps and kept the last stable state", key_,
                    report.rejected_steps, report.frames);

@@ -54,10 +54,10 @@ struct AnimationRecipe {
 /// The correction stage: the collision corrector on baseline.glb (ours.glb).
 struct CorrectionRecipe {
   static constexpr std::string_view kStage = "correction";
-  static constexpr std::string_view kCodeVersion = "2";  ///< 2: issue 27's free joints, issue 28's pre-roll
+  static constexpr std::string_view kCodeVersion = "2";  ///< 2: issue 27's free joints
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
-  /// (correct_crowd.hpp; issue 28): 2 s when the study shows the clips looping (protocol.loop_video), else 0.
+  /// (correct_crowd.hpp; issue 28). 0 in runs for now (crowd_recipes.cpp says why).
   double loop_preroll_s = 0.0;
 };
 
@@ -65,7 +65,7 @@ struct CorrectionRecipe {
 struct MetricsRecipe {
   static constexpr std::string_view kStage = "metrics";
   static constexpr std::string_view kCodeVersion = "2";  ///< 2: free limbs, flips, environment (issue 27)
-  CrowdMethod method = CrowdMethod::baseline;  ///< the animation measured (against the baseline)
+  CrowdMethod method = CrowdMethod::baseline;            ///< the animation measured (against the baseline)
   bool surface_ground = false;  ///< manifold crowds: the feet's ground is the surface, not y = 0
 };
 

@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "analysis/study_report.hpp"
+#include "framework/core/error.hpp"
 #include "framework/core/seed.hpp"
 #include "framework/core/stimulus_manifest.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
@@ -177,4 +178,25 @@ TEST_CASE("analyze report: every simulated study gets a report with finite or 'N
   if (studies >= static_cast<int>(cases.size())) CHECK(not_fitted > 0);
   WARN(studies << " studies; 'Not fitted' written " << not_fitted << " times; separated data in "
                << separated_seen);
+}
+
+TEST_CASE("analyze report never writes through a link in its output folder", "[analysis][report]") {
+  // Issue 32: the report's files go through the one atomic writer, which refuses a destination that is a
+  // symbolic link (it would replace the link, or a device node, by a regular file).
+  const std::string demo = (test::source_dir() / "experiments/demo.yaml").string();
+  const ExperimentSpec spec = load_experiment_spec(demo);
+  const fs::path dir = test::scratch_dir("report_link");
+  study::SimulateStudyOptions opt;
+  opt.observers = 4;
+  opt.out_dir = (dir / "study").string();
+  opt.verify_files = false;
+  study::simulate_study(spec, manifest_for(spec), study::ObserverModel{}, opt);
+  const fs::path outside = dir / "outside.txt";
+  std::ofstream(outside) << "keep me";
+  fs::create_directories(dir / "report");
+  fs::create_symlink(outside, dir / "report" / "report.md");
+  CHECK_THROWS_AS(analysis::write_study_report((dir / "study").string(), demo, (dir / "report").string()),
+                  InputError);
+  CHECK(slurp_text(outside) == "keep me");
+  CHECK(fs::is_symlink(dir / "report" / "report.md"));
 }

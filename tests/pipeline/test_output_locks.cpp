@@ -87,11 +87,15 @@ TEST_CASE("every other command that writes an output folder is refused while ano
            {"experiment", "manifold-compare", "--out", out},
            {"analyze", "report", out, "--spec", demo_spec, "--out", out},
            {"simulate-study", demo_spec, "--stimuli", out, "--out", out},
-           {"import-web", out, "--spec", demo_spec, "--stimuli", out, "--out", out},
            {"plan", spec, "--emit", "make", "--out", out},
        }) {
     INFO(args[0] << " " << args[1]);
     check_refused(run_cli(args), dir, holder);
   }
+  // import-web checks its inputs before it takes the folder (issue 29: a refused input writes nothing,
+  // not even the lock file); these inputs are refused, so it exits 2 without touching the held folder.
+  const CliResult r = run_cli({"import-web", out, "--spec", demo_spec, "--stimuli", out, "--out", out});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("--stimuli"));
   stop(holder);
 }

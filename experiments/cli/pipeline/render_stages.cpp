@@ -17,9 +17,9 @@ RunSummary run_with_stimuli(const ExperimentSpec& spec, const RunOptions& option
   if (strict && !failed.empty()) {
     std::string list;
     for (const std::string& f : failed) list += "\n  " + f;
-    throw RuntimeError("run --strict: " + std::to_string(failed.size()) +
-                       " stimulus check(s) outside render.check (the run's outputs and manifest are written):" +
-                       list);
+    throw RuntimeError(
+        "run --strict: " + std::to_string(failed.size()) +
+        " stimulus check(s) outside render.check (the run's outputs and manifest are written):" + list);
   }
   return summary;
 }
