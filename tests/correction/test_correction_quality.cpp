@@ -276,7 +276,10 @@ TEST_CASE("correction: joints that touch nobody keep their input, and no joint f
        << with.free_limbs.free_joint_frames << " joint-frames; flips " << without.flips.count << " -> "
        << with.flips.count << "; p99 depth " << without.depth_p99_m << " -> " << with.depth_p99_m);
   REQUIRE(with.free_limbs.free_joint_frames > 1000);
-  CHECK(without.free_limbs.max_deg > 5.0);
+  // The old solver edits free limbs visibly (6.7 deg max on the 2 s clip with the dressed bodies; 4.5 deg on
+  // the sanitizer build's 1 s clip), and at least three times as much as the release leaves (1.5 deg).
+  CHECK(without.free_limbs.max_deg > 2.0);
+  CHECK(without.free_limbs.max_deg > 3.0 * with.free_limbs.max_deg);
   CHECK(without.flips.count > 0);
   CHECK(with.free_limbs.p99_deg <= 2.0);
   CHECK(with.free_limbs.max_deg <= 5.0);
