@@ -16,7 +16,7 @@
 #include "analysis/rm_anova.hpp"
 #include "analysis/simulated_rows.hpp"
 #include "analysis/study_report.hpp"
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "framework/core/error.hpp"
 
@@ -64,7 +64,7 @@ void check_study_dir_unmixed(const std::string& dir, bool allow_mix) {
 }
 
 void add_design_options(
-    CLI::App* cmd, DesignArgs& a, bool with_between = false,
+    Command* cmd, DesignArgs& a, bool with_between = false,
     const std::string& between_help =
         "Between-subject factor columns, comma-separated (e.g. group); groups may differ in "
         "size (Type III sums of squares, as afex)") {
@@ -81,11 +81,11 @@ void add_design_options(
   cmd->add_option(
          "--max-levels", a.limits.max_levels,
          "Refuse (exit 2) a factor with more levels than this, before any work (see docs/analysis.md)")
-      ->check(CLI::PositiveNumber)
+      ->check(check::positive_number())
       ->capture_default_str();
   cmd->add_option("--max-cells", a.limits.max_cells,
                   "Refuse (exit 2) a design with more cells (product of the levels) than this")
-      ->check(CLI::PositiveNumber)
+      ->check(check::positive_number())
       ->capture_default_str();
   cmd->add_flag("--allow-simulated-mix", a.allow_simulated_mix, kAllowMixHelp);
 }
@@ -162,7 +162,9 @@ WithinDesign load_design(const DesignArgs& a) {
                              a.limits, between);
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_analyze_command(Command& root) {
   auto* analyze =
       root.add_subcommand("analyze", "Statistics: RM-ANOVA, post-hoc tests, psychometric fits, reports");
   analyze->require_subcommand(1);
@@ -201,20 +203,20 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                      "pooled or separate");
   ph->add_option("--effect", ph_opt->effect, "Effect: a factor (A) or an interaction (A:B)")->required();
   ph->add_option("--method", ph_opt->method, "tukey (pooled-error Tukey HSD) or bonferroni (paired t-tests)")
-      ->check(CLI::IsMember({"tukey", "bonferroni"}))
+      ->check(check::is_member({"tukey", "bonferroni"}))
       ->capture_default_str();
   ph->add_option(
         "--error", ph_opt->error,
         "classic (Tukey with the effect's own error term, or paired t), pooled (emmeans' univariate "
         "model: error strata pooled, Satterthwaite df) or separate (emmeans' multivariate model: each "
         "contrast's own error); with pooled/separate the statistic is t and --method adjusts p")
-      ->check(CLI::IsMember({"classic", "pooled", "separate"}))
+      ->check(check::is_member({"classic", "pooled", "separate"}))
       ->capture_default_str();
   ph->add_flag("--simple", ph_opt->simple,
                "Only compare cells that differ in one factor (simple comparisons)");
   ph->add_option("--max-comparisons", ph_opt->max_comparisons,
                  "Refuse (exit 2) a family with more pairwise comparisons than this, before any work")
-      ->check(CLI::PositiveNumber)
+      ->check(check::positive_number())
       ->capture_default_str();
   ph->add_flag("--json", ph_opt->json, "Print JSON");
   ph->callback([o = ph_opt] {
@@ -289,11 +291,11 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   psy->add_option("--p", psy_opt->probabilities, "Threshold probabilities, comma-separated")
       ->capture_default_str();
   psy->add_option("--bootstrap", req.bootstrap, "Parametric-bootstrap replicates per fit (0 = none)")
-      ->check(CLI::Range(0, 100000));
+      ->check(check::range(0, 100000));
   psy->add_option("--seed", req.seed, "Bootstrap seed")->capture_default_str();
   psy->add_option("--x-transform", req.x_transform,
                   "none | cbrt (cube root of volume, seed 001 section 4.2.3)")
-      ->check(CLI::IsMember({"none", "cbrt"}))
+      ->check(check::is_member({"none", "cbrt"}))
       ->capture_default_str();
   psy->add_option("--guess", req.options.guess,
                   "Fixed guess rate (lower asymptote); thresholds are then points of "
@@ -393,7 +395,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
           "e.g. \"R ~ a * b + (1 | S)\" or \"R ~ a + (1 | S) + (1 | stimulus)\": random-intercept terms")
       ->required();
   clmm->add_option("--link", clmm_opt->link, "logit or probit")
-      ->check(CLI::IsMember({"logit", "probit"}))
+      ->check(check::is_member({"logit", "probit"}))
       ->capture_default_str();
   clmm->add_flag("--json", clmm_opt->json,
                  "Print {\"thresholds\": [{name, estimate, se}], \"fixed\": [{term, estimate, se, z, p}], "
@@ -425,6 +427,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     const auto path = write_study_report(o->study_dir, o->spec_path, o->out_dir);
     std::cout << "wrote " << path << "\n";
   });
-});
-}  // namespace
+}
+
 }  // namespace crowdlab::cli

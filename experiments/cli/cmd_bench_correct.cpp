@@ -6,7 +6,7 @@
 
 #include "experiments/cli/bench_correct_run.hpp"
 #include "experiments/cli/bench_group.hpp"
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "experiments/cli/corrector_tuning_options.hpp"
 
 namespace crowdlab::cli {
@@ -49,7 +49,9 @@ void run(const Options& o) {
               r.peak_rss_mb, r.peak_rss_mb / o.bench.characters);
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_bench_correct_command(Command& root) {
   auto opts = std::make_shared<Options>();
   CorrectBenchOptions& b = opts->bench;
   auto* cmd = bench_group(root)->add_subcommand(
@@ -70,7 +72,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                 "Also measure the correction quality of the timed steps (overlap, depth, deviation, skate)");
   cmd->add_flag("--json", opts->json, "Print one JSON object");
   cmd->callback([opts] { run(*opts); });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "experiments/cli/bench_group.hpp"
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "framework/core/error.hpp"
 #include "framework/crowd/crowd_simulation.hpp"
 #include "framework/crowd/make_navigation_model.hpp"
@@ -85,7 +85,7 @@ void run(const Args& a) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<std::size_t>(a.threads));
   CrowdSpec spec;                                 // the benchmark's parameters are crowd.* defaults
-  spec.model = *parse_kind<CrowdModel>(a.model);  // CLI::IsMember allows only the enum's spellings
+  spec.model = *parse_kind<CrowdModel>(a.model);  // check::is_member allows only the enum's spellings
   if (a.overlap_free && a.model != "orca")
     throw InputError("bench crowd: --overlap-free applies to --model orca only");
   spec.overlap_free = a.overlap_free;  // crowd.overlap_free
@@ -142,14 +142,16 @@ void run(const Args& a) {
   }
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_bench_crowd_command(Command& root) {
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = bench_group(root)->add_subcommand(
+  Command* cmd = bench_group(root)->add_subcommand(
       "crowd",
       "Milliseconds per step of a 2D navigation model: N agents on a circle (0.6 m apart) swapping to "
       "their antipodes");
   cmd->add_option("--model", args->model, "Navigation model")
-      ->check(CLI::IsMember(kind_names<CrowdModel>()))
+      ->check(check::is_member(kind_names<CrowdModel>()))
       ->capture_default_str();
   cmd->add_option("--agents", args->agents, "Number of agents N (circle radius N*0.6/2pi m), at most 100000")
       ->capture_default_str();
@@ -163,7 +165,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                 "(default: plain ORCA as in the paper and RVO2)");
   cmd->add_flag("--json", args->json, "Print one JSON object");
   cmd->callback([args] { run(*args); });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiments/cli/bench_group.hpp"
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "experiments/cli/timing.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/surface/surface_crowd.hpp"
@@ -80,32 +80,33 @@ void run(const Options& o) {
   }
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_bench_manifold_command(Command& root) {
   auto opts = std::make_shared<Options>();
   auto* cmd = bench_group(root)->add_subcommand("manifold", "Surface crowd: median ms per simulation step");
   cmd->add_option("--agents", opts->agents, "Number of agents")
-      ->check(CLI::Range(1, 1000000))
+      ->check(check::range(1, 1000000))
       ->capture_default_str();
   cmd->add_option(
          "--mesh", opts->mesh,
          "Scene name (building, floor_ceiling, floor_wall, mobius, torus, tree, blobby) or .obj/.gltf/.glb")
       ->capture_default_str();
   cmd->add_option("--model", opts->model, "Obstacle avoidance in the tangent plane")
-      ->check(CLI::IsMember({"social", "orca"}))
+      ->check(check::is_member({"social", "orca"}))
       ->capture_default_str();
   cmd->add_option("--relevant", opts->relevant, "Relevant function (relevance.hpp)")
-      ->check(CLI::IsMember({"visibility", "visibility_mesh", "euclidean", "surface"}))
+      ->check(check::is_member({"visibility", "visibility_mesh", "euclidean", "surface"}))
       ->capture_default_str();
   cmd->add_flag("--face-up", opts->face_up, "Bodies along each face's normal instead of the smoothed up");
   cmd->add_option("--steps", opts->steps, "Timed steps")
-      ->check(CLI::Range(1, 1000000))
+      ->check(check::range(1, 1000000))
       ->capture_default_str();
   cmd->add_option("--threads", opts->threads, "Worker threads")
-      ->check(CLI::Range(1, 256))
+      ->check(check::range(1, 256))
       ->capture_default_str();
   cmd->add_flag("--json", opts->json, "Print one JSON object");
   cmd->callback([opts] { run(*opts); });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

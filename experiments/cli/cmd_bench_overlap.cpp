@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "experiments/cli/bench_group.hpp"
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/seed.hpp"
@@ -144,7 +144,9 @@ void run(const BenchOverlapArgs& args) {
   }
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_bench_overlap_command(Command& root) {
   auto args = std::make_shared<BenchOverlapArgs>();
   auto* cmd = bench_group(root)->add_subcommand(
       "overlap", "Time the capsule-body overlap volume per colliding character pair (median/mean ms)");
@@ -158,7 +160,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_flag("--reference", args->reference,
                 "Also report the relative difference to a 16x finer grid (not timed)");
   cmd->callback([args] { run(*args); });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

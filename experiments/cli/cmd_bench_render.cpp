@@ -16,7 +16,7 @@
 
 #include "experiments/cli/bench_group.hpp"
 #include "experiments/cli/bench_render_scene.hpp"
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "framework/core/error.hpp"
 #include "stimuli/render_clip.hpp"
 #include "stimuli/render_quality.hpp"
@@ -201,7 +201,9 @@ void run(const Args& a) {
   }
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_bench_render_command(Command& root) {
   auto args = std::make_shared<Args>();
   auto* cmd = bench_group(root)->add_subcommand(
       "render", "Stimulus rendering + H.264 encoding throughput (frames per second)");
@@ -209,17 +211,17 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                   "paper: a real seed 000 stimulus (stationary concert crowd, --density, the spec's body "
                   "model); synthetic: the procedural test crowd (--characters, --spacing)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"paper", "synthetic"}));
+      ->check(check::is_member({"paper", "synthetic"}));
   cmd->add_option("--spec", args->spec, "Paper scene: this spec instead of the embedded gomez2024_stationary")
-      ->check(CLI::ExistingFile);
+      ->check(check::existing_file());
   cmd->add_option("--condition", args->condition, "Paper scene: this condition id (default: by --density)");
   cmd->add_option("--density", args->density, "Paper scene: the density level (characters per m^2)")
       ->capture_default_str();
   cmd->add_option("--body-model", args->body_model, "Paper scene: procedural | mpfb2 (default: the spec's)")
-      ->check(CLI::IsMember(kind_names<BodyModel>()));
+      ->check(check::is_member(kind_names<BodyModel>()));
   cmd->add_option("--characters", args->characters, "Characters in the procedural crowd")
       ->capture_default_str()
-      ->check(CLI::Range(1, 10000));
+      ->check(check::range(1, 10000));
   cmd->add_option("--width", args->width, "Frame width (even)")->capture_default_str();
   cmd->add_option("--height", args->height, "Frame height (even)")->capture_default_str();
   cmd->add_option("--frames", args->frames, "Timed frames")->capture_default_str();
@@ -238,13 +240,13 @@ const CommandRegistration kRegistration([](CLI::App& root) {
          "--msaa", args->msaa,
          "MSAA samples (1: the stimuli's fast path, the default of render.msaa; 4: the quality reference)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 16));
+      ->check(check::range(1, 16));
   cmd->add_option("--shadow-map", args->shadow_map, "Shadow map size (pixels)")
       ->capture_default_str()
-      ->check(CLI::Range(64, 8192));
+      ->check(check::range(64, 8192));
   cmd->add_option("--lod-pixels", args->lod_pixels, "Level-of-detail screen-space error bound (pixels)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(check::range(0.0, 100.0));
   cmd->add_flag("--empty", args->empty,
                 "Draw the scene without its characters: the fixed cost of a frame (clear, ground, resolve, "
                 "readback, encode), i.e. the ceiling of this machine");
@@ -257,7 +259,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                 "Also render the frames once more with each GPU pass finished before the next, and print "
                 "each stage's median time");
   cmd->callback([args] { run(*args); });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

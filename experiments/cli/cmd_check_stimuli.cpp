@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "experiments/cli/stimulus_check_table.hpp"
 #include "framework/core/error.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
@@ -18,7 +18,9 @@ struct Options {
   bool strict = false;
 };
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_check_stimuli_command(Command& root) {
   auto o = std::make_shared<Options>();
   auto* cmd = root.add_subcommand(
       "check-stimuli",
@@ -26,11 +28,11 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       "loop seam per clip), judged by the thresholds of the run's spec (render.check).");
   cmd->add_option("dir", o->dir, "Output folder of `crowdlab run` (holds manifest.csv and spec.yaml)")
       ->required()
-      ->check(CLI::ExistingDirectory);
+      ->check(check::existing_directory());
   cmd->add_option("--spec", o->spec,
                   "Judge by this spec instead of DIR/spec.yaml (e.g. when the copy's relative paths do not "
                   "resolve from DIR)")
-      ->check(CLI::ExistingFile);
+      ->check(check::existing_file());
   cmd->add_flag("--strict", o->strict, "Exit with code 1 when any clip misses a threshold");
   cmd->callback([o] {
     namespace fs = std::filesystem;
@@ -47,7 +49,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       throw RuntimeError("check-stimuli --strict: " + std::to_string(t.failed) +
                          " clip(s) outside render.check");
   });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

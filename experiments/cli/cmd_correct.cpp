@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/correction/correct_crowd.hpp"
 #include "framework/correction/environment_point_tree.hpp"
@@ -20,7 +20,9 @@ struct CorrectOptions {
   CorrectorParams params;
 };
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_correct_command(Command& root) {
   auto opt = std::make_shared<CorrectOptions>();
   auto* cmd = root.add_subcommand(
       "correct",
@@ -38,11 +40,11 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--foot-pop-budget", opt->params.foot_pop_budget_m,
                   "How much farther than its input a foot joint may move per step (m, 0 = off)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(check::range(0.0, 1.0))
       ->capture_default_str();
   cmd->add_option("--max-environment-points", opt->params.max_environment_points,
                   "Refuse an environment that samples into more points than this (about 40 bytes each)")
-      ->check(CLI::PositiveNumber)
+      ->check(check::positive_number())
       ->capture_default_str();
   cmd->callback([opt] {
     const CrowdAnimation in = read_crowd_glb(opt->in_path);
@@ -59,7 +61,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
         in.characters.size(), report.frames, report.contacts_mean, report.cg_iterations_mean,
         report.rejected_steps, opt->out_path);
   });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

@@ -13,7 +13,7 @@
 #include <set>
 #include <tuple>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "framework/core/csv.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
@@ -113,12 +113,14 @@ void run(const Args& a) {
   std::printf("%s\n", summary.dump().c_str());
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_crowd_command(Command& root) {
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = root.add_subcommand(
+  Command* cmd = root.add_subcommand(
       "crowd",
       "Generate one condition's 2D crowd trajectories (placement + navigation) and its crowd measures");
-  cmd->add_option("spec", args->spec, "Experiment spec (YAML)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("spec", args->spec, "Experiment spec (YAML)")->required()->check(check::existing_file());
   cmd->add_option("--condition", args->condition, "Condition id (see --list)");
   cmd->add_option("--csv", args->csv,
                   "Write character,frame,time_s,x,z,heading_rad,group,radius_m rows here");
@@ -135,7 +137,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       "Table 2) to this CSV");
   cmd->add_flag("--list", args->list, "List the spec's condition ids");
   cmd->callback([args] { run(*args); });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

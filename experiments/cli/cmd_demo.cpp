@@ -9,7 +9,7 @@
 
 #include "analysis/study_report.hpp"
 #include "crowdlab_embedded_demo.hpp"
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "experiments/cli/pipeline/render_stages.hpp"
 #include "framework/core/stimulus_manifest.hpp"
@@ -92,17 +92,18 @@ void run_demo(const Options& o) {
   std::printf("  report:         %s\n", report.c_str());
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_demo_command(Command& root) {
   auto o = std::make_shared<Options>();
   auto* cmd = root.add_subcommand(
       "demo", "Run the embedded demo experiment end to end (stimuli, simulated study, report)");
   cmd->add_option("--out", o->out, "Output folder")->capture_default_str();
   cmd->add_option("--observers", o->observers, "Simulated observers")
-      ->check(CLI::Range(2, 1000))
+      ->check(check::range(2, 1000))
       ->capture_default_str();
   cmd->add_flag("--force", o->force, "Re-run every stage even when up to date");
   cmd->callback([o] { run_demo(*o); });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

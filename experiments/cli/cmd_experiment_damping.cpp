@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "experiments/cli/experiment_group.hpp"
 #include "experiments/cli/figures/damping_figure.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
@@ -23,7 +23,9 @@ struct DampingOptions {
   double duration_s = 8.0;
 };
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_experiment_damping_command(Command& root) {
   auto opt = std::make_shared<DampingOptions>();
   auto* cmd = experiment_group(root)->add_subcommand(
       "damping", "Seed 000 Fig. 4: a character shoved at t = 3.5 s recovering, for several dampings d");
@@ -42,7 +44,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     write_damping_figure(runs, opt->out_dir);
     spdlog::info("wrote {}/damping.csv, damping_summary.csv and damping.png|svg", opt->out_dir);
   });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

@@ -16,7 +16,7 @@
 #include <map>
 #include <memory>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "experiments/cli/experiment_group.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "experiments/cli/timing.hpp"
@@ -98,20 +98,22 @@ void run(const Options& o) {
   std::printf("wrote %s\n", (fs::path(o.out) / "manifold_compare.csv").string().c_str());
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_experiment_manifold_command(Command& root) {
   auto opts = std::make_shared<Options>();
   auto* cmd = experiment_group(root)->add_subcommand(
       "manifold-compare",
       "Seed 002: Relevant functions compared on floor-ceiling, building and floor-wall scenes");
   cmd->add_option("--out", opts->out, "Output folder")->capture_default_str();
   cmd->add_option("--agents", opts->agents, "Agents per run")
-      ->check(CLI::Range(2, 100000))
+      ->check(check::range(2, 100000))
       ->capture_default_str();
   cmd->add_option("--steps", opts->steps, "Steps per run")
-      ->check(CLI::Range(1, 1000000))
+      ->check(check::range(1, 1000000))
       ->capture_default_str();
   cmd->add_option("--runs", opts->runs, "Runs (seeds) per scene and mode")
-      ->check(CLI::Range(1, 1000))
+      ->check(check::range(1, 1000))
       ->capture_default_str();
   cmd->add_option("--seed", opts->seed, "Seed")->capture_default_str();
   cmd->add_flag("--face-up", opts->face_up,
@@ -120,7 +122,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     const OutputFolderLock lock(opts->out);  // one process per folder (output_folder_lock.hpp)
     run(*opts);
   });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

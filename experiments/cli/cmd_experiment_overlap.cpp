@@ -19,7 +19,7 @@
 #include <memory>
 #include <set>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "experiments/cli/corrector_tuning_options.hpp"
 #include "experiments/cli/experiment_group.hpp"
 #include "experiments/cli/figures/overlap_vs_density.hpp"
@@ -179,26 +179,30 @@ void run(const Options& o) {
       o.out.c_str());
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_experiment_overlap_command(Command& root) {
   auto o = std::make_shared<Options>();
   auto* cmd = experiment_group(root)->add_subcommand(
       "overlap-vs-density",
       "Seed 000 Figure 3: per-character overlap volume vs density, baseline and corrected");
   cmd->add_option("--out", o->out, "Output folder")->capture_default_str();
   cmd->add_option("--stationary", o->stationary, "Stationary (concert) spec")
-      ->check(CLI::ExistingFile)
+      ->check(check::existing_file())
       ->capture_default_str();
   cmd->add_option("--corridor", o->corridor, "Corridor (non-stationary) spec")
-      ->check(CLI::ExistingFile)
+      ->check(check::existing_file())
       ->capture_default_str();
   cmd->add_option("--duration", o->duration_s, "Seconds of animation per density")
-      ->check(CLI::Range(0.2, 60.0))
+      ->check(check::range(0.2, 60.0))
       ->capture_default_str();
-  cmd->add_option("--fps", o->fps, "Frames per second")->check(CLI::Range(5.0, 120.0))->capture_default_str();
+  cmd->add_option("--fps", o->fps, "Frames per second")
+      ->check(check::range(5.0, 120.0))
+      ->capture_default_str();
   add_corrector_tuning_options(cmd, o->params);
   cmd->add_option("--contact-offset", o->params.contact_offset_m,
                   "Inter-body contact offset (m): the penalty acts on depth + offset")
-      ->check(CLI::Range(0.0, 0.1))
+      ->check(check::range(0.0, 0.1))
       ->capture_default_str();
   cmd->add_flag("--inertial-prediction", o->inertial_prediction,
                 "Detect contacts at the inertial prediction instead of the exact contact-free step");
@@ -211,7 +215,7 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--foot-hold-tolerance", o->params.foot_hold_tolerance_m,
                   "How far (m) a planted foot may be pushed before leg IK puts it back")
-      ->check(CLI::Range(0.0, 0.1))
+      ->check(check::range(0.0, 0.1))
       ->capture_default_str();
   cmd->add_option("--max-rotation-step", o->params.max_rotation_step_rad,
                   "Trust region on each bone's contact rotation per step (rad, 0 = off)")
@@ -222,7 +226,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     const OutputFolderLock lock(o->out);  // one process per folder (output_folder_lock.hpp)
     run(*o);
   });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

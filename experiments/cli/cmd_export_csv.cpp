@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/io/write_root_trajectories_csv.hpp"
 
@@ -15,7 +15,9 @@ struct ExportCsvOptions {
   std::string out_path;
 };
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_export_csv_command(Command& root) {
   auto opt = std::make_shared<ExportCsvOptions>();
   auto* cmd = root.add_subcommand(
       "export-csv",
@@ -31,7 +33,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                  crowd.characters.size() * crowd.frame_count(), crowd.characters.size(), crowd.frame_count(),
                  opt->out_path);
   });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

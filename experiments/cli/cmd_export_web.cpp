@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "crowdlab_web_dirs.hpp"
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/stimulus_manifest.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
@@ -37,17 +37,19 @@ std::vector<std::string> participant_ids(const std::string& text) {
   return ids;
 }
 
-const CommandRegistration kExportWeb([](CLI::App& root) {
+}  // namespace
+
+void add_export_web_command(Command& root) {
   auto a = std::make_shared<ExportWebArgs>();
   auto* cmd = root.add_subcommand(
       "export-web",
       "Write the spec's study as a static jsPsych web experiment (index.html, jsPsych, clips, timeline.json) "
       "that runs the same protocol and, per participant id, the same trial order as `crowdlab study`; "
       "optionally also a JATOS study archive. See docs/online.md.");
-  cmd->add_option("spec", a->spec, "Experiment spec (YAML)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("spec", a->spec, "Experiment spec (YAML)")->required()->check(check::existing_file());
   cmd->add_option("--stimuli", a->stimuli, "Stimulus folder holding manifest.csv")
       ->required()
-      ->check(CLI::ExistingDirectory);
+      ->check(check::existing_directory());
   cmd->add_option("--out", a->out, "Web study folder to write (absent or empty)")->required();
   cmd->add_option("--jatos", a->jatos, "Also write a JATOS study archive (.jzip) here");
   cmd->add_option("--participants", a->participants,
@@ -81,7 +83,6 @@ const CommandRegistration kExportWeb([](CLI::App& root) {
     if (!a->jatos.empty())
       std::printf("JATOS archive: %s (study assets folder %s)\n", a->jatos.c_str(), r.jatos_dir.c_str());
   });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

@@ -1,12 +1,14 @@
 // `crowdlab help [--markdown]`: every command's --help text, one section per command and subcommand
 // (alphabetical). docs/cli.md is exactly `crowdlab help --markdown`, and a test (docs:) compares the two,
-// so the CLI reference cannot drift from the binary.
+// so the CLI reference cannot drift from the binary. One of the three files that include CLI11
+// (command.hpp): the help texts come from its formatter.
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 
 namespace crowdlab::cli {
 namespace {
@@ -54,13 +56,14 @@ std::string reference(const CLI::App& root, bool markdown) {
   return out;
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_help_command(Command& root) {
   auto markdown = std::make_shared<bool>(false);
   auto* cmd = root.add_subcommand("help", "Print the help of every command (--markdown: the CLI reference)");
   cmd->add_flag("--markdown", *markdown, "Markdown, as in docs/cli.md");
-  CLI::App* root_ptr = &root;
+  const CLI::App* root_ptr = root.app();
   cmd->callback([root_ptr, markdown] { std::fputs(reference(*root_ptr, *markdown).c_str(), stdout); });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

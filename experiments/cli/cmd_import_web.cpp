@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/stimulus_manifest.hpp"
@@ -21,7 +21,9 @@ struct ImportWebArgs {
   bool strict = false;
 };
 
-const CommandRegistration kImportWeb([](CLI::App& root) {
+}  // namespace
+
+void add_import_web_command(Command& root) {
   auto a = std::make_shared<ImportWebArgs>();
   auto* cmd = root.add_subcommand(
       "import-web",
@@ -36,15 +38,15 @@ const CommandRegistration kImportWeb([](CLI::App& root) {
       ->required();
   cmd->add_option("--spec", a->spec, "The experiment spec (YAML) the web study was exported from")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(check::existing_file());
   cmd->add_option("--stimuli", a->stimuli, "Stimulus folder holding manifest.csv (the one exported)")
       ->required()
-      ->check(CLI::ExistingDirectory);
+      ->check(check::existing_directory());
   cmd->add_option("--out", a->out, "Response folder for P.csv / P.json (analyze report reads it)")
       ->required();
   cmd->add_option("--max-file-mb", a->max_file_mb,
                   "Result files larger than this (MiB) are refused before they are read")
-      ->check(CLI::Range(1.0, 1048576.0))
+      ->check(check::range(1.0, 1048576.0))
       ->capture_default_str();
   cmd->add_flag("--strict", a->strict, "Import nothing when any input has a problem");
   cmd->callback([a] {
@@ -73,7 +75,6 @@ const CommandRegistration kImportWeb([](CLI::App& root) {
         r.records, r.files, r.duplicates_merged, r.participants, r.complete, r.declined, r.already_imported,
         r.problems.size(), a->out.c_str());
   });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

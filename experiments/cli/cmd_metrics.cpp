@@ -12,7 +12,7 @@
 #include <optional>
 #include <string>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/core/skeleton.hpp"
 #include "framework/io/read_crowd_glb.hpp"
@@ -116,7 +116,9 @@ void run(const MetricsArgs& args) {
   }
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_metrics_command(Command& root) {
   auto args = std::make_shared<MetricsArgs>();
   auto* cmd = root.add_subcommand(
       "metrics",
@@ -124,13 +126,13 @@ const CommandRegistration kRegistration([](CLI::App& root) {
       "(litres), V (mean cube root of overlap volume), max penetration depth, collision events");
   cmd->add_option("crowd", args->path, "Crowd animation (.glb written by crowdlab)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(check::existing_file());
   cmd->add_option(
          "--input", args->input,
          "The uncorrected animation CROWD was corrected from: adds depth p99, joint deviation, "
          "stance-foot drift, foot pops, ground penetration and floating of the feet, free-limb deviation, "
          "joint flips and environment penetration")
-      ->check(CLI::ExistingFile);
+      ->check(check::existing_file());
   cmd->add_flag("--json", args->json, "Print one JSON object");
   cmd->add_flag("--per-frame", args->per_frame, "Also print the per-frame series");
   cmd->add_flag("!--no-pair-volumes", args->pair_volumes,
@@ -140,7 +142,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("--depth", args->depth, "Overlap quadrature subdivisions per base cell")
       ->capture_default_str();
   cmd->callback([args] { run(*args); });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "experiments/cli/pipeline/job_script_text.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "framework/core/error.hpp"
@@ -96,11 +96,13 @@ void emit(const Options& o) {
     std::printf("run: parallel -j %d < %s && %s\n", std::max(1, n), file.string().c_str(), collect.c_str());
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_plan_command(Command& root) {
   auto o = std::make_shared<Options>();
   auto* cmd = root.add_subcommand(
       "plan", "Write job scripts (Slurm array, GNU parallel, make) that run a spec in shards");
-  cmd->add_option("spec", o->spec, "Experiment spec (YAML)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("spec", o->spec, "Experiment spec (YAML)")->required()->check(check::existing_file());
   cmd->add_option("--emit", o->emit, "slurm | parallel | make")->required();
   cmd->add_option("--out", o->out, "Folder for the generated script")->required();
   cmd->add_option("--results", o->results, "Output folder the jobs write to")->capture_default_str();
@@ -111,7 +113,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     const OutputFolderLock lock(o->out);  // one process per folder (output_folder_lock.hpp)
     emit(*o);
   });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/write_file.hpp"
 #include "framework/io/read_crowd_glb.hpp"
@@ -126,7 +126,9 @@ void run(const RenderArgs& a) {
   }
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_render_command(Command& root) {
   auto a = std::make_shared<RenderArgs>();
   auto* cmd = root.add_subcommand(
       "render",
@@ -160,15 +162,14 @@ const CommandRegistration kRegistration([](CLI::App& root) {
          "--character", a->characters,
          "Skinned glTF character (.glb/.gltf, e.g. Mixamo) drawn instead of the mannequin; repeatable, "
          "character i uses file i mod N")
-      ->check(CLI::ExistingFile);
+      ->check(check::existing_file());
   cmd->add_option(
          "--lod-pixels", a->lod_pixels,
          "Level of detail: a character uses the coarsest mesh whose grid spans at most this many pixels")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(check::range(0.0, 100.0));
   cmd->add_option("--viewpoint-override", a->overrides, "NAME=px,py,pz,tx,ty,tz,fov_deg (repeatable)");
   cmd->callback([a] { run(*a); });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

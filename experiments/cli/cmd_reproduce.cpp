@@ -4,7 +4,7 @@
 // and the tolerances. Exit code 1 when a result leaves its tolerance (outputs are written first).
 #include <memory>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "experiments/cli/reproduce/reproduce_gomez2024.hpp"
 #include "experiments/cli/reproduce/reproduce_hoyet2016.hpp"
@@ -12,23 +12,25 @@
 namespace crowdlab::cli {
 namespace {
 
-CLI::App* add_paper(CLI::App* group, const std::string& name, const std::string& description,
-                    std::shared_ptr<ReproduceOptions> o, const std::string& duration_help,
-                    const std::string& fps_help) {
+Command* add_paper(Command* group, const std::string& name, const std::string& description,
+                   std::shared_ptr<ReproduceOptions> o, const std::string& duration_help,
+                   const std::string& fps_help) {
   auto* cmd = group->add_subcommand(name, description);
   cmd->add_option("-o,--out", o->out, "Output folder (README.md report, checks.json, figures, tables)")
       ->required();
   cmd->add_flag("--quick", o->quick,
                 "Reduced size for CI (see docs/reproductions.md); same tolerances policy");
-  cmd->add_option("--duration", o->duration_s, duration_help)->check(CLI::Range(0.1, 60.0));
-  cmd->add_option("--fps", o->fps, fps_help)->check(CLI::Range(5.0, 120.0));
+  cmd->add_option("--duration", o->duration_s, duration_help)->check(check::range(0.1, 60.0));
+  cmd->add_option("--fps", o->fps, fps_help)->check(check::range(5.0, 120.0));
   cmd->add_option("--observers", o->observers, "Override the number of simulated observers")
-      ->check(CLI::Range(3, 1000));
+      ->check(check::range(3, 1000));
   cmd->add_flag("--force", o->force, "Recompute every pipeline stage even when up to date");
   return cmd;
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_reproduce_command(Command& root) {
   auto* group = root.add_subcommand("reproduce", "Regenerate a paper's quantitative results and check them")
                     ->require_subcommand(1);
   auto gomez = std::make_shared<ReproduceOptions>();
@@ -50,12 +52,11 @@ const CommandRegistration kRegistration([](CLI::App& root) {
                 hoyet, "Override the length of the Table 2 flows (seconds)",
                 "Override the frame rate of the pair clips (Fig. 3, Table 1)");
   h->add_option("--repetitions", hoyet->repetitions, "Override the repetitions of each pair condition")
-      ->check(CLI::Range(1, 32));
+      ->check(check::range(1, 32));
   h->callback([hoyet] {
     const OutputFolderLock lock(hoyet->out);
     reproduce_hoyet2016(*hoyet);
   });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "experiments/cli/pipeline/collect.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "experiments/cli/pipeline/render_stages.hpp"
@@ -23,13 +23,15 @@ struct Options {
   bool strict = false;
 };
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_run_command(Command& root) {
   auto o = std::make_shared<Options>();
   auto* cmd = root.add_subcommand(
       "run",
       "Run every stage (crowd, animation, correction, metrics, stimuli) for every condition of a spec. "
       "Resumable: outputs whose inputs did not change are kept (see DIR/**/*.prov.json).");
-  cmd->add_option("spec", o->spec, "Experiment spec (YAML)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("spec", o->spec, "Experiment spec (YAML)")->required()->check(check::existing_file());
   cmd->add_option("--out", o->out, "Output folder")->required();
   cmd->add_option("--shard", o->shard,
                   "Run only slice K of N (K/N): crowd group i (all conditions showing one crowd) belongs to "
@@ -65,7 +67,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
     std::printf("%d conditions: %d stage outputs made, %d up to date\nmanifest: %s\n", s.conditions,
                 s.stages_run, s.stages_skipped, s.manifest.string().c_str());
   });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

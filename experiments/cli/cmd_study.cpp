@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/seed.hpp"
@@ -113,18 +113,20 @@ void run_study(const StudyArgs& a) {
   if (r.aborted) throw RuntimeError("session aborted by the participant; resume with --resume");
 }
 
-const CommandRegistration kStudy([](CLI::App& root) {
+}  // namespace
+
+void add_study_command(Command& root) {
   auto a = std::make_shared<StudyArgs>();
   auto* cmd = root.add_subcommand(
       "study",
       "Run a study session for one participant: full-screen window by default, or headless with --responses "
       "(scripted replay) or --simulate (simulated observer). Every trial's answers are fsync'd to "
       "OUT/<participant>.csv before the next trial; metadata goes to OUT/<participant>.json.");
-  cmd->add_option("spec", a->spec, "Experiment spec (YAML)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("spec", a->spec, "Experiment spec (YAML)")->required()->check(check::existing_file());
   cmd->add_option("--participant", a->participant, "Participant id (A-Z a-z 0-9 _ -), e.g. P07")->required();
   cmd->add_option("--stimuli", a->stimuli, "Stimulus folder holding manifest.csv")
       ->required()
-      ->check(CLI::ExistingDirectory);
+      ->check(check::existing_directory());
   cmd->add_option(
       "--out", a->out,
       "Response folder (default: STIMULI/responses; with --simulate: STIMULI/responses-simulated)");
@@ -134,7 +136,7 @@ const CommandRegistration kStudy([](CLI::App& root) {
   auto* responses =
       cmd->add_option("--responses", a->responses,
                       "Headless: replay answers from a CSV with columns stimulus,question,response[,rt_ms]")
-          ->check(CLI::ExistingFile);
+          ->check(check::existing_file());
   cmd->add_option("--response-delay-ms", a->delay_ms,
                   "With --responses: wait this long in every trial (testing)");
   auto* simulate =
@@ -155,7 +157,9 @@ const CommandRegistration kStudy([](CLI::App& root) {
       ->excludes(simulate);
   cmd->add_option("--snapshot-dir", a->snapshot_dir, "Save the window's rendered screens as PNGs here");
   cmd->callback([a] { run_study(*a); });
-});
+}
+
+namespace {
 
 struct SimArgs {
   std::string spec, stimuli, out, observer = "default";
@@ -163,16 +167,18 @@ struct SimArgs {
   std::uint64_t seed = 1;
 };
 
-const CommandRegistration kSimulateStudy([](CLI::App& root) {
+}  // namespace
+
+void add_simulate_study_command(Command& root) {
   auto a = std::make_shared<SimArgs>();
   auto* cmd = root.add_subcommand(
       "simulate-study",
       "Write a complete synthetic data set (S001.csv/.json ... and a merged responses.csv) "
       "in the format of real sessions, answered by simulated observers");
-  cmd->add_option("spec", a->spec, "Experiment spec (YAML)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("spec", a->spec, "Experiment spec (YAML)")->required()->check(check::existing_file());
   cmd->add_option("--stimuli", a->stimuli, "Stimulus folder holding manifest.csv")
       ->required()
-      ->check(CLI::ExistingDirectory);
+      ->check(check::existing_directory());
   cmd->add_option("--observers", a->observers, "Number of simulated participants")->capture_default_str();
   cmd->add_option("--out", a->out, "Output folder (must not hold a data set yet)")->required();
   cmd->add_option("--seed", a->seed, "Seed of the synthetic data set")->capture_default_str();
@@ -191,7 +197,9 @@ const CommandRegistration kSimulateStudy([](CLI::App& root) {
     std::printf("%d simulated participant(s) written to %s\nmerged responses: %s\n", a->observers,
                 a->out.c_str(), merged.c_str());
   });
-});
+}
+
+namespace {
 
 struct PowerArgs {
   std::string spec, stimuli, contrast, dv, n = "10,20,30", observer = "default";
@@ -201,7 +209,9 @@ struct PowerArgs {
   bool json = false;
 };
 
-const CommandRegistration kPower([](CLI::App& root) {
+}  // namespace
+
+void add_power_command(Command& root) {
   auto a = std::make_shared<PowerArgs>();
   auto* cmd = root.add_subcommand("power",
                                   "Estimate the power to detect an effect with n participants, by simulated "
@@ -209,10 +219,10 @@ const CommandRegistration kPower([](CLI::App& root) {
                                   "every stimulus; a paired t-test (level B vs level A of --contrast, on "
                                   "--dv) per simulated study. A minimal "
                                   "planning tool: the full analysis is `crowdlab analyze`.");
-  cmd->add_option("spec", a->spec, "Experiment spec (YAML)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("spec", a->spec, "Experiment spec (YAML)")->required()->check(check::existing_file());
   cmd->add_option("--stimuli", a->stimuli, "Stimulus folder holding manifest.csv")
       ->required()
-      ->check(CLI::ExistingDirectory);
+      ->check(check::existing_directory());
   cmd->add_option("--contrast", a->contrast,
                   "FACTOR:A,B: compare level B against level A (default method:baseline,ours)");
   cmd->add_option(
@@ -284,7 +294,6 @@ const CommandRegistration kPower([](CLI::App& root) {
     for (const auto& r : rows)
       std::printf("%6d %8.3f %16.3f %10.2f\n", r.n, r.power, r.mean_difference, r.mean_cohens_dz);
   });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

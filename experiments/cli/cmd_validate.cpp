@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
 namespace crowdlab::cli {
@@ -110,7 +110,9 @@ void run_validate(const ValidateOptions& opt) {
   std::printf("\n");
 }
 
-const CommandRegistration kRegistration([](CLI::App& root) {
+}  // namespace
+
+void add_validate_command(Command& root) {
   auto opt = std::make_shared<ValidateOptions>();
   auto* cmd = root.add_subcommand(
       "validate",
@@ -121,7 +123,6 @@ const CommandRegistration kRegistration([](CLI::App& root) {
   cmd->add_option("spec", opt->spec_path, "The experiment spec (YAML)")->required();
   cmd->add_flag("--no-table", opt->no_table, "Print the summary and count only, not the condition table");
   cmd->callback([opt] { run_validate(*opt); });
-});
+}
 
-}  // namespace
 }  // namespace crowdlab::cli

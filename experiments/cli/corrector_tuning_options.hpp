@@ -1,8 +1,7 @@
 #pragma once
 // The corrector's tuning options shared by `crowdlab bench correct` and `crowdlab experiment
 // overlap-vs-density` (defaults = CorrectorParams; units and sources in corrector_params.hpp).
-#include <CLI/CLI.hpp>
-
+#include "experiments/cli/command.hpp"
 #include "framework/correction/corrector_params.hpp"
 
 namespace crowdlab::cli {
@@ -11,42 +10,42 @@ namespace crowdlab::cli {
 /// --depenetration-tolerance, --foot-pop-budget, --free-joints, --free-joint-margin, --free-joint-hold,
 /// --free-joint-return and --light-joint-rate-limit to `cmd`, writing into `params` (which must outlive the
 /// parse).
-inline void add_corrector_tuning_options(CLI::App* cmd, CorrectorParams& params) {
+inline void add_corrector_tuning_options(Command* cmd, CorrectorParams& params) {
   cmd->add_option("--contact-stiffness", params.contact_stiffness, "Collision penalty k_delta (N/m)")
       ->capture_default_str();
   cmd->add_option("--cg-tolerance", params.cg_tolerance, "CG relative residual tolerance")
-      ->check(CLI::Range(1e-12, 0.5))
+      ->check(check::range(1e-12, 0.5))
       ->capture_default_str();
   cmd->add_option("--active-set-passes", params.active_set_passes,
                   "Re-solves per step after removing pulling contacts (0 = off)")
       ->capture_default_str();
   cmd->add_option("--depenetration-passes", params.depenetration_passes,
                   "Position-level depenetration passes per step (0 = off)")
-      ->check(CLI::Range(0, 100))
+      ->check(check::range(0, 100))
       ->capture_default_str();
   cmd->add_option("--depenetration-tolerance", params.depenetration_tolerance_m,
                   "Depth (m) above which the depenetration pass separates a capsule pair")
-      ->check(CLI::Range(0.0, 0.1))
+      ->check(check::range(0.0, 0.1))
       ->capture_default_str();
   cmd->add_option("--foot-pop-budget", params.foot_pop_budget_m,
                   "How much farther than its input a foot joint may move per step in the "
                   "depenetration pass (m, 0 = off)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(check::range(0.0, 1.0))
       ->capture_default_str();
   cmd->add_option("--free-joints", params.release_free_joints,
                   "Return joints that touch nobody to their input (true/false; false = the session-8 solver)")
       ->capture_default_str();
   cmd->add_option("--free-joint-margin", params.free_joint_margin_m,
                   "Capsule distance (m) within which a bone counts as in contact for the free-joint release")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(check::range(0.0, 1.0))
       ->capture_default_str();
   cmd->add_option("--free-joint-hold", params.free_joint_hold_s,
                   "Seconds a joint stays engaged after its last contact")
-      ->check(CLI::Range(0.0, 10.0))
+      ->check(check::range(0.0, 10.0))
       ->capture_default_str();
   cmd->add_option("--free-joint-return", params.free_joint_return_radps,
                   "Rate (rad/s) at which a released joint returns to its input")
-      ->check(CLI::Range(0.0, 1000.0))
+      ->check(check::range(0.0, 1000.0))
       ->capture_default_str();
   cmd->add_option(
          "--light-joint-rate-limit", params.rate_limit_light_joints,

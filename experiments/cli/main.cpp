@@ -1,22 +1,16 @@
 // crowdlab: one binary, many subcommands. Exit codes: 0 ok, 1 runtime failure, 2 usage/invalid input.
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
+#include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <exception>
 #include <memory>
 
 #include "crowdlab_version.hpp"
-#include "experiments/cli/command_registry.hpp"
+#include "experiments/cli/command_table.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
-
-namespace crowdlab::cli {
-std::vector<CommandSetup>& command_registry() {
-  static std::vector<CommandSetup> registry;
-  return registry;
-}
-}  // namespace crowdlab::cli
 
 int main(int argc, char** argv) {
   CLI::App app{"crowdlab " CROWDLAB_VERSION
@@ -41,7 +35,8 @@ int main(int argc, char** argv) {
       thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                            static_cast<size_t>(threads));
   });
-  for (const auto& setup : crowdlab::cli::command_registry()) setup(app);
+  crowdlab::cli::Command root(&app);  // holds the commands' options until parsing is done
+  for (const auto add : crowdlab::cli::command_table()) add(root);
 
   try {
     app.parse(argc, argv);
