@@ -224,6 +224,7 @@ void fill_random(const Problem& pr, const std::vector<double>& theta, double sig
 }  // namespace
 
 LmmResult fit_lmm(const CsvTable& table, const std::string& formula, bool reml) {
+  require_columns(table, formula_variable_names(formula), "the formula");
   const LmmFormula f = parse_lmm_formula(formula);
   std::vector<std::string> fixed_names;
   Problem pr = build_problem(table, f, reml, fixed_names);
