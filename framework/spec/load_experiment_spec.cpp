@@ -6,6 +6,7 @@
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -22,6 +23,7 @@
 #include "framework/core/viewpoint_catalogue.hpp"
 #include "framework/spec/parse_factor.hpp"
 #include "framework/spec/parse_protocol.hpp"
+#include "framework/spec/surface_scene_names.hpp"
 #include "framework/spec/work_limits.hpp"
 #include "framework/spec/yaml_flow_nesting.hpp"
 #include "framework/spec/yaml_section.hpp"
@@ -65,9 +67,24 @@ void parse_scenario(YamlSection s, ExperimentSpec& spec) {
   if (s.has("mesh")) {
     std::string mesh;
     s.string("mesh", mesh);
+    // Checked here as `run` would check it (issue 33): a name must be a built-in scene, a file an existing
+    // .obj, .gltf or .glb (`mesh: /etc/passwd` passed validate and failed in run without a line).
     if (has_file_extension(mesh)) {
-      if (auto p = resolve_existing_path(s.diagnostics(), s.get("mesh"), s.child_path("mesh"), mesh, false))
+      const std::string ext = std::filesystem::path(mesh).extension().string();
+      if (std::find(kSurfaceMeshExtensions.begin(), kSurfaceMeshExtensions.end(), ext) ==
+          kSurfaceMeshExtensions.end())
+        s.diagnostics().error(s.get("mesh"), s.child_path("mesh"),
+                              "'" + mesh + "' is not a mesh file (.obj, .gltf or .glb)");
+      else if (auto p =
+                   resolve_existing_path(s.diagnostics(), s.get("mesh"), s.child_path("mesh"), mesh, false))
         sc.mesh = *p;
+    } else if (std::find(kSurfaceSceneNames.begin(), kSurfaceSceneNames.end(), mesh) ==
+               kSurfaceSceneNames.end()) {
+      std::string names;
+      for (const auto n : kSurfaceSceneNames) names += (names.empty() ? "" : ", ") + std::string(n);
+      s.diagnostics().error(s.get("mesh"), s.child_path("mesh"),
+                            "unknown surface scene '" + mesh + "' (expected one of " + names +
+                                ", or an .obj, .gltf or .glb file)");
     } else {
       sc.mesh = mesh;
     }
