@@ -434,9 +434,28 @@ void check_consistency(YamlSection& top, ExperimentSpec& spec) {
 }
 
 // The largest crowd any condition shows: the characters factor, else density x area (area scenarios),
-// else scenario.agents. 0 when the spec does not say (pair crossings, derived flows).
+// else scenario.agents. 0 when the spec does not say (pair crossings).
 double largest_crowd(const ExperimentSpec& spec) {
   double most = spec.scenario.agents;
+  // Flows place a lattice of spacing s = 1/sqrt(density) (else initial_spacing_m) over the area, one per
+  // group (generate_flow_scenario.cpp); counted here in double, so that a flow-B of density 10 on 1000 m
+  // (20 million agents: 5 GB at 180 s) is refused before it is placed (issue 33).
+  if (spec.scenario.type == ScenarioKind::flow_a || spec.scenario.type == ScenarioKind::flow_b) {
+    const double groups = spec.scenario.type == ScenarioKind::flow_b ? 2.0 : 1.0;
+    std::vector<double> spacings;
+    if (const Factor* density = spec.factor("density"))
+      for (const FactorLevel& l : density->levels)
+        if (l.number.value_or(0.0) > 0.0) spacings.push_back(1.0 / std::sqrt(*l.number));
+    if (spacings.empty()) spacings.push_back(spec.scenario.initial_spacing_m);
+    for (const double s : spacings) {
+      if (!(s > 0.0)) continue;
+      const double cols = std::floor(spec.scenario.width_m / s + 1e-9);
+      const double rows = spec.scenario.agents > 0
+                              ? std::ceil(spec.scenario.agents / groups / std::max(cols, 1.0))
+                              : std::floor(spec.scenario.depth_m / (groups * s) + 1e-9);
+      most = std::max(most, groups * rows * cols + (groups == 1.0 ? 1.0 : 0.0));
+    }
+  }
   if (const Factor* characters = spec.factor("characters"))
     for (const FactorLevel& l : characters->levels) most = std::max(most, l.number.value_or(0.0));
   const bool area_scenario = is_area_scenario(spec.scenario.type);
@@ -487,7 +506,9 @@ void check_work_limits(YamlSection& top, const ExperimentSpec& spec) {
   if (characters > kMaxCharactersPerCrowd)
     diag.error(at("factors"), "factors",
                "the largest crowd has " + format_number(characters) + " characters, more than the limit of " +
-                   format_number(kMaxCharactersPerCrowd) + " (density x area, or the characters factor)");
+                   format_number(kMaxCharactersPerCrowd) +
+                   " (density x area, a flow's lattice of spacing 1/sqrt(density) or initial_spacing_m over "
+                   "the area, or the characters factor)");
   const double frames = std::ceil(spec.duration_s * spec.fps);
   if (characters <= kMaxCharactersPerCrowd && characters * frames > kMaxCharacterFrames)
     diag.error(at("duration_s"), "duration_s",

@@ -110,3 +110,27 @@ TEST_CASE("analysis: an option's range is stated as a person would, not in 300 d
   const auto threads = run_cli({"--threads", "0", "version"});
   CHECK_THAT(threads.err, Catch::Contains("--threads: must be between 1 and 4096, got '0'"));
 }
+
+TEST_CASE("analysis: a random slope of a many-level factor is refused before the fit, with the option",
+          "[analysis][cli]") {
+  // Issue 33: `(stimulus | participant)` with 30 stimuli (465 covariance parameters) ran for hours.
+  const auto dir = test::scratch_dir("issue33-lmm-size");
+  const auto csv = dir / "slopes.csv";
+  {
+    std::ofstream out(csv);
+    out << "participant,stimulus,y\n";
+    for (int p = 0; p < 40; ++p)
+      for (int s = 0; s < 30; ++s)
+        for (int r = 0; r < 2; ++r)
+          out << "p" << p << ",s" << s << "," << ((p * 7 + s * 3 + r * 5) % 11) << "\n";
+  }
+  const auto r =
+      run_cli({"analyze", "lmm", "--csv", csv.string(), "--formula", "y ~ 1 + (stimulus | participant)"}, 60);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("slopes.csv: the random terms have 465 covariance parameters") &&
+                        Catch::Contains("more than the limit of 55") &&
+                        Catch::Contains("--max-covariance-parameters"));
+  const auto raised = run_cli({"analyze", "lmm", "--csv", csv.string(), "--formula",
+                               "y ~ 1 + (stimulus | participant)", "--max-covariance-parameters", "10"});
+  CHECK_THAT(raised.err, Catch::Contains("more than the limit of 10"));
+}
