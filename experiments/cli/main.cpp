@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
       return 2;
     }
     if (const auto readable = crowdlab::cli::readable_range_message(e.what())) {
-      std::fprintf(stderr, "%s\nRun with --help for more information.\n", readable->c_str());
+      std::fprintf(stderr, "crowdlab: error: %s\nRun with --help for more information.\n", readable->c_str());
       return 2;
     }
     const int code = app.exit(e);  // prints help or the usage error
