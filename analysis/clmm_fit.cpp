@@ -5,6 +5,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <boost/math/distributions/normal.hpp>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -233,15 +234,27 @@ std::vector<std::string> response_levels(const CsvTable& table, size_t col) {
   for (size_t r = 0; r < table.rows.size(); ++r) levels.push_back(table.cell(r, col));
   std::sort(levels.begin(), levels.end());
   levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
-  const bool numeric = std::all_of(levels.begin(), levels.end(), [](const std::string& s) {
+  // Numeric levels are ordered by value. A level strtod reads as a number but that is not a finite double
+  // (1e-400, 1e999) is refused here with its row: std::stod threw a bare "stod" (issue 33).
+  std::vector<double> values;
+  for (const auto& s : levels) {
     char* end = nullptr;
-    std::strtod(s.c_str(), &end);
-    return !s.empty() && end == s.c_str() + s.size();
-  });
-  if (numeric)
-    std::sort(levels.begin(), levels.end(),
-              [](const std::string& a, const std::string& b) { return std::stod(a) < std::stod(b); });
-  return levels;
+    errno = 0;
+    const double v = std::strtod(s.c_str(), &end);
+    if (s.empty() || end != s.c_str() + s.size()) return levels;  // categorical labels: text order
+    if (errno == ERANGE || !std::isfinite(v)) {
+      size_t r = 0;
+      while (table.cell(r, col) != s) ++r;
+      (void)table.number(r, col);  // throws file:line:column: column '<response>': not a finite number
+    }
+    values.push_back(v);
+  }
+  std::vector<size_t> order(levels.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return values[a] < values[b]; });
+  std::vector<std::string> sorted;
+  for (size_t i : order) sorted.push_back(levels[i]);
+  return sorted;
 }
 
 Data build_data(const CsvTable& table, const LmmFormula& f, const std::string& link,
@@ -423,6 +436,7 @@ ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std
                     const std::set<std::string>& categorical) {
   if (link != "logit" && link != "probit")
     throw InputError("--link must be logit or probit, got '" + link + "'");
+  require_columns(table, formula_variable_names(formula), "the formula");
   const LmmFormula f = parse_lmm_formula(formula);
   std::vector<std::string> names, levels;
   const Data d = build_data(table, f, link, categorical, names, levels);

@@ -155,7 +155,7 @@ RandomBlock random_block(const CsvTable& table, const RandomTerm& term, const Mo
   return b;
 }
 
-Problem build_problem(const CsvTable& table, const LmmFormula& f, bool reml,
+Problem build_problem(const CsvTable& table, const LmmFormula& f, bool reml, const LmmLimits& limits,
                       std::vector<std::string>& fixed_names) {
   const auto vars = read_model_variables(table, variables_of(f));
   const auto& yv = vars.at(f.response);
@@ -181,6 +181,15 @@ Problem build_problem(const CsvTable& table, const LmmFormula& f, bool reml,
   for (const auto& term : f.random) {
     ModelMatrix zk = model_matrix(term.terms, term.intercept, vars, n);
     RandomBlock b = random_block(table, term, zk);
+    const auto parameters = pr.diagonal.size() + static_cast<size_t>(b.q * (b.q + 1) / 2);
+    if (parameters > limits.max_covariance_parameters)
+      refuse(table, "the random terms have " + std::to_string(parameters) +
+                        " covariance parameters (the term for '" + term.group + "' has " +
+                        std::to_string(b.q) + " effects per level, " + std::to_string(b.q * (b.q + 1) / 2) +
+                        " parameters), more than the limit of " +
+                        std::to_string(limits.max_covariance_parameters) +
+                        ": the fit's work grows with their square; a random slope of a many-level factor is "
+                        "rarely identifiable (raise with --max-covariance-parameters)");
     b.offset = pr.q;
     b.theta_offset = static_cast<Eigen::Index>(pr.diagonal.size());
     for (Eigen::Index j = 0; j < b.q; ++j)
@@ -223,10 +232,11 @@ void fill_random(const Problem& pr, const std::vector<double>& theta, double sig
 }
 }  // namespace
 
-LmmResult fit_lmm(const CsvTable& table, const std::string& formula, bool reml) {
+LmmResult fit_lmm(const CsvTable& table, const std::string& formula, bool reml, const LmmLimits& limits) {
+  require_columns(table, formula_variable_names(formula), "the formula");
   const LmmFormula f = parse_lmm_formula(formula);
   std::vector<std::string> fixed_names;
-  Problem pr = build_problem(table, f, reml, fixed_names);
+  Problem pr = build_problem(table, f, reml, limits, fixed_names);
   const auto m = static_cast<unsigned>(pr.diagonal.size());
   std::vector<double> theta(m), lower(m);
   for (unsigned k = 0; k < m; ++k) {

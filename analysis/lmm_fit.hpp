@@ -54,10 +54,20 @@ struct LmmResult {
   std::vector<std::string> warnings;
 };
 
+/// The size of model fit_lmm takes on, checked before the fit. The optimiser searches the random terms'
+/// covariance parameters (q (q + 1) / 2 for a term of q effects per level): its evaluations grow with their
+/// square, so `(stimulus | participant)` with 30 stimuli (465 parameters) ran for hours (issue 33).
+struct LmmLimits {
+  std::size_t max_covariance_parameters =
+      55;  ///< 10 correlated effects per level; `--max-covariance-parameters`
+};
+
 /// Throws InputError (exit 2): formula errors, missing columns, empty or non-finite cells (file:line),
 /// a constant response, a grouping factor with one level or as many levels as rows, a rank-deficient
-/// fixed-effect model matrix, more random effects per level than a group can identify.
-LmmResult fit_lmm(const CsvTable& table, const std::string& formula, bool reml = true);
+/// fixed-effect model matrix, more random effects per level than a group can identify, random terms with
+/// more covariance parameters than `limits` allows (the count, the limit and the option that raises it).
+LmmResult fit_lmm(const CsvTable& table, const std::string& formula, bool reml = true,
+                  const LmmLimits& limits = {});
 
 /// {"fixed": [{term, estimate, se, t, df, p}], "random": [{group, term, sd} | {group, term1, term2, corr}],
 ///  "residual_sd", "reml_criterion" | "deviance", "converged", "singular", "warnings", "observations"}.

@@ -135,4 +135,27 @@ LmmFormula parse_lmm_formula(const std::string& formula) {
   return f;
 }
 
+std::vector<std::string> formula_variable_names(const std::string& formula) {
+  std::vector<std::string> names;
+  const auto name_char = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.';
+  };
+  for (size_t i = 0; i < formula.size();) {
+    if (!name_char(formula[i])) {
+      ++i;
+      continue;
+    }
+    size_t end = i;
+    while (end < formula.size() && name_char(formula[end])) ++end;
+    const std::string token = formula.substr(i, end - i);
+    size_t next = end;
+    while (next < formula.size() && formula[next] == ' ') ++next;
+    const bool function = next < formula.size() && formula[next] == '(';
+    if (is_name(token) && !function && std::find(names.begin(), names.end(), token) == names.end())
+      names.push_back(token);
+    i = end;
+  }
+  return names;
+}
+
 }  // namespace crowdlab::analysis

@@ -35,6 +35,11 @@ struct LmmFormula {
 /// Throws InputError naming the formula and the offending piece.
 LmmFormula parse_lmm_formula(const std::string& formula);
 
+/// Every variable name the formula text mentions (names followed by '(' are functions, left out), in
+/// order of first mention; read without parsing, so that the columns can be checked before anything the
+/// formula expands to is counted or built (issue 33: 24 crossed missing columns ran out of memory).
+std::vector<std::string> formula_variable_names(const std::string& formula);
+
 /// The terms of a right-hand side without bars ("a * b + c"), expanded and in R's order; sets
 /// `intercept` false for 0 / -1.
 std::vector<ModelTerm> parse_fixed_terms(const std::string& rhs, bool& intercept, const std::string& formula);

@@ -63,6 +63,22 @@ double column_count(const std::vector<ModelTerm>& terms, bool intercept,
 }
 }  // namespace
 
+void require_columns(const CsvTable& table, const std::vector<std::string>& names, const std::string& what) {
+  std::vector<std::string> missing;
+  for (const auto& name : names)
+    if (!table.has_column(name)) missing.push_back(name);
+  if (missing.empty()) return;
+  const auto join = [](const std::vector<std::string>& list) {
+    std::string out;
+    for (const auto& s : list) out += (out.empty() ? "'" : ", '") + s + "'";
+    return out;
+  };
+  throw InputError(SourceLocation{table.source, 1, 0, ""}, what + " names " + std::to_string(missing.size()) +
+                                                               " column" + (missing.size() == 1 ? "" : "s") +
+                                                               " the file lacks: " + join(missing) +
+                                                               " (its columns: " + join(table.header) + ")");
+}
+
 std::map<std::string, ModelVariable> read_model_variables(const CsvTable& table,
                                                           const std::vector<std::string>& names,
                                                           const std::set<std::string>& categorical) {

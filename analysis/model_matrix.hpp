@@ -24,6 +24,10 @@ struct ModelVariable {
   std::vector<size_t> codes;        ///< categorical: level index per row
 };
 
+/// Refuses, in one message naming every one of them, the `names` that are not columns of `table` (with
+/// the columns it has): checked before a formula is expanded or any matrix is sized.
+void require_columns(const CsvTable& table, const std::vector<std::string>& names, const std::string& what);
+
 /// Reads the named columns. Throws InputError (file:line, column) for an empty cell or a non-finite
 /// number (NaN, inf): rows are never dropped silently. A column named in `categorical` is a factor
 /// even when every cell is a number (R's factor(x)); its levels are then sorted numerically, as

@@ -23,6 +23,7 @@
 #include "analysis/reliability.hpp"
 #include "analysis/study_responses.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/printable_excerpt.hpp"
 #include "framework/core/write_file.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
@@ -106,7 +107,7 @@ CsvTable measure_table(const Context& ctx, const std::vector<std::string>& items
     if (std::find(items.begin(), items.end(), q) == items.end()) continue;
     auto [it, inserted] = index.emplace(std::make_pair(t.cell(r, p_col), t.cell(r, s_col)), trials.size());
     if (inserted) trials.push_back({r, {}});
-    trials[it->second].second[q] = std::stod(t.cell(r, v_col));
+    trials[it->second].second[q] = t.number(r, v_col);  // std::stod threw a bare "stod" (issue 33)
   }
   CsvTable out;
   out.source = ctx.responses.files.size() == 1 ? ctx.responses.files[0] : "responses of " + name;
@@ -124,6 +125,14 @@ CsvTable measure_table(const Context& ctx, const std::vector<std::string>& items
                          ")");
       sum += v->second;
     }
+    // 1.7e308 answers overflow the sum: name the row here, where the real file is known, not the
+    // composite's derived table ("responses of Q_CR:8:5: not a finite number: ''", issue 33).
+    if (!std::isfinite(sum))
+      throw InputError(SourceLocation{ctx.responses.sources[first_row], t.line_numbers[first_row],
+                                      static_cast<int>(v_col) + 1, "column 'value'"},
+                       "participant " + quote_value(t.cell(first_row, p_col)) + ", stimulus " +
+                           quote_value(t.cell(first_row, s_col)) + ": the items of " + name +
+                           " add up past the largest double (values too large to average)");
     std::vector<std::string> row = {t.cell(first_row, p_col)};
     for (size_t c : f_cols) row.push_back(t.cell(first_row, c));
     row.push_back(csv_number(sum / static_cast<double>(items.size())));
@@ -140,8 +149,8 @@ void reliability_section(Context& ctx, const CompositeSpec& comp) {
   if (a.rows.size() != b.rows.size() || a.rows.empty()) return;
   std::vector<double> va, vb;
   for (size_t r = 0; r < a.rows.size(); ++r) {
-    va.push_back(std::stod(a.rows[r].back()));
-    vb.push_back(std::stod(b.rows[r].back()));
+    va.push_back(a.number(r, a.header.size() - 1));
+    vb.push_back(b.number(r, b.header.size() - 1));
   }
   const auto rel = pair_reliability(va, vb);
   ctx.md += "Internal reliability of " + comp.items[0] + " and " + comp.items[1] + " (reverse-coded), over " +

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "framework/core/error.hpp"
+#include "framework/core/printable_excerpt.hpp"
 
 namespace crowdlab::analysis {
 
@@ -63,6 +64,15 @@ StudyResponses read_study_responses(const std::string& study_dir, const Experime
         value = t.number(r, reverse_coded);
       else
         value = q->reverse ? points + 1 - t.number(r, response) : t.number(r, response);
+      // An answer off the question's scale is refused where its file and row are known: 1.7e308 answers
+      // overflowed a composite's mean and were reported against "responses of Q_CR" (issue 33).
+      if (q->kind != "yesno" && !(value >= 1.0 && value <= points)) {
+        const size_t col = has_reverse_coded ? reverse_coded : response;
+        throw InputError(SourceLocation{file, t.line_numbers[r], static_cast<int>(col) + 1,
+                                        "column '" + t.header[col] + "'"},
+                         "question '" + qid + "': " + quote_value(t.cell(r, col)) + " is off its 1-" +
+                             std::to_string(points) + " scale");
+      }
       std::vector<std::string> row = {t.cell(r, participant), t.cell(r, stimulus), qid, csv_number(value)};
       for (size_t c : factor_cols) row.push_back(t.cell(r, c));
       out.table.rows.push_back(std::move(row));

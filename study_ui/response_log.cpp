@@ -167,27 +167,37 @@ ResponseLog ResponseLog::reopen(const std::string& path, const std::vector<std::
   if (line_end.size() != table.rows.size())
     throw InputError(path + ": rows contain embedded newlines; not a crowdlab response log");
   std::map<int, int> rows_of_trial;
+  std::map<int, int> first_line_of_trial;
   std::vector<int> trial_of_row, session_of_row;
   for (size_t r = 0; r < table.rows.size(); ++r) {
-    const int trial = parse_int(table.cell(r, trial_col), path, table.line_numbers[r], trial_column);
-    const int session = parse_int(table.cell(r, session_col), path, table.line_numbers[r], session_column);
+    const int line = table.line_numbers[r];
+    const int trial = parse_int(table.cell(r, trial_col), path, line, trial_column);
+    const int session = parse_int(table.cell(r, session_col), path, line, session_column);
+    // A trial is written once, as one block of rows. Its rows appearing again (a copied block) were
+    // reported as "trial 2 has 0 rows, expected 6" (issue 33).
+    const auto [first, inserted] = first_line_of_trial.emplace(trial, line);
+    if (!inserted && trial_of_row.back() != trial)
+      throw InputError(SourceLocation{path, line, 0, trial_column},
+                       "trial " + std::to_string(trial) + " appears again (its rows start at line " +
+                           std::to_string(first->second) +
+                           "); a trial is written once (the log was edited or is corrupted)");
     session_of_row.push_back(session);
     trial_of_row.push_back(trial);
     ++rows_of_trial[trial];
   }
-  // 3. Only the last trial written may be incomplete; drop its rows.
+  // 3. Only the last trial written may be incomplete (fewer rows than a trial has); drop its rows.
   size_t rows_kept = table.rows.size();
-  if (!trial_of_row.empty() && rows_of_trial[trial_of_row.back()] != rows_per_trial) {
+  if (!trial_of_row.empty() && rows_of_trial[trial_of_row.back()] < rows_per_trial) {
     const int last = trial_of_row.back();
     while (rows_kept > 0 && trial_of_row[rows_kept - 1] == last) --rows_kept;
     recovered.dropped_rows = static_cast<int>(table.rows.size() - rows_kept);
     rows_of_trial.erase(last);
   }
   for (size_t r = 0; r < rows_kept; ++r)
-    if (rows_of_trial[trial_of_row[r]] != rows_per_trial)
+    if (rows_of_trial.at(trial_of_row[r]) != rows_per_trial)
       throw InputError(SourceLocation{path, table.line_numbers[r], 0, trial_column},
                        "trial " + std::to_string(trial_of_row[r]) + " has " +
-                           std::to_string(rows_of_trial[trial_of_row[r]]) + " rows, expected " +
+                           std::to_string(rows_of_trial.at(trial_of_row[r])) + " rows, expected " +
                            std::to_string(rows_per_trial) + " (the log was edited or is corrupted)");
   for (const auto& [trial, n] : rows_of_trial) recovered.completed_trials.insert(trial);
   for (size_t r = 0; r < rows_kept; ++r)

@@ -9,6 +9,7 @@
 
 #include "experiments/cli/timing.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/progress.hpp"
 #include "framework/correction/corrector.hpp"
 #include "framework/correction/swaying_crowd_fixture.hpp"
 #include "framework/metrics/measure_crowd.hpp"
@@ -56,7 +57,9 @@ CorrectBenchResult run_correct_bench(const CorrectBenchOptions& o) {
   std::vector<Pose> targets(crowd.characters.size());
   std::vector<double> ms, cpu_ms;
   CrowdAnimation corrected = o.quality ? crowd : CrowdAnimation{};  // filled outside the timed region
-  for (int f = 0; f < fixture.frames; ++f) {
+  // Estimate and time left for the big runs --characters allows (outside the timed region, issue 33).
+  Progress progress("bench correct", static_cast<std::size_t>(fixture.frames));
+  for (int f = 0; f < fixture.frames; ++f, progress.advance()) {
     for (size_t c = 0; c < targets.size(); ++c)
       targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
     const double cpu0 = process_cpu_ms();

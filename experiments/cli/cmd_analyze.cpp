@@ -111,6 +111,7 @@ struct PsychometricOptions {
 struct LmmOptions {
   std::string csv, formula;
   bool ml = false, reml = false, json = false, allow_simulated_mix = false;
+  LmmLimits limits;
 };
 
 void print_lmm(const LmmResult& r) {
@@ -374,8 +375,14 @@ void add_analyze_command(Command& root) {
                 "term1, term2, corr}], \"residual_sd\", \"reml_criterion\" | \"deviance\", \"converged\", "
                 "\"singular\", \"warnings\", \"observations\"}");
   lmm->add_flag("--allow-simulated-mix", lmm_opt->allow_simulated_mix, kAllowMixHelp);
+  lmm->add_option("--max-covariance-parameters", lmm_opt->limits.max_covariance_parameters,
+                  "Refuse (exit 2), before the fit, random terms with more covariance parameters than this "
+                  "(q (q + 1) / 2 for q effects per level; the fit's work grows with their square)")
+      ->check(check::range(1, 100000))
+      ->capture_default_str();
   lmm->callback([o = lmm_opt] {
-    const auto result = fit_lmm(read_unmixed_csv(o->csv, o->allow_simulated_mix), o->formula, !o->ml);
+    const auto result =
+        fit_lmm(read_unmixed_csv(o->csv, o->allow_simulated_mix), o->formula, !o->ml, o->limits);
     if (o->json)
       std::cout << lmm_to_json(result).dump(2) << "\n";
     else

@@ -21,6 +21,7 @@
 #include "experiments/cli/bench_group.hpp"
 #include "experiments/cli/command_table.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/progress.hpp"
 #include "framework/crowd/crowd_simulation.hpp"
 #include "framework/crowd/make_navigation_model.hpp"
 
@@ -99,7 +100,9 @@ void run(const Args& a) {
   std::vector<double> ms, cpu_ms;
   ms.reserve(static_cast<std::size_t>(a.steps));
   cpu_ms.reserve(static_cast<std::size_t>(a.steps));
-  for (int s = 0; s < a.steps; ++s) {
+  // Estimate and time left for the big runs --agents and --steps allow (outside the timed region, issue 33).
+  Progress progress("bench crowd", static_cast<std::size_t>(a.steps));
+  for (int s = 0; s < a.steps; ++s, progress.advance()) {
     const double c0 = process_cpu_ms();
     const auto t0 = std::chrono::steady_clock::now();
     sim.step();

@@ -7,6 +7,7 @@
 
 #include "experiments/cli/command_table.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
+#include "framework/surface/spec_surface.hpp"
 
 namespace crowdlab::cli {
 namespace {
@@ -94,6 +95,9 @@ void run_validate(const ValidateOptions& opt) {
     throw InputError(opt.spec_path + ": " + std::to_string(n) + (n == 1 ? " problem" : " problems") +
                      " found; the spec is invalid");
   }
+  // What `run` reads beyond the spec is read here too, so that validate refuses what run would: the
+  // manifold's mesh (an unreadable or huge file) and the crowd on its area (issue 33).
+  if (spec.scenario.type == ScenarioKind::manifold) check_surface_crowd_limits(spec, load_spec_surface(spec));
   const std::vector<Condition> conditions = enumerate_conditions(spec);
   const std::vector<Condition> practice = enumerate_practice_conditions(spec);
   print_summary(spec);

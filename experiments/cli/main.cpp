@@ -9,6 +9,7 @@
 
 #include "crowdlab_version.hpp"
 #include "experiments/cli/command_table.hpp"
+#include "experiments/cli/range_message.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
 
@@ -46,6 +47,10 @@ int main(int argc, char** argv) {
                                            rest.front()[0] != '-' && e.get_name() == "RequiredError") {
       std::fprintf(stderr, "crowdlab: error: unknown command '%s' (crowdlab --help lists the commands)\n",
                    rest.front().c_str());
+      return 2;
+    }
+    if (const auto readable = crowdlab::cli::readable_range_message(e.what())) {
+      std::fprintf(stderr, "crowdlab: error: %s\nRun with --help for more information.\n", readable->c_str());
       return 2;
     }
     const int code = app.exit(e);  // prints help or the usage error

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "framework/core/error.hpp"
+#include "framework/core/printable_excerpt.hpp"
 
 namespace crowdlab {
 
@@ -27,7 +28,9 @@ struct Token {
 std::vector<Token> tokenize(const std::string& text) {
   std::vector<Token> out;
   int line = 1, column = 1;
-  size_t i = 0;
+  // A UTF-8 byte-order mark (Windows editors write one) is not part of the first keyword: it was
+  // reported as "expected 'HIERARCHY', found 'HIERARCHY'" (issue 33).
+  size_t i = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
   while (i < text.size()) {
     const char c = text[i];
     if (c == '\n') {
@@ -117,7 +120,7 @@ class Parser {
   }
   void expect(const std::string& s) {
     const Token& t = next();
-    if (t.text != s) fail(t, "expected '" + s + "', found '" + t.text + "'");
+    if (t.text != s) fail(t, "expected '" + s + "', found " + quote_value(t.text));
   }
   double number(const std::string& what) {
     const Token& t = next();
@@ -125,7 +128,7 @@ class Parser {
     char* end = nullptr;
     const double v = std::strtod(t.text.c_str(), &end);
     if (t.text.empty() || end != t.text.c_str() + t.text.size() || errno == ERANGE)
-      fail(t, "expected a number for the " + what + ", found '" + t.text + "'");
+      fail(t, "expected a number for the " + what + ", found " + quote_value(t.text));
     if (!std::isfinite(v)) fail(t, "the " + what + " is not finite ('" + t.text + "')");
     return v;
   }
@@ -180,7 +183,7 @@ class Parser {
         m.joints[static_cast<size_t>(index)].has_end_site = true;
         expect("}");
       } else {
-        fail(t, "expected JOINT, End Site or '}' in joint '" + j.name + "', found '" + t.text + "'");
+        fail(t, "expected JOINT, End Site or '}' in joint '" + j.name + "', found " + quote_value(t.text));
       }
     }
   }

@@ -162,6 +162,12 @@ std::shared_ptr<const Mpfb2Model> Mpfb2Model::load(const std::filesystem::path& 
     const std::string where = rig_path.string() + ": bones." + name;
     RigBone b;
     b.name = name;
+    // A numeric parent reached the animation stage as a bare json type_error naming the output file
+    // (issue 33): the asset file and key are named here.
+    if (!bj.is_object()) throw InputError(where + ": must be an object, got a " + bj.type_name());
+    if (bj.contains("parent") && !bj["parent"].is_string())
+      throw InputError(where + ".parent: must be a string (a bone name, or \"\" for the root), got a " +
+                       std::string(bj["parent"].type_name()));
     b.parent = bj.value("parent", std::string());
     if (!bj.contains("head") || !bj.contains("tail")) throw InputError(where + ": needs 'head' and 'tail'");
     b.head = parse_placement(bj["head"], m->base_, where + ".head");
@@ -177,11 +183,15 @@ std::shared_ptr<const Mpfb2Model> Mpfb2Model::load(const std::filesystem::path& 
   for (const auto& [bone, list] : wj["weights"].items()) {
     auto& out = m->weights_[bone];
     for (const auto& pair : list) {
-      const int v = pair.at(0).get<int>();
-      const double w = pair.at(1).get<double>();
+      const bool numbers =
+          pair.is_array() && pair.size() == 2 && pair[0].is_number_integer() && pair[1].is_number();
+      const long long v = numbers ? pair[0].get<long long>() : -1;
+      const double w = numbers ? pair[1].get<double>() : 0.0;
       if (v < 0 || v >= n || !std::isfinite(w))
-        throw InputError(weights_path.string() + ": weights." + bone + ": bad entry");
-      out.emplace_back(v, w);
+        throw InputError(weights_path.string() + ": weights." + bone +
+                         ": bad entry (expected [vertex index, weight], vertex index below " +
+                         std::to_string(n) + ")");
+      out.emplace_back(static_cast<int>(v), w);
     }
   }
 

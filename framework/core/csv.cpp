@@ -7,6 +7,7 @@
 
 #include "framework/core/error.hpp"
 #include "framework/core/file_kind.hpp"
+#include "framework/core/printable_excerpt.hpp"
 
 namespace crowdlab {
 
@@ -32,7 +33,9 @@ double CsvTable::number(size_t row, size_t col) const {
   if (ec != std::errc() || ptr != end || !std::isfinite(v))
     throw InputError(
         SourceLocation{source, line_numbers[row], static_cast<int>(col) + 1, "column '" + header[col] + "'"},
-        "not a finite number: '" + s + "'");
+        (ec == std::errc::result_out_of_range ? "a number outside the range of a double: "
+                                              : "not a finite number: ") +
+            quote_value(s));
   return v;
 }
 

@@ -1,5 +1,7 @@
 #include "framework/core/error.hpp"
 
+#include "framework/core/printable_excerpt.hpp"
+
 namespace crowdlab {
 
 std::string SourceLocation::prefix() const {
@@ -18,9 +20,11 @@ std::string SourceLocation::prefix() const {
   return out;
 }
 
-InputError::InputError(const std::string& message) : std::runtime_error(message) {}
+// Every message goes through message_excerpt(): values quoted from a user's file are cut and their
+// control bytes escaped, whichever call site built the message (issue 33).
+InputError::InputError(const std::string& message) : std::runtime_error(message_excerpt(message)) {}
 
 InputError::InputError(SourceLocation where, const std::string& message)
-    : std::runtime_error(where.prefix() + message), where_(std::move(where)) {}
+    : std::runtime_error(message_excerpt(where.prefix() + message)), where_(std::move(where)) {}
 
 }  // namespace crowdlab

@@ -4,14 +4,49 @@
 
 #include <atomic>
 #include <cstdio>
+#include <string>
 
 namespace crowdlab {
 namespace {
 std::atomic<bool> g_enabled{true};
+
+/// When a job has run this long, its total time is estimated from its rate so far and printed once: the
+/// options with huge accepted maxima (power --simulations, simulate-study --observers, metrics --depth,
+/// ...) ran for hours without a word (issue 33).
+std::atomic<double> g_estimate_after_s{2.0};
+
+/// Resident memory of this process in MB (Linux /proc/self/statm), 0 when unknown.
+long resident_mb() {
+  FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f) return 0;
+  long size = 0, resident = 0;
+  const int got = std::fscanf(f, "%ld %ld", &size, &resident);
+  std::fclose(f);
+  return got == 2 ? resident * (sysconf(_SC_PAGESIZE) / 1024) / 1024 : 0;
 }
+
+/// "42 s", "17 min", "3.2 h", "4.1 days".
+std::string duration_text(double s) {
+  char buf[32];
+  if (s < 120)
+    std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else if (s < 7200)
+    std::snprintf(buf, sizeof buf, "%.0f min", s / 60);
+  else if (s < 172800)
+    std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
+  else
+    std::snprintf(buf, sizeof buf, "%.1f days", s / 86400);
+  return buf;
+}
+
+}  // namespace
 
 void Progress::set_enabled(bool enabled) {
   g_enabled = enabled;
+}
+
+void Progress::set_estimate_after(double seconds) {
+  g_estimate_after_s = seconds;
 }
 
 Progress::Progress(std::string label, std::size_t total)
@@ -31,6 +66,18 @@ void Progress::advance(std::size_t units) {
   if (done_ > total_) done_ = total_;
   const auto now = std::chrono::steady_clock::now();
   const auto interval = tty_ ? std::chrono::milliseconds(100) : std::chrono::milliseconds(5000);
+  if (!estimated_ && g_enabled && done_ < total_) {
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    if (elapsed >= g_estimate_after_s && done_ > 0) {
+      estimated_ = true;
+      const double total_s = elapsed * static_cast<double>(total_) / static_cast<double>(done_);
+      std::fprintf(
+          stderr,
+          "%s[crowdlab] %s: estimated %s in all for %zu steps (%zu done in %.1f s), %ld MB resident now\n",
+          tty_ ? "\r\033[K" : "", label_.c_str(), duration_text(total_s).c_str(), total_, done_, elapsed,
+          resident_mb());
+    }
+  }
   if (now - last_draw_ >= interval) {
     last_draw_ = now;
     draw(false);
@@ -58,8 +105,9 @@ void Progress::draw(bool final_line) {
                  static_cast<int>(frac * 100), done_, total_, final_line ? elapsed : eta,
                  final_line ? "      \n" : " left");
   } else {
+    const std::string eta = frac > 0 ? ", " + duration_text(elapsed * (1.0 - frac) / frac) + " left" : "";
     std::fprintf(stderr, "[crowdlab] %s: %zu/%zu (%d%%) %.1fs%s\n", label_.c_str(), done_, total_,
-                 static_cast<int>(frac * 100), elapsed, final_line ? " done" : "");
+                 static_cast<int>(frac * 100), elapsed, final_line ? " done" : eta.c_str());
   }
   std::fflush(stderr);
 }

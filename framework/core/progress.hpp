@@ -1,6 +1,8 @@
 #pragma once
 // Progress reporting for long jobs: a redrawn bar on a terminal (stderr is a TTY), plain log lines
-// otherwise (CI, pipes), at most one line every few seconds plus start and finish.
+// otherwise (CI, pipes), at most one line every few seconds plus start and finish, each with the time left.
+// A job still running after a couple of seconds prints, once, its estimated total time and the resident
+// memory (issue 33: options with huge accepted maxima ran for hours without an estimate).
 #include <chrono>
 #include <cstddef>
 #include <mutex>
@@ -23,6 +25,9 @@ class Progress {
 
   /// Globally silences progress output (tests, --quiet).
   static void set_enabled(bool enabled);
+  /// After how many seconds of work a job's total time (from its rate so far) and the process's resident
+  /// memory are printed, once (default 2 s; tests set 0).
+  static void set_estimate_after(double seconds);
 
  private:
   void draw(bool final_line);
@@ -30,6 +35,7 @@ class Progress {
   std::size_t total_;
   std::size_t done_ = 0;
   bool finished_ = false;
+  bool estimated_ = false;
   bool tty_;
   std::chrono::steady_clock::time_point start_, last_draw_;
   std::mutex mutex_;

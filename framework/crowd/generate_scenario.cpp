@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "framework/core/error.hpp"
+#include "framework/spec/work_limits.hpp"
 
 namespace crowdlab {
 namespace {
@@ -18,7 +19,14 @@ int scenario_character_count(const ExperimentSpec& spec, const Condition& condit
   const ConditionParams& p = condition.params;
   if (p.characters) return *p.characters;
   if (p.density_per_m2) {
-    const long n = std::lround(*p.density_per_m2 * area_m2);
+    // Counted in double and refused past the limit before the narrowing to int: a density on a huge OBJ
+    // wrapped around and was reported as "agents: must be >= 1" (issue 33).
+    const double count = std::round(*p.density_per_m2 * area_m2);
+    if (count > kMaxCharactersPerCrowd)
+      throw InputError("factors.density: " + std::to_string(*p.density_per_m2) + " per m^2 on " +
+                       std::to_string(area_m2) + " m^2 gives " + std::to_string(count) +
+                       " characters, more than the limit of " + std::to_string(kMaxCharactersPerCrowd));
+    const long n = std::lround(count);
     if (n < 1)
       throw InputError("factors.density: " + std::to_string(*p.density_per_m2) + " per m^2 on " +
                        std::to_string(area_m2) + " m^2 gives no character");

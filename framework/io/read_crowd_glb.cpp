@@ -250,10 +250,13 @@ void read_animation(const tinygltf::Model& model, const std::map<int, JointRef>&
     if (s.interpolation != "LINEAR" && s.interpolation != "STEP")
       throw InputError(where + ": " + s.interpolation + " interpolation is not supported (LINEAR or STEP)");
     const std::vector<float> times = read_float_accessor(model, s.input, TINYGLTF_TYPE_SCALAR, context);
+    if (times.empty())  // was "has 0 keys, expected 0" when the first channel was the empty one (issue 33)
+      throw InputError(where + ": its sampler's input (accessor " + std::to_string(s.input) +
+                       ") has no keys; an animation needs at least one frame");
     if (frames < 0) frames = static_cast<long>(times.size());
-    if (times.size() != static_cast<size_t>(frames) || frames == 0)
+    if (times.size() != static_cast<size_t>(frames))
       throw InputError(where + ": has " + std::to_string(times.size()) + " keys, expected " +
-                       std::to_string(frames));
+                       std::to_string(frames) + " (as the first channel)");
     for (size_t f = 0; f < times.size(); ++f)
       if (std::abs(static_cast<double>(times[f]) - static_cast<double>(f) / fps) >
           kKeyTimeTolerance_frames / fps)

@@ -6,6 +6,7 @@
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -22,6 +23,7 @@
 #include "framework/core/viewpoint_catalogue.hpp"
 #include "framework/spec/parse_factor.hpp"
 #include "framework/spec/parse_protocol.hpp"
+#include "framework/spec/surface_scene_names.hpp"
 #include "framework/spec/work_limits.hpp"
 #include "framework/spec/yaml_flow_nesting.hpp"
 #include "framework/spec/yaml_section.hpp"
@@ -65,9 +67,24 @@ void parse_scenario(YamlSection s, ExperimentSpec& spec) {
   if (s.has("mesh")) {
     std::string mesh;
     s.string("mesh", mesh);
+    // Checked here as `run` would check it (issue 33): a name must be a built-in scene, a file an existing
+    // .obj, .gltf or .glb (`mesh: /etc/passwd` passed validate and failed in run without a line).
     if (has_file_extension(mesh)) {
-      if (auto p = resolve_existing_path(s.diagnostics(), s.get("mesh"), s.child_path("mesh"), mesh, false))
+      const std::string ext = std::filesystem::path(mesh).extension().string();
+      if (std::find(kSurfaceMeshExtensions.begin(), kSurfaceMeshExtensions.end(), ext) ==
+          kSurfaceMeshExtensions.end())
+        s.diagnostics().error(s.get("mesh"), s.child_path("mesh"),
+                              "'" + mesh + "' is not a mesh file (.obj, .gltf or .glb)");
+      else if (auto p =
+                   resolve_existing_path(s.diagnostics(), s.get("mesh"), s.child_path("mesh"), mesh, false))
         sc.mesh = *p;
+    } else if (std::find(kSurfaceSceneNames.begin(), kSurfaceSceneNames.end(), mesh) ==
+               kSurfaceSceneNames.end()) {
+      std::string names;
+      for (const auto n : kSurfaceSceneNames) names += (names.empty() ? "" : ", ") + std::string(n);
+      s.diagnostics().error(s.get("mesh"), s.child_path("mesh"),
+                            "unknown surface scene '" + mesh + "' (expected one of " + names +
+                                ", or an .obj, .gltf or .glb file)");
     } else {
       sc.mesh = mesh;
     }
@@ -417,9 +434,28 @@ void check_consistency(YamlSection& top, ExperimentSpec& spec) {
 }
 
 // The largest crowd any condition shows: the characters factor, else density x area (area scenarios),
-// else scenario.agents. 0 when the spec does not say (pair crossings, derived flows).
+// else scenario.agents. 0 when the spec does not say (pair crossings).
 double largest_crowd(const ExperimentSpec& spec) {
   double most = spec.scenario.agents;
+  // Flows place a lattice of spacing s = 1/sqrt(density) (else initial_spacing_m) over the area, one per
+  // group (generate_flow_scenario.cpp); counted here in double, so that a flow-B of density 10 on 1000 m
+  // (20 million agents: 5 GB at 180 s) is refused before it is placed (issue 33).
+  if (spec.scenario.type == ScenarioKind::flow_a || spec.scenario.type == ScenarioKind::flow_b) {
+    const double groups = spec.scenario.type == ScenarioKind::flow_b ? 2.0 : 1.0;
+    std::vector<double> spacings;
+    if (const Factor* density = spec.factor("density"))
+      for (const FactorLevel& l : density->levels)
+        if (l.number.value_or(0.0) > 0.0) spacings.push_back(1.0 / std::sqrt(*l.number));
+    if (spacings.empty()) spacings.push_back(spec.scenario.initial_spacing_m);
+    for (const double s : spacings) {
+      if (!(s > 0.0)) continue;
+      const double cols = std::floor(spec.scenario.width_m / s + 1e-9);
+      const double rows = spec.scenario.agents > 0
+                              ? std::ceil(spec.scenario.agents / groups / std::max(cols, 1.0))
+                              : std::floor(spec.scenario.depth_m / (groups * s) + 1e-9);
+      most = std::max(most, groups * rows * cols + (groups == 1.0 ? 1.0 : 0.0));
+    }
+  }
   if (const Factor* characters = spec.factor("characters"))
     for (const FactorLevel& l : characters->levels) most = std::max(most, l.number.value_or(0.0));
   const bool area_scenario = is_area_scenario(spec.scenario.type);
@@ -470,7 +506,9 @@ void check_work_limits(YamlSection& top, const ExperimentSpec& spec) {
   if (characters > kMaxCharactersPerCrowd)
     diag.error(at("factors"), "factors",
                "the largest crowd has " + format_number(characters) + " characters, more than the limit of " +
-                   format_number(kMaxCharactersPerCrowd) + " (density x area, or the characters factor)");
+                   format_number(kMaxCharactersPerCrowd) +
+                   " (density x area, a flow's lattice of spacing 1/sqrt(density) or initial_spacing_m over "
+                   "the area, or the characters factor)");
   const double frames = std::ceil(spec.duration_s * spec.fps);
   if (characters <= kMaxCharactersPerCrowd && characters * frames > kMaxCharacterFrames)
     diag.error(at("duration_s"), "duration_s",

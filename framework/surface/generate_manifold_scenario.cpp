@@ -8,6 +8,7 @@
 #include "framework/core/seed.hpp"
 #include "framework/surface/develop_surface_trajectories.hpp"
 #include "framework/surface/smooth_surface_up.hpp"
+#include "framework/surface/spec_surface.hpp"
 #include "framework/surface/surface_crowd.hpp"
 #include "framework/surface/surface_scenes.hpp"
 
@@ -75,7 +76,8 @@ ManifoldScenario generate_manifold_scenario(const ExperimentSpec& spec, const Co
     throw InputError(SourceLocation{spec.source_path, 0, 0, "scenario.mesh"},
                      "a manifold scenario needs a mesh (scene name or file)");
   const SurfaceCrowdParams params = params_from_spec(spec);
-  auto mesh = std::make_shared<const SurfaceMesh>(make_surface_scene(spec.scenario.mesh));
+  auto mesh = std::make_shared<const SurfaceMesh>(load_spec_surface(spec));
+  check_surface_crowd_limits(spec, *mesh);  // before scenario_character_count narrows the count to int
   const int n = scenario_character_count(spec, condition, mesh->total_area_m2);
   const std::uint64_t seed = derive_seed(condition.seed, "manifold");
   const SurfaceCrowdModel model = make_surface_crowd_model(mesh, params, kGoalCount, seed);

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "framework/core/error.hpp"
+#include "framework/spec/surface_scene_names.hpp"
 #include "framework/surface/load_gltf_surface.hpp"
 
 namespace crowdlab {
@@ -233,7 +234,7 @@ SurfaceMesh make_blobby_surface(int min_triangles, double radius_m) {
 }
 
 std::vector<std::string> surface_scene_names() {
-  return {"building", "floor_ceiling", "floor_wall", "mobius", "torus", "tree", "blobby"};
+  return {kSurfaceSceneNames.begin(), kSurfaceSceneNames.end()};
 }
 
 SurfaceMesh make_surface_scene(const std::string& name) {

@@ -376,3 +376,18 @@ TEST_CASE("BVH: hostile headers are refused before any work (issue 21)") {
              Catch::Contains("bad.bvh:18:") && Catch::Contains("Frame Time: must be between 0.0001 and 10"));
   CHECK_THAT(expect_error(replace("Frame Time: 0.04", "Frame Time: 3600")), Catch::Contains("bad.bvh:18:"));
 }
+
+TEST_CASE("BVH: a UTF-8 byte-order mark is accepted, and raw bytes in a message are escaped and cut") {
+  // Was "bom.bvh:1:1: expected 'HIERARCHY', found 'HIERARCHY'" (issue 33).
+  const BvhMotion plain = parse_bvh(kTwoJoint, "plain.bvh");
+  const BvhMotion bom = parse_bvh(std::string("\xEF\xBB\xBF") + kTwoJoint, "bom.bvh");
+  CHECK(bom.joints.size() == plain.joints.size());
+  CHECK(bom.values == plain.values);
+  // A binary token where a keyword belongs: its bytes are escaped and the value cut, not echoed whole.
+  const std::string junk = "\x1b[2J" + std::string(5000, '\x01');
+  const std::string message = expect_error(junk + "\n" + kTwoJoint);
+  CHECK_THAT(message, Catch::Contains("bad.bvh:1:1:") && Catch::Contains("\\x1b[2J"));
+  CHECK(message.find('\x1b') == std::string::npos);
+  CHECK(message.find('\x01') == std::string::npos);
+  CHECK(message.size() < 600);
+}

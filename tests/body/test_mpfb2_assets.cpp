@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "framework/body/mpfb2_body.hpp"
@@ -142,5 +143,33 @@ TEST_CASE("a missing or corrupt MPFB2 asset is an InputError naming the file") {
     FAIL("expected InputError");
   } catch (const InputError& e) {
     CHECK_THAT(std::string(e.what()), Catch::Contains(name + ".target.gz"));
+  }
+}
+
+TEST_CASE("a numeric bone parent in the MPFB2 rig names the rig file and key, not the output") {
+  // Was "stage 'animation' (.../baseline.glb): [json.exception.type_error.302] type must be string, but is
+  // number" (issue 33).
+  const fs::path dir = test::scratch_dir("mpfb2-rig-parent");
+  const fs::path src = shipped_mpfb2_dir();
+  fs::create_directories(dir / "3dobjs");
+  fs::create_directories(dir / "rigs" / "standard");
+  fs::copy_file(src / "3dobjs" / "base.obj", dir / "3dobjs" / "base.obj",
+                fs::copy_options::overwrite_existing);
+  const fs::path rig = dir / "rigs" / "standard" / "rig.mixamo.json";
+  std::ifstream in(src / "rigs" / "standard" / "rig.mixamo.json");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  const std::string from = "\"parent\": \"mixamorig:Neck\"";
+  REQUIRE(text.find(from) != std::string::npos);
+  text.replace(text.find(from), from.size(), "\"parent\": 5");
+  std::ofstream(rig, std::ios::trunc) << text;
+  try {
+    Mpfb2Model::load(dir);
+    FAIL("expected InputError");
+  } catch (const InputError& e) {
+    CHECK_THAT(std::string(e.what()), Catch::Contains(rig.string() + ": bones.") &&
+                                          Catch::Contains(".parent: must be a string") &&
+                                          Catch::Contains("got a number"));
   }
 }

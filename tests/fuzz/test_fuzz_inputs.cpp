@@ -374,6 +374,113 @@ TEST_CASE("hostile families of issue 32 are refused with exit 2, within the caps
   c.report();
 }
 
+namespace {
+
+/// An issue-33 family's case must be refused (record_refusal) with a message that names `place` (the input
+/// file or the option) and stays short: no library's bare message, no value echoed whole.
+void record_named_refusal(Campaign& c, int index, const std::string& what, const std::string& command,
+                          const LimitedRun& r, const std::string& place) {
+  record_refusal(c, index, what, command, r);
+  if (r.exit_code == 2 && r.err.find(place) == std::string::npos)
+    c.violations.push_back(c.kind + " case " + std::to_string(index) + " (" + what + "): " + command +
+                           ": the message does not name " + place + ": " + r.err.substr(0, 300));
+  if (r.err.size() > 5000)
+    c.violations.push_back(c.kind + " case " + std::to_string(index) + " (" + what + "): " + command +
+                           ": a message of " + std::to_string(r.err.size()) + " bytes");
+}
+
+}  // namespace
+
+TEST_CASE("hostile families of issue 33 are refused with exit 2, naming the file or option", "[fuzz]") {
+  Campaign c("hostile33", ".in");
+  Mutator m(c.seed);
+  const int cases = fuzz_cases(kSanitized ? 2 : 4);
+  const fs::path err = c.dir / "err.txt";
+  int index = 0;
+  const std::string crossed = slurp(source_dir() / "tests/data/analysis/likert_crossed.csv");
+  const std::string first_row = "p1,s1,baseline,1,2\n";
+  REQUIRE(crossed.find(first_row) != std::string::npos);
+  // Ratings outside the range of a double (std::stod threw a bare "stod"), through analyze clmm.
+  for (int k = 0; k < cases; ++k, ++index) {
+    const std::string exponent = std::to_string(309 + m.below(5000));
+    const std::string value = (m.below(2) ? "-1e" : "1e") + std::string(m.below(2) ? "-" : "") + exponent;
+    std::string text = crossed;
+    text.replace(text.find(first_row), first_row.size(), "p1,s1,baseline,1," + value + "\n");
+    write_file(c.input_path(index), text);
+    const std::string in = c.input_path(index).string();
+    record_named_refusal(c, index, "rating " + value, "`crowdlab analyze clmm`",
+                         run_crowdlab_limited({"analyze", "clmm", "--csv", in, "--formula",
+                                               "rating ~ method + (1 | participant)"},
+                                              run_limit_s(), err),
+                         in);
+  }
+  // Formulas crossing many columns the file lacks (a bad_alloc after 67 s), through analyze lmm.
+  for (int k = 0; k < cases; ++k, ++index) {
+    const std::size_t n = 11 + m.below(40);
+    std::string formula = "rating ~ ";
+    for (std::size_t i = 0; i < n; ++i) formula += (i ? "*" : "") + std::string("x") + std::to_string(i);
+    write_file(c.input_path(index), crossed);
+    const std::string in = c.input_path(index).string();
+    record_named_refusal(
+        c, index, std::to_string(n) + " crossed missing columns", "`crowdlab analyze lmm`",
+        run_crowdlab_limited({"analyze", "lmm", "--csv", in, "--formula", formula + " + (1 | participant)"},
+                             run_limit_s(), err),
+        in);
+  }
+  // Option values off their range (a 300-digit limit was printed).
+  for (int k = 0; k < cases; ++k, ++index) {
+    const std::string value = m.below(2) ? "0" : "-" + std::to_string(1 + m.below(1000000));
+    write_file(c.input_path(index), crossed);
+    record_named_refusal(
+        c, index, "--max-levels " + value, "`crowdlab analyze anova --max-levels`",
+        run_crowdlab_limited({"analyze", "anova", "--csv", c.input_path(index).string(), "--dv", "rating",
+                              "--subject", "participant", "--within", "method", "--max-levels", value},
+                             run_limit_s(), err),
+        "--max-levels: must");
+  }
+  // Flow crowds far past the character limit (5 GB at 180 s before), through validate.
+  const std::string flow_spec =
+      "crowdlab: 1\nname: f\nseed: 1\nscenario: {type: flow_b, area: {width_m: W, depth_m: W}}\n"
+      "factors: {density: [D]}\nprotocol:\n  type: likert\n  questions: [{id: Q1, text: x}]\n";
+  for (int k = 0; k < cases; ++k, ++index) {
+    const std::string width = std::to_string(200 + m.below(800)), density = std::to_string(1 + m.below(10));
+    std::string text = flow_spec;
+    text.replace(text.find("W"), 1, width);
+    text.replace(text.find("W"), 1, width);
+    text.replace(text.find("[D]"), 3, "[" + density + "]");
+    write_file(c.input_path(index), text);
+    const std::string in = c.input_path(index).string();
+    record_named_refusal(c, index, "flow_b " + width + " m at density " + density, "`crowdlab validate`",
+                         run_crowdlab_limited({"validate", in}, run_limit_s(), err), in);
+  }
+  // Manifold crowds on large OBJ surfaces (an int overflow, then "agents: must be >= 1").
+  for (int k = 0; k < cases; ++k, ++index) {
+    const double half = 100.0 + static_cast<double>(m.below(100000));
+    const fs::path obj = c.dir / ("surface-" + std::to_string(index) + ".obj");
+    const std::string h = std::to_string(half);
+    write_file(obj, "v -" + h + " 0 -" + h + "\nv " + h + " 0 -" + h + "\nv " + h + " 0 " + h + "\nv -" + h +
+                        " 0 " + h + "\nf 1 2 3\nf 1 3 4\n");
+    write_file(c.input_path(index),
+               "crowdlab: 1\nname: m\nseed: 1\nscenario: {type: manifold, mesh: " + obj.string() +
+                   "}\ncrowd: {model: orca}\nfactors: {density: [2]}\n"
+                   "protocol:\n  type: likert\n  questions: [{id: Q1, text: x}]\n");
+    const std::string in = c.input_path(index).string();
+    record_named_refusal(c, index, "manifold of half-width " + h + " m", "`crowdlab validate`",
+                         run_crowdlab_limited({"validate", in}, run_limit_s(), err), in);
+  }
+  // BVH clips whose first token is raw binary (echoed whole before); a byte-order mark alone is accepted.
+  for (int k = 0; k < cases; ++k, ++index) {
+    std::string junk(1000 + m.below(100000), '\0');
+    for (char& ch : junk) ch = static_cast<char>(1 + m.below(31));
+    write_file(c.input_path(index), "\xEF\xBB\xBF" + junk + "\nHIERARCHY\n");
+    const fs::path path = c.input_path(index);
+    const auto read = [&] { return exit_code_of([&] { (void)import_bvh(path.string()); }); };
+    record_named_refusal(c, index, std::to_string(junk.size()) + " binary bytes", "import_bvh",
+                         run_limited(read, run_limit_s(), err), path.string());
+  }
+  c.report();
+}
+
 TEST_CASE("the fuzz harness reports a signal, a hang, memory over the cap and a silent exit 2", "[fuzz]") {
   // Without this the campaigns above could pass by never seeing a failure.
   const fs::path err = scratch_dir("fuzz_harness") / "err.txt";

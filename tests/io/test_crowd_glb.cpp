@@ -445,3 +445,30 @@ TEST_CASE("a dressed surface's labels (SurfaceKind per vertex) round-trip throug
   bad->surface[3] = 200;
   CHECK_THROWS_AS(validate_skinned_mesh(*bad, "test"), InputError);
 }
+
+TEST_CASE("an animation channel with no keys says so, not 'has 0 keys, expected 0'") {
+  // Issue 33: acc_count_zero.glb.
+  const auto dir = test::scratch_dir("glb-zero-keys");
+  const auto good = dir / "good.glb";
+  write_crowd_glb(random_crowd(9, 1, 4), good.string());
+  tinygltf::Model model;
+  tinygltf::TinyGLTF gltf;
+  std::string err, warn;
+  REQUIRE(gltf.LoadBinaryFromFile(&model, &err, &warn, good.string()));
+  REQUIRE_FALSE(model.animations.empty());
+  const auto& anim = model.animations[0];
+  const int input = anim.samplers[static_cast<size_t>(anim.channels[0].sampler)].input;
+  for (auto& sampler : model.animations[0].samplers)  // every channel shares the key times: empty them all
+    if (sampler.input == input) model.accessors[static_cast<size_t>(input)].count = 0;
+  const auto path = dir / "acc_count_zero.glb";
+  REQUIRE(gltf.WriteGltfSceneToFile(&model, path.string(), false, true, false, true));
+  try {
+    read_crowd_glb(path.string());
+    FAIL("expected InputError");
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    CHECK_THAT(m, Catch::Contains("acc_count_zero.glb") && Catch::Contains("animation channel 0") &&
+                      Catch::Contains("no keys"));
+    CHECK_THAT(m, !Catch::Contains("expected 0"));
+  }
+}

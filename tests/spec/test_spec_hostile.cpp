@@ -195,3 +195,36 @@ TEST_CASE("spec: practice conditions count toward the condition limit (issue 32)
   CHECK_THAT(errors, Catch::Contains("protocol.practice") && Catch::Contains("10000 practice conditions") &&
                          Catch::Contains("10004") && Catch::Contains("limit of 10000"));
 }
+
+TEST_CASE("spec: a manifold mesh that run would refuse is refused at its line and column") {
+  // Issue 33: `mesh: bogus_scene` and `mesh: /etc/passwd` passed validate; run refused them without a line.
+  const std::string base = kHeader + kLikert + "factors: {method: [baseline]}\n";
+  const std::string bogus = errors_of(base + "scenario: {type: manifold, mesh: bogus_scene}\n");
+  CHECK_THAT(bogus, Catch::Contains("t.yaml:") && Catch::Contains("scenario.mesh: unknown surface scene "
+                                                                  "'bogus_scene' (expected one of building"));
+  const std::string passwd = errors_of(base + "scenario: {type: manifold, mesh: /etc/passwd}\n");
+  CHECK_THAT(passwd,
+             Catch::Contains("scenario.mesh: '/etc/passwd' is not a mesh file (.obj, .gltf or .glb)"));
+  CHECK(errors_of(base + "scenario: {type: manifold, mesh: floor_wall}\n").find("scenario.mesh") ==
+        std::string::npos);
+}
+
+TEST_CASE("spec: flow crowds are counted from their lattice and refused past the character limits") {
+  // Issue 33: a flow-B corridor of density 10 on 1000 m (5 GB at 180 s), spacing 0.01 m, and an hour at
+  // 240 fps all passed validate (a flow's crowd size was not estimated).
+  const std::string area = "scenario: {type: flow_b, area: {width_m: 1000, depth_m: 1000}";
+  const std::string dense = errors_of(kHeader + kLikert + area + "}\nfactors: {density: [10]}\n");
+  CHECK_THAT(dense, Catch::Contains("the largest crowd has 9998244 characters") &&
+                        Catch::Contains("more than the limit of 10000"));
+  const std::string spaced =
+      errors_of(kHeader + kLikert + area + ", initial_spacing_m: 0.01}\nfactors: {method: [baseline]}\n");
+  CHECK_THAT(spaced, Catch::Contains("the largest crowd has 1e+10 characters"));
+  const std::string hour = errors_of(kHeader + kLikert +
+                                     "scenario: {type: flow_b, area: {width_m: 10, depth_m: 10}}\n"
+                                     "factors: {density: [1]}\nduration_s: 3600\nfps: 240\n");
+  CHECK_THAT(hour, Catch::Contains("100 characters x 864000 frames"));
+  CHECK(errors_of(kHeader + kLikert +
+                  "scenario: {type: flow_b, area: {width_m: 10, depth_m: 10}}\n"
+                  "factors: {density: [1]}\n")
+            .empty());
+}

@@ -186,3 +186,33 @@ TEST_CASE("validate: adding a level keeps every other id and seed, and output is
     CHECK(b.at(id) == seed);
   }
 }
+
+TEST_CASE("validate reads the manifold mesh as run does: a bad file and a crowd too large for its area") {
+  // Issue 33: validate passed a mesh run could not read, and a density of 0.1 on a 1 km OBJ (which
+  // overflowed an int in run and was reported as "agents: must be >= 1").
+  const auto dir = test::scratch_dir("validate-manifold");
+  std::ofstream(dir / "km.obj")
+      << "v -500 0 -500\nv 500 0 -500\nv 500 0 500\nv -500 0 500\nf 1 2 3\nf 1 3 4\n";
+  std::ofstream(dir / "broken.obj") << "v 0 0 0\nv 1 0 0\nf 1 2 9\n";
+  const auto spec = [&](const std::string& mesh, const std::string& factors) {
+    const auto path = dir / ("spec_" + mesh + ".yaml");
+    std::ofstream(path) << "crowdlab: 1\nname: m\nseed: 1\n"
+                        << "scenario:\n  type: manifold\n  mesh: " << mesh << "\n"  // mesh: line 6
+                        << "crowd: {model: orca}\nfactors:\n"
+                        << factors << "  method: [baseline]\n"
+                        << "protocol:\n  type: likert\n  questions:\n    - {id: Q1, text: \"Natural?\"}\n";
+    return path.string();
+  };
+  const auto huge = run_cli({"validate", spec("km.obj", "  density: [0.001, 0.1]\n")});
+  CHECK(huge.exit_code == 2);
+  CHECK_THAT(huge.err,
+             Catch::Contains("spec_km.obj.yaml:9:12: factors.density: the largest crowd on") &&
+                 Catch::Contains("(1000000 m^2) has 100000 characters, more than the limit of 10000"));
+  const auto small = run_cli({"validate", spec("km.obj", "  density: [0.001]\n")});
+  INFO(small.err);
+  CHECK(small.exit_code == 0);
+  const auto broken = run_cli({"validate", spec("broken.obj", "  density: [1]\n")});
+  CHECK(broken.exit_code == 2);
+  CHECK_THAT(broken.err,
+             Catch::Contains("spec_broken.obj.yaml:6:9: scenario.mesh: ") && Catch::Contains("broken.obj"));
+}

@@ -340,3 +340,27 @@ TEST_CASE("screens: instructions, consent, practice and block intros, a break ev
   CHECK(p.headers == std::vector<std::string>{"Practice trial 1 of 1", "Trial 1 of 4", "Trial 2 of 4",
                                               "Trial 3 of 4", "Trial 4 of 4"});
 }
+
+TEST_CASE("a response log whose trial rows appear twice names the trial, not '0 rows'", "[study]") {
+  // Was "trial 2 has 0 rows, expected 2" when trial 2's rows were there twice (issue 33).
+  const auto dir = test::scratch_dir("study-log-twice");
+  const std::vector<std::string> header = {"participant", "session", "trial", "question"};
+  const std::string path = (dir / "log.csv").string();
+  auto message_of_reopen = [&] {
+    RecoveredLog rec;
+    try {
+      ResponseLog::reopen(path, header, "trial", "session", 2, rec);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  const std::string head = "participant,session,trial,question\nP,1,1,a\nP,1,1,b\n";
+  const std::string trial2 = "P,1,2,a\nP,1,2,b\n";
+  std::ofstream(path, std::ios::trunc) << head << trial2 << trial2;  // one block of 4 rows
+  CHECK_THAT(message_of_reopen(),
+             Catch::Contains("log.csv:") && Catch::Contains("trial 2 has 4 rows, expected 2"));
+  std::ofstream(path, std::ios::trunc) << head << trial2 << "P,1,3,a\nP,1,3,b\n" << trial2;  // copied later
+  CHECK_THAT(message_of_reopen(), Catch::Contains("log.csv:8:") &&
+                                      Catch::Contains("trial 2 appears again (its rows start at line 4)"));
+}

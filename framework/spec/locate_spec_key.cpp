@@ -1,0 +1,29 @@
+#include "framework/spec/locate_spec_key.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <sstream>
+
+namespace crowdlab {
+
+SourceLocation locate_spec_key(const std::string& spec_path, const std::string& key_path) {
+  SourceLocation where{spec_path, 0, 0, key_path};
+  try {
+    YAML::Node node = YAML::LoadFile(spec_path);  // the spec was loaded (and its size checked) before
+    std::stringstream keys(key_path);
+    for (std::string key; std::getline(keys, key, '.');) {
+      if (!node.IsMap()) return where;
+      const YAML::Node& map = node;  // const: a lookup must not insert the key
+      const YAML::Node next = map[key];
+      if (!next.IsDefined()) return where;
+      node.reset(next);  // rebinds (operator= would assign through to the parent's value)
+    }
+    where.line = node.Mark().line + 1;  // yaml-cpp's Mark is 0-based
+    where.column = node.Mark().column + 1;
+  } catch (const YAML::Exception&) {
+    // The file changed since it was loaded: the message still names the file and the key.
+  }
+  return where;
+}
+
+}  // namespace crowdlab
