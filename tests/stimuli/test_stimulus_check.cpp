@@ -29,7 +29,7 @@ TEST_CASE("stimulus check: crowd in frame, character height and the loop seam of
           "[stimuli]") {
   const CrowdAnimation crowd = synthetic(9, 40);  // the idle motion's period is the clip: it loops
   const CrowdExtent extent = crowd_extent(character_tracks(crowd), crowd.meta.fps);
-  const Viewpoint v1("V1", extent, 640, 360);
+  const Viewpoint v1(ViewpointId::V1, extent, 640, 360);
   const StimulusCheck c = measure_stimulus_geometry(crowd, v1, crowd.frame_count());
   CHECK(c.crowd_in_frame_min == 1.0);
   CHECK(c.character_height_px > 60.0);   // 9 people fill 92 % of a 360 px high image ...
