@@ -15,7 +15,7 @@ StimulusLook stimulus_look(const RenderSpec& render) {
   return look;
 }
 
-RenderRecipe render_recipe(const ExperimentSpec& spec, const std::string& viewpoint) {
+RenderRecipe render_recipe(const ExperimentSpec& spec, ViewpointId viewpoint) {
   RenderRecipe r;
   r.look = stimulus_look(spec.render);
   r.viewpoint = viewpoint;

@@ -33,7 +33,7 @@ struct RenderRecipe {
   /// check, dressed bodies and the clean image (issue 28).
   static constexpr std::string_view kCodeVersion = "shared-extent/2+check/1+look/2";
   StimulusLook look;
-  std::string viewpoint = "V1";  ///< catalogue name (framework/core/viewpoint_catalogue.hpp)
+  ViewpointId viewpoint = ViewpointId::V1;  ///< the catalogue id (framework/core/viewpoint_catalogue.hpp)
   int crf = 18;
   std::string x264_preset = RenderOptions{}.x264_preset;
   bool frames_png = false;  ///< also write the frames as PNG (render.frames_png)
@@ -51,7 +51,7 @@ struct ContactSheetRecipe {
 /// The look of the spec's stimuli. Throws InputError for a malformed render.background.
 StimulusLook stimulus_look(const RenderSpec& render);
 /// The render recipe of a condition shown from `viewpoint`.
-RenderRecipe render_recipe(const ExperimentSpec& spec, const std::string& viewpoint);
+RenderRecipe render_recipe(const ExperimentSpec& spec, ViewpointId viewpoint);
 /// The options render_clip and write_contact_sheet take for `look` (the encoding at its defaults).
 RenderOptions render_options(const StimulusLook& look);
 

@@ -64,15 +64,15 @@ void prepare_renderer(Renderer& renderer, const CrowdAnimation& crowd, const Ren
                       options.scene.shadow_map_size);
 }
 
-RenderResult render_clip(const CrowdAnimation& crowd, const RenderOptions& options,
-                         const std::string& viewpoint, const std::string& out_mp4) {
+RenderResult render_clip(const CrowdAnimation& crowd, const RenderOptions& options, ViewpointId viewpoint,
+                         const std::string& out_mp4) {
   validate_video_settings({options.width, options.height, crowd.meta.fps, options.crf, options.x264_preset});
   Renderer renderer;
   return render_clip(renderer, crowd, options, viewpoint, out_mp4);
 }
 
 RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options,
-                         const std::string& viewpoint, const std::string& out_mp4) {
+                         ViewpointId viewpoint, const std::string& out_mp4) {
   const Viewpoint view(viewpoint, crowd, options.width, options.height, options.viewpoint_overrides);
   return render_clip(renderer, crowd, options, view, out_mp4);
 }
@@ -220,17 +220,17 @@ void write_contact_sheet(Renderer& renderer, const CrowdAnimation& crowd, const 
                          int frame, const std::string& out_png, const CrowdExtent* extent) {
   const int tile_w = options.width / 2, tile_h = options.height / 2;
   cv::Mat sheet(2 * tile_h, 2 * tile_w, CV_8UC3, cv::Scalar(0, 0, 0));
-  const char* names[4] = {"V1", "V2", "V3", "V4"};
+  const ViewpointId ids[4] = {ViewpointId::V1, ViewpointId::V2, ViewpointId::V3, ViewpointId::V4};
   for (int k = 0; k < 4; ++k) {
     const Viewpoint view =
-        extent ? Viewpoint(names[k], *extent, options.width, options.height, options.viewpoint_overrides)
-               : Viewpoint(names[k], crowd, options.width, options.height, options.viewpoint_overrides);
+        extent ? Viewpoint(ids[k], *extent, options.width, options.height, options.viewpoint_overrides)
+               : Viewpoint(ids[k], crowd, options.width, options.height, options.viewpoint_overrides);
     BgrImage img = render_frame(renderer, crowd, options, view.at(frame), frame);
     const cv::Mat full(img.height, img.width, CV_8UC3, img.bgr.data());
     cv::Mat tile;
     cv::resize(full, tile, cv::Size(tile_w, tile_h), 0, 0, cv::INTER_AREA);
     const double scale = std::max(0.5, tile_h / 360.0);
-    cv::putText(tile, names[k], cv::Point(static_cast<int>(12 * scale), static_cast<int>(30 * scale)),
+    cv::putText(tile, view.name(), cv::Point(static_cast<int>(12 * scale), static_cast<int>(30 * scale)),
                 cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(20, 20, 20),
                 std::max(1, static_cast<int>(2 * scale)), cv::LINE_AA);
     tile.copyTo(sheet(cv::Rect((k % 2) * tile_w, (k / 2) * tile_h, tile_w, tile_h)));

@@ -47,12 +47,12 @@ void prepare_renderer(Renderer& renderer, const CrowdAnimation& crowd, const Ren
 
 /// Renders with a Renderer created for this call (an EGL context per call; prefer the overload
 /// below for many clips).
-RenderResult render_clip(const CrowdAnimation& crowd, const RenderOptions& options,
-                         const std::string& viewpoint, const std::string& out_mp4);
+RenderResult render_clip(const CrowdAnimation& crowd, const RenderOptions& options, ViewpointId viewpoint,
+                         const std::string& out_mp4);
 /// Renders with an existing Renderer (its context and mesh cache are reused across clips), framed
 /// from the crowd's own motion (Viewpoint(viewpoint, crowd, ...)).
 RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options,
-                         const std::string& viewpoint, const std::string& out_mp4);
+                         ViewpointId viewpoint, const std::string& out_mp4);
 /// Renders from a given viewpoint, e.g. one framed from data several crowds share (crowd_extent.hpp);
 /// its image size must be options.width x options.height.
 RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& options,

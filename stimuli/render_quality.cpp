@@ -31,7 +31,7 @@ RenderOptions reference_render_options(const RenderOptions& fast) {
 
 QualityReport measure_render_quality(Renderer& renderer, const CrowdAnimation& crowd,
                                      const RenderOptions& fast, const RenderOptions& reference,
-                                     const std::vector<std::string>& viewpoints, int frames,
+                                     const std::vector<ViewpointId>& viewpoints, int frames,
                                      const std::vector<int>& sample_frames, const std::string& work_dir) {
   frames = std::min(frames, crowd.frame_count());
   for (int f : sample_frames)
@@ -40,13 +40,13 @@ QualityReport measure_render_quality(Renderer& renderer, const CrowdAnimation& c
                        std::to_string(frames) + ")");
   QualityReport report;
   const std::filesystem::path clip = std::filesystem::path(work_dir) / "crowdlab_quality_fast.mp4";
-  for (const std::string& name : viewpoints) {
+  for (const ViewpointId id : viewpoints) {
     RenderOptions o = fast;
     o.max_frames = frames;
-    render_clip(renderer, crowd, o, name, clip.string());
+    render_clip(renderer, crowd, o, id, clip.string());
     const std::vector<cv::Mat> decoded = decode_luma(clip.string());
     std::filesystem::remove(clip);
-    const Viewpoint view(name, crowd, fast.width, fast.height, fast.viewpoint_overrides);
+    const Viewpoint view(id, crowd, fast.width, fast.height, fast.viewpoint_overrides);
     for (int f : sample_frames) {
       if (static_cast<size_t>(f) >= decoded.size())
         throw RuntimeError("render quality: the clip decoded to " + std::to_string(decoded.size()) +
@@ -54,7 +54,7 @@ QualityReport measure_render_quality(Renderer& renderer, const CrowdAnimation& c
       const cv::Mat ref = reference_luma(renderer, crowd, reference, view.at(f), f);
       const double ssim =
           cv::quality::QualitySSIM::compute(ref, decoded[static_cast<size_t>(f)], cv::noArray())[0];
-      report.samples.push_back({name, f, ssim, cv::PSNR(ref, decoded[static_cast<size_t>(f)])});
+      report.samples.push_back({view.name(), f, ssim, cv::PSNR(ref, decoded[static_cast<size_t>(f)])});
     }
   }
   std::vector<double> ssim;

@@ -32,7 +32,7 @@ struct QualityReport {
 /// with the same frames rendered with `reference`. Throws InputError when a sample frame is out of range.
 QualityReport measure_render_quality(Renderer& renderer, const CrowdAnimation& crowd,
                                      const RenderOptions& fast, const RenderOptions& reference,
-                                     const std::vector<std::string>& viewpoints, int frames,
+                                     const std::vector<ViewpointId>& viewpoints, int frames,
                                      const std::vector<int>& sample_frames, const std::string& work_dir);
 
 /// The reference options for `fast`: the same scene, size and camera overrides with 4x MSAA.

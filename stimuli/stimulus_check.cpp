@@ -172,8 +172,8 @@ std::vector<std::string> stimulus_check_failures(const StimulusCheck& c, const S
     out.push_back(
         fmt::format("crowd in frame {:.3f} < {:.3f}", c.crowd_in_frame_min, limits.crowd_in_frame_min));
   const double scale = role.image_height / 1080.0;
-  const double height_min =
-      scale * (role.viewpoint == "V4" ? limits.overhead_height_px_min : limits.character_height_px_min);
+  const double height_min = scale * (role.viewpoint == ViewpointId::V4 ? limits.overhead_height_px_min
+                                                                       : limits.character_height_px_min);
   if (c.character_height_px >= 0.0 && c.character_height_px < height_min)
     out.push_back(fmt::format("character height {:.0f} px < {:.0f} px", c.character_height_px, height_min));
   if (role.loops && c.seam_step_ratio >= 0.0 && c.seam_step_ratio > limits.seam_step_ratio_max)

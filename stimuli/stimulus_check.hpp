@@ -25,6 +25,7 @@
 //
 // Thresholds: the spec's render.check (framework/spec/experiment_spec.hpp: StimulusCheckSpec).
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,7 +47,7 @@ void add_overlap_measures(StimulusCheck& check, const std::vector<double>& overl
 /// What a clip is, for judging its check: its viewpoint, whether it shows the uncorrected baseline,
 /// whether it is shown looping, and its image height (pixel thresholds scale with height / 1080).
 struct ClipRole {
-  std::string viewpoint;
+  std::optional<ViewpointId> viewpoint;  ///< none: a clip without a catalogue viewpoint
   bool baseline = false;
   bool loops = true;
   int image_height = 1080;

@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
-#include <optional>
+#include <stdexcept>
 
 #include "framework/core/error.hpp"
 
@@ -110,56 +110,51 @@ Camera fit_box(const Vec3& lo, const Vec3& hi, const ViewAxes& a, double fov_deg
 }
 
 /// The catalogue's preset (framework/core/viewpoint_catalogue.hpp) as this file's Preset.
-std::optional<Preset> preset_of(const std::string& name) {
-  const ViewpointPreset* p = find_viewpoint(name);
-  if (!p) return std::nullopt;
-  return Preset{p->azimuth_deg, p->elevation_deg, p->fov_deg};
+Preset preset_of(ViewpointId id) {
+  const ViewpointPreset& p = viewpoint_preset(id);
+  return Preset{p.azimuth_deg, p.elevation_deg, p.fov_deg};
 }
 
 }  // namespace
 
-Viewpoint::Viewpoint(const std::string& name, const CrowdAnimation& crowd, int width, int height,
+Viewpoint::Viewpoint(ViewpointId id, const CrowdAnimation& crowd, int width, int height,
                      const ViewpointOverrides& overrides)
-    : Viewpoint(name, crowd_extent(character_tracks(crowd), crowd.meta.fps), width, height, overrides) {}
+    : Viewpoint(id, crowd_extent(character_tracks(crowd), crowd.meta.fps), width, height, overrides) {}
 
-Viewpoint::Viewpoint(const std::string& name, const CrowdExtent& extent, int width, int height,
-                     const ViewpointOverrides& overrides)
-    : name_(name) {
+Viewpoint Viewpoint::placed(std::string name, const CameraPlacement& placement, int width, int height) {
+  Viewpoint v;
+  v.name_ = std::move(name);
+  v.place(placement, width, height);
+  return v;
+}
+
+void Viewpoint::place(const CameraPlacement& v, int width, int height) {
   if (width <= 0 || height <= 0) throw InputError("viewpoint: image size must be positive");
-  const std::optional<Preset> preset_found = preset_of(name);
-  const auto override_it = overrides.find(name);
-  if (!preset_found && override_it == overrides.end()) {
-    std::string known;
-    for (const auto& n : viewpoint_names()) known += (known.empty() ? "" : ", ") + n;
-    throw InputError("unknown viewpoint '" + name + "' (known: " + known +
-                     ", or one named in render.viewpoint_overrides)");
-  }
-  if (override_it != overrides.end()) {
-    const std::vector<double>& v = override_it->second;
-    const std::string where = "render.viewpoint_overrides." + name;
-    if (v.size() != 7)
-      throw InputError(where + ": expected [px,py,pz,tx,ty,tz,fov_deg] (7 numbers), got " +
-                       std::to_string(v.size()));
-    for (double x : v)
-      if (!std::isfinite(x)) throw InputError(where + ": values must be finite");
-    if (!(v[6] > 1.0 && v[6] < 170.0)) throw InputError(where + ": fov_deg must be in (1, 170)");
-    fixed_.eye = Vec3(v[0], v[1], v[2]);
-    fixed_.target = Vec3(v[3], v[4], v[5]);
-    if ((fixed_.eye - fixed_.target).norm() < 1e-6)
-      throw InputError(where + ": camera position equals target");
-    fixed_.fov_y_deg = v[6];
-    fixed_.near_m = 0.1;
-    fixed_.far_m = (fixed_.eye - fixed_.target).norm() + 200.0;
-    fixed_.width = width;
-    fixed_.height = height;
+  if (const std::string problem = camera_placement_problem(v); !problem.empty())
+    throw std::logic_error("viewpoint " + name_ + ": an unchecked camera placement (" + problem + ")");
+  fixed_.eye = Vec3(v[0], v[1], v[2]);
+  fixed_.target = Vec3(v[3], v[4], v[5]);
+  fixed_.fov_y_deg = v[6];
+  fixed_.near_m = 0.1;
+  fixed_.far_m = (fixed_.eye - fixed_.target).norm() + 200.0;
+  fixed_.width = width;
+  fixed_.height = height;
+}
+
+Viewpoint::Viewpoint(ViewpointId id, const CrowdExtent& extent, int width, int height,
+                     const ViewpointOverrides& overrides)
+    : name_(viewpoint_name(id)) {
+  if (width <= 0 || height <= 0) throw InputError("viewpoint: image size must be positive");
+  if (const auto placed_at = overrides.find(id); placed_at != overrides.end()) {
+    place(placed_at->second, width, height);
     return;
   }
-  const Preset& preset = *preset_found;
-  if (name == "pair") {
+  const Preset preset = preset_of(id);
+  if (id == ViewpointId::pair) {
     // Look across the walking axis so the two paths run diagonally through the image.
     const Vec3 across = Vec3::UnitY().cross(extent.walk_axis).normalized();
     fixed_ = fit_box(extent.lo_m, extent.hi_m, view_axes(across, preset), preset.fov_deg, width, height);
-  } else if (name == "tracking") {
+  } else if (id == ViewpointId::tracking) {
     tracking_ = true;
     const std::vector<Vec3>& feet = extent.focal_feet_m;
     const int n = static_cast<int>(feet.size());

@@ -34,24 +34,29 @@
 #include <vector>
 
 #include "framework/core/crowd_animation.hpp"
-#include "framework/core/viewpoint_catalogue.hpp"  // viewpoint_names(): the names Viewpoint accepts
+#include "framework/core/viewpoint_catalogue.hpp"
 #include "stimuli/camera.hpp"
 #include "stimuli/crowd_extent.hpp"
 
 namespace crowdlab::stimuli {
 
-/// Overrides from the spec's render.viewpoint_overrides: name -> [px,py,pz, tx,ty,tz, fov_deg].
-using ViewpointOverrides = std::map<std::string, std::vector<double>>;
+/// Explicit cameras replacing presets (the spec's render.viewpoints, checked there with
+/// camera_placement_problem()).
+using ViewpointOverrides = std::map<ViewpointId, CameraPlacement>;
 
 class Viewpoint {
  public:
-  /// Throws InputError for an unknown name or a malformed override (not 7 finite numbers, fov
-  /// outside (1, 170) degrees, eye == target).
-  Viewpoint(const std::string& name, const CrowdExtent& extent, int width, int height,
+  /// The catalogue's preset `id` framed on `extent`, or overrides[id] when given. The spec loader has
+  /// checked the overrides: a placement camera_placement_problem() refuses is a programming error here
+  /// (std::logic_error).
+  Viewpoint(ViewpointId id, const CrowdExtent& extent, int width, int height,
             const ViewpointOverrides& overrides = {});
   /// Frames a lone crowd file from its own root motion (crowd_extent(character_tracks(crowd))).
-  Viewpoint(const std::string& name, const CrowdAnimation& crowd, int width, int height,
+  Viewpoint(ViewpointId id, const CrowdAnimation& crowd, int width, int height,
             const ViewpointOverrides& overrides = {});
+  /// An explicit camera named `name` (the render command's --viewpoint-override with a name outside the
+  /// catalogue); `placement` as above.
+  static Viewpoint placed(std::string name, const CameraPlacement& placement, int width, int height);
 
   /// The camera for frame `frame` (only "tracking" moves).
   Camera at(int frame) const;
@@ -61,6 +66,8 @@ class Viewpoint {
   bool moves() const { return tracking_ || !follow_path_.empty(); }
 
  private:
+  Viewpoint() = default;
+  void place(const CameraPlacement& placement, int width, int height);
   std::string name_;
   Camera fixed_;
   bool tracking_ = false;

@@ -92,9 +92,10 @@ nlohmann::json quality_json(stimuli::Renderer& renderer, const CrowdAnimation& c
   std::vector<int> samples;
   for (int f : {0, 10, 20, 29})
     if (f < frames) samples.push_back(f);
-  const stimuli::QualityReport q = stimuli::measure_render_quality(
-      renderer, crowd, fast, stimuli::reference_render_options(fast), {"V1", "V2", "V3", "V4"}, frames,
-      samples, std::filesystem::temp_directory_path().string());
+  const stimuli::QualityReport q =
+      stimuli::measure_render_quality(renderer, crowd, fast, stimuli::reference_render_options(fast),
+                                      {ViewpointId::V1, ViewpointId::V2, ViewpointId::V3, ViewpointId::V4},
+                                      frames, samples, std::filesystem::temp_directory_path().string());
   nlohmann::json j = {{"ssim_min", q.ssim_min},
                       {"ssim_median", q.ssim_median},
                       {"psnr_min_db", q.psnr_min_db},
@@ -107,6 +108,8 @@ nlohmann::json quality_json(stimuli::Renderer& renderer, const CrowdAnimation& c
 
 void run(const Args& a) {
   if (a.frames < 1 || a.warmup < 0) throw InputError("bench render: --frames must be >= 1 and --warmup >= 0");
+  const std::optional<ViewpointId> viewpoint = find_viewpoint(a.viewpoint);
+  if (!viewpoint) throw InputError("bench render: --viewpoint: unknown viewpoint '" + a.viewpoint + "'");
   const CrowdAnimation crowd = make_crowd(a);
   stimuli::RenderOptions ro;
   ro.width = a.width;
@@ -128,14 +131,14 @@ void run(const Args& a) {
   const double mesh_setup_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
   const double cpu_start = process_cpu_s();
-  const stimuli::RenderResult r = stimuli::render_clip(renderer, crowd, ro, a.viewpoint, out);
+  const stimuli::RenderResult r = stimuli::render_clip(renderer, crowd, ro, *viewpoint, out);
   const double cpu_ms_per_frame = 1000.0 * (process_cpu_s() - cpu_start) / std::max(1, r.frames);
   // The stage breakdown comes from a second pass over the same frames with every GPU pass finished before
   // the next starts (so it can be timed); the fps and CPU figures above come from the normal pipeline.
   stimuli::RenderOptions staged = ro;
   staged.scene.time_passes = true;
   const stimuli::RenderResult r_stages =
-      a.json || a.stages ? stimuli::render_clip(renderer, crowd, staged, a.viewpoint, out) : r;
+      a.json || a.stages ? stimuli::render_clip(renderer, crowd, staged, *viewpoint, out) : r;
   if (a.out.empty()) std::filesystem::remove(out);
   const nlohmann::json quality = a.quality ? quality_json(renderer, crowd, ro) : nlohmann::json();
   const auto skip = static_cast<std::ptrdiff_t>(std::min(a.warmup, r.frames - 1));

@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -31,8 +33,8 @@ struct RenderArgs {
   bool overlap = false, synthetic_corridor = false;
 };
 
-/// "NAME=px,py,pz,tx,ty,tz,fov" -> overrides[NAME].
-void parse_override(const std::string& text, stimuli::ViewpointOverrides& overrides) {
+/// "NAME=px,py,pz,tx,ty,tz,fov" -> placements[NAME], checked as the spec loader checks render.viewpoints.
+void parse_override(const std::string& text, std::map<std::string, CameraPlacement>& placements) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
     throw InputError("--viewpoint-override: expected NAME=px,py,pz,tx,ty,tz,fov_deg, got \"" + text + "\"");
@@ -48,7 +50,30 @@ void parse_override(const std::string& text, stimuli::ViewpointOverrides& overri
       throw InputError("--viewpoint-override: \"" + item + "\" is not a number");
     }
   }
-  overrides[text.substr(0, eq)] = values;
+  const std::string name = text.substr(0, eq);
+  if (values.size() != 7)
+    throw InputError("--viewpoint-override " + name +
+                     ": expected [px,py,pz,tx,ty,tz,fov_deg] (7 numbers), got " +
+                     std::to_string(values.size()));
+  CameraPlacement p{};
+  std::copy(values.begin(), values.end(), p.begin());
+  if (const std::string problem = camera_placement_problem(p); !problem.empty())
+    throw InputError("--viewpoint-override " + name + ": " + problem);
+  placements[name] = p;
+}
+
+/// --viewpoint: a placement given by --viewpoint-override, else a catalogue preset.
+stimuli::Viewpoint chosen_viewpoint(const RenderArgs& a,
+                                    const std::map<std::string, CameraPlacement>& placements,
+                                    const CrowdAnimation& crowd, const stimuli::RenderOptions& o) {
+  if (const auto p = placements.find(a.viewpoint); p != placements.end())
+    return stimuli::Viewpoint::placed(a.viewpoint, p->second, o.width, o.height);
+  if (const std::optional<ViewpointId> id = find_viewpoint(a.viewpoint))
+    return stimuli::Viewpoint(*id, crowd, o.width, o.height, o.viewpoint_overrides);
+  std::string known;
+  for (const auto& n : viewpoint_names()) known += (known.empty() ? "" : ", ") + n;
+  throw InputError("--viewpoint: unknown viewpoint '" + a.viewpoint + "' (known: " + known +
+                   ", or one named by --viewpoint-override)");
 }
 
 void run(const RenderArgs& a) {
@@ -86,11 +111,14 @@ void run(const RenderArgs& a) {
   if (!(a.fog >= 0.0)) throw InputError("--fog must be >= 0");
   o.scene.fog_density = a.fog;
   o.scene.lod_pixels = a.lod_pixels;
-  for (const std::string& text : a.overrides) parse_override(text, o.viewpoint_overrides);
+  std::map<std::string, CameraPlacement> placements;
+  for (const std::string& text : a.overrides) parse_override(text, placements);
+  for (const auto& [name, placement] : placements)  // catalogue names also place the contact sheet's views
+    if (const std::optional<ViewpointId> id = find_viewpoint(name)) o.viewpoint_overrides[*id] = placement;
   o.character_files = a.characters;
   stimuli::Renderer renderer;
   // A lone crowd file is framed from its own motion (`crowdlab run` frames from the shared trajectories).
-  const stimuli::Viewpoint view(a.viewpoint, crowd, o.width, o.height, o.viewpoint_overrides);
+  const stimuli::Viewpoint view = chosen_viewpoint(a, placements, crowd, o);
   const std::filesystem::path sidecar = stimuli::clip_sidecar_path(a.out);
   if (sidecar == std::filesystem::path(a.out)) throw InputError("--out: the clip must not end in .json");
   // Via a temporary (write_file.hpp): a failed encode (a full disk) leaves no broken clip under --out.

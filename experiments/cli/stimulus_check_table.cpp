@@ -27,7 +27,7 @@ StimulusCheckTable stimulus_check_table(const StimulusManifest& manifest, const 
       "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const StimulusEntry& e : manifest.entries) {
     const StimulusCheck& c = e.check;
-    const stimuli::ClipRole role{factor(e, "viewpoint"), factor(e, "method") == "baseline",
+    const stimuli::ClipRole role{find_viewpoint(factor(e, "viewpoint")), factor(e, "method") == "baseline",
                                  spec.protocol.loop_video, e.height > 0 ? e.height : spec.render.height};
     const bool measured = c.crowd_in_frame_min >= 0 || c.character_height_px >= 0 ||
                           c.overlap_frame_share >= 0 || c.seam_step_ratio >= 0;
@@ -45,7 +45,7 @@ StimulusCheckTable stimulus_check_table(const StimulusManifest& manifest, const 
     }
     t.markdown += fmt::format(
         "| {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", e.id, e.practice ? " (practice)" : "",
-        role.viewpoint, factor(e, "method"), factor(e, "density"), cell(c.crowd_in_frame_min, 3),
+        factor(e, "viewpoint"), factor(e, "method"), factor(e, "density"), cell(c.crowd_in_frame_min, 3),
         cell(c.character_height_px, 0), cell(c.overlap_frame_share, 2),
         cell(c.overlap_pixel_fraction, 3, 100.0),
         role.loops ? cell(c.seam_step_ratio, 2) : cell(c.seam_step_ratio, 2) + " (not looped)", verdict);

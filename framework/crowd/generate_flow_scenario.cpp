@@ -21,6 +21,7 @@
 #include <numbers>
 
 #include "framework/core/error.hpp"
+#include "framework/core/precondition.hpp"
 #include "framework/core/seed.hpp"
 #include "framework/crowd/generate_scenario.hpp"
 #include "framework/crowd/make_navigation_model.hpp"
@@ -33,7 +34,7 @@ namespace {
 double flow_spacing(const ExperimentSpec& spec, const Condition& condition) {
   if (condition.params.density_per_m2) return 1.0 / std::sqrt(*condition.params.density_per_m2);
   const double s = spec.scenario.initial_spacing_m;
-  if (!(s > 0.0) || !std::isfinite(s)) throw InputError("scenario.initial_spacing_m: must be > 0 m");
+  precondition(s > 0.0 && std::isfinite(s), "scenario.initial_spacing_m > 0 m");
   return s;
 }
 

@@ -14,14 +14,14 @@
 #include <cmath>
 #include <numbers>
 
-#include "framework/core/error.hpp"
+#include "framework/core/precondition.hpp"
 #include "framework/crowd/generate_scenario.hpp"
 
 namespace crowdlab {
 
 ScenarioResult generate_pair_crossing_scenario(const ExperimentSpec& spec, const Condition& condition) {
-  if (!condition.params.distance_m)
-    throw InputError("factors.distance: the pair_crossing scenario needs a `distance` factor (metres)");
+  precondition(condition.params.distance_m.has_value(),
+               "factors.distance: a pair_crossing scenario needs one");
   const double D = *condition.params.distance_m;
   const double s = condition.params.side == PassingSide::left ? 1.0 : -1.0;
   const double v = spec.scenario.walk_speed_mps;

@@ -3,14 +3,14 @@
 #include <cmath>
 
 #include "framework/core/error.hpp"
+#include "framework/core/precondition.hpp"
 #include "framework/spec/work_limits.hpp"
 
 namespace crowdlab {
 namespace {
 
-void require_positive(double v, const std::string& key) {
-  if (!(v > 0.0) || !std::isfinite(v))
-    throw InputError(key + ": must be a positive finite number, got " + std::to_string(v));
+bool positive(double v) {
+  return v > 0.0 && std::isfinite(v);
 }
 
 }  // namespace
@@ -32,20 +32,19 @@ int scenario_character_count(const ExperimentSpec& spec, const Condition& condit
                        std::to_string(area_m2) + " m^2 gives no character");
     return static_cast<int>(n);
   }
+  // Not (yet) checked by the spec loader: many specs that only describe a protocol give no crowd size.
   if (spec.scenario.agents >= 1) return spec.scenario.agents;
   throw InputError(
       "scenario: no `characters` or `density` factor and scenario.agents is 0: the crowd size is unknown");
 }
 
 ScenarioResult generate_scenario(const ExperimentSpec& spec, const Condition& condition) {
-  require_positive(spec.fps, "fps");
-  require_positive(spec.duration_s, "duration_s");
-  require_positive(spec.scenario.width_m, "scenario.width_m");
-  require_positive(spec.scenario.depth_m, "scenario.depth_m");
-  require_positive(spec.scenario.walk_speed_mps, "scenario.walk_speed_mps");
-  if (!(spec.crowd.agent_radius_m > 0.0 && spec.crowd.agent_radius_m <= 1.0))
-    throw InputError("crowd.agent_radius_m: must be in (0, 1] m, got " +
-                     std::to_string(spec.crowd.agent_radius_m));
+  precondition(positive(spec.fps) && positive(spec.duration_s), "fps and duration_s > 0");
+  precondition(positive(spec.scenario.width_m) && positive(spec.scenario.depth_m),
+               "scenario.width_m and scenario.depth_m > 0");
+  precondition(positive(spec.scenario.walk_speed_mps), "scenario.walk_speed_mps > 0");
+  precondition(spec.crowd.agent_radius_m > 0.0 && spec.crowd.agent_radius_m <= 1.0,
+               "crowd.agent_radius_m in (0, 1] m");
   const ScenarioKind kind = condition.params.scenario;
   ScenarioResult r;
   switch (kind) {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "framework/core/error.hpp"
+#include "framework/core/precondition.hpp"
 #include "framework/crowd/cost_gradient_model.hpp"
 #include "framework/crowd/orca_model.hpp"
 #include "framework/crowd/social_force_model.hpp"
@@ -21,16 +22,14 @@ void StraightLineModel::compute_velocities(const CrowdWorld& w, std::size_t begi
 }
 
 std::shared_ptr<const NavigationModel> make_navigation_model(const CrowdSpec& c) {
-  if (!(c.agent_radius_m > 0.0 && c.agent_radius_m <= 1.0))
-    throw InputError("crowd.agent_radius_m: must be in (0, 1] m, got " + std::to_string(c.agent_radius_m));
-  if (!(c.max_speed_mps > 0.0) || !std::isfinite(c.max_speed_mps))
-    throw InputError("crowd.max_speed_mps: must be > 0");
-  if (!(c.dt_s > 0.0) || !std::isfinite(c.dt_s)) throw InputError("crowd.dt_s: must be > 0");
-  if (!(c.neighbor_distance_m > 0.0) || !std::isfinite(c.neighbor_distance_m))
-    throw InputError("crowd.neighbor_distance_m: must be > 0");
-  if (c.overlap_free && c.model != CrowdModel::orca)
-    throw InputError("crowd.overlap_free: applies to model orca only (model is '" +
-                     std::string(kind_name(c.model)) + "')");
+  // The spec loader checks these ranges (file:line:column); here they are preconditions.
+  precondition(c.agent_radius_m > 0.0 && c.agent_radius_m <= 1.0, "crowd.agent_radius_m in (0, 1] m");
+  precondition(c.max_speed_mps > 0.0 && std::isfinite(c.max_speed_mps), "crowd.max_speed_mps > 0");
+  precondition(c.dt_s > 0.0 && std::isfinite(c.dt_s), "crowd.dt_s > 0");
+  precondition(c.neighbor_distance_m > 0.0 && std::isfinite(c.neighbor_distance_m),
+               "crowd.neighbor_distance_m > 0");
+  precondition(!c.overlap_free || c.model == CrowdModel::orca,
+               "crowd.overlap_free: applies to model orca only");
   switch (c.model) {
     case CrowdModel::orca: {
       OrcaParams p;

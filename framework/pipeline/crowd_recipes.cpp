@@ -3,6 +3,79 @@
 #include "framework/pipeline/crowd_key.hpp"
 
 namespace crowdlab {
+namespace {
+
+// What each scenario kind's generator reads (framework/crowd/generate_*_scenario.cpp,
+// framework/surface/generate_manifold_scenario.cpp); every other field stays at its default in the recipe,
+// so that editing it redoes no crowd of that kind (issue 30). tests/pipeline/test_stage_recipes.cpp checks
+// both ways: an edit the recipe ignores leaves the generator's output unchanged.
+bool simulates(ScenarioKind k) {  // a navigation model moves the crowd (corridor, flows)
+  return k == ScenarioKind::corridor || k == ScenarioKind::flow_a || k == ScenarioKind::flow_b;
+}
+
+ScenarioSpec scenario_read(const ScenarioSpec& sc, const ConditionParams& p) {
+  const ScenarioKind k = p.scenario;
+  ScenarioSpec r;
+  if (k != ScenarioKind::manifold) {
+    r.width_m = sc.width_m;
+    r.depth_m = sc.depth_m;
+  }
+  if (k == ScenarioKind::stationary) r.stage_direction_deg = sc.stage_direction_deg;
+  if (k != ScenarioKind::stationary) r.walk_speed_mps = sc.walk_speed_mps;
+  const bool flow = k == ScenarioKind::flow_a || k == ScenarioKind::flow_b;
+  if (flow && !p.density_per_m2) r.initial_spacing_m = sc.initial_spacing_m;
+  if (k == ScenarioKind::manifold) r.mesh = sc.mesh;
+  // scenario_character_count reads agents only without a size factor; the flows read it always.
+  const bool sized = p.characters || p.density_per_m2;
+  if (flow || (k != ScenarioKind::pair_crossing && !sized)) r.agents = sc.agents;
+  // passing_side is read through p.side (type_condition resolves `alternate`).
+  return r;
+}
+
+CrowdSpec crowd_read(const CrowdSpec& c, ScenarioKind k) {
+  CrowdSpec r;
+  r.agent_radius_m = c.agent_radius_m;
+  if (k == ScenarioKind::stationary || k == ScenarioKind::corridor) r.personal_space_m = c.personal_space_m;
+  if (k == ScenarioKind::manifold) {  // the surface crowd (params_from_spec)
+    r.model = c.model;
+    r.neighbor_distance_m = c.neighbor_distance_m;
+    r.max_neighbors = c.max_neighbors;
+    r.time_horizon_s = c.time_horizon_s;
+    r.max_speed_mps = c.max_speed_mps;
+    r.dt_s = c.dt_s;
+  }
+  if (!simulates(k)) return r;
+  // The simulation (CrowdSimulation) and make_navigation_model's fields of c.model.
+  r.model = c.model;
+  r.max_speed_mps = c.max_speed_mps;
+  r.dt_s = c.dt_s;
+  r.neighbor_distance_m = c.neighbor_distance_m;
+  if (c.model == CrowdModel::orca || c.model == CrowdModel::cost) r.max_neighbors = c.max_neighbors;
+  if (c.model == CrowdModel::orca) {
+    r.time_horizon_s = c.time_horizon_s;
+    r.obstacle_time_horizon_s = c.obstacle_time_horizon_s;
+    r.overlap_free = c.overlap_free;
+  }
+  if (c.model == CrowdModel::cost) r.cost_weights = c.cost_weights;
+  return r;
+}
+
+/// The condition's levels the crowd generators read: the scenario kind, the crowd's size, and the pair's
+/// distance and side. The presentation factors (viewpoint, method) and the animation's (shoulder,
+/// trigger) stay at their defaults, so every condition showing this crowd shares its recipe (crowd_key.hpp).
+ConditionParams params_read(const ConditionParams& p) {
+  ConditionParams r;
+  r.scenario = p.scenario;
+  r.density_per_m2 = p.density_per_m2;
+  r.characters = p.characters;
+  if (p.scenario == ScenarioKind::pair_crossing) {
+    r.distance_m = p.distance_m;
+    r.side = p.side;
+  }
+  return r;
+}
+
+}  // namespace
 
 CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Condition& first) {
   const Condition group = crowd_condition(spec, first);
@@ -10,13 +83,11 @@ CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Conditio
   CrowdGroupRecipes r;
   r.source_path = spec.source_path;
 
-  r.crowd.scenario = spec.scenario;
-  r.crowd.crowd = spec.crowd;
+  r.crowd.scenario = scenario_read(spec.scenario, p);
+  r.crowd.crowd = crowd_read(spec.crowd, p.scenario);
   r.crowd.duration_s = spec.duration_s;
   r.crowd.fps = spec.fps;
-  r.crowd.params = p;
-  r.crowd.params.viewpoint = ConditionParams{}.viewpoint;
-  r.crowd.params.method = ConditionParams{}.method;
+  r.crowd.params = params_read(p);
   r.crowd.seed = group.seed;
   // A mesh file (the loader resolved it) is read by its content; a scene name is code.
   if (p.scenario == ScenarioKind::manifold && std::filesystem::is_regular_file(spec.scenario.mesh))

@@ -29,12 +29,12 @@ struct CrowdRecipe {
   static constexpr std::string_view kStage = "crowd";
   /// 2: stationary sway and look-around loop over the clip, personal-space placement (issue 28).
   static constexpr std::string_view kCodeVersion = "2";
-  ScenarioSpec scenario;
-  CrowdSpec crowd;
+  ScenarioSpec scenario;  ///< only the fields the condition's scenario kind reads (others at defaults)
+  CrowdSpec crowd;        ///< likewise: the navigation model's fields only for kinds that simulate
   double duration_s = 10.0;
   double fps = 30.0;
-  /// The group's levels; the presentation factors (viewpoint, method) stay at their defaults, since every
-  /// viewpoint and method of a group shows this crowd (crowd_key.hpp).
+  /// The group's levels the generators read (kind, size, the pair's distance and side); the others stay at
+  /// their defaults, since every viewpoint and method of a group shows this crowd (crowd_key.hpp).
   ConditionParams params;
   std::uint64_t seed = 0;  ///< the group's seed (crowd_condition())
 };

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "framework/core/viewpoint_catalogue.hpp"
 #include "framework/spec/condition_kinds.hpp"
 
 namespace crowdlab {
@@ -14,9 +15,9 @@ struct ConditionParams {
   ScenarioKind scenario = ScenarioKind::stationary;
   std::optional<double> density_per_m2;  ///< `density` factor, characters per m^2 (> 0)
   std::optional<int> characters;         ///< `characters` factor (>= 1)
-  /// A catalogue name (framework/core/viewpoint_catalogue.hpp): the `viewpoint` factor's level, else the
+  /// A catalogue id (framework/core/viewpoint_catalogue.hpp): the `viewpoint` factor's level, else the
   /// scenario's default viewpoint.
-  std::string viewpoint = "V1";
+  ViewpointId viewpoint = ViewpointId::V1;
   CrowdMethod method = CrowdMethod::baseline;  ///< `method` factor; baseline without one
   std::optional<int> shoulder_count;           ///< `shoulder` factor: characters with shoulder motions
   std::optional<double> distance_m;            ///< `distance` factor (pair_crossing), metres (> 0)

@@ -109,7 +109,8 @@ struct RenderSpec {
   bool frames_png = false;
   std::string background = "#d8dde3";
   bool fog = false;
-  std::map<std::string, std::vector<double>> viewpoint_overrides;  ///< name -> [px,py,pz, tx,ty,tz, fov_deg]
+  /// render.viewpoints: explicit cameras replacing catalogue presets (checked by the loader).
+  std::map<ViewpointId, CameraPlacement> viewpoint_overrides;
   std::vector<std::string> characters;  ///< skinned glTF character files (resolved); character i uses i mod N
   StimulusCheckSpec check;
 };

@@ -89,9 +89,6 @@ void parse_scenario(YamlSection s, ExperimentSpec& spec) {
       sc.mesh = mesh;
     }
   }
-  if (sc.type == ScenarioKind::manifold && sc.mesh.empty() && !s.has("mesh"))
-    s.diagnostics().error(s.node(), s.child_path("mesh"),
-                          "a manifold scenario needs a mesh (scene name or file)");
 }
 
 /// crowd.cost_weights: the cost model's keys (did-you-mean on a typo) and each one's range, checked here so
@@ -265,17 +262,22 @@ void parse_render(YamlSection s, ExperimentSpec& spec) {
     vps.allow_keys(viewpoint_names());
     for (auto it = vps.node().begin(); it != vps.node().end(); ++it) {
       const std::string name = it->first.Scalar();
+      const std::optional<ViewpointId> id = find_viewpoint(name);
+      if (!id) continue;  // reported by allow_keys
       std::vector<double> v;
       vps.number_list(name, v, Range{-1e4, 1e4});
       if (v.empty()) continue;
-      if (v.size() != 7)
+      if (v.size() != 7) {
         diag.error(it->second, vps.child_path(name),
                    "expected 7 numbers [px, py, pz, tx, ty, tz, fov_deg], got " + std::to_string(v.size()));
-      else if (!(v[6] > 0.0 && v[6] < 180.0))
-        diag.error(it->second, vps.child_path(name),
-                   "fov_deg must be in (0, 180), got " + format_number(v[6]));
+        continue;
+      }
+      CameraPlacement placement{};
+      std::copy(v.begin(), v.end(), placement.begin());
+      if (const std::string problem = camera_placement_problem(placement); !problem.empty())
+        diag.error(it->second, vps.child_path(name), problem);
       else
-        r.viewpoint_overrides[name] = v;
+        r.viewpoint_overrides[*id] = placement;
     }
   }
 }
@@ -389,10 +391,45 @@ void check_encoding(SpecDiagnostics& diag, const std::string& text) {
 }
 
 // Checks that need several sections at once.
+/// The scenario kinds the conditions use: the `scenario` factor's levels (A, B: the flows), else
+/// scenario.type (as type_condition.cpp reads them).
+std::vector<ScenarioKind> scenario_kinds_used(const ExperimentSpec& spec) {
+  const Factor* f = spec.factor("scenario");
+  if (!f) return {spec.scenario.type};
+  std::vector<ScenarioKind> kinds;
+  for (const FactorLevel& l : f->levels) {
+    std::optional<ScenarioKind> k = l.text == "A"   ? ScenarioKind::flow_a
+                                    : l.text == "B" ? ScenarioKind::flow_b
+                                                    : parse_kind<ScenarioKind>(l.text);
+    if (k) kinds.push_back(*k);
+  }
+  return kinds;
+}
+
+bool uses_kind(const ExperimentSpec& spec, ScenarioKind kind) {
+  const std::vector<ScenarioKind> kinds = scenario_kinds_used(spec);
+  return std::find(kinds.begin(), kinds.end(), kind) != kinds.end();
+}
+
+/// What the crowd stage needs per scenario kind, whether the kind is scenario.type or a `scenario` factor's
+/// level: the pair's distance (pair_crossing), a mesh (manifold).
+void check_scenario_needs(YamlSection& top, const ExperimentSpec& spec) {
+  SpecDiagnostics& diag = top.diagnostics();
+  const YAML::Node scenario = top.has("scenario")  ? top.get("scenario")
+                              : top.has("factors") ? top.get("factors")
+                                                   : top.node();
+  if (uses_kind(spec, ScenarioKind::pair_crossing) && !spec.factor("distance"))
+    diag.error(top.has("factors") ? top.get("factors") : top.node(), "factors",
+               "a pair_crossing scenario needs a `distance` factor (metres)");
+  if (uses_kind(spec, ScenarioKind::manifold) && spec.scenario.mesh.empty() &&
+      !(child(scenario, "mesh").IsDefined()))
+    diag.error(scenario, "scenario.mesh", "a manifold scenario needs a mesh (scene name or file)");
+}
+
 /// A manifold scenario's crowd (framework/surface/generate_manifold_scenario.hpp): its avoidance models and
 /// the surface crowd's ranges, checked here so that `validate` refuses what the surface stage would.
 void check_manifold_crowd(YamlSection& top, const ExperimentSpec& spec) {
-  if (spec.scenario.type != ScenarioKind::manifold) return;
+  if (!uses_kind(spec, ScenarioKind::manifold)) return;
   SpecDiagnostics& diag = top.diagnostics();
   const CrowdSpec& c = spec.crowd;
   const auto require = [&](bool ok, const char* section, const char* key, const std::string& range) {
@@ -412,8 +449,10 @@ void check_manifold_crowd(YamlSection& top, const ExperimentSpec& spec) {
 void check_consistency(YamlSection& top, ExperimentSpec& spec) {
   SpecDiagnostics& diag = top.diagnostics();
   check_manifold_crowd(top, spec);
+  check_scenario_needs(top, spec);
   const Factor* density = spec.factor("density");
-  const bool area_scenario = is_area_scenario(spec.scenario.type);
+  bool area_scenario = false;
+  for (ScenarioKind k : scenario_kinds_used(spec)) area_scenario = area_scenario || is_area_scenario(k);
   if (density && area_scenario && !spec.factor("characters")) {
     const double area = spec.scenario.width_m * spec.scenario.depth_m;
     for (const FactorLevel& l : density->levels)
@@ -421,8 +460,9 @@ void check_consistency(YamlSection& top, ExperimentSpec& spec) {
         diag.error(child(child(top.node(), "factors"), "density"), "factors.density",
                    "density " + l.text + " on a " + format_number(area) + " m^2 area gives no character");
   }
-  for (const auto& [name, v] : spec.render.viewpoint_overrides) {
-    (void)v;
+  for (const auto& [id, placement] : spec.render.viewpoint_overrides) {
+    (void)placement;
+    const std::string name(viewpoint_name(id));
     const Factor* vp = spec.factor("viewpoint");
     bool used = false;
     if (vp)

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "framework/core/error.hpp"
+#include "framework/core/precondition.hpp"
 #include "framework/core/viewpoint_catalogue.hpp"
 
 namespace crowdlab {
@@ -13,17 +14,18 @@ std::optional<double> positive_number(const Condition& c, const std::string& fac
                                       const std::string& units) {
   const FactorLevel* l = c.level(factor);
   if (!l) return std::nullopt;
-  if (!l->number || !(*l->number > 0.0) || !std::isfinite(*l->number))
-    throw InputError("factors." + factor + ": level '" + l->text + "' is not a positive number of " + units);
+  // parse_factor checked the level's range with file:line:column.
+  precondition(l->number && *l->number > 0.0 && std::isfinite(*l->number),
+               "factors." + factor + ": level '" + l->text + "' a positive number of " + units);
   return *l->number;
 }
 
 std::optional<int> whole_number(const Condition& c, const std::string& factor, double least) {
   const FactorLevel* l = c.level(factor);
   if (!l) return std::nullopt;
-  if (!l->number || !(*l->number >= least) || std::floor(*l->number) != *l->number || *l->number > 1e9)
-    throw InputError("factors." + factor + ": level '" + l->text +
-                     "' is not a whole number >= " + std::to_string(static_cast<int>(least)));
+  precondition(l->number && *l->number >= least && std::floor(*l->number) == *l->number && *l->number <= 1e9,
+               "factors." + factor + ": level '" + l->text +
+                   "' a whole number >= " + std::to_string(static_cast<int>(least)));
   return static_cast<int>(*l->number);
 }
 
@@ -46,22 +48,24 @@ ScenarioKind scenario_of(const ExperimentSpec& spec, const Condition& c) {
 
 // Without a `viewpoint` factor: "pair" for pair crossings (seed 001 §3.1.4's three-quarter view),
 // "tracking" for flow A (seed 001 follows its focal character), V1 otherwise.
-std::string default_viewpoint(ScenarioKind scenario) {
+ViewpointId default_viewpoint(ScenarioKind scenario) {
   switch (scenario) {
     case ScenarioKind::pair_crossing:
-      return "pair";
+      return ViewpointId::pair;
     case ScenarioKind::flow_a:
-      return "tracking";
+      return ViewpointId::tracking;
     default:
-      return "V1";
+      return ViewpointId::V1;
   }
 }
 
-std::string viewpoint_of(const Condition& c, ScenarioKind scenario) {
+// The level's name becomes the catalogue id here, once; later stages carry the id.
+ViewpointId viewpoint_of(const Condition& c, ScenarioKind scenario) {
   const FactorLevel* l = c.level("viewpoint");
   if (!l) return default_viewpoint(scenario);
-  if (!find_viewpoint(l->text)) throw InputError("factors.viewpoint: unknown viewpoint '" + l->text + "'");
-  return l->text;
+  const std::optional<ViewpointId> id = find_viewpoint(l->text);
+  precondition(id.has_value(), "factors.viewpoint: level '" + l->text + "' a catalogue viewpoint");
+  return *id;
 }
 
 PassingSide side_of(const ExperimentSpec& spec, const Condition& c) {

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "framework/core/error.hpp"
+#include "framework/core/precondition.hpp"
 #include "framework/core/seed.hpp"
 #include "framework/surface/develop_surface_trajectories.hpp"
 #include "framework/surface/smooth_surface_up.hpp"
@@ -23,28 +24,19 @@ constexpr double kFacingSpeedMps = 0.1;
 SurfaceCrowdParams params_from_spec(const ExperimentSpec& spec) {
   SurfaceCrowdParams p;
   const CrowdModel model = spec.crowd.model;
-  // The spec loader refuses the other models for a manifold scenario (file:line:column); a spec built in
-  // code is refused here.
-  if (model != CrowdModel::orca && model != CrowdModel::social)
-    throw InputError(
-        SourceLocation{spec.source_path, 0, 0, "crowd.model"},
-        "a manifold scenario needs 'orca' or 'social', not '" + std::string(kind_name(model)) + "'");
+  // The spec loader checks the surface crowd's model and ranges (file:line:column, check_manifold_crowd);
+  // here they are preconditions.
+  precondition(model == CrowdModel::orca || model == CrowdModel::social, "crowd.model: orca or social");
   p.avoidance = model == CrowdModel::orca ? SurfaceAvoidance::kOrca : SurfaceAvoidance::kSocialForces;
-  // The surface crowd's own ranges, checked here so that errors name the spec keys.
-  const auto require = [&](bool ok, const std::string& key, const std::string& range) {
-    if (!ok)
-      throw InputError(SourceLocation{spec.source_path, 0, 0, key}, "a manifold scenario needs " + range);
-  };
-  require(spec.crowd.neighbor_distance_m > 0 && spec.crowd.neighbor_distance_m <= 10,
-          "crowd.neighbor_distance_m", "a value in (0, 10] m");
-  require(spec.crowd.max_neighbors >= 1 && spec.crowd.max_neighbors <= 32, "crowd.max_neighbors",
-          "a value in [1, 32]");
-  require(spec.crowd.time_horizon_s > 0 && spec.crowd.time_horizon_s <= 10, "crowd.time_horizon_s",
-          "a value in (0, 10] s");
-  require(2 * spec.crowd.agent_radius_m <= kAgentHeightM, "crowd.agent_radius_m",
-          "at most half the 1.8 m agent height");
-  require(spec.scenario.walk_speed_mps > 0 && spec.scenario.walk_speed_mps <= 3, "scenario.walk_speed_mps",
-          "a value in (0, 3] m/s");
+  precondition(spec.crowd.neighbor_distance_m > 0 && spec.crowd.neighbor_distance_m <= 10,
+               "crowd.neighbor_distance_m in (0, 10] m");
+  precondition(spec.crowd.max_neighbors >= 1 && spec.crowd.max_neighbors <= 32,
+               "crowd.max_neighbors in [1, 32]");
+  precondition(spec.crowd.time_horizon_s > 0 && spec.crowd.time_horizon_s <= 10,
+               "crowd.time_horizon_s in (0, 10] s");
+  precondition(2 * spec.crowd.agent_radius_m <= kAgentHeightM, "crowd.agent_radius_m <= 0.9 m");
+  precondition(spec.scenario.walk_speed_mps > 0 && spec.scenario.walk_speed_mps <= 3,
+               "scenario.walk_speed_mps in (0, 3] m/s");
   p.body.height_m = kAgentHeightM;
   p.body.sphere_radius_m = spec.crowd.agent_radius_m;
   p.neighbor_distance_m = spec.crowd.neighbor_distance_m;
@@ -70,11 +62,8 @@ TriangleMesh environment_mesh(const SurfaceMesh& m) {
 }  // namespace
 
 ManifoldScenario generate_manifold_scenario(const ExperimentSpec& spec, const Condition& condition) {
-  if (!(spec.fps > 0) || !(spec.duration_s > 0))
-    throw InputError("fps and duration_s must be positive for a manifold scenario");
-  if (spec.scenario.mesh.empty())
-    throw InputError(SourceLocation{spec.source_path, 0, 0, "scenario.mesh"},
-                     "a manifold scenario needs a mesh (scene name or file)");
+  precondition(spec.fps > 0 && spec.duration_s > 0, "fps and duration_s > 0");
+  precondition(!spec.scenario.mesh.empty(), "scenario.mesh: a manifold scenario needs one");
   const SurfaceCrowdParams params = params_from_spec(spec);
   auto mesh = std::make_shared<const SurfaceMesh>(load_spec_surface(spec));
   check_surface_crowd_limits(spec, *mesh);  // before scenario_character_count narrows the count to int

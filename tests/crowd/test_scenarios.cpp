@@ -194,11 +194,13 @@ TEST_CASE("scenarios: flow densities match seed 001's levels within 5 %", "[crow
   }
 }
 
-TEST_CASE("scenarios: bad parameters give clear InputErrors", "[crowd][scenario]") {
+TEST_CASE("scenarios: bad parameters are refused naming their key", "[crowd][scenario]") {
   ExperimentSpec spec = spec_for("stationary", 3.0, 3.0, 1.0);
   const Condition c = condition({{"density", level(4.44)}});
   spec.crowd.agent_radius_m = -0.2;
   CHECK_THROWS_WITH(generate(spec, c), Catch::Contains("crowd.agent_radius_m"));
+  // The spec loader checks the ranges; a spec built in code that breaks one breaks a precondition.
+  CHECK_THROWS_AS(generate(spec, c), std::logic_error);
   spec = spec_for("stationary", 0.0, 3.0, 1.0);
   CHECK_THROWS_WITH(generate(spec, c), Catch::Contains("scenario.width_m"));
   spec = spec_for("stationary", 3.0, 3.0, 1.0);

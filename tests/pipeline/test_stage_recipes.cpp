@@ -8,6 +8,8 @@
 #include <set>
 
 #include "framework/core/canonical_bytes.hpp"
+#include "framework/crowd/generate_scenario.hpp"
+#include "framework/pipeline/crowd_key.hpp"
 #include "framework/pipeline/crowd_recipes.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 #include "stimuli/presentation_recipes.hpp"
@@ -34,7 +36,7 @@ std::map<std::string, std::string> recipe_bytes(const ExperimentSpec& spec) {
       {"animation", canonical_bytes(r.animation) + files(r.animation_files)},
       {"correction", canonical_bytes(r.correction)},
       {"metrics", canonical_bytes(metrics_recipe(r.crowd, CrowdMethod::corrected))},
-      {"render", canonical_bytes(stimuli::render_recipe(spec, "V4"))},
+      {"render", canonical_bytes(stimuli::render_recipe(spec, ViewpointId::V4))},
       {"contact_sheet", canonical_bytes(stimuli::ContactSheetRecipe{stimuli::stimulus_look(spec.render)})}};
 }
 
@@ -53,22 +55,25 @@ TEST_CASE("stage recipes: every spec value changes exactly the recipes of the st
       {"scenario.width_m", [](ExperimentSpec& s) { s.scenario.width_m += 1; }, crowd},
       {"scenario.depth_m", [](ExperimentSpec& s) { s.scenario.depth_m += 1; }, crowd},
       {"scenario.stage_direction_deg", [](ExperimentSpec& s) { s.scenario.stage_direction_deg = 90; }, crowd},
-      {"scenario.walk_speed_mps", [](ExperimentSpec& s) { s.scenario.walk_speed_mps = 1.1; }, crowd},
-      {"scenario.initial_spacing_m", [](ExperimentSpec& s) { s.scenario.initial_spacing_m = 0.8; }, crowd},
+      // tiny.yaml is a stationary crowd sized by density: it reads neither the walking nor the navigation
+      // model's values (the other kinds: the test below).
+      {"scenario.walk_speed_mps", [](ExperimentSpec& s) { s.scenario.walk_speed_mps = 1.1; }, none},
+      {"scenario.initial_spacing_m", [](ExperimentSpec& s) { s.scenario.initial_spacing_m = 0.8; }, none},
       {"scenario.passing_side", [](ExperimentSpec& s) { s.scenario.passing_side = PassingSide::right; },
-       crowd},
-      {"scenario.agents", [](ExperimentSpec& s) { s.scenario.agents = 12; }, crowd},
-      {"crowd.model", [](ExperimentSpec& s) { s.crowd.model = CrowdModel::social; }, crowd},
+       none},
+      {"scenario.agents", [](ExperimentSpec& s) { s.scenario.agents = 12; }, none},
+      {"scenario.mesh", [](ExperimentSpec& s) { s.scenario.mesh = "stairs"; }, none},
+      {"crowd.model", [](ExperimentSpec& s) { s.crowd.model = CrowdModel::social; }, none},
       {"crowd.agent_radius_m", [](ExperimentSpec& s) { s.crowd.agent_radius_m = 0.2; }, crowd},
-      {"crowd.neighbor_distance_m", [](ExperimentSpec& s) { s.crowd.neighbor_distance_m = 3; }, crowd},
-      {"crowd.max_neighbors", [](ExperimentSpec& s) { s.crowd.max_neighbors = 5; }, crowd},
-      {"crowd.time_horizon_s", [](ExperimentSpec& s) { s.crowd.time_horizon_s = 3; }, crowd},
-      {"crowd.obstacle_time_horizon_s", [](ExperimentSpec& s) { s.crowd.obstacle_time_horizon_s = 3; },
-       crowd},
-      {"crowd.max_speed_mps", [](ExperimentSpec& s) { s.crowd.max_speed_mps = 2; }, crowd},
-      {"crowd.dt_s", [](ExperimentSpec& s) { s.crowd.dt_s = 0.05; }, crowd},
-      {"crowd.overlap_free", [](ExperimentSpec& s) { s.crowd.overlap_free = true; }, crowd},
-      {"crowd.cost_weights", [](ExperimentSpec& s) { s.crowd.cost_weights["goal"] = 2; }, crowd},
+      {"crowd.personal_space_m", [](ExperimentSpec& s) { s.crowd.personal_space_m = 0.5; }, crowd},
+      {"crowd.neighbor_distance_m", [](ExperimentSpec& s) { s.crowd.neighbor_distance_m = 3; }, none},
+      {"crowd.max_neighbors", [](ExperimentSpec& s) { s.crowd.max_neighbors = 5; }, none},
+      {"crowd.time_horizon_s", [](ExperimentSpec& s) { s.crowd.time_horizon_s = 3; }, none},
+      {"crowd.obstacle_time_horizon_s", [](ExperimentSpec& s) { s.crowd.obstacle_time_horizon_s = 3; }, none},
+      {"crowd.max_speed_mps", [](ExperimentSpec& s) { s.crowd.max_speed_mps = 2; }, none},
+      {"crowd.dt_s", [](ExperimentSpec& s) { s.crowd.dt_s = 0.05; }, none},
+      {"crowd.overlap_free", [](ExperimentSpec& s) { s.crowd.overlap_free = true; }, none},
+      {"crowd.cost_weights", [](ExperimentSpec& s) { s.crowd.cost_weights["goal"] = 2; }, none},
       {"duration_s", [](ExperimentSpec& s) { s.duration_s = 2; }, crowd},
       {"fps", [](ExperimentSpec& s) { s.fps = 30; }, crowd},
       {"seed", [](ExperimentSpec& s) { s.seed = 8; }, {"crowd", "animation"}},
@@ -94,7 +99,8 @@ TEST_CASE("stage recipes: every spec value changes exactly the recipes of the st
       {"render.background", [](ExperimentSpec& s) { s.render.background = "#000000"; }, look},
       {"render.fog", [](ExperimentSpec& s) { s.render.fog = true; }, look},
       {"render.viewpoints",
-       [](ExperimentSpec& s) { s.render.viewpoint_overrides["V4"] = {0, 9, 1, 0, 0, 0, 40}; }, look},
+       [](ExperimentSpec& s) { s.render.viewpoint_overrides[ViewpointId::V4] = {0, 9, 1, 0, 0, 0, 40}; },
+       look},
       {"render.characters", [](ExperimentSpec& s) { s.render.characters = {"c.glb"}; }, look},
       {"render.crf", [](ExperimentSpec& s) { s.render.crf = 23; }, {"render"}},
       {"render.frames_png", [](ExperimentSpec& s) { s.render.frames_png = true; }, {"render"}},
@@ -143,5 +149,98 @@ TEST_CASE("stage recipes: every viewpoint and method of a crowd group share its 
   for (const auto& [key, recipes] : by_key) {
     INFO(key);
     CHECK(recipes.size() == 1);
+  }
+}
+
+namespace {
+
+/// The generator's output as text: every agent's radius, group and positions and headings per frame.
+std::string trajectories_text(const ScenarioResult& r) {
+  std::string out;
+  for (const AgentTrajectory& a : r.trajectories.agents) {
+    out += std::to_string(a.radius_m) + "/" + std::to_string(a.group) + ":";
+    for (size_t f = 0; f < a.position_m.size(); ++f)
+      out += std::to_string(a.position_m[f].x()) + "," + std::to_string(a.position_m[f].y()) + "," +
+             std::to_string(a.heading_rad[f]) + ";";
+  }
+  return out;
+}
+
+/// tiny.yaml with its scenario section, factors (besides viewpoint and method) and crowd section replaced.
+ExperimentSpec kind_spec(const std::string& scenario, const std::string& factors, const std::string& crowd) {
+  std::string yaml = slurp(tiny_spec());
+  const auto replace_block = [&](const std::string& from, const std::string& to, const std::string& with) {
+    const size_t a = yaml.find(from), b = yaml.find(to, a);
+    REQUIRE(a != std::string::npos);
+    REQUIRE(b != std::string::npos);
+    yaml.replace(a, b - a, with);
+  };
+  replace_block("scenario:\n", "factors:\n", "scenario: " + scenario + "\ncrowd: " + crowd + "\n");
+  replace_block("  density:", "  viewpoint:", factors);
+  return load_experiment_spec_text(yaml, "kind.yaml",
+                                   std::filesystem::path(tiny_spec()).parent_path().string());
+}
+
+}  // namespace
+
+TEST_CASE("stage recipes: a crowd recipe holds only the values its scenario kind reads") {
+  // Each kind's crowd recipe ignores some spec values (they do not redo its crowd), and for every value it
+  // ignores the generator's trajectories are unchanged: the recipe covers everything the generator reads.
+  struct Kind {
+    const char* name;
+    ExperimentSpec spec;
+    std::set<std::string> ignored;  ///< edits that must not change the crowd recipe
+  };
+  const std::vector<Kind> kinds{
+      {"stationary",
+       kind_spec("{type: stationary, area: {width_m: 1.5, depth_m: 1.5}}", "  density: [2.5]\n",
+                 "{agent_radius_m: 0.18}"),
+       {"walk_speed", "spacing", "side", "agents", "model", "neighbours", "horizon", "speed", "dt", "cost"}},
+      {"corridor",
+       kind_spec("{type: corridor, area: {width_m: 2, depth_m: 6}}", "  density: [0.8]\n",
+                 "{agent_radius_m: 0.2}"),
+       {"direction", "spacing", "side", "agents", "cost"}},
+      {"pair_crossing",
+       kind_spec("{type: pair_crossing, area: {width_m: 4, depth_m: 4}}", "  distance: [0.5]\n",
+                 "{agent_radius_m: 0.2}"),
+       {"direction", "spacing", "agents", "model", "neighbours", "horizon", "speed", "dt", "cost",
+        "personal"}},
+      {"flow_b",
+       kind_spec("{type: flow_b, area: {width_m: 3, depth_m: 4}, initial_spacing_m: 1.0}",
+                 "  characters: [6]\n", "{agent_radius_m: 0.2, model: social}"),
+       {"direction", "side", "neighbours", "horizon", "cost", "personal"}},
+  };
+  const std::vector<std::pair<std::string, std::function<void(ExperimentSpec&)>>> edits{
+      {"width", [](ExperimentSpec& s) { s.scenario.width_m += 0.5; }},
+      {"direction", [](ExperimentSpec& s) { s.scenario.stage_direction_deg = 90; }},
+      {"walk_speed", [](ExperimentSpec& s) { s.scenario.walk_speed_mps = 1.0; }},
+      {"spacing", [](ExperimentSpec& s) { s.scenario.initial_spacing_m = 0.8; }},
+      {"side", [](ExperimentSpec& s) { s.scenario.passing_side = PassingSide::right; }},
+      {"agents", [](ExperimentSpec& s) { s.scenario.agents = 4; }},
+      {"model", [](ExperimentSpec& s) { s.crowd.model = CrowdModel::none; }},
+      {"neighbours", [](ExperimentSpec& s) { s.crowd.max_neighbors = 1; }},
+      {"horizon", [](ExperimentSpec& s) { s.crowd.time_horizon_s = 0.2; }},
+      {"speed", [](ExperimentSpec& s) { s.crowd.max_speed_mps = 0.5; }},
+      {"dt", [](ExperimentSpec& s) { s.crowd.dt_s = 0.05; }},
+      {"cost", [](ExperimentSpec& s) { s.crowd.cost_weights["goal"] = 2; }},
+      {"personal", [](ExperimentSpec& s) { s.crowd.personal_space_m = 0.6; }},
+      {"radius", [](ExperimentSpec& s) { s.crowd.agent_radius_m = 0.15; }},
+  };
+  for (const Kind& k : kinds) {
+    const Condition first = enumerate_conditions(k.spec).front();
+    const std::string recipe = canonical_bytes(crowd_group_recipes(k.spec, first).crowd);
+    const std::string trajectories =
+        trajectories_text(generate_scenario(k.spec, crowd_condition(k.spec, first)));
+    for (const auto& [what, apply] : edits) {
+      INFO(k.name << ": " << what);
+      ExperimentSpec edited = k.spec;
+      apply(edited);
+      const Condition edited_first = enumerate_conditions(edited).front();
+      const bool same_recipe = canonical_bytes(crowd_group_recipes(edited, edited_first).crowd) == recipe;
+      CHECK(same_recipe == (k.ignored.count(what) == 1));
+      if (same_recipe)
+        CHECK(trajectories_text(generate_scenario(edited, crowd_condition(edited, edited_first))) ==
+              trajectories);
+    }
   }
 }

@@ -197,4 +197,12 @@ TEST_CASE("stage redo: a crowd, animation or correction change redoes its stage 
         std::set<std::string>{kBaseline, kOurs, kMetricsBaseline, kMetricsOurs} + kClips + kSheets);
   CHECK(redone_after(first_run(), "width_m: 1.5", "width_m: 1.6") ==
         std::set<std::string>{kCrowd, kBaseline, kOurs, kMetricsBaseline, kMetricsOurs} + kClips + kSheets);
+  // Values a stationary crowd does not read (the walking speed, the navigation model's) redo nothing:
+  // the crowd recipe holds only what its scenario kind reads.
+  CHECK(redone_after(first_run(), "agent_radius_m: 0.18",
+                     "agent_radius_m: 0.18\n  model: social\n  max_speed_mps: 2.0\n  dt_s: 0.05")
+            .empty());
+  CHECK(redone_after(first_run(), "area: {width_m: 1.5, depth_m: 1.5}",
+                     "area: {width_m: 1.5, depth_m: 1.5}\n  walk_speed_mps: 1.1\n  passing_side: right")
+            .empty());
 }

@@ -72,7 +72,7 @@ TEST_CASE("a spec's values reach the typed structs, with units and defaults") {
   CHECK(s.render.crf == 23);
   CHECK(s.render.msaa == 4);
   CHECK(s.render.background == "#102030");
-  CHECK(s.render.viewpoint_overrides.at("V3").size() == 7);
+  CHECK(s.render.viewpoint_overrides.at(ViewpointId::V3)[6] > 0.0);
   CHECK(s.protocol.type == ProtocolType::rating);
   CHECK(s.protocol.scale_points == 7);
   CHECK(s.protocol.questions.at(0).id == "q");
@@ -257,6 +257,17 @@ TEST_CASE("every section's keys, types and ranges are checked") {
       {"render: {background: red}\n", "render.background: expected a colour '#rrggbb'"},
       {"render: {overlap: 2}\n", "render.overlap: expected true or false"},
       {"render: {viewpoints: {V1: [1, 2, 3]}}\n", "expected 7 numbers"},
+      // What `run` refused after `validate` had passed (issue 30): the camera placement's own checks, the
+      // needs of a scenario kind named by a `scenario` factor's level, a pair crossing's distance.
+      {"render: {viewpoints: {V1: [0, 1, 5, 0, 1, 5, 40]}}\nfactors: {viewpoint: [V1]}\n",
+       "render.viewpoints.V1: the camera position equals its target"},
+      {"render: {viewpoints: {V1: [0, 1, 5, 0, 1, 0, 0.5]}}\nfactors: {viewpoint: [V1]}\n",
+       "render.viewpoints.V1: fov_deg must be in (1, 170)"},
+      {"factors: {scenario: [stationary, manifold], density: [1]}\n",
+       "scenario.mesh: a manifold scenario needs a mesh"},
+      {"crowd: {model: cost}\nfactors: {scenario: [manifold]}\nscenario: {mesh: floor_wall}\n",
+       "crowd.model: a manifold scenario needs 'orca' or 'social', not 'cost'"},
+      {"scenario: {type: pair_crossing}\n", "a pair_crossing scenario needs a `distance` factor"},
       {"outputs: {videos: true}\n", "outputs.videos: unknown key (did you mean 'video'?)"},
       {"protocol: {type: likert}\n", "protocol.questions: required key is missing"},
       {"protocol: {type: lickert, questions: [{id: a, text: b}]}\n", "did you mean 'likert'?"},

@@ -29,12 +29,12 @@ TEST_CASE("typed conditions carry every factor of the paper specs as typed value
     REQUIRE(c.params.density_per_m2);
     CHECK(*c.params.density_per_m2 == c.levels.at("density").number.value());
     CHECK_FALSE(c.params.characters);
-    CHECK(c.params.viewpoint == c.levels.at("viewpoint").text);
+    CHECK(viewpoint_name(c.params.viewpoint) == c.levels.at("viewpoint").text);
     CHECK(kind_name(c.params.method) == c.levels.at("method").text);
   }
   CHECK(conditions.front().params.method == CrowdMethod::baseline);
   CHECK(conditions.back().params.method == CrowdMethod::corrected);
-  CHECK(conditions.back().params.viewpoint == "V4");
+  CHECK(conditions.back().params.viewpoint == ViewpointId::V4);
 }
 
 TEST_CASE("typed conditions take the spec's defaults: viewpoint by scenario, passing side by repetition") {
@@ -45,8 +45,7 @@ TEST_CASE("typed conditions take the spec's defaults: viewpoint by scenario, pas
   REQUIRE(conditions.size() == 8);
   for (const Condition& c : conditions) {
     CAPTURE(c.id);
-    CHECK(c.params.viewpoint == "pair");  // seed 001 §3.1.4's three-quarter view
-    CHECK(find_viewpoint(c.params.viewpoint));
+    CHECK(c.params.viewpoint == ViewpointId::pair);   // seed 001 §3.1.4's three-quarter view
     CHECK(c.params.method == CrowdMethod::baseline);  // no method factor
     REQUIRE(c.params.distance_m);
     REQUIRE(c.params.shoulder_count);
@@ -58,9 +57,9 @@ TEST_CASE("typed conditions take the spec's defaults: viewpoint by scenario, pas
   const auto flow_conditions = enumerate_conditions(flows);
   REQUIRE(flow_conditions.size() == 2);
   CHECK(flow_conditions[0].params.scenario == ScenarioKind::flow_a);
-  CHECK(flow_conditions[0].params.viewpoint == "tracking");
+  CHECK(flow_conditions[0].params.viewpoint == ViewpointId::tracking);
   CHECK(flow_conditions[1].params.scenario == ScenarioKind::flow_b);
-  CHECK(flow_conditions[1].params.viewpoint == "V1");
+  CHECK(flow_conditions[1].params.viewpoint == ViewpointId::V1);
   CHECK(flow_conditions[1].params.trigger_probability == Approx(0.25));
   const ExperimentSpec fixed = load_text(
       "scenario: {type: pair_crossing, passing_side: right}\n"
@@ -73,17 +72,21 @@ TEST_CASE("type_condition refuses hand-built levels that are not values of their
   Condition c;
   c.levels["density"] = FactorLevel{"-1", -1.0};
   CHECK_THROWS_WITH(type_condition(spec, c), Catch::Contains("factors.density"));
+  // parse_factor checked the ranges (file:line:column): here they are preconditions, a programming error
+  // when broken, not an input error (issue 30).
+  CHECK_THROWS_AS(type_condition(spec, c), std::logic_error);
   c.levels = {{"characters", FactorLevel{"2.5", 2.5}}};
   CHECK_THROWS_WITH(type_condition(spec, c), Catch::Contains("factors.characters"));
   c.levels = {{"method", FactorLevel{"theirs", std::nullopt}}};
   CHECK_THROWS_WITH(type_condition(spec, c), Catch::Contains("factors.method"));
   c.levels = {{"viewpoint", FactorLevel{"V9", std::nullopt}}};
   CHECK_THROWS_WITH(type_condition(spec, c), Catch::Contains("factors.viewpoint"));
+  CHECK_THROWS_AS(type_condition(spec, c), std::logic_error);
   c.levels = {{"characters", FactorLevel{"12", 12.0}}, {"method", FactorLevel{"ours", std::nullopt}}};
   type_condition(spec, c);
   CHECK(c.params.characters == 12);
   CHECK(c.params.method == CrowdMethod::corrected);
-  CHECK(c.params.viewpoint == "V1");
+  CHECK(c.params.viewpoint == ViewpointId::V1);
 }
 
 TEST_CASE("the enums' spellings round-trip, and the loader refuses the others with the key") {

@@ -58,7 +58,7 @@ RenderOptions sized_options(int width, int height) {
 
 /// The front viewpoint (V1) on frame 1.
 Camera front_camera(const CrowdAnimation& crowd, const RenderOptions& options) {
-  return Viewpoint("V1", crowd, options.width, options.height).at(1);
+  return Viewpoint(ViewpointId::V1, crowd, options.width, options.height).at(1);
 }
 
 }  // namespace

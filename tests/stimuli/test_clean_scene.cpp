@@ -134,7 +134,7 @@ TEST_CASE("clean image: FXAA brings one sample per pixel closer to 4x MSAA, and 
   clean.height = 270;
   RenderOptions raw = clean;
   raw.scene.clean_image = false;
-  const Camera cam = Viewpoint("V2", crowd, 480, 270).at(1);
+  const Camera cam = Viewpoint(ViewpointId::V2, crowd, 480, 270).at(1);
   const cv::Mat c = luma_of(render_frame(renderer(), crowd, clean, cam, 1));
   const cv::Mat r = luma_of(render_frame(renderer(), crowd, raw, cam, 1));
   const cv::Mat c_ref = luma_of(render_frame(renderer(), crowd, reference_render_options(clean), cam, 1));

@@ -77,7 +77,7 @@ TEST_CASE("demo stimuli at 640x360: not blank, characters where predicted, less 
     REQUIRE(e.frames == crowd.frame_count());
     const std::string viewpoint = e.factors.at("viewpoint");
     const int frame = crowd.frame_count() / 2;
-    const Camera cam = Viewpoint(viewpoint, crowd, options.width, options.height).at(frame);
+    const Camera cam = Viewpoint(*find_viewpoint(viewpoint), crowd, options.width, options.height).at(frame);
     options.scene.overlap = false;
     options.scene.characters = true;
     const BgrImage with = render_frame(renderer, crowd, options, cam, frame);
@@ -112,7 +112,8 @@ TEST_CASE("demo stimuli at 640x360: not blank, characters where predicted, less 
     double sum = 0.0;
     for (int f = 0; f < crowd.frame_count(); ++f) {
       double fraction = 0.0;
-      render_frame(renderer, crowd, options, Viewpoint(viewpoint, crowd, 640, 360).at(f), f, &fraction);
+      render_frame(renderer, crowd, options, Viewpoint(*find_viewpoint(viewpoint), crowd, 640, 360).at(f), f,
+                   &fraction);
       sum += fraction;
     }
     // The practice crowd (its own seed) is checked like every clip, but compared with nothing.

@@ -103,7 +103,7 @@ TEST_CASE("one sample per pixel: characters shade the ground and the frame stays
   fast.scene.msaa_samples = 1;
   const RenderOptions reference = reference_render_options(fast);
   for (const char* name : {"V2", "V4"}) {
-    const Camera cam = Viewpoint(name, crowd, 480, 270).at(1);
+    const Camera cam = Viewpoint(*find_viewpoint(name), crowd, 480, 270).at(1);
     const cv::Mat la = luma_of(render_frame(renderer(), crowd, fast, cam, 1));
     const cv::Mat lb = luma_of(render_frame(renderer(), crowd, reference, cam, 1));
     INFO(name);
@@ -128,16 +128,17 @@ TEST_CASE("render quality: the measure sees what encoding costs", "[stimuli][fas
   // The reference path itself, encoded losslessly: only yuv420p rounding separates the two.
   RenderOptions same = reference;
   const QualityReport exact =
-      measure_render_quality(renderer(), crowd, same, reference, {"V3"}, 6, {0, 5}, dir.string());
+      measure_render_quality(renderer(), crowd, same, reference, {ViewpointId::V3}, 6, {0, 5}, dir.string());
   REQUIRE(exact.samples.size() == 2);
   CHECK(exact.ssim_min > 0.995);
   CHECK(exact.psnr_min_db > 40.0);
   // A starved encoder is caught.
   RenderOptions starved = reference;
   starved.crf = 51;
-  const QualityReport poor =
-      measure_render_quality(renderer(), crowd, starved, reference, {"V3"}, 6, {0, 5}, dir.string());
+  const QualityReport poor = measure_render_quality(renderer(), crowd, starved, reference, {ViewpointId::V3},
+                                                    6, {0, 5}, dir.string());
   CHECK(poor.ssim_min < exact.ssim_min - 0.01);
-  CHECK_THROWS_AS(measure_render_quality(renderer(), crowd, same, reference, {"V3"}, 6, {6}, dir.string()),
-                  InputError);
+  CHECK_THROWS_AS(
+      measure_render_quality(renderer(), crowd, same, reference, {ViewpointId::V3}, 6, {6}, dir.string()),
+      InputError);
 }

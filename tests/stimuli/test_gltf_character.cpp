@@ -201,7 +201,7 @@ TEST_CASE("glTF characters render in place of the mannequin, deterministically",
   options.width = 320;
   options.height = 180;
   Renderer renderer;
-  const Camera cam = Viewpoint("V1", crowd, options.width, options.height).at(1);
+  const Camera cam = Viewpoint(ViewpointId::V1, crowd, options.width, options.height).at(1);
   const BgrImage mannequin = render_frame(renderer, crowd, options, cam, 1);
   options.character_files = {path.string()};
   const BgrImage file = render_frame(renderer, crowd, options, cam, 1);

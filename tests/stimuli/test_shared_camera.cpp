@@ -92,7 +92,7 @@ TEST_CASE("framing rule: at V1-V4 the crowd's box is centred and fills 92 % of t
   for (size_t k = 0; k < extents.size(); ++k)
     for (const char* name : {"V1", "V2", "V3", "V4"}) {
       INFO("crowd " << k << ", viewpoint " << name);
-      const Camera cam = Viewpoint(name, extents[k], w, h).at(0);
+      const Camera cam = Viewpoint(*find_viewpoint(name), extents[k], w, h).at(0);
       // A travelling crowd (the walkers) is framed by its box relative to the follow path.
       const CrowdExtent& e = extents[k];
       const bool follows = !e.follow_path_m.empty();
@@ -113,7 +113,7 @@ TEST_CASE("framing rule: at V1-V4 the crowd's box is centred and fills 92 % of t
   const CrowdExtent extent = crowd_extent(character_tracks(crowd), 30.0);
   for (const char* name : {"V1", "V2", "V3", "V4"}) {
     INFO("viewpoint " << name);
-    const Camera cam = Viewpoint(name, extent, w, h).at(0);
+    const Camera cam = Viewpoint(*find_viewpoint(name), extent, w, h).at(0);
     Rect bodies;
     for (const CharacterAnimation& c : crowd.characters) {
       const Rect b = project_body(cam, c, 0);
@@ -160,7 +160,7 @@ TEST_CASE("with the shared camera, frame 0 of a pair differs only where the bodi
   RenderOptions options;
   options.width = 320;
   options.height = 180;
-  const Camera cam = Viewpoint("V3", extent, options.width, options.height).at(0);
+  const Camera cam = Viewpoint(ViewpointId::V3, extent, options.width, options.height).at(0);
   MannequinOptions mesh;
   mesh.voxel_m = 0.035;
   Renderer renderer(mesh);

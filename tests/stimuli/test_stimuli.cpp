@@ -150,14 +150,17 @@ TEST_CASE("camera projects its target to the image centre and rejects points beh
 
 TEST_CASE("viewpoints: presets, overrides and errors", "[stimuli]") {
   const CrowdAnimation crowd = small_crowd(4, 0.8);
-  for (const std::string& name : viewpoint_names()) CHECK_NOTHROW(Viewpoint(name, crowd, 320, 180));
-  CHECK_THROWS_AS(Viewpoint("V9", crowd, 320, 180), InputError);
-  ViewpointOverrides overrides{{"V1", {1, 2, 3, 0, 1, 0, 50}}};
-  const Camera cam = Viewpoint("V1", crowd, 320, 180, overrides).at(0);
+  for (const std::string& name : viewpoint_names())
+    CHECK_NOTHROW(Viewpoint(*find_viewpoint(name), crowd, 320, 180));
+  CHECK_FALSE(find_viewpoint("V9"));
+  ViewpointOverrides overrides{{ViewpointId::V1, {1, 2, 3, 0, 1, 0, 50}}};
+  const Camera cam = Viewpoint(ViewpointId::V1, crowd, 320, 180, overrides).at(0);
   CHECK(cam.eye.isApprox(Vec3(1, 2, 3)));
   CHECK(cam.fov_y_deg == 50.0);
-  overrides["V1"] = {1, 2, 3};
-  CHECK_THROWS_AS(Viewpoint("V1", crowd, 320, 180, overrides), InputError);
+  // The spec loader checks placements (camera_placement_problem); an unchecked one is a programming error.
+  overrides[ViewpointId::V1] = {1, 2, 3, 1, 2, 3, 50};
+  CHECK_THROWS_AS(Viewpoint(ViewpointId::V1, crowd, 320, 180, overrides), std::logic_error);
+  CHECK(Viewpoint::placed("mine", {1, 2, 3, 0, 1, 0, 50}, 320, 180).name() == "mine");
   // Framing: every root projects inside the image for every preset, for a small and a long crowd.
   SyntheticCrowdOptions long_crowd;
   long_crowd.characters = 12;
@@ -165,7 +168,7 @@ TEST_CASE("viewpoints: presets, overrides and errors", "[stimuli]") {
   long_crowd.frames = 2;
   for (const CrowdAnimation& c : {crowd, make_synthetic_crowd(long_crowd)})
     for (const char* name : {"V1", "V2", "V3", "V4", "pair"}) {
-      const Camera cc = Viewpoint(name, c, 320, 180).at(0);
+      const Camera cc = Viewpoint(*find_viewpoint(name), c, 320, 180).at(0);
       for (const CharacterAnimation& ch : c.characters) {
         const auto p = cc.project(ch.frames[0].root_position_m);
         REQUIRE(p);
@@ -183,7 +186,7 @@ TEST_CASE("frames are not blank and characters appear where the camera model pre
   RenderOptions options = small_options();
   for (const std::string& name : viewpoint_names()) {
     INFO("viewpoint " << name);
-    const Camera cam = Viewpoint(name, crowd, options.width, options.height).at(1);
+    const Camera cam = Viewpoint(*find_viewpoint(name), crowd, options.width, options.height).at(1);
     const BgrImage img = render_frame(shared_renderer(), crowd, options, cam, 1);
     const int covered = non_background_pixels(img, options.scene.background);
     CHECK(covered > 0.01 * options.width * options.height);
@@ -223,9 +226,10 @@ TEST_CASE("overlap mode: more red pixels on an interpenetrating crowd than on a 
   const CrowdAnimation overlapping = small_crowd(9, 0.32, 2);
   double red_separated = -1, red_overlapping = -1;
   const BgrImage a = render_frame(shared_renderer(), separated, options,
-                                  Viewpoint("V2", separated, 320, 180).at(0), 0, &red_separated);
-  const BgrImage b = render_frame(shared_renderer(), overlapping, options,
-                                  Viewpoint("V2", overlapping, 320, 180).at(0), 0, &red_overlapping);
+                                  Viewpoint(ViewpointId::V2, separated, 320, 180).at(0), 0, &red_separated);
+  const BgrImage b =
+      render_frame(shared_renderer(), overlapping, options,
+                   Viewpoint(ViewpointId::V2, overlapping, 320, 180).at(0), 0, &red_overlapping);
   CHECK(red_separated == 0.0);
   CHECK(red_overlapping > 0.005);
   // Red pixels are actually red in the image.
@@ -236,8 +240,8 @@ TEST_CASE("overlap mode: more red pixels on an interpenetrating crowd than on a 
   // With overlap mode off nothing is flagged.
   options.scene.overlap = false;
   double red_off = -1;
-  render_frame(shared_renderer(), overlapping, options, Viewpoint("V2", overlapping, 320, 180).at(0), 0,
-               &red_off);
+  render_frame(shared_renderer(), overlapping, options,
+               Viewpoint(ViewpointId::V2, overlapping, 320, 180).at(0), 0, &red_off);
   CHECK(red_off == 0.0);
 }
 
@@ -246,7 +250,7 @@ TEST_CASE("re-rendering gives bit-identical frames, with 1 or many TBB threads a
   const CrowdAnimation crowd = small_crowd(5, 0.6);
   RenderOptions options = small_options();
   options.scene.overlap = true;
-  const Camera cam = Viewpoint("V3", crowd, 320, 180).at(2);
+  const Camera cam = Viewpoint(ViewpointId::V3, crowd, 320, 180).at(2);
   const BgrImage first = render_frame(shared_renderer(), crowd, options, cam, 2);
   const BgrImage again = render_frame(shared_renderer(), crowd, options, cam, 2);
   CHECK(first.bgr == again.bgr);
@@ -265,7 +269,7 @@ TEST_CASE("render_clip writes a decodable H.264 MP4 with the right frame count, 
   const auto dir = test::scratch_dir("stimuli_clip");
   const std::string path = (dir / "clip.mp4").string();
   options.frames_png_dir = (dir / "png").string();
-  const RenderResult r = render_clip(shared_renderer(), crowd, options, "V1", path);
+  const RenderResult r = render_clip(shared_renderer(), crowd, options, ViewpointId::V1, path);
   CHECK(r.frames == 12);
   CHECK(r.duration_s == Approx(12.0 / 30.0));
   CHECK(r.red_fraction.size() == 12);
@@ -335,7 +339,7 @@ TEST_CASE("odd or invalid video sizes are rejected with a clear error", "[stimul
   options.width = 321;
   const auto dir = test::scratch_dir("stimuli_odd");
   try {
-    render_clip(shared_renderer(), crowd, options, "V1", (dir / "odd.mp4").string());
+    render_clip(shared_renderer(), crowd, options, ViewpointId::V1, (dir / "odd.mp4").string());
     FAIL("expected InputError");
   } catch (const InputError& e) {
     CHECK(std::string(e.what()).find("even") != std::string::npos);

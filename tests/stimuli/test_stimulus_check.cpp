@@ -29,7 +29,7 @@ TEST_CASE("stimulus check: crowd in frame, character height and the loop seam of
           "[stimuli]") {
   const CrowdAnimation crowd = synthetic(9, 40);  // the idle motion's period is the clip: it loops
   const CrowdExtent extent = crowd_extent(character_tracks(crowd), crowd.meta.fps);
-  const Viewpoint v1("V1", extent, 640, 360);
+  const Viewpoint v1(ViewpointId::V1, extent, 640, 360);
   const StimulusCheck c = measure_stimulus_geometry(crowd, v1, crowd.frame_count());
   CHECK(c.crowd_in_frame_min == 1.0);
   CHECK(c.character_height_px > 60.0);   // 9 people fill 92 % of a 360 px high image ...
@@ -54,7 +54,7 @@ TEST_CASE("stimulus check: a walking crowd keeps in frame and in size, and its s
   REQUIRE(extent.follow_path_m.size() == 300u);
   for (const char* name : {"V1", "V2", "V3", "V4"}) {
     INFO(name);
-    const Viewpoint view(name, extent, 640, 360);
+    const Viewpoint view(*find_viewpoint(name), extent, 640, 360);
     CHECK(view.moves());
     const StimulusCheck c = measure_stimulus_geometry(crowd, view, crowd.frame_count());
     CHECK(c.crowd_in_frame_min == 1.0);
@@ -75,7 +75,7 @@ TEST_CASE("stimulus check: a walking crowd keeps in frame and in size, and its s
   // A crowd that stays put keeps a fixed camera.
   const CrowdAnimation still = synthetic(4, 30);
   CHECK(crowd_extent(character_tracks(still), 30.0).follow_path_m.empty());
-  CHECK_FALSE(Viewpoint("V3", crowd_extent(character_tracks(still), 30.0), 64, 36).moves());
+  CHECK_FALSE(Viewpoint(ViewpointId::V3, crowd_extent(character_tracks(still), 30.0), 64, 36).moves());
 }
 
 TEST_CASE("stimulus check: overlap measures, thresholds and the sidecar form", "[stimuli]") {
@@ -89,14 +89,14 @@ TEST_CASE("stimulus check: overlap measures, thresholds and the sidecar form", "
   StimulusCheckSpec limits;
   limits.baseline_overlap_frames_min = 0.6;
   // V1 at 1080p: out of frame, too small, seam, and too little baseline overlap.
-  CHECK(stimulus_check_failures(c, limits, {"V1", true, true, 1080}).size() == 4);
+  CHECK(stimulus_check_failures(c, limits, {ViewpointId::V1, true, true, 1080}).size() == 4);
   // V4's own height limit (60 px) passes; a clip that does not loop has no seam to judge; ours is
   // not held to the baseline's overlap.
-  CHECK(stimulus_check_failures(c, limits, {"V4", false, false, 1080}).size() == 1);
+  CHECK(stimulus_check_failures(c, limits, {ViewpointId::V4, false, false, 1080}).size() == 1);
   // Pixel limits scale with the image height: 70 px is plenty at 270 px high.
-  CHECK(stimulus_check_failures(c, limits, {"V1", false, false, 270}).size() == 1);
+  CHECK(stimulus_check_failures(c, limits, {ViewpointId::V1, false, false, 270}).size() == 1);
   StimulusCheck unknown;
-  CHECK(stimulus_check_failures(unknown, limits, {"V1", true, true, 1080}).empty());
+  CHECK(stimulus_check_failures(unknown, limits, {ViewpointId::V1, true, true, 1080}).empty());
   const StimulusCheck back = stimulus_check_from_json(stimulus_check_json(c));
   CHECK(back.crowd_in_frame_min == 0.9);
   CHECK(back.overlap_pixel_fraction == Approx(0.002));

@@ -16,8 +16,10 @@ int stimulus_check_section(const SpecRun& run, const std::string& title, std::st
   StimulusManifest measured = run.manifest;
   std::map<std::string, stimuli::CrowdExtent> extents;  // baseline condition id -> its framing
   for (StimulusEntry& e : measured.entries) {
-    const auto viewpoint = e.factors.find("viewpoint");
-    if (viewpoint == e.factors.end()) continue;
+    const auto viewpoint_level = e.factors.find("viewpoint");
+    if (viewpoint_level == e.factors.end()) continue;
+    const std::optional<ViewpointId> viewpoint = find_viewpoint(viewpoint_level->second);
+    if (!viewpoint) continue;
     // The baseline of the same condition frames both methods.
     std::string baseline_id = e.id;
     if (const size_t at = baseline_id.find("method-ours"); at != std::string::npos)
@@ -29,7 +31,7 @@ int stimulus_check_section(const SpecRun& run, const std::string& title, std::st
                       stimuli::crowd_extent(stimuli::character_tracks(baseline), baseline.meta.fps));
     }
     const CrowdAnimation crowd = read_crowd_glb((run.run_dir / "conditions" / e.id / "crowd.glb").string());
-    const stimuli::Viewpoint view(viewpoint->second, extents.at(baseline_id), run.spec.render.width,
+    const stimuli::Viewpoint view(*viewpoint, extents.at(baseline_id), run.spec.render.width,
                                   run.spec.render.height, run.spec.render.viewpoint_overrides);
     e.check = stimuli::measure_stimulus_geometry(crowd, view, crowd.frame_count());
     e.height = run.spec.render.height;
