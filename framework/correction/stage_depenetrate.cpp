@@ -60,6 +60,7 @@
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/leg_ik.hpp"
 #include "framework/correction/corrector_step.hpp"
+#include "framework/correction/environment_box_contact.hpp"
 
 namespace crowdlab {
 namespace {
@@ -94,6 +95,9 @@ constexpr double kFootBudgetRowWeight = 10.0;
 /// At most this many rows per character and pass (contacts, deepest kept, plus up to 8 held-foot
 /// and 4 foot-budget rows), so the dense system stays on the stack.
 constexpr int kMaxRows = 40;
+/// Characters whose body box at the predicted state comes within this of an environment box are tested
+/// against the boxes (m): the pass moves a body by at most a few centimetres per pass.
+constexpr double kEnvironmentMargin_m = 0.1;
 
 constexpr int kVariables = kPoseChangeVariables;  // dr, then w_j per joint
 using Row = Eigen::Matrix<double, 1, kVariables>;
@@ -151,6 +155,41 @@ void find_deep_contacts(const DepenetrationScratch& w, int ci, int cj, const Nea
     d.share_a = comp_a / (comp_a + comp_b);
     out.push_back(d);
   }
+}
+
+/// Character c's capsules deeper than `tolerance` in an environment box (environment_box_contact.hpp):
+/// the box does not move, so c takes the whole separation (share 1; bone_b = -1).
+void find_environment_contacts(const CorrectorModel& model, const DepenetrationScratch& w, int c,
+                               double tolerance, std::vector<DeepContact>& out) {
+  out.clear();
+  const auto cc = static_cast<size_t>(c);
+  const Vec3& root = w.capsules[cc][0].a;
+  EnvironmentBoxContact e;
+  for (size_t k = 0; k < model.environment_boxes.size(); ++k)
+    for (int b = 0; b < kJointCount; ++b) {
+      if (!w.boxes[cc][static_cast<size_t>(b)].overlaps(model.environment_box_bounds[k])) continue;
+      if (!environment_box_contact(w.capsules[cc][static_cast<size_t>(b)], model.environment_boxes[k], root,
+                                   tolerance, e))
+        continue;
+      DeepContact d;
+      d.bone_a = c * kJointCount + b;
+      d.depth_m = e.penetration_m;
+      d.normal = e.normal;
+      d.point_a = e.axis_point;
+      d.share_a = 1.0;
+      out.push_back(d);
+    }
+}
+
+/// Whether character c's body (its box at the predicted state, grown by `margin`) reaches an
+/// environment box: such characters are tested against the boxes by the pass.
+bool near_environment(const CorrectorModel& model, const CorrectorState& s, int c, double margin) {
+  Aabb body = s.body_box[static_cast<size_t>(c)];
+  body.lo -= Vec3::Constant(margin);
+  body.hi += Vec3::Constant(margin);
+  for (const Aabb& bounds : model.environment_box_bounds)
+    if (body.overlaps(bounds)) return true;
+  return false;
 }
 
 /// Rows pulling character c's foot joints back onto their motion budget: a joint that moved
@@ -286,7 +325,8 @@ void for_each_item(const std::vector<int>& items, size_t serial_below, F&& f) {
 void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
   const CorrectorParams& p = model.params;
   const size_t pairs = s.body_pairs.size();
-  if (p.depenetration_passes <= 0 || s.stats.rejected || pairs == 0) return;
+  if (p.depenetration_passes <= 0 || s.stats.rejected || (pairs == 0 && model.environment_boxes.empty()))
+    return;
   const auto nn = static_cast<size_t>(model.characters());
   DepenetrationScratch& w = s.depenetration;
   if (w.bones.size() != nn) {  // first step: size everything once; K^-1 are model constants
@@ -295,6 +335,7 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
     w.capsules.resize(nn);
     w.boxes.resize(nn);
     w.inverse_weights.resize(nn);
+    w.environment.resize(nn);
     for (size_t c = 0; c < nn; ++c) w.inverse_weights[c] = inverse_weights(model.bodies[c]);
     w.mine.resize(nn);
     w.pairs_of.resize(nn);
@@ -319,6 +360,15 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
       w.pairs_of[cc].push_back(static_cast<int>(k));
     }
   }
+  // Characters near a wall, barrier or stage box are posed and tested against the boxes too (issue 27):
+  // the pass pushes bodies sideways, and without the boxes among its rows it pushed them into the
+  // corridor's barriers (docs/correction.md).
+  if (!model.environment_boxes.empty())
+    for (int c = 0; c < model.characters(); ++c)
+      if (!w.in_list[static_cast<size_t>(c)] && near_environment(model, s, c, kEnvironmentMargin_m)) {
+        w.characters.push_back(c);
+        w.in_list[static_cast<size_t>(c)] = 1;
+      }
   // w.characters stays as built until the next step, which clears their pairs_of lists.
   std::sort(w.characters.begin(), w.characters.end());
   for (int c : w.characters) w.in_list[static_cast<size_t>(c)] = 0;
@@ -354,6 +404,21 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
         ++found;
       }
     if (pass == 0) s.stats.deep_contacts = found;
+    // Box contacts of the characters this pass posed (the others did not move since they were last
+    // tested), after the pairs' contacts: the gather order stays fixed.
+    if (!model.environment_boxes.empty()) {
+      for_each_item(w.posing, kSerialPoses, [&](int c) {
+        find_environment_contacts(model, w, c, p.depenetration_tolerance_m,
+                                  w.environment[static_cast<size_t>(c)]);
+      });
+      for (int c : w.posing)
+        for (const DeepContact& d : w.environment[static_cast<size_t>(c)]) {
+          mark_touched(s, d.bone_a);
+          auto& list = w.mine[static_cast<size_t>(c)];
+          if (list.empty()) w.solved.push_back(c);
+          list.push_back(&d);
+        }
+    }
     // Characters re-posed by this pass whose feet went over budget are solved too.
     for (int c : w.posing)
       if (w.mine[static_cast<size_t>(c)].empty() &&
