@@ -23,7 +23,7 @@
 //   3. solve      per character, the pose change of least control-spring energy
 //                     min 1/2 sum_j k_j |w_j|^2 + 1/2 k_root |dr|^2
 //                     s.t. n . J_p [dr; w] = share * delta   for each of its contacts,
-//                          e . J_q [dr; w] = 0               for the x and z of each held foot joint,
+//                          e . J_q [dr; w] = 0               for the x, y and z of each held foot joint,
 //                          u . J_f [dr; w] = allowed - moved for each foot joint f over its budget
 //                                                            (weighted kFootBudgetRowWeight: it wins),
 //                 the foot motion budget (foot_pop_budget_m, issue 18): a foot joint that moved since
@@ -92,12 +92,24 @@ constexpr double kRegularisation = 1e-3;
 /// remaining pops had been legs pressed between two neighbours, where the contact rows and the budget
 /// row of the same foot conflict (docs/correction.md).
 constexpr double kFootBudgetRowWeight = 10.0;
-/// At most this many rows per character and pass (contacts, deepest kept, plus up to 8 held-foot
+/// At most this many rows per character and pass (contacts, deepest kept, plus up to 12 held-foot
 /// and 4 foot-budget rows), so the dense system stays on the stack.
 constexpr int kMaxRows = 40;
+/// The directions in which a held foot joint may not move in the pass: x, z and (issue 27) y. With x
+/// and z only, a contact on the leg that the held foot's rows kept from moving it sideways was met by
+/// turning the leg about the hip, which lifts the foot; hold_feet then put it back horizontally at the
+/// lifted height, pass after pass: planted feet rose up to 2 cm per step (the foot motion budget) to
+/// 5-17 cm (the corridor's planted-foot float, p99 47 mm at 6.66 /m^2, docs/correction.md).
+constexpr int kHeldFootRows = 3;
+constexpr std::array<int, 3> kHeldFootAxes = {0, 2, 1};
 /// Characters whose body box at the predicted state comes within this of an environment box are tested
 /// against the boxes (m): the pass moves a body by at most a few centimetres per pass.
 constexpr double kEnvironmentMargin_m = 0.1;
+/// Largest separation (m) one pass asks of a box contact: a leg 5-9 cm deep in a barrier pushed out
+/// in one pass took its foot along past the foot motion budget (foot pops; docs/correction.md). The
+/// rest is left to the next passes and steps.
+constexpr double kMaxEnvironmentPush_m = 0.02;
+constexpr double kEnvironmentRowWeight = 0.3;
 
 constexpr int kVariables = kPoseChangeVariables;  // dr, then w_j per joint
 using Row = Eigen::Matrix<double, 1, kVariables>;
@@ -220,14 +232,14 @@ FootRows foot_budget_rows(const CorrectorState& s, int c, double budget, const B
 }
 
 /// Rows of the constraint system of character c: its contacts (the deepest, if more than fit), then
-/// the x and z of its held foot joints, then its foot joints over budget.
+/// the x, y and z of its held foot joints, then its foot joints over budget.
 void constraint_rows(const CorrectorState& s, int c, const BoneTransforms& bones,
                      std::vector<const DeepContact*>& contacts, const FootRows& feet, RowBlock& J,
                      SmallVector& r) {
   int held_rows = 0;
   for (int f = 2 * c; f < 2 * c + 2; ++f)
-    held_rows += 2 * (int{s.foot_holds[static_cast<size_t>(f)].ankle} +
-                      int{s.foot_holds[static_cast<size_t>(f)].ball});
+    held_rows += kHeldFootRows * (int{s.foot_holds[static_cast<size_t>(f)].ankle} +
+                                  int{s.foot_holds[static_cast<size_t>(f)].ball});
   const int room = kMaxRows - held_rows - feet.count;
   if (static_cast<int>(contacts.size()) > room) {
     std::stable_sort(contacts.begin(), contacts.end(),
@@ -243,7 +255,14 @@ void constraint_rows(const CorrectorState& s, int c, const BoneTransforms& bones
     const int bone = (side_a ? d->bone_a : d->bone_b) % kJointCount;
     J.row(i) =
         point_row(bones, bone, side_a ? d->point_a : d->point_b, side_a ? d->normal : Vec3(-d->normal));
-    r(i++) = d->depth_m * (side_a ? d->share_a : 1.0 - d->share_a);
+    // A box contact asks for at most kMaxEnvironmentPush_m per pass (see there).
+    r(i) = d->bone_b < 0 ? std::min(d->depth_m, kMaxEnvironmentPush_m)
+                         : d->depth_m * (side_a ? d->share_a : 1.0 - d->share_a);
+    if (d->bone_b < 0) {
+      J.row(i) *= kEnvironmentRowWeight;
+      r(i) *= kEnvironmentRowWeight;
+    }
+    ++i;
   }
   for (int side = 0; side < 2; ++side) {
     const FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
@@ -252,7 +271,8 @@ void constraint_rows(const CorrectorState& s, int c, const BoneTransforms& bones
       if (!held) continue;
       // A joint's position moves with its parent's chain, not with its own rotation.
       const Vec3& q = bones[static_cast<size_t>(joint)].translation;
-      for (const Vec3& axis : {Vec3(Vec3::UnitX()), Vec3(Vec3::UnitZ())}) {
+      for (int k = 0; k < kHeldFootRows; ++k) {
+        const Vec3 axis = Vec3::Unit(kHeldFootAxes[static_cast<size_t>(k)]);
         J.row(i) = point_row(bones, kJointParent[static_cast<size_t>(joint)], q, axis);
         r(i++) = 0.0;
       }

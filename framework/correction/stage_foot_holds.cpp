@@ -42,6 +42,7 @@ namespace crowdlab {
 namespace {
 constexpr LegSide kSides[2] = {LegSide::kLeft, LegSide::kRight};
 constexpr bool kKeepSolvedHeight = true;
+constexpr double kTiltReturn_radps = 1.0;
 
 bool planted(const CorrectorParams& p, double h, const Vec3& before, const Vec3& now) {
   return (now - before).norm() < p.foot_plant_speed_mps * h && now.y() < p.foot_plant_height_m;
@@ -102,7 +103,7 @@ void update_foot_holds(const CorrectorModel& model, CorrectorState& s, int c,
       hold.rotation_offset =
           (s.rotation[ankle] * old_target_foot_rotation[static_cast<size_t>(side)].conjugate()).normalized();
     if (ankle_planted || ball_planted)
-      hold.rotation_offset = return_foot_tilt(hold.rotation_offset, p.free_joint_return_radps * model.h);
+      hold.rotation_offset = return_foot_tilt(hold.rotation_offset, kTiltReturn_radps * model.h);
     if (ankle_planted && !hold.ankle) hold.ankle_anchor_m = bone_origin(model, s, static_cast<int>(ankle));
     if (ball_planted && !hold.ball) hold.ball_anchor_m = bone_origin(model, s, static_cast<int>(ball));
     hold.ankle = ankle_planted;
