@@ -109,7 +109,6 @@ constexpr double kEnvironmentMargin_m = 0.1;
 /// in one pass took its foot along past the foot motion budget (foot pops; docs/correction.md). The
 /// rest is left to the next passes and steps.
 constexpr double kMaxEnvironmentPush_m = 0.02;
-constexpr double kEnvironmentRowWeight = 0.3;
 
 constexpr int kVariables = kPoseChangeVariables;  // dr, then w_j per joint
 using Row = Eigen::Matrix<double, 1, kVariables>;
@@ -256,13 +255,8 @@ void constraint_rows(const CorrectorState& s, int c, const BoneTransforms& bones
     J.row(i) =
         point_row(bones, bone, side_a ? d->point_a : d->point_b, side_a ? d->normal : Vec3(-d->normal));
     // A box contact asks for at most kMaxEnvironmentPush_m per pass (see there).
-    r(i) = d->bone_b < 0 ? std::min(d->depth_m, kMaxEnvironmentPush_m)
-                         : d->depth_m * (side_a ? d->share_a : 1.0 - d->share_a);
-    if (d->bone_b < 0) {
-      J.row(i) *= kEnvironmentRowWeight;
-      r(i) *= kEnvironmentRowWeight;
-    }
-    ++i;
+    r(i++) = d->bone_b < 0 ? std::min(d->depth_m, kMaxEnvironmentPush_m)
+                           : d->depth_m * (side_a ? d->share_a : 1.0 - d->share_a);
   }
   for (int side = 0; side < 2; ++side) {
     const FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
