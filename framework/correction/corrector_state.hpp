@@ -121,14 +121,15 @@ struct DepenetrationScratch {
   std::vector<std::array<Aabb, kJointCount>> boxes;   ///< per character, the posed capsules' boxes
   std::vector<PoseChangeVector> inverse_weights;      ///< per character, K^-1 (model constants)
   std::vector<std::vector<DeepContact>> per_pair;     ///< per body pair, this pass's deep contacts
+  std::vector<std::vector<DeepContact>> environment;  ///< per character, its deep box contacts (bone_b -1)
   std::vector<std::vector<const DeepContact*>> mine;  ///< per character, the deep contacts touching it
   std::vector<std::vector<int>> pairs_of;             ///< per character, tested body pairs touching it
   std::vector<char> in_list, moved, ever_moved;       ///< per character flags
-  std::vector<int> characters;                        ///< characters with a near capsule pair this step
-  std::vector<int> posing;                            ///< characters (re-)posed by the current pass
-  std::vector<int> tested;                            ///< body pairs (re-)tested by the current pass
-  std::vector<int> solved;                            ///< characters with a deep contact in the current pass
-  std::vector<int> changed;                           ///< characters the pass moved this step
+  std::vector<int> characters;  ///< characters with a near capsule pair or box this step
+  std::vector<int> posing;      ///< characters (re-)posed by the current pass
+  std::vector<int> tested;      ///< body pairs (re-)tested by the current pass
+  std::vector<int> solved;      ///< characters with a deep contact in the current pass
+  std::vector<int> changed;     ///< characters the pass moved this step
 };
 
 struct CorrectorState {

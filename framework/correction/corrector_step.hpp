@@ -90,6 +90,10 @@ struct FootGoal {
   Vec3 ankle_m = Vec3::Zero(), ball_m = Vec3::Zero();
   Quat rotation = Quat::Identity();
 };
+/// A held foot's rotation offset (world, output = offset * input) with its tilt turned back toward 0 by
+/// at most max_turn_rad: offset = swing * twist, twist about the world vertical (+Y), swing returned
+/// toward the identity (stage_foot_holds.cpp).
+Quat return_foot_tilt(const Quat& offset, double max_turn_rad);
 FootGoal foot_goal(const CorrectorModel& model, const CorrectorState& state, int c, int side);
 /// Stores character c's foot joint positions of the current bone state (the last output) in
 /// state.foot_start_m, before the step moves them (stage_targets).

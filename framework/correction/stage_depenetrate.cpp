@@ -23,7 +23,7 @@
 //   3. solve      per character, the pose change of least control-spring energy
 //                     min 1/2 sum_j k_j |w_j|^2 + 1/2 k_root |dr|^2
 //                     s.t. n . J_p [dr; w] = share * delta   for each of its contacts,
-//                          e . J_q [dr; w] = 0               for the x and z of each held foot joint,
+//                          e . J_q [dr; w] = 0               for the x, y and z of each held foot joint,
 //                          u . J_f [dr; w] = allowed - moved for each foot joint f over its budget
 //                                                            (weighted kFootBudgetRowWeight: it wins),
 //                 the foot motion budget (foot_pop_budget_m, issue 18): a foot joint that moved since
@@ -60,6 +60,7 @@
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/leg_ik.hpp"
 #include "framework/correction/corrector_step.hpp"
+#include "framework/correction/environment_box_contact.hpp"
 
 namespace crowdlab {
 namespace {
@@ -91,9 +92,23 @@ constexpr double kRegularisation = 1e-3;
 /// remaining pops had been legs pressed between two neighbours, where the contact rows and the budget
 /// row of the same foot conflict (docs/correction.md).
 constexpr double kFootBudgetRowWeight = 10.0;
-/// At most this many rows per character and pass (contacts, deepest kept, plus up to 8 held-foot
+/// At most this many rows per character and pass (contacts, deepest kept, plus up to 12 held-foot
 /// and 4 foot-budget rows), so the dense system stays on the stack.
 constexpr int kMaxRows = 40;
+/// The directions in which a held foot joint may not move in the pass: x, z and (issue 27) y. With x
+/// and z only, a contact on the leg that the held foot's rows kept from moving it sideways was met by
+/// turning the leg about the hip, which lifts the foot; hold_feet then put it back horizontally at the
+/// lifted height, pass after pass: planted feet rose up to 2 cm per step (the foot motion budget) to
+/// 5-17 cm (the corridor's planted-foot float, p99 47 mm at 6.66 /m^2, docs/correction.md).
+constexpr int kHeldFootRows = 3;
+constexpr std::array<int, 3> kHeldFootAxes = {0, 2, 1};
+/// Characters whose body box at the predicted state comes within this of an environment box are tested
+/// against the boxes (m): the pass moves a body by at most a few centimetres per pass.
+constexpr double kEnvironmentMargin_m = 0.1;
+/// Largest separation (m) one pass asks of a box contact: a leg 5-9 cm deep in a barrier pushed out
+/// in one pass took its foot along past the foot motion budget (foot pops; docs/correction.md). The
+/// rest is left to the next passes and steps.
+constexpr double kMaxEnvironmentPush_m = 0.02;
 
 constexpr int kVariables = kPoseChangeVariables;  // dr, then w_j per joint
 using Row = Eigen::Matrix<double, 1, kVariables>;
@@ -153,6 +168,41 @@ void find_deep_contacts(const DepenetrationScratch& w, int ci, int cj, const Nea
   }
 }
 
+/// Character c's capsules deeper than `tolerance` in an environment box (environment_box_contact.hpp):
+/// the box does not move, so c takes the whole separation (share 1; bone_b = -1).
+void find_environment_contacts(const CorrectorModel& model, const DepenetrationScratch& w, int c,
+                               double tolerance, std::vector<DeepContact>& out) {
+  out.clear();
+  const auto cc = static_cast<size_t>(c);
+  const Vec3& root = w.capsules[cc][0].a;
+  EnvironmentBoxContact e;
+  for (size_t k = 0; k < model.environment_boxes.size(); ++k)
+    for (int b = 0; b < kJointCount; ++b) {
+      if (!w.boxes[cc][static_cast<size_t>(b)].overlaps(model.environment_box_bounds[k])) continue;
+      if (!environment_box_contact(w.capsules[cc][static_cast<size_t>(b)], model.environment_boxes[k], root,
+                                   tolerance, e))
+        continue;
+      DeepContact d;
+      d.bone_a = c * kJointCount + b;
+      d.depth_m = e.penetration_m;
+      d.normal = e.normal;
+      d.point_a = e.axis_point;
+      d.share_a = 1.0;
+      out.push_back(d);
+    }
+}
+
+/// Whether character c's body (its box at the predicted state, grown by `margin`) reaches an
+/// environment box: such characters are tested against the boxes by the pass.
+bool near_environment(const CorrectorModel& model, const CorrectorState& s, int c, double margin) {
+  Aabb body = s.body_box[static_cast<size_t>(c)];
+  body.lo -= Vec3::Constant(margin);
+  body.hi += Vec3::Constant(margin);
+  for (const Aabb& bounds : model.environment_box_bounds)
+    if (body.overlaps(bounds)) return true;
+  return false;
+}
+
 /// Rows pulling character c's foot joints back onto their motion budget: a joint that moved
 /// farther since the last output (foot_start_m) than its input did plus `budget` gets the row
 /// u . J_x dq = allowed - moved along its direction of motion u (see foot_pop_budget_m).
@@ -181,14 +231,14 @@ FootRows foot_budget_rows(const CorrectorState& s, int c, double budget, const B
 }
 
 /// Rows of the constraint system of character c: its contacts (the deepest, if more than fit), then
-/// the x and z of its held foot joints, then its foot joints over budget.
+/// the x, y and z of its held foot joints, then its foot joints over budget.
 void constraint_rows(const CorrectorState& s, int c, const BoneTransforms& bones,
                      std::vector<const DeepContact*>& contacts, const FootRows& feet, RowBlock& J,
                      SmallVector& r) {
   int held_rows = 0;
   for (int f = 2 * c; f < 2 * c + 2; ++f)
-    held_rows += 2 * (int{s.foot_holds[static_cast<size_t>(f)].ankle} +
-                      int{s.foot_holds[static_cast<size_t>(f)].ball});
+    held_rows += kHeldFootRows * (int{s.foot_holds[static_cast<size_t>(f)].ankle} +
+                                  int{s.foot_holds[static_cast<size_t>(f)].ball});
   const int room = kMaxRows - held_rows - feet.count;
   if (static_cast<int>(contacts.size()) > room) {
     std::stable_sort(contacts.begin(), contacts.end(),
@@ -204,7 +254,9 @@ void constraint_rows(const CorrectorState& s, int c, const BoneTransforms& bones
     const int bone = (side_a ? d->bone_a : d->bone_b) % kJointCount;
     J.row(i) =
         point_row(bones, bone, side_a ? d->point_a : d->point_b, side_a ? d->normal : Vec3(-d->normal));
-    r(i++) = d->depth_m * (side_a ? d->share_a : 1.0 - d->share_a);
+    // A box contact asks for at most kMaxEnvironmentPush_m per pass (see there).
+    r(i++) = d->bone_b < 0 ? std::min(d->depth_m, kMaxEnvironmentPush_m)
+                           : d->depth_m * (side_a ? d->share_a : 1.0 - d->share_a);
   }
   for (int side = 0; side < 2; ++side) {
     const FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
@@ -213,7 +265,8 @@ void constraint_rows(const CorrectorState& s, int c, const BoneTransforms& bones
       if (!held) continue;
       // A joint's position moves with its parent's chain, not with its own rotation.
       const Vec3& q = bones[static_cast<size_t>(joint)].translation;
-      for (const Vec3& axis : {Vec3(Vec3::UnitX()), Vec3(Vec3::UnitZ())}) {
+      for (int k = 0; k < kHeldFootRows; ++k) {
+        const Vec3 axis = Vec3::Unit(kHeldFootAxes[static_cast<size_t>(k)]);
         J.row(i) = point_row(bones, kJointParent[static_cast<size_t>(joint)], q, axis);
         r(i++) = 0.0;
       }
@@ -286,7 +339,8 @@ void for_each_item(const std::vector<int>& items, size_t serial_below, F&& f) {
 void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
   const CorrectorParams& p = model.params;
   const size_t pairs = s.body_pairs.size();
-  if (p.depenetration_passes <= 0 || s.stats.rejected || pairs == 0) return;
+  if (p.depenetration_passes <= 0 || s.stats.rejected || (pairs == 0 && model.environment_boxes.empty()))
+    return;
   const auto nn = static_cast<size_t>(model.characters());
   DepenetrationScratch& w = s.depenetration;
   if (w.bones.size() != nn) {  // first step: size everything once; K^-1 are model constants
@@ -295,6 +349,7 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
     w.capsules.resize(nn);
     w.boxes.resize(nn);
     w.inverse_weights.resize(nn);
+    w.environment.resize(nn);
     for (size_t c = 0; c < nn; ++c) w.inverse_weights[c] = inverse_weights(model.bodies[c]);
     w.mine.resize(nn);
     w.pairs_of.resize(nn);
@@ -319,6 +374,15 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
       w.pairs_of[cc].push_back(static_cast<int>(k));
     }
   }
+  // Characters near a wall, barrier or stage box are posed and tested against the boxes too (issue 27):
+  // the pass pushes bodies sideways, and without the boxes among its rows it pushed them into the
+  // corridor's barriers (docs/correction.md).
+  if (!model.environment_boxes.empty())
+    for (int c = 0; c < model.characters(); ++c)
+      if (!w.in_list[static_cast<size_t>(c)] && near_environment(model, s, c, kEnvironmentMargin_m)) {
+        w.characters.push_back(c);
+        w.in_list[static_cast<size_t>(c)] = 1;
+      }
   // w.characters stays as built until the next step, which clears their pairs_of lists.
   std::sort(w.characters.begin(), w.characters.end());
   for (int c : w.characters) w.in_list[static_cast<size_t>(c)] = 0;
@@ -354,6 +418,21 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
         ++found;
       }
     if (pass == 0) s.stats.deep_contacts = found;
+    // Box contacts of the characters this pass posed (the others did not move since they were last
+    // tested), after the pairs' contacts: the gather order stays fixed.
+    if (!model.environment_boxes.empty()) {
+      for_each_item(w.posing, kSerialPoses, [&](int c) {
+        find_environment_contacts(model, w, c, p.depenetration_tolerance_m,
+                                  w.environment[static_cast<size_t>(c)]);
+      });
+      for (int c : w.posing)
+        for (const DeepContact& d : w.environment[static_cast<size_t>(c)]) {
+          mark_touched(s, d.bone_a);
+          auto& list = w.mine[static_cast<size_t>(c)];
+          if (list.empty()) w.solved.push_back(c);
+          list.push_back(&d);
+        }
+    }
     // Characters re-posed by this pass whose feet went over budget are solved too.
     for (int c : w.posing)
       if (w.mine[static_cast<size_t>(c)].empty() &&

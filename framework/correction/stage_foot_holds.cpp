@@ -7,7 +7,13 @@
 //       on the ground. When a joint becomes planted its anchor is where the corrected animation has
 //       it now (the last output), so a hold never pulls a foot back to the input's spot. While either
 //       joint is held, the foot's world rotation is the input's, turned by the offset the output had
-//       from the input when the hold began (heel rise and toe roll follow the input).
+//       from the input when the hold began (heel rise and toe roll follow the input); the offset's tilt
+//       (its part that is not a turn about the vertical) goes back to 0 at free_joint_return_radps
+//       while the hold lasts, so the foot keeps the heading the correction gave it and stands as flat
+//       as the input's (return_foot_tilt). Holding the whole offset kept the tilt a contact had given
+//       the swinging foot for the whole stance: feet landing 10-20 deg toe-up stood on their heels with
+//       the toes 3-6 cm up (issue 27, the corridor's planted-foot float); dropping the tilt at once
+//       turned feet by up to 20 deg in one frame (foot pops).
 //   hold_feet (stage_integrate)  after the projection to a pose, a held foot more than
 //       foot_hold_tolerance_m from its anchor is put back by the least-change two-bone leg IK
 //       (core/leg_ik.hpp, reach_ankle: the knee flexes about its own bend axis and the leg swings about
@@ -35,6 +41,8 @@
 namespace crowdlab {
 namespace {
 constexpr LegSide kSides[2] = {LegSide::kLeft, LegSide::kRight};
+constexpr bool kKeepSolvedHeight = true;
+constexpr double kTiltReturn_radps = 1.0;
 
 bool planted(const CorrectorParams& p, double h, const Vec3& before, const Vec3& now) {
   return (now - before).norm() < p.foot_plant_speed_mps * h && now.y() < p.foot_plant_height_m;
@@ -67,6 +75,16 @@ bool lower_pelvis_to_reach(const BodyShape& shape, const std::array<FootGoal, 2>
 }
 }  // namespace
 
+Quat return_foot_tilt(const Quat& offset, double max_turn_rad) {
+  // Swing-twist decomposition about the world vertical: the twist keeps w and the y component.
+  const double norm = std::hypot(offset.w(), offset.y());
+  const Quat twist = norm < 1e-9 ? Quat::Identity() : Quat(offset.w() / norm, 0.0, offset.y() / norm, 0.0);
+  const Quat swing = (offset * twist.conjugate()).normalized();
+  const double angle = swing.angularDistance(Quat::Identity());
+  if (!(angle > max_turn_rad)) return twist;
+  return (Quat::Identity().slerp(1.0 - max_turn_rad / angle, swing) * twist).normalized();
+}
+
 void update_foot_holds(const CorrectorModel& model, CorrectorState& s, int c,
                        const std::array<Quat, 2>& old_target_foot_rotation) {
   const CorrectorParams& p = model.params;
@@ -84,6 +102,8 @@ void update_foot_holds(const CorrectorModel& model, CorrectorState& s, int c,
     if ((ankle_planted || ball_planted) && !hold.held())
       hold.rotation_offset =
           (s.rotation[ankle] * old_target_foot_rotation[static_cast<size_t>(side)].conjugate()).normalized();
+    if (ankle_planted || ball_planted)
+      hold.rotation_offset = return_foot_tilt(hold.rotation_offset, kTiltReturn_radps * model.h);
     if (ankle_planted && !hold.ankle) hold.ankle_anchor_m = bone_origin(model, s, static_cast<int>(ankle));
     if (ball_planted && !hold.ball) hold.ball_anchor_m = bone_origin(model, s, static_cast<int>(ball));
     hold.ankle = ankle_planted;
@@ -137,7 +157,7 @@ void hold_feet(const CorrectorModel& model, CorrectorState& s, int c, Pose& pose
     // Height: the solve's. Its planted-foot spring pulls the foot to the input's height, and the ground
     // can still lift a foot; re-planting it here too held the legs so hard that neighbours' legs stayed
     // inside each other (docs/correction.md).
-    const double lift = ankle.y() - g.ankle_m.y();
+    const double lift = kKeepSolvedHeight ? ankle.y() - g.ankle_m.y() : 0.0;
     g.ankle_m.y() += lift;
     g.ball_m.y() += lift;
     // Within tolerance the solve's leg is kept as it is: a near-straight leg turns a sub-millimetre

@@ -8,8 +8,8 @@
 
 #include <tbb/parallel_for.h>
 
-#include "framework/core/capsule_box_distance.hpp"
 #include "framework/correction/corrector_step.hpp"
+#include "framework/correction/environment_box_contact.hpp"
 
 namespace crowdlab {
 namespace {
@@ -78,36 +78,19 @@ void body_pair_contacts(const CorrectorModel& model, const CorrectorState& state
     }
 }
 
-/// The exact contact of capsule `cap` (bone g) with box `box` (issue 27; seed 000 §3.4 point-samples
-/// the environment, whose contacts cancel when a thin barrier cuts through a capsule's axis: the
-/// sample points on both faces push it both ways). Depth = penetration + contact offset. While the axis
-/// is outside the box the normal is the direction from the box's nearest point to the axis (the
-/// gradient of sdf_box); once the axis is inside, the capsule leaves by the face on its own body's
-/// side (`root`: the pelvis, always outside walls and barriers), so an arm through a barrier comes
-/// back, not out the other side.
+/// The exact contact of capsule `cap` (bone g) with box `box` (environment_box_contact.hpp): depth =
+/// penetration + contact offset.
 bool box_contact(const Capsule& cap, int g, const Box& box, const Vec3& root, double k, double offset,
                  Contact& out) {
-  const CapsuleBoxDistance d = capsule_box_distance(cap, box);
-  if (!(offset - d.distance_m > 0.0)) return false;
-  const Vec3 local = box.rotation.conjugate() * (d.axis_point - box.center_m);
-  const Vec3 nearest = local.cwiseMax(-box.half_extents_m).cwiseMin(box.half_extents_m);
+  EnvironmentBoxContact e;
+  if (!environment_box_contact(cap, box, root, -offset, e)) return false;
   out = Contact{};
   out.bone_a = g;
   out.kind = ContactKind::kEnvironment;
   out.stiffness = k;
-  out.point_a = d.axis_point;
-  const double gap = (local - nearest).norm();
-  if (gap > 1e-9) {
-    out.normal = box.rotation * ((local - nearest) / gap);
-    out.depth_m = offset - d.distance_m;
-    return true;
-  }
-  const Vec3 r = box.rotation.conjugate() * (root - box.center_m);
-  Eigen::Index axis = 0;
-  (r.cwiseAbs() - box.half_extents_m).maxCoeff(&axis);
-  const double side = r[axis] >= 0.0 ? 1.0 : -1.0;
-  out.normal = box.rotation * (side * Vec3::Unit(axis));
-  out.depth_m = cap.radius_m + box.half_extents_m[axis] - side * local[axis] + offset;
+  out.point_a = e.axis_point;
+  out.normal = e.normal;
+  out.depth_m = e.penetration_m + offset;
   return true;
 }
 

@@ -226,7 +226,9 @@ TEST_CASE("correction: planted feet stay at the input's height, so bodies do not
                              << q.feet.ground_penetration_max_m << " m, drift p99 "
                              << q.feet.stance_drift_p99_m);
   CHECK(std::abs(median_lift) <= 0.01);
-  CHECK(q.feet.float_p99_m <= 0.06);
+  // Issue 27: held feet return their tilt to the input's and the depenetration pass may not lift them
+  // (measured on the 2 s clip: 26.9 -> 16.0 mm; the sanitizer build's 1 s clip keeps the old bound).
+  CHECK(q.feet.float_p99_m <= (test::kSanitized ? 0.06 : 0.021));
   CHECK(q.feet.stance_drift_p99_m <= 0.01);
 }
 

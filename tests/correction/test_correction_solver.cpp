@@ -14,6 +14,7 @@
 #include "framework/core/sha256.hpp"
 #include "framework/correction/correct_crowd.hpp"
 #include "framework/correction/corrector.hpp"
+#include "framework/correction/corrector_step.hpp"
 #include "framework/correction/swaying_crowd_fixture.hpp"
 #include "tests/correction/correction_measures.hpp"
 #include "tests/support/test_paths.hpp"
@@ -324,4 +325,47 @@ TEST_CASE("correction: a looping input gives a looping output with the loop pre-
     for (size_t f = 0; f < c.frames.size(); ++f) c.frames[f].root_position_m.x() += 1.0 * f / c.frames.size();
   correct_crowd(crowd, params, nullptr, &report);
   CHECK(report.preroll_frames == 0);
+}
+
+TEST_CASE("correction: a body pushed toward a wall by its neighbour stays out of the wall", "[correction]") {
+  // Issue 27: the depenetration pass separated bodies without the environment among its rows, so a
+  // body between a neighbour and a barrier was pushed into the barrier (the corridor's thighs and feet,
+  // environment penetration p99 25-53 mm at 4.44-6.66 /m^2). A and B stand 25 cm apart in T-pose (B on
+  // A's right, so the pass pushes A to its left), with a wall 1 cm beyond A's left hand.
+  const BodyShape body = make_procedural_body({});
+  const Pose a = Pose::rest(body);
+  Pose b = Pose::rest(body);
+  b.root_position_m.x() -= 0.25;
+  const double hand_x =
+      world_capsules(body, a)[kLeftHand].b.x() + world_capsules(body, a)[kLeftHand].radius_m;
+  Environment env;
+  Box wall;
+  wall.center_m = Vec3(hand_x + 0.01 + 0.05, 1.0, 0.0);
+  wall.half_extents_m = Vec3(0.05, 1.0, 1.0);
+  env.boxes.push_back(wall);
+  Corrector corrector({body, body}, {}, env, 30);
+  double deepest = 0.0;  // deepest capsule of A behind the wall, over every step
+  for (int f = 0; f < 30; ++f) {
+    const auto out = corrector.step({a, b});
+    for (const Capsule& c : world_capsules(body, out[0]))
+      deepest = std::max(deepest, -capsule_box_distance(c, wall).distance_m);
+  }
+  INFO("deepest capsule of A behind the wall: " << deepest << " m");
+  CHECK(deepest < 0.006);
+}
+
+TEST_CASE("correction: a held foot keeps its heading offset and returns its tilt to the input's",
+          "[correction]") {
+  // Issue 27: a held foot kept the whole rotation offset its output had when it planted, so a foot that
+  // landed tilted stood tilted for the whole stance (toes 3-6 cm up: the corridor's planted-foot float).
+  const Quat yaw(Eigen::AngleAxisd(0.5, Vec3::UnitY()));
+  const Quat pitch(Eigen::AngleAxisd(0.3, Vec3::UnitX()));
+  Quat offset = pitch * yaw;
+  const Quat once = return_foot_tilt(offset, 0.1);
+  // One call turns the tilt back by 0.1 rad and leaves the heading.
+  CHECK(once.angularDistance(yaw) == Approx(0.2).margin(1e-9));
+  for (int k = 0; k < 3; ++k) offset = return_foot_tilt(offset, 0.1);
+  CHECK(offset.angularDistance(yaw) < 1e-9);
+  // A pure heading offset is left alone.
+  CHECK(return_foot_tilt(yaw, 0.1).angularDistance(yaw) < 1e-12);
 }
