@@ -135,10 +135,34 @@ TriangleHit TriangleTree::closest(const Vec3& p) const {
   return best;
 }
 
-double TriangleTree::signed_distance(const Vec3& p, const std::vector<Vec3>& normals) const {
+std::vector<bool> boundary_vertices(int vertex_count, const std::vector<Eigen::Vector3i>& triangles) {
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(3 * triangles.size());
+  for (const Eigen::Vector3i& t : triangles)
+    for (int k = 0; k < 3; ++k) edges.emplace_back(std::minmax(t[k], t[(k + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  std::vector<bool> rim(static_cast<size_t>(vertex_count), false);
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1)
+      rim[static_cast<size_t>(edges[i].first)] = rim[static_cast<size_t>(edges[i].second)] = true;
+    i = j;
+  }
+  return rim;
+}
+
+double TriangleTree::signed_distance(const Vec3& p, const std::vector<Vec3>& normals,
+                                     const std::vector<bool>& on_rim) const {
   const TriangleHit hit = closest(p);
   if (hit.triangle < 0) return std::numeric_limits<double>::infinity();
   const Eigen::Vector3i& tri = triangles_[static_cast<size_t>(hit.triangle)];
+  if (!on_rim.empty()) {
+    bool rim = true;
+    for (int k = 0; k < 3; ++k)
+      if (hit.barycentric[k] > 0 && !on_rim[static_cast<size_t>(tri[k])]) rim = false;
+    if (rim) return hit.distance;
+  }
   const Vec3 n = hit.barycentric[0] * normals[static_cast<size_t>(tri[0])] +
                  hit.barycentric[1] * normals[static_cast<size_t>(tri[1])] +
                  hit.barycentric[2] * normals[static_cast<size_t>(tri[2])];

@@ -10,7 +10,9 @@
 // skin has holes where a garment covers it): s(p) = |p - c| sign((p - c) . n(c)), with c the closest
 // point and n(c) the vertex normals interpolated by c's barycentric coordinates (the pseudo-normal of
 // the closest feature, smoothed across faces so that the sign is continuous over edges and vertices).
-// Negative inside. Units: those of the vertices (metres here).
+// Negative inside. Units: those of the vertices (metres here). Where the closest point lies on the rim
+// of an open sheet (a hair strand's tip, a sleeve's hem: only vertices on a boundary edge carry it),
+// the normal says nothing about the far side, and the point counts as outside (`on_rim` flags).
 #include <vector>
 
 #include "framework/core/aabb.hpp"
@@ -29,6 +31,9 @@ struct TriangleHit {
   double distance = 0.0;            ///< |p - point|
 };
 
+/// Per vertex: whether it lies on an edge that only one triangle uses (the rim of an open surface).
+std::vector<bool> boundary_vertices(int vertex_count, const std::vector<Eigen::Vector3i>& triangles);
+
 class TriangleTree {
  public:
   /// Keeps references to vertices and triangles: they must outlive the tree and stay unchanged.
@@ -38,7 +43,10 @@ class TriangleTree {
   TriangleHit closest(const Vec3& p) const;
   /// Signed distance to the mesh (see the header) with per-vertex normals `normals` (same indexing as
   /// the vertices); +infinity for an empty mesh.
-  double signed_distance(const Vec3& p, const std::vector<Vec3>& normals) const;
+  /// With `on_rim` (per vertex, from boundary_vertices(); may be empty), a closest point whose nonzero
+  /// barycentric weights all fall on rim vertices gives +distance.
+  double signed_distance(const Vec3& p, const std::vector<Vec3>& normals,
+                         const std::vector<bool>& on_rim = {}) const;
   /// Bounds of every vertex a triangle uses.
   const Aabb& bounds() const { return nodes_.front().box; }
 

@@ -19,8 +19,9 @@ struct FrameOverlap {
   int worst_character = -1, worst_other = -1;
 };
 
-FrameOverlap frame_overlap(const CrowdAnimation& crowd, int f) {
+FrameOverlap frame_overlap(const CrowdAnimation& crowd, int f, double max_depth_m) {
   const std::vector<PosedMesh> meshes = posed_meshes(crowd, f);
+  std::vector<std::vector<bool>> rims(meshes.size());
   FrameOverlap out;
   std::vector<std::unique_ptr<TriangleTree>> trees(meshes.size());
   auto tree_of = [&](size_t b) -> const TriangleTree& {
@@ -39,8 +40,12 @@ FrameOverlap frame_overlap(const CrowdAnimation& crowd, int f) {
       const Aabb& box = meshes[b].bounds;
       for (size_t v = 0; v < ma.vertices.size(); ++v) {
         if (!box.contains(ma.vertices[v])) continue;
-        const double s = tree_of(b).signed_distance(ma.vertices[v], meshes[b].normals);
-        if (s < 0.0 && -s > depth[v]) {
+        if (rims[b].empty()) {
+          const auto& tris = crowd.characters[static_cast<size_t>(meshes[b].character)].mesh->triangles;
+          rims[b] = boundary_vertices(static_cast<int>(meshes[b].vertices.size()), tris);
+        }
+        const double s = tree_of(b).signed_distance(ma.vertices[v], meshes[b].normals, rims[b]);
+        if (s < 0.0 && -s <= max_depth_m && -s > depth[v]) {
           depth[v] = -s;
           by[v] = meshes[b].character;
         }
@@ -61,7 +66,8 @@ FrameOverlap frame_overlap(const CrowdAnimation& crowd, int f) {
 
 }  // namespace
 
-MeshOverlap measure_mesh_overlap(const CrowdAnimation& crowd, int first_frame, double interval_s) {
+MeshOverlap measure_mesh_overlap(const CrowdAnimation& crowd, int first_frame, double interval_s,
+                                 double max_depth_m) {
   MeshOverlap q;
   const bool any_mesh = std::any_of(crowd.characters.begin(), crowd.characters.end(),
                                     [](const auto& c) { return c.mesh != nullptr; });
@@ -69,7 +75,7 @@ MeshOverlap measure_mesh_overlap(const CrowdAnimation& crowd, int first_frame, d
   q.sampled_frames = mesh_sample_frames(crowd, first_frame, interval_s);
   std::vector<FrameOverlap> per(q.sampled_frames.size());
   tbb::parallel_for(size_t{0}, per.size(),
-                    [&](size_t i) { per[i] = frame_overlap(crowd, q.sampled_frames[i]); });
+                    [&](size_t i) { per[i] = frame_overlap(crowd, q.sampled_frames[i], max_depth_m); });
   std::vector<double> depths;
   for (size_t i = 0; i < per.size(); ++i) {
     const FrameOverlap& fo = per[i];

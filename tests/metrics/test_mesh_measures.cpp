@@ -12,6 +12,7 @@
 #include "framework/body/mpfb2_outfit.hpp"
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/mpfb2_asset_dir.hpp"
+#include "framework/core/skeleton.hpp"
 #include "framework/core/surface_kind_name.hpp"
 #include "framework/core/triangle_tree.hpp"
 #include "framework/metrics/correction_quality.hpp"
@@ -104,6 +105,27 @@ TEST_CASE("the triangle tree gives the exact signed distance to a closed box") {
   CHECK(hit.distance == Approx(2.5));
 }
 
+TEST_CASE("the inside test ignores the far side of an open sheet's rim") {
+  // One face of a box alone: the square y = 0.5, |x|, |z| <= 0.5, facing +y.
+  std::vector<Vec3> box;
+  std::vector<Eigen::Vector3i> tb;
+  add_box(Vec3::Zero(), Vec3::Constant(0.5), 2, box, tb);
+  const std::vector<Vec3> v(box.begin() + 3 * 9, box.begin() + 4 * 9);  // the +y face's 3 x 3 grid
+  std::vector<Eigen::Vector3i> t;
+  for (const Eigen::Vector3i& tri : tb)
+    if (tri.minCoeff() >= 27 && tri.maxCoeff() < 36) t.push_back(tri - Eigen::Vector3i::Constant(27));
+  REQUIRE(t.size() == 8);
+  REQUIRE(v[0].y() == 0.5);
+  const TriangleTree tree(v, t);
+  const std::vector<Vec3> normals = vertex_normals(v, t);
+  const std::vector<bool> rim = boundary_vertices(static_cast<int>(v.size()), t);
+  CHECK(std::count(rim.begin(), rim.end(), true) == 8);  // all but the centre
+  const Vec3 beside(0.9, 0.2, 0.0);  // below and beyond the rim: the closest point is on the rim
+  CHECK(tree.signed_distance(beside, normals) < 0.0);  // what the normal alone would say
+  CHECK(tree.signed_distance(beside, normals, rim) == Approx(0.5));
+  CHECK(tree.signed_distance({0.0, 0.3, 0.1}, normals, rim) == Approx(-0.2));  // under the sheet
+}
+
 TEST_CASE("mesh overlap: the vertices of two overlapping boxes inside each other, with their depths") {
   const BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
   const Vec3 pelvis(0.0, shape.pelvis_height_m(), 0.0);
@@ -128,8 +150,13 @@ TEST_CASE("mesh overlap: the vertices of two overlapping boxes inside each other
   REQUIRE(depths.size() > 50);
   const double fraction = static_cast<double>(depths.size()) / static_cast<double>(va.size() + vb.size());
 
-  const MeshOverlap q = measure_mesh_overlap(crowd);
-  CHECK(q.frames == 4);  // 2 s, one frame every 0.5 s
+  const MeshOverlap q = measure_mesh_overlap(crowd, 0, 0.5, 1.0);  // no depth bound (boxes are not bodies)
+  CHECK(q.frames == 4);
+  // The depth bound (kMaxBodyDepth_m, 0.2 m, by default) counts deeper vertices as outside (the depths
+  // here are multiples of 5 cm: a bound between them).
+  const long shallow = std::count_if(depths.begin(), depths.end(), [](double d) { return d <= 0.17; });
+  CHECK(measure_mesh_overlap(crowd, 0, 0.5, 0.17).inside_samples == 4 * shallow);
+  CHECK(shallow < static_cast<long>(depths.size()));  // 2 s, one frame every 0.5 s
   CHECK(q.sampled_frames == std::vector<int>{0, 15, 30, 45});
   CHECK(q.fraction_mean == Approx(fraction).epsilon(1e-12));
   CHECK(q.fraction_max == Approx(fraction).epsilon(1e-12));
@@ -201,14 +228,54 @@ TEST_CASE("proxy coverage: the share of vertices within 5 mm of the capsules and
   CHECK(grown.worst_character == -1);
 }
 
+namespace {
+
+/// A dressed male MPFB2 body (skin, outfit, hair, shoes, eyes), built once.
+const Mpfb2Body& dressed_body() {
+  static const Mpfb2Body body = [] {
+    const auto model = Mpfb2Model::load(shipped_mpfb2_dir());
+    const auto wardrobe =
+        Mpfb2Wardrobe::load(default_makehuman_dir(), static_cast<int>(model->base().vertices.size()));
+    const Mpfb2Outfit outfit = sample_mpfb2_outfit(*wardrobe, Sex::kMale, 3);
+    Mpfb2ShapeParams params;
+    params.gender = 1.0;
+    return make_mpfb2_body(*model, params, &outfit);
+  }();
+  return body;
+}
+
+}  // namespace
+
+TEST_CASE("the inside test on a dressed MPFB2 body: its joints are inside, points around it outside") {
+  const Mpfb2Body& body = dressed_body();
+  const Pose rest = Pose::rest(body.shape);
+  const std::vector<Vec3> v = skin_vertices(body.mesh, forward_kinematics(body.shape, rest));
+  const TriangleTree tree(v, body.mesh.triangles);
+  const std::vector<Vec3> normals = vertex_normals(v, body.mesh.triangles);
+  const auto joints = joint_positions(body.shape, rest);
+  for (int j : {kPelvis, kSpine1, kSpine2, kSpine3, kHead, kLeftHip, kRightHip, kLeftKnee, kRightKnee,
+                kLeftElbow, kRightElbow}) {
+    INFO(joint_name(j));
+    CHECK(tree.signed_distance(joints[static_cast<size_t>(j)], normals) < -0.02);
+  }
+  for (const Vec3& off : {Vec3(0, 0, 0.4), Vec3(0, 0, -0.4), Vec3(0.5, 0, 0), Vec3(0, 1.2, 0)})
+    CHECK(tree.signed_distance(joints[kPelvis] + off, normals) > 0.05);
+
+  // Two of them side by side: 10 cm apart they interpenetrate, 3 m apart (beyond the T-posed arms) not.
+  auto mesh = std::make_shared<const SkinnedMesh>(body.mesh);
+  CrowdAnimation crowd;
+  crowd.meta.fps = 30.0;
+  crowd.characters.push_back(still(body.shape, rest.root_position_m, mesh));
+  crowd.characters.push_back(still(body.shape, rest.root_position_m + Vec3(0.1, 0, 0), mesh));
+  const MeshOverlap close = measure_mesh_overlap(crowd, 0, 10.0);
+  CHECK(close.fraction_mean > 0.2);
+  CHECK(close.depth_max_m > 0.05);
+  for (Pose& p : crowd.characters[1].frames) p.root_position_m.x() += 2.9;
+  CHECK(measure_mesh_overlap(crowd, 0, 10.0).inside_samples == 0);
+}
+
 TEST_CASE("capsules grown to a dressed MPFB2 body bound its rendered mesh in the rest pose") {
-  const auto model = Mpfb2Model::load(shipped_mpfb2_dir());
-  const auto wardrobe =
-      Mpfb2Wardrobe::load(default_makehuman_dir(), static_cast<int>(model->base().vertices.size()));
-  const Mpfb2Outfit outfit = sample_mpfb2_outfit(*wardrobe, Sex::kMale, 3);
-  Mpfb2ShapeParams params;
-  params.gender = 1.0;
-  const Mpfb2Body body = make_mpfb2_body(*model, params, &outfit);
+  const Mpfb2Body& body = dressed_body();
   auto mesh = std::make_shared<const SkinnedMesh>(body.mesh);
   CrowdAnimation crowd;
   crowd.meta.fps = 30.0;
