@@ -8,9 +8,11 @@
 // rotation_dev_p99_deg,foot_skate_max_m,joint_speed_max_mps,cg_iterations_mean,rejected_steps,
 // stance_foot_drift_p99_m,stance_foot_drift_max_m,foot_pops,foot_pop_excess_max_m,
 // foot_ground_penetration_max_m,foot_float_p99_m,free_limb_dev_p99_deg,free_limb_dev_max_deg,joint_flips,
-// env_penetration_p99_m,env_penetration_max_m; the foot measures are defined in
-// framework/metrics/foot_contact_quality.hpp, the last five (issue 27) in free_limb_deviation.hpp,
-// joint_flips.hpp and environment_penetration.hpp).
+// env_penetration_p99_m,env_penetration_max_m,mesh_overlap_fraction,baseline_mesh_overlap_fraction,
+// mesh_overlap_depth_p99_m,proxy_coverage,proxy_outside_p99_m; the foot measures are defined in
+// framework/metrics/foot_contact_quality.hpp, the next five (issue 27) in free_limb_deviation.hpp,
+// joint_flips.hpp and environment_penetration.hpp, the last five (issue 27, rendered meshes; empty for
+// bodies without one) in mesh_overlap.hpp and proxy_coverage.hpp).
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -57,6 +59,7 @@ struct QualityRow {
   double overlap_reduction = 0;  ///< 1 - ours / baseline mean overlap
   CorrectionQuality quality;
   CorrectionReport report;
+  MeshOverlap baseline_mesh;  ///< the baseline's own mesh-level overlap (ours': quality.mesh_overlap)
 };
 
 void run_scenario(const std::string& spec_path, const Options& o, std::vector<OverlapRow>& rows,
@@ -95,7 +98,13 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
     std::printf("%-10s %3d characters (%.2f/m2): baseline %.3f L, ours %.3f L per character\n",
                 scenario.c_str(), n, density_per_m2, rows[rows.size() - 2].mean_overlap_l,
                 rows.back().mean_overlap_l);
-    QualityRow qr{scenario, n, density_per_m2, 0.0, measure_correction_quality(baseline, ours), report};
+    QualityRow qr{scenario,
+                  n,
+                  density_per_m2,
+                  0.0,
+                  measure_correction_quality(baseline, ours),
+                  report,
+                  measure_mesh_overlap(baseline)};
     const double base_l = rows[rows.size() - 2].mean_overlap_l;
     qr.overlap_reduction = base_l > 0.0 ? 1.0 - rows.back().mean_overlap_l / base_l : 0.0;
     std::printf(
@@ -115,6 +124,14 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
         scenario.c_str(), n, qr.quality.free_limbs.p99_deg, qr.quality.free_limbs.max_deg,
         qr.quality.flips.count, 1000 * qr.quality.environment.p99_m, 1000 * qr.quality.environment.max_m,
         1000 * qr.quality.feet.float_p99_m, 1000 * qr.quality.feet.ground_penetration_max_m);
+    if (qr.quality.mesh_overlap.frames > 0)
+      std::printf(
+          "%-10s %3d characters: rendered vertices inside another character %.4f %% (baseline %.4f %%), "
+          "depth "
+          "p99 %.1f mm; within 5 mm of their capsules %.2f %% (outside p99 %.1f mm)\n",
+          scenario.c_str(), n, 100 * qr.quality.mesh_overlap.fraction_mean,
+          100 * qr.baseline_mesh.fraction_mean, 1000 * qr.quality.mesh_overlap.depth_p99_m,
+          100 * qr.quality.proxy_coverage.within_share, 1000 * qr.quality.proxy_coverage.outside_p99_m);
     quality.push_back(qr);
   }
 }
@@ -147,8 +164,15 @@ void run(const Options& o) {
                                "free_limb_dev_max_deg",
                                "joint_flips",
                                "env_penetration_p99_m",
-                               "env_penetration_max_m"});
-  for (const QualityRow& r : quality)
+                               "env_penetration_max_m",
+                               "mesh_overlap_fraction",
+                               "baseline_mesh_overlap_fraction",
+                               "mesh_overlap_depth_p99_m",
+                               "proxy_coverage",
+                               "proxy_outside_p99_m"});
+  for (const QualityRow& r : quality) {
+    const bool meshes = r.quality.mesh_overlap.frames > 0;
+    auto mesh_cell = [&](double v) { return meshes ? csv_number(v) : std::string(); };
     qcsv += csv_line({r.scenario,
                       std::to_string(r.characters),
                       csv_number(r.density),
@@ -171,7 +195,13 @@ void run(const Options& o) {
                       csv_number(r.quality.free_limbs.max_deg),
                       std::to_string(r.quality.flips.count),
                       csv_number(r.quality.environment.p99_m),
-                      csv_number(r.quality.environment.max_m)});
+                      csv_number(r.quality.environment.max_m),
+                      mesh_cell(r.quality.mesh_overlap.fraction_mean),
+                      mesh_cell(r.baseline_mesh.fraction_mean),
+                      mesh_cell(r.quality.mesh_overlap.depth_p99_m),
+                      mesh_cell(r.quality.proxy_coverage.within_share),
+                      mesh_cell(r.quality.proxy_coverage.outside_p99_m)});
+  }
   write_file_atomic(fs::path(o.out) / "correction_quality.csv", qcsv);
   std::printf(
       "wrote %s/overlap_vs_density.csv, correction_quality.csv and "

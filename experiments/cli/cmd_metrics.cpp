@@ -4,7 +4,8 @@
 // With `--input BASE.glb` (the animation the crowd was corrected from) also the correction-quality
 // measures (framework/metrics/correction_quality.hpp): inter-body depth p99 / max, joint deviation,
 // stance-foot drift, foot pops, ground penetration and floating of the feet, free-limb deviation, joint
-// flips and environment penetration (issue 27).
+// flips and environment penetration (issue 27); for bodies with a rendered mesh, the mesh-level overlap
+// and the proxy coverage (issue 27, sampled every 0.5 s).
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include "experiments/cli/command_table.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/core/skeleton.hpp"
+#include "framework/core/surface_kind_name.hpp"
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/metrics/correction_quality.hpp"
 #include "framework/metrics/measure_crowd.hpp"
@@ -92,6 +94,29 @@ void print_quality(const CorrectionQuality& q) {
   std::printf(
       "  environment penetration (capsules behind walls, barriers, stage): p99 / max %.1f / %.1f mm\n",
       1000 * e.p99_m, 1000 * e.max_m);
+  const MeshOverlap& mo = q.mesh_overlap;
+  if (mo.frames > 0) {
+    std::printf(
+        "  rendered meshes (%d frames, one every 0.5 s): vertices inside another character: mean / max "
+        "%.4f / %.4f %%, depth p99 / max %.1f / %.1f mm",
+        mo.frames, 100 * mo.fraction_mean, 100 * mo.fraction_max, 1000 * mo.depth_p99_m,
+        1000 * mo.depth_max_m);
+    if (mo.worst_character >= 0)
+      std::printf(" (max: character %d in %d, frame %d)", mo.worst_character, mo.worst_other, mo.worst_frame);
+    std::printf("\n");
+  }
+  const ProxyCoverage& pc = q.proxy_coverage;
+  if (pc.frames > 0) {
+    std::printf(
+        "  proxy coverage: %.2f %% of rendered vertices within 5 mm of their own capsules; outside by p99 / "
+        "max %.1f / %.1f mm\n   by surface:",
+        100 * pc.within_share, 1000 * pc.outside_p99_m, 1000 * pc.outside_max_m);
+    for (size_t k = 0; k < pc.within_share_by_surface.size(); ++k)
+      if (pc.within_share_by_surface[k] >= 0)
+        std::printf(" %s %.1f %%", surface_kind_name(static_cast<SurfaceKind>(k)),
+                    100 * pc.within_share_by_surface[k]);
+    std::printf("\n");
+  }
 }
 
 void run(const MetricsArgs& args) {
@@ -131,7 +156,8 @@ void add_metrics_command(Command& root) {
          "--input", args->input,
          "The uncorrected animation CROWD was corrected from: adds depth p99, joint deviation, "
          "stance-foot drift, foot pops, ground penetration and floating of the feet, free-limb deviation, "
-         "joint flips and environment penetration")
+         "joint flips, environment penetration, and on rendered meshes (MPFB2 bodies, sampled every 0.5 s) "
+         "the share of vertices inside another character's mesh and outside their own capsules")
       ->check(check::existing_file());
   cmd->add_flag("--json", args->json, "Print one JSON object");
   cmd->add_flag("--per-frame", args->per_frame, "Also print the per-frame series");

@@ -1,6 +1,6 @@
 #pragma once
-// The corrector's tuning options shared by `crowdlab bench correct` and `crowdlab experiment
-// overlap-vs-density` (defaults = CorrectorParams; units and sources in corrector_params.hpp).
+// The corrector's tuning options shared by `crowdlab correct`, `crowdlab bench correct` and `crowdlab
+// experiment overlap-vs-density` (defaults = CorrectorParams; units and sources in corrector_params.hpp).
 #include "experiments/cli/command.hpp"
 #include "framework/correction/corrector_params.hpp"
 

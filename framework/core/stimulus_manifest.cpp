@@ -18,7 +18,7 @@ struct QualityColumn {
   double ClipQuality::*value;  ///< null for the counts
   int ClipQuality::*count;     ///< the count, where value is null
 };
-constexpr std::array<QualityColumn, 12> kQuality = {
+constexpr std::array<QualityColumn, 16> kQuality = {
     {{"depth_p99_m", &ClipQuality::depth_p99_m, nullptr},
      {"depth_max_m", &ClipQuality::depth_max_m, nullptr},
      {"stance_foot_drift_p99_m", &ClipQuality::stance_foot_drift_p99_m, nullptr},
@@ -30,7 +30,11 @@ constexpr std::array<QualityColumn, 12> kQuality = {
      {"free_limb_dev_max_deg", &ClipQuality::free_limb_dev_max_deg, nullptr},
      {"joint_flips", nullptr, &ClipQuality::joint_flips},
      {"env_penetration_p99_m", &ClipQuality::env_penetration_p99_m, nullptr},
-     {"env_penetration_max_m", &ClipQuality::env_penetration_max_m, nullptr}}};
+     {"env_penetration_max_m", &ClipQuality::env_penetration_max_m, nullptr},
+     {"mesh_overlap_fraction", &ClipQuality::mesh_overlap_fraction, nullptr},
+     {"mesh_overlap_depth_p99_m", &ClipQuality::mesh_overlap_depth_p99_m, nullptr},
+     {"proxy_coverage", &ClipQuality::proxy_coverage, nullptr},
+     {"proxy_outside_p99_m", &ClipQuality::proxy_outside_p99_m, nullptr}}};
 
 /// The stimulus-check columns (optional when read), in file order.
 struct CheckColumn {

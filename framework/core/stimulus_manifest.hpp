@@ -4,16 +4,18 @@
 //   id,<factor columns...>,file,duration_s,frames,width,height,sha256,overlap_l,v_i_m,collisions,practice,
 //   depth_p99_m,depth_max_m,stance_foot_drift_p99_m,stance_foot_drift_max_m,foot_pops,
 //   foot_ground_penetration_max_m,foot_float_p99_m,free_limb_dev_p99_deg,free_limb_dev_max_deg,
-//   joint_flips,env_penetration_p99_m,env_penetration_max_m,crowd_in_frame_min,character_height_px,
+//   joint_flips,env_penetration_p99_m,env_penetration_max_m,mesh_overlap_fraction,
+//   mesh_overlap_depth_p99_m,proxy_coverage,proxy_outside_p99_m,crowd_in_frame_min,character_height_px,
 //   overlap_frame_share,overlap_pixel_fraction,seam_step_ratio
 // (factor columns in spec order; metric columns empty when not computed). Seven of them are the
 // correction-quality measures of the clip's crowd against its input (issue 18; definitions in
 // framework/metrics/correction_quality.hpp and foot_contact_quality.hpp, names as in
 // correction_quality.csv): for `baseline` the input is the crowd itself, for `ours` the baseline of the
 // same condition; the next five (issue 27) are defined in framework/metrics/free_limb_deviation.hpp,
-// joint_flips.hpp and environment_penetration.hpp. The last five are the stimulus check of the rendered
-// clip (issue 28; definitions in stimuli/stimulus_check.hpp), also in the clip's sidecar JSON.
-// Manifests written before any group lack its columns and read as unknown.
+// joint_flips.hpp and environment_penetration.hpp; the four after them (issue 27, the rendered meshes:
+// empty for bodies without one) in framework/metrics/mesh_overlap.hpp and proxy_coverage.hpp. The last five
+// are the stimulus check of the rendered clip (issue 28; definitions in stimuli/stimulus_check.hpp), also in
+// the clip's sidecar JSON. Manifests written before any group lack its columns and read as unknown.
 #include <map>
 #include <string>
 #include <vector>
@@ -35,6 +37,10 @@ struct ClipQuality {
   int joint_flips = -1;                         ///< joint-frames whose deviation jumps > 20 deg in 3 frames
   double env_penetration_p99_m = -1.0;          ///< capsule depth behind walls / barriers / stage, p99
   double env_penetration_max_m = -1.0;          ///< and max
+  double mesh_overlap_fraction = -1.0;          ///< rendered vertices inside another character, mean share
+  double mesh_overlap_depth_p99_m = -1.0;       ///< their depth, p99
+  double proxy_coverage = -1.0;                 ///< rendered vertices within 5 mm of their own capsules
+  double proxy_outside_p99_m = -1.0;            ///< distance outside the capsules, p99
 };
 
 /// The stimulus check of one rendered clip (stimuli/stimulus_check.hpp defines the measures); -1 = unknown.

@@ -81,6 +81,8 @@ CorrectionQuality measure_correction_quality(const CrowdAnimation& input, const 
   q.free_limbs = measure_free_limb_deviation(input, corrected, first_frame);
   q.flips = measure_joint_flips(input, corrected, first_frame);
   q.environment = measure_environment_penetration(corrected, first_frame);
+  q.mesh_overlap = measure_mesh_overlap(corrected, first_frame);
+  q.proxy_coverage = measure_proxy_coverage(corrected, first_frame);
   q.foot_skate_max_m = q.feet.stance_drift_max_m;
   q.rotation_dev_mean_deg = deviations.empty() ? 0.0 : sum / static_cast<double>(deviations.size());
   q.rotation_dev_p99_deg = nearest_rank_quantile(deviations, 0.99);

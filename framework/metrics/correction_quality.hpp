@@ -17,12 +17,18 @@
 //   flips                      joint-frames whose deviation from the input jumps (issue 27; joint_flips.hpp)
 //   environment                capsule depth behind walls, barriers and the stage, of the corrected
 //                              animation (issue 27; environment_penetration.hpp)
+//   mesh_overlap               rendered-mesh vertices inside another character's rendered mesh, of the
+//                              corrected animation (issue 27; mesh_overlap.hpp; sampled every 0.5 s)
+//   proxy_coverage             rendered-mesh vertices outside the character's own capsules (issue 27;
+//                              proxy_coverage.hpp; sampled every 0.5 s)
 // Frames are taken from first_frame on (0 = all), every `frame_stride`-th for the depths.
 #include "framework/core/crowd_animation.hpp"
 #include "framework/metrics/environment_penetration.hpp"
 #include "framework/metrics/foot_contact_quality.hpp"
 #include "framework/metrics/free_limb_deviation.hpp"
 #include "framework/metrics/joint_flips.hpp"
+#include "framework/metrics/mesh_overlap.hpp"
+#include "framework/metrics/proxy_coverage.hpp"
 
 namespace crowdlab {
 
@@ -38,6 +44,8 @@ struct CorrectionQuality {
   FreeLimbDeviation free_limbs;
   JointFlips flips;
   EnvironmentPenetration environment;
+  MeshOverlap mesh_overlap;
+  ProxyCoverage proxy_coverage;
 };
 
 /// Throws InputError when the two animations differ in characters or frames.

@@ -64,8 +64,9 @@ struct CorrectionRecipe {
 /// The metrics stage of one method's crowd file (<method>.metrics.json).
 struct MetricsRecipe {
   static constexpr std::string_view kStage = "metrics";
-  static constexpr std::string_view kCodeVersion = "2";  ///< 2: free limbs, flips, environment (issue 27)
-  CrowdMethod method = CrowdMethod::baseline;            ///< the animation measured (against the baseline)
+  /// 2: free limbs, flips, environment; 3: mesh-level overlap and proxy coverage (issue 27)
+  static constexpr std::string_view kCodeVersion = "3";
+  CrowdMethod method = CrowdMethod::baseline;  ///< the animation measured (against the baseline)
   bool surface_ground = false;  ///< manifold crowds: the feet's ground is the surface, not y = 0
 };
 

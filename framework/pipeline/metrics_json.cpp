@@ -3,6 +3,7 @@
 #include <string>
 
 #include "framework/core/skeleton.hpp"
+#include "framework/core/surface_kind_name.hpp"
 
 namespace crowdlab {
 namespace {
@@ -30,6 +31,34 @@ nlohmann::json flips_by_joint_json(const JointFlips& flips) {
     if (flips.per_joint[static_cast<size_t>(j)] > 0)
       by[std::string(joint_name(j))] = flips.per_joint[static_cast<size_t>(j)];
   return by;
+}
+
+/// The mesh-level measures (issue 27), or nothing when no character has a rendered mesh.
+void add_mesh_measures(const CorrectionQuality& q, nlohmann::json& j) {
+  const MeshOverlap& m = q.mesh_overlap;
+  if (m.frames > 0) {
+    j["mesh_overlap_frames"] = m.frames;
+    j["mesh_overlap_fraction"] = m.fraction_mean;
+    j["mesh_overlap_fraction_max"] = m.fraction_max;
+    j["mesh_overlap_depth_p99_m"] = m.depth_p99_m;
+    j["mesh_overlap_depth_max_m"] = m.depth_max_m;
+    j["mesh_overlap_worst"] = m.worst_character < 0 ? nlohmann::json(nullptr)
+                                                    : nlohmann::json{{"character", m.worst_character},
+                                                                     {"other", m.worst_other},
+                                                                     {"frame", m.worst_frame}};
+    j["mesh_overlap_per_frame"] = {{"frame", m.sampled_frames}, {"fraction", m.per_frame_fraction}};
+  }
+  const ProxyCoverage& p = q.proxy_coverage;
+  if (p.frames > 0) {
+    j["proxy_coverage"] = p.within_share;
+    j["proxy_outside_p99_m"] = p.outside_p99_m;
+    j["proxy_outside_max_m"] = p.outside_max_m;
+    nlohmann::json by = nlohmann::json::object();
+    for (size_t k = 0; k < p.within_share_by_surface.size(); ++k)
+      if (p.within_share_by_surface[k] >= 0)
+        by[std::string(surface_kind_name(static_cast<SurfaceKind>(k)))] = p.within_share_by_surface[k];
+    j["proxy_coverage_by_surface"] = by;
+  }
 }
 
 }  // namespace
@@ -76,35 +105,38 @@ nlohmann::json crowd_metrics_json(const CrowdMetrics& m, bool per_frame) {
 
 nlohmann::json correction_quality_json(const CorrectionQuality& q) {
   const FootContactQuality& f = q.feet;
-  return {{"depth_p99_m", q.depth_p99_m},
-          {"depth_max_m", q.depth_max_m},
-          {"rotation_dev_mean_deg", q.rotation_dev_mean_deg},
-          {"rotation_dev_p99_deg", q.rotation_dev_p99_deg},
-          {"foot_skate_max_m", q.foot_skate_max_m},
-          {"joint_speed_max_mps", q.joint_speed_max_mps},
-          {"stance_foot_drift_p99_m", f.stance_drift_p99_m},
-          {"stance_foot_drift_max_m", f.stance_drift_max_m},
-          {"contact_frames", f.contact_frames},
-          {"foot_pops", f.foot_pops},
-          {"foot_pop_excess_max_m", f.pop_excess_max_m},
-          {"foot_pop_frames", f.pop_frames},
-          {"foot_ground_penetration_max_m", f.ground_penetration_max_m},
-          {"foot_ground_penetration_p99_m", f.ground_penetration_p99_m},
-          {"foot_float_p99_m", f.float_p99_m},
-          {"foot_float_max_m", f.float_max_m},
-          {"free_limb_dev_p99_deg", q.free_limbs.p99_deg},
-          {"free_limb_dev_max_deg", q.free_limbs.max_deg},
-          {"free_limb_joint_frames", q.free_limbs.free_joint_frames},
-          {"free_limb_dev_worst",
-           worst_json(q.free_limbs.worst_character, q.free_limbs.worst_joint, q.free_limbs.worst_frame)},
-          {"joint_flips", q.flips.count},
-          {"joint_flip_max_change_deg", q.flips.max_change_deg},
-          {"joint_flip_first", flips_json(q.flips)},
-          {"joint_flips_by_joint", flips_by_joint_json(q.flips)},
-          {"env_penetration_p99_m", q.environment.p99_m},
-          {"env_penetration_max_m", q.environment.max_m},
-          {"env_penetration_worst",
-           worst_json(q.environment.worst_character, q.environment.worst_bone, q.environment.worst_frame)}};
+  nlohmann::json j = {
+      {"depth_p99_m", q.depth_p99_m},
+      {"depth_max_m", q.depth_max_m},
+      {"rotation_dev_mean_deg", q.rotation_dev_mean_deg},
+      {"rotation_dev_p99_deg", q.rotation_dev_p99_deg},
+      {"foot_skate_max_m", q.foot_skate_max_m},
+      {"joint_speed_max_mps", q.joint_speed_max_mps},
+      {"stance_foot_drift_p99_m", f.stance_drift_p99_m},
+      {"stance_foot_drift_max_m", f.stance_drift_max_m},
+      {"contact_frames", f.contact_frames},
+      {"foot_pops", f.foot_pops},
+      {"foot_pop_excess_max_m", f.pop_excess_max_m},
+      {"foot_pop_frames", f.pop_frames},
+      {"foot_ground_penetration_max_m", f.ground_penetration_max_m},
+      {"foot_ground_penetration_p99_m", f.ground_penetration_p99_m},
+      {"foot_float_p99_m", f.float_p99_m},
+      {"foot_float_max_m", f.float_max_m},
+      {"free_limb_dev_p99_deg", q.free_limbs.p99_deg},
+      {"free_limb_dev_max_deg", q.free_limbs.max_deg},
+      {"free_limb_joint_frames", q.free_limbs.free_joint_frames},
+      {"free_limb_dev_worst",
+       worst_json(q.free_limbs.worst_character, q.free_limbs.worst_joint, q.free_limbs.worst_frame)},
+      {"joint_flips", q.flips.count},
+      {"joint_flip_max_change_deg", q.flips.max_change_deg},
+      {"joint_flip_first", flips_json(q.flips)},
+      {"joint_flips_by_joint", flips_by_joint_json(q.flips)},
+      {"env_penetration_p99_m", q.environment.p99_m},
+      {"env_penetration_max_m", q.environment.max_m},
+      {"env_penetration_worst",
+       worst_json(q.environment.worst_character, q.environment.worst_bone, q.environment.worst_frame)}};
+  add_mesh_measures(q, j);
+  return j;
 }
 
 }  // namespace crowdlab

@@ -82,6 +82,10 @@ ClipQuality clip_quality(const nlohmann::json& metrics) {
   q.joint_flips = j.value("joint_flips", -1);
   q.env_penetration_p99_m = j.value("env_penetration_p99_m", -1.0);
   q.env_penetration_max_m = j.value("env_penetration_max_m", -1.0);
+  q.mesh_overlap_fraction = j.value("mesh_overlap_fraction", -1.0);
+  q.mesh_overlap_depth_p99_m = j.value("mesh_overlap_depth_p99_m", -1.0);
+  q.proxy_coverage = j.value("proxy_coverage", -1.0);
+  q.proxy_outside_p99_m = j.value("proxy_outside_p99_m", -1.0);
   return q;
 }
 

@@ -84,6 +84,10 @@ TEST_CASE("stimulus manifest carries the clip's correction-quality columns") {
   e.quality.joint_flips = 7;
   e.quality.env_penetration_p99_m = 0.003;
   e.quality.env_penetration_max_m = 0.011;
+  e.quality.mesh_overlap_fraction = 0.0125;
+  e.quality.mesh_overlap_depth_p99_m = 0.006;
+  e.quality.proxy_coverage = 0.93;
+  e.quality.proxy_outside_p99_m = 0.021;
   m.entries = {e};
   const auto dir = test::scratch_dir("manifest_quality");
   const std::string path = (dir / "manifest.csv").string();
@@ -93,6 +97,7 @@ TEST_CASE("stimulus manifest carries the clip's correction-quality columns") {
       header.ends_with(",practice,depth_p99_m,depth_max_m,stance_foot_drift_p99_m,stance_foot_drift_max_m,"
                        "foot_pops,foot_ground_penetration_max_m,foot_float_p99_m,free_limb_dev_p99_deg,"
                        "free_limb_dev_max_deg,joint_flips,env_penetration_p99_m,env_penetration_max_m,"
+                       "mesh_overlap_fraction,mesh_overlap_depth_p99_m,proxy_coverage,proxy_outside_p99_m,"
                        "crowd_in_frame_min,character_height_px,overlap_frame_share,overlap_pixel_fraction,"
                        "seam_step_ratio"));
   const ClipQuality q = read_manifest(path).entries.at(0).quality;
@@ -108,6 +113,10 @@ TEST_CASE("stimulus manifest carries the clip's correction-quality columns") {
   CHECK(q.joint_flips == 7);
   CHECK(q.env_penetration_p99_m == 0.003);
   CHECK(q.env_penetration_max_m == 0.011);
+  CHECK(q.mesh_overlap_fraction == 0.0125);
+  CHECK(q.mesh_overlap_depth_p99_m == 0.006);
+  CHECK(q.proxy_coverage == 0.93);
+  CHECK(q.proxy_outside_p99_m == 0.021);
   // A manifest written before these columns existed still reads, with the measures unknown.
   std::ofstream(path, std::ios::trunc)
       << "id,file,duration_s,frames,width,height,sha256,overlap_l,v_i_m,collisions,practice\n"

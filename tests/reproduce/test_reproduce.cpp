@@ -65,7 +65,8 @@ TEST_CASE("reproduce gomez2024 --quick: Fig. 3, Fig. 4, timing and study within 
     for (const char* d : {"2.22", "3.33", "4.44", "5.55", "6.66"})
       for (const char* check :
            {"fig3.{s}.reduction@{d}", "quality.{s}@{d}.foot_pops", "quality.{s}@{d}.stance_drift_p99_m",
-            "quality.{s}@{d}.rotation_dev_mean_deg"}) {
+            "quality.{s}@{d}.rotation_dev_mean_deg", "quality.{s}@{d}.free_limb_dev_p99_deg",
+            "quality.{s}@{d}.free_limb_dev_max_deg"}) {
         std::string id = check;
         id.replace(id.find("{s}"), 3, scenario);
         id.replace(id.find("{d}"), 3, d);
