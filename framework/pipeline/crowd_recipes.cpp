@@ -4,6 +4,11 @@
 
 namespace crowdlab {
 
+namespace {
+/// Loop pre-roll of the correction when the study shows clips looping (correct_crowd.hpp), seconds.
+constexpr double kLoopPrerollS = 2.0;
+}  // namespace
+
 CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Condition& first) {
   const Condition group = crowd_condition(spec, first);
   const ConditionParams& p = group.params;
@@ -35,11 +40,7 @@ CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Conditio
   }
 
   r.correction.correction = spec.correction;
-  // The loop pre-roll (correct_crowd.hpp) stays off in runs: its blend of the clip's end into the pre-rolled
-  // start re-opened collisions the correction had resolved (tests/data/pipeline/tiny.yaml, 1 s clips: ours'
-  // deepest penetration 0 mm without it, 17-66 mm with it, 66 mm above the baseline's 64 mm at 2.5/m²).
-  // Until the blend is itself corrected, a looping `ours` clip keeps its seam rather than its collisions.
-  r.correction.loop_preroll_s = 0.0;
+  r.correction.loop_preroll_s = spec.protocol.loop_video ? kLoopPrerollS : 0.0;
   return r;
 }
 
