@@ -172,6 +172,8 @@ CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams&
         "correct_crowd: {} of {} steps were rejected (solver did not converge); the last stable state was "
         "kept",
         r.rejected_steps, frames);
+  if (preroll > 0)
+    spdlog::debug("correct_crowd: loop pre-roll of {} frames, closure: {}", preroll, r.loop_closure);
   if (report) *report = r;
   return out;
 }
