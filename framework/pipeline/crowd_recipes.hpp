@@ -54,11 +54,10 @@ struct AnimationRecipe {
 /// The correction stage: the collision corrector on baseline.glb (ours.glb).
 struct CorrectionRecipe {
   static constexpr std::string_view kStage = "correction";
-  static constexpr std::string_view kCodeVersion =
-      "3";  ///< 2: issue 27's free joints; 3: issue 28's loop pre-roll, steered
+  static constexpr std::string_view kCodeVersion = "2";  ///< 2: issue 27's free joints
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
-  /// (correct_crowd.hpp; issue 28): 2 s when the study shows the clips looping (protocol.loop_video), else 0.
+  /// (correct_crowd.hpp; issue 28). 0 in runs for now (crowd_recipes.cpp says why).
   double loop_preroll_s = 0.0;
 };
 

@@ -78,14 +78,6 @@ TEST_CASE("run makes every condition's crowd, metrics and clip, then reuses them
     // The corrected crowd is measured against the baseline, not against itself: it moved somebody.
     const ClipQuality& ours = by_method.at("ours");
     CHECK(ours.depth_max_m <= base.depth_max_m + 1e-9);
-    // The clips loop (the spec's default): the correction's loop pre-roll closes `ours`'s loop without
-    // re-opening collisions (issue 28: its plain blend left 17-66 mm here; the pre-roll off, ours looped
-    // with a 1.6-1.7x seam at 2.5 and 3.5/m^2).
-    CHECK(ours.depth_max_m < 0.01);
-  }
-  for (const auto& e : m.entries) {
-    INFO(e.id << " seam " << e.check.seam_step_ratio);
-    if (e.factors.at("method") == "ours") CHECK(e.check.seam_step_ratio <= 1.5);
   }
   const std::string metrics_json = slurp(out / "conditions" / m.entries.front().id / "metrics.json");
   CHECK_THAT(metrics_json, Catch::Contains("\"correction_quality\"") && Catch::Contains("foot_pop_frames"));
