@@ -16,11 +16,14 @@
 // frame 0 continues from the pre-roll's state at N - 1. The clip's own frames N - P .. N - 1 differ from
 // the pre-roll's (dense contacts do not forget their history within seconds: measured, a 2 s pre-roll
 // alone left a 3.2x seam), so they blend into the pre-roll's output (weight rising 0 -> 1, raised
-// cosine, rotations slerped): the last frame is then the pre-roll's, whose successor is frame 0, and the
-// loop closes. Both blended states are corrected; a blend of the two may overlap slightly mid-way.
+// cosine, rotations slerped), the blend corrected again from the corrector's state before frame N - P, or
+// plainly blended, whichever penetrates less, and neither when both penetrate deeper than the unclosed
+// clip (correct_crowd.cpp, close_loop, says why). The clip so ends next to the pre-roll's end.
 //
 // Throws InputError for an invalid crowd (validate_crowd: empty crowd, NaN/Inf poses,
 // missing/zero-length bones, unequal frame counts) or invalid params.
+#include <string>
+
 #include "framework/core/crowd_animation.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/correction/corrector_params.hpp"
@@ -31,8 +34,11 @@ namespace crowdlab {
 /// Summary of an offline correction.
 struct CorrectionReport {
   int frames = 0;
-  int settle_steps = 0;        ///< steps run on the first target frame before the output starts
-  int preroll_frames = 0;      ///< frames N - P .. N - 1 stepped before frame 0 (loop pre-roll)
+  int settle_steps = 0;    ///< steps run on the first target frame before the output starts
+  int preroll_frames = 0;  ///< frames N - P .. N - 1 stepped before frame 0 (loop pre-roll)
+  /// How the loop pre-roll's clip was closed: "corrected blend", "blend", "none" (kept unclosed: every
+  /// closure went deeper than the unclosed clip), or empty without a pre-roll.
+  std::string loop_closure;
   int rejected_steps = 0;      ///< steps whose solve failed (state kept)
   int unconverged_steps = 0;   ///< steps where CG stopped above its tolerance (result still used)
   double contacts_mean = 0.0;  ///< mean contacts per step

@@ -45,15 +45,4 @@ OverlapVolume overlap_with_others(std::span<const WorldCapsules> bodies, std::sp
   return overlap_volume(mine, others, options);
 }
 
-double max_penetration_depth(const WorldCapsules& a, const WorldCapsules& b) {
-  const Aabb ba = capsules_box(a), bb = capsules_box(b);
-  if (!ba.overlaps(bb)) return 0.0;
-  double depth = 0.0;
-  for (const Capsule& ca : a) {
-    if (!sphere_reaches(ca, bb)) continue;
-    for (const Capsule& cb : b) depth = std::max(depth, capsule_contact(ca, cb).depth_m);
-  }
-  return depth;
-}
-
 }  // namespace crowdlab

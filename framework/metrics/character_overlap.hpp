@@ -7,12 +7,12 @@
 //                                  vol(body_i ∩ ∪_{j != i} body_j), so a region where three bodies
 //                                  meet is counted once for i (seed 000 Figure 3's per-character
 //                                  overlap; the paper does not say how triple overlaps count).
-//   max_penetration_depth(a, b)   max over capsule pairs (one from each) of r_a + r_b - distance
-//                                  between their axes, clamped at 0 (metres).
+//   max_penetration_depth(a, b)   (core/penetration_depth.hpp, included here) the deepest capsule pair.
 #include <span>
 
 #include "framework/core/capsule_box.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/penetration_depth.hpp"
 #include "framework/metrics/overlap_volume.hpp"
 
 namespace crowdlab {
@@ -23,7 +23,5 @@ OverlapVolume character_overlap(const WorldCapsules& a, const WorldCapsules& b,
 /// bounds[j] must be capsules_box(bodies[j]); i indexes bodies.
 OverlapVolume overlap_with_others(std::span<const WorldCapsules> bodies, std::span<const Aabb> bounds, int i,
                                   const OverlapOptions& options = {});
-
-double max_penetration_depth(const WorldCapsules& a, const WorldCapsules& b);
 
 }  // namespace crowdlab

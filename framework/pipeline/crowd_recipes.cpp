@@ -106,10 +106,11 @@ CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Conditio
   }
 
   r.correction.correction = spec.correction;
-  // The loop pre-roll (correct_crowd.hpp) stays off in runs: its blend of the clip's end into the pre-rolled
-  // start re-opened collisions the correction had resolved (tests/data/pipeline/tiny.yaml, 1 s clips: ours'
-  // deepest penetration 0 mm without it, 17-66 mm with it, 66 mm above the baseline's 64 mm at 2.5/m²).
-  // Until the blend is itself corrected, a looping `ours` clip keeps its seam rather than its collisions.
+  // The loop pre-roll (correct_crowd.hpp) stays off in runs. Its loop closure no longer re-opens collisions
+  // (session 10: it corrects the blend again), but it still moves planted feet in the clip's last 2 s:
+  // `reproduce gomez2024 --quick` then finds ours' stance-foot drift p99 at 14.8 and 12.2 mm at 5.55 and
+  // 6.66/m² (accepted <= 10 mm). Turn it on (2 s when protocol.loop_video) once the closure keeps
+  // held feet on their anchors.
   r.correction.loop_preroll_s = 0.0;
   return r;
 }
