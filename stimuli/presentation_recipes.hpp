@@ -30,8 +30,9 @@ struct RenderRecipe {
   static constexpr std::string_view kStage = "render";
   /// Bump when the framing rule (viewpoint.hpp, crowd_extent.hpp), the clip's making or the stimulus
   /// check in its sidecar (stimulus_check.hpp) changes. 2: cameras follow a travelling crowd, the stimulus
-  /// check, dressed bodies and the clean image (issue 28).
-  static constexpr std::string_view kCodeVersion = "shared-extent/2+check/1+look/2";
+  /// check, dressed bodies and the clean image (issue 28). look/3: faces and hands weighted in the level-of-
+  /// detail simplifier (issue 28, session 10).
+  static constexpr std::string_view kCodeVersion = "shared-extent/2+check/1+look/3";
   StimulusLook look;
   ViewpointId viewpoint = ViewpointId::V1;  ///< the catalogue id (framework/core/viewpoint_catalogue.hpp)
   int crf = 18;
@@ -44,7 +45,7 @@ struct RenderRecipe {
 
 struct ContactSheetRecipe {
   static constexpr std::string_view kStage = "contact_sheet";
-  static constexpr std::string_view kCodeVersion = "shared-extent/2+look/2";
+  static constexpr std::string_view kCodeVersion = "shared-extent/2+look/3";  ///< look/3: as RenderRecipe
   StimulusLook look;
 };
 

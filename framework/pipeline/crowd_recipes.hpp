@@ -54,7 +54,9 @@ struct AnimationRecipe {
 /// The correction stage: the collision corrector on baseline.glb (ours.glb).
 struct CorrectionRecipe {
   static constexpr std::string_view kStage = "correction";
-  static constexpr std::string_view kCodeVersion = "2";  ///< 2: issue 27's free joints
+  /// 2: issue 27's free joints; 3: barrier rows in the depenetration pass, planted feet held in height and
+  /// returning their tilt (issue 27, session 10).
+  static constexpr std::string_view kCodeVersion = "3";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
   /// (correct_crowd.hpp; issue 28). 0 in runs for now (crowd_recipes.cpp says why).
