@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "experiments/cli/command_table.hpp"
+#include "framework/crowd/check_crowd_size_known.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 #include "framework/surface/spec_surface.hpp"
 
@@ -100,6 +101,8 @@ void run_validate(const ValidateOptions& opt) {
   if (spec.scenario.type == ScenarioKind::manifold) check_surface_crowd_limits(spec, load_spec_surface(spec));
   const std::vector<Condition> conditions = enumerate_conditions(spec);
   const std::vector<Condition> practice = enumerate_practice_conditions(spec);
+  check_crowd_size_known(spec, conditions);
+  check_crowd_size_known(spec, practice);
   print_summary(spec);
   if (!opt.no_table) {
     std::printf("\n");

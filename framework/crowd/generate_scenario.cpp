@@ -4,6 +4,7 @@
 
 #include "framework/core/error.hpp"
 #include "framework/core/precondition.hpp"
+#include "framework/crowd/check_crowd_size_known.hpp"
 #include "framework/spec/work_limits.hpp"
 
 namespace crowdlab {
@@ -32,10 +33,10 @@ int scenario_character_count(const ExperimentSpec& spec, const Condition& condit
                        std::to_string(area_m2) + " m^2 gives no character");
     return static_cast<int>(n);
   }
-  // Not (yet) checked by the spec loader: many specs that only describe a protocol give no crowd size.
-  if (spec.scenario.agents >= 1) return spec.scenario.agents;
-  throw InputError(
-      "scenario: no `characters` or `density` factor and scenario.agents is 0: the crowd size is unknown");
+  // Not checked by the spec loader (many specs that only describe a protocol give no crowd size), but by
+  // validate and here with the same rule and message.
+  check_crowd_size_known(spec, {condition});
+  return spec.scenario.agents;
 }
 
 ScenarioResult generate_scenario(const ExperimentSpec& spec, const Condition& condition) {

@@ -2,9 +2,12 @@
 // control characters in `name`, and text that is not one UTF-8 YAML document.
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 
 #include "framework/spec/load_experiment_spec.hpp"
 #include "tests/support/run_cli.hpp"
+#include "tests/support/test_paths.hpp"
 
 using namespace crowdlab;
 
@@ -227,4 +230,20 @@ TEST_CASE("spec: flow crowds are counted from their lattice and refused past the
                   "scenario: {type: flow_b, area: {width_m: 10, depth_m: 10}}\n"
                   "factors: {density: [1]}\n")
             .empty());
+}
+
+TEST_CASE("validate refuses a crowd without a size, naming scenario.agents, as run does") {
+  // Issue 30: a stationary spec with no `characters` or `density` factor and no scenario.agents passed
+  // validate and was refused minutes later by run.
+  const std::filesystem::path dir = test::scratch_dir("validate_crowd_size");
+  const std::string body = kHeader + kLikert + "factors: {method: [baseline, ours]}\n";
+  const std::filesystem::path unsized = dir / "unsized.yaml";
+  std::ofstream(unsized) << body << "scenario: {type: stationary}\n";
+  const test::CliResult r = test::run_cli({"validate", unsized.string()});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("unsized.yaml:") && Catch::Contains("scenario.agents") &&
+                        Catch::Contains("the crowd size is unknown"));
+  const std::filesystem::path sized = dir / "sized.yaml";
+  std::ofstream(sized) << body << "scenario: {type: stationary, agents: 12}\n";
+  CHECK(test::run_cli({"validate", sized.string()}).exit_code == 0);
 }

@@ -235,7 +235,10 @@ TEST_CASE("the study window's spec keys are validated with file, line and key", 
   }
   const auto good = write_text(dir / "good.yaml", std::string(kAfcYaml) +
                                                       "  inter_trial: {screen: blank, min_ms: 800}\n"
-                                                      "  video_share: 0.6\n");
+                                                      "  video_share: 0.6\n"
+                                                      // validate also refuses a crowd without a size, as
+                                                      // run does (issue 30)
+                                                      "scenario: {agents: 2}\n");
   CHECK(test::run_cli({"validate", good.string()}).exit_code == 0);
 }
 
