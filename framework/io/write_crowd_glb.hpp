@@ -11,7 +11,7 @@ namespace crowdlab {
 /// finite boxes with positive extents, meshes with in-range indices), throwing InputError naming the
 /// character/frame/joint or obstacle. Joint rotations and root positions are stored as 32-bit floats
 /// (glTF accessors), so they read back to ~1e-7 relative; everything in extras is exact.
-/// The file appears under `path` only once complete (written as "<path>.partial", then renamed).
+/// The file appears under `path` only once complete (write_file_atomic: a temporary beside it, renamed).
 /// Throws RuntimeError when the file cannot be written.
 void write_crowd_glb(const CrowdAnimation& crowd, const std::string& path);
 
