@@ -547,6 +547,10 @@ TEST_CASE(
     CHECK(stored["records"].size() == w.manifest.entries.size());
     // The end screen of the plan, then the page waits; no download under JATOS.
     CHECK(slurp(out / "end.json").find("Saving your answers") != std::string::npos);
+    // Its short body where every text screen's body starts (15 % of the width, as natively), not
+    // shrunk to its text and centred.
+    CHECK(nlohmann::json::parse(slurp(out / "end-layout.json"))["body_left"].get<double>() ==
+          Approx(0.15).margin(0.005));
     CHECK_FALSE(fs::exists(out / "download.json"));
     // The appended lines, saved as JATOS exports them, import to the same files as the participant's data
     // file (the download is the stored data, byte for byte: the stand-alone test checks that).

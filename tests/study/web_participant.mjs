@@ -16,7 +16,7 @@
 // download.json, localstorage.json, transcript.json (the page's transcript per page load), resume.json,
 // jspsych-1.csv / jspsych-2.csv (jsPsych.data.get().csv() before the reload and at the end),
 // layout.json with likert-WxH.png, early.json, ids.json, requests.json (the paths the page asked for),
-// jatos.json (the stub's record, with jatos) and one screenshot per kind of screen.
+// jatos.json (the stub's record, with jatos), end-layout.json and one screenshot per kind of screen.
 // Exit code: 0 done, 1 failure (message on stderr).
 import fs from "node:fs";
 import http from "node:http";
@@ -251,6 +251,9 @@ try {
   transcripts.push(await page.evaluate(() => window.crowdlab.transcript));
   fs.writeFileSync(path.join(outDir, "transcript.json"), JSON.stringify(transcripts));
   fs.writeFileSync(path.join(outDir, "end.json"), JSON.stringify(await page.evaluate(() => document.querySelector("#crowdlab-study").innerText)));
+  // Where the end page's body starts, as a share of the window width (text screens: 0.15, as natively).
+  const endBodyLeft = await page.$eval("#crowdlab-study .crowdlab-body", (el) => el.getBoundingClientRect().left / window.innerWidth);
+  fs.writeFileSync(path.join(outDir, "end-layout.json"), JSON.stringify({ body_left: endBodyLeft }));
   if (!options.decline) fs.writeFileSync(path.join(outDir, "jspsych-2.csv"), await jspsychCsv(page));
   if (await page.$("#crowdlab-download")) {
     const download = await page.$eval("#crowdlab-download", async (a) => (await fetch(a.href)).text());
