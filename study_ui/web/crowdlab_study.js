@@ -628,7 +628,9 @@
 
   function deliver(store, study, page) {
     if (hasJatos()) {
-      page.append(element("p", "crowdlab-hint", "Saving your answers..."));
+      const saving = element("p", "crowdlab-hint", "Saving your answers...");
+      saving.id = "crowdlab-saving";
+      page.append(saving);
       store.pending.catch(() => {}).then(() => {
         if (study.completion_url) jatos.endStudyAndRedirect(study.completion_url);
         else jatos.endStudy();

@@ -273,6 +273,7 @@ class RecordingPresenter final : public Presenter {
   std::vector<ScreenKind> screens;
   std::vector<int> trial_indices;
   std::vector<std::string> headers;
+  std::vector<std::pair<std::string, std::string>> clips;  ///< per trial: its clip, the one to prefetch
   ScreenReply consent_reply = ScreenReply::proceed;
   ScreenInfo screen() const override { return {800, 600, "recording"}; }
   ScreenReply show_screen(const PlanScreen& s) override {
@@ -282,6 +283,7 @@ class RecordingPresenter final : public Presenter {
   TrialOutcome run_trial(const TrialRequest& r) override {
     trial_indices.push_back(r.trial->index);
     headers.push_back(r.header);
+    clips.emplace_back(r.video_path, r.next_video_path);
     TrialOutcome out;
     for (const auto& q : *r.questions)
       out.answers.push_back({q.id, q.min_response(), 100.0, iso8601_utc_now()});
@@ -363,4 +365,34 @@ TEST_CASE("a response log whose trial rows appear twice names the trial, not '0 
   std::ofstream(path, std::ios::trunc) << head << trial2 << "P,1,3,a\nP,1,3,b\n" << trial2;  // copied later
   CHECK_THAT(message_of_reopen(), Catch::Contains("log.csv:8:") &&
                                       Catch::Contains("trial 2 appears again (its rows start at line 4)"));
+}
+
+TEST_CASE("each trial names the next shown trial's clip, so the window prefetches it while answers are given",
+          "[study]") {
+  // Finding 12 of issue 29: the window decoded each clip whole before its onset (9-22 s between 2AFC
+  // trials). It now opens the next clip while the participant answers; the engine must name that clip,
+  // across parts and breaks, and name none after the last trial.
+  const auto dir = test::scratch_dir("study-prefetch");
+  auto m =
+      test::make_stimuli(dir / "stimuli", {{"method", {"baseline", "ours"}}, {"viewpoint", {"V1", "V3"}}}, 1);
+  ExperimentSpec spec = test::likert_spec();
+  spec.protocol.block_by = "method";
+  spec.protocol.break_every = 2;
+  auto check_chain = [](const RecordingPresenter& p) {
+    REQUIRE_FALSE(p.clips.empty());
+    for (size_t i = 0; i + 1 < p.clips.size(); ++i) {
+      CAPTURE(i);
+      CHECK_FALSE(p.clips[i].first.empty());
+      CHECK(p.clips[i].second == p.clips[i + 1].first);
+    }
+    CHECK(p.clips.back().second.empty());
+  };
+  RecordingPresenter all;
+  SessionOptions opt{"P03", (dir / "stimuli").string(), (dir / "out").string(), false, "recording", true};
+  REQUIRE(run_session(spec, m, opt, all).complete);
+  REQUIRE(all.clips.size() == 5);
+  check_chain(all);
+  std::set<std::string> distinct;
+  for (const auto& c : all.clips) distinct.insert(c.first);
+  CHECK(distinct.size() == 5);  // the chain is of different clips, not one clip named twice
 }

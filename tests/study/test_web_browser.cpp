@@ -4,6 +4,7 @@
 // without a browser are test_web_export.cpp.
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include "stimuli/video_encoder.hpp"
 #include "study_ui/run_session.hpp"
 #include "study_ui/scripted_presenter.hpp"
+#include "study_ui/trial_screen.hpp"
 #include "study_ui/web_export.hpp"
 #include "tests/study/web_fixture.hpp"
 #include "tests/support/test_paths.hpp"
@@ -187,6 +189,91 @@ nlohmann::json comparable_transcript(nlohmann::json t) {
   return t;
 }
 
+/// A stand-in for the jatos.js that JATOS serves beside a component's HTML file (JATOS >= 3.3.1: the
+/// page's `<script src="jatos.js">`), written into the exported folder: the calls the page makes, as
+/// jatos.js documents them (onLoad calls back once initialised; appendResultData(data) returns a
+/// Promise; endStudy(); endStudyAndRedirect(url); urlQueryParameters: the study link's query; workerId).
+/// Every call is logged in window.jatosStub with the number of appends still unanswered at that moment;
+/// each append answers after `append_ms`, so a page that ended the study without waiting for its last
+/// append would be caught with one still open.
+void write_jatos_stub(const fs::path& web_dir, int worker_id, const nlohmann::json& query, int append_ms) {
+  std::ofstream(web_dir / "jatos.js")
+      << "// Stub of JATOS's jatos.js for crowdlab's browser test (tests/study/test_web_browser.cpp).\n"
+      << "window.jatosStub = { log: [], lines: [], open: 0, ended: null };\n"
+      << "window.jatos = {\n"
+      << "  workerId: " << worker_id << ",\n"
+      << "  urlQueryParameters: " << query.dump() << ",\n"
+      << "  onLoad(callback) {\n"
+      << "    jatosStub.log.push({ call: 'onLoad' });\n"
+      << "    setTimeout(() => { jatosStub.log.push({ call: 'initialised' }); callback(); }, 100);\n"
+      << "  },\n"
+      << "  appendResultData(data) {\n"
+      << "    const n = jatosStub.log.filter((e) => e.call === 'appendResultData').length;\n"
+      << "    jatosStub.log.push({ call: 'appendResultData', n, open: jatosStub.open, type: typeof data });\n"
+      << "    jatosStub.open++;\n"
+      << "    return new Promise((resolve) => setTimeout(() => {\n"
+      << "      jatosStub.lines.push(data);\n"
+      << "      jatosStub.open--;\n"
+      << "      jatosStub.log.push({ call: 'appended', n });\n"
+      << "      resolve();\n"
+      << "    }, " << append_ms << "));\n"
+      << "  },\n"
+      << "  endStudy(...args) {\n"
+      << "    jatosStub.log.push({ call: 'endStudy', args, open: jatosStub.open });\n"
+      << "    jatosStub.ended = 'endStudy';\n"
+      << "  },\n"
+      << "  endStudyAndRedirect(url, ...rest) {\n"
+      << "    jatosStub.log.push({ call: 'endStudyAndRedirect', url, rest, open: jatosStub.open });\n"
+      << "    jatosStub.ended = 'endStudyAndRedirect';\n"
+      << "  },\n"
+      << "};\n";
+}
+
+/// What the stub saw, checked against what JATOS needs: jatos.js was fetched beside index.html (under
+/// the study's path), the study started only from onLoad's callback, appends went one at a time, and
+/// the one end call `end` came last, after every append had been answered. Returns the appended lines.
+std::vector<nlohmann::json> check_jatos_run(const fs::path& out, const std::string& prefix,
+                                            const std::string& end) {
+  const auto requests = nlohmann::json::parse(slurp(out / "requests.json"));
+  CHECK(std::find(requests.begin(), requests.end(), prefix + "jatos.js") != requests.end());
+  const auto stub = nlohmann::json::parse(slurp(out / "jatos.json"));
+  INFO("jatos stub: " << stub.dump(1));
+  const auto& log = stub["log"];
+  REQUIRE(log.size() >= 3);
+  CHECK(log[0]["call"] == "onLoad");
+  CHECK(log[1]["call"] == "initialised");
+  int appends = 0, answered = 0, ends = 0;
+  for (const auto& e : log) {
+    if (e["call"] == "appendResultData") {
+      CHECK(e["n"] == appends++);
+      CHECK(e["open"] == 0);  // the previous append had been answered: in order, one at a time
+      CHECK(e["type"] == "string");
+    } else if (e["call"] == "appended") {
+      CHECK(e["n"] == answered++);
+    } else if (e["call"] == "endStudy" || e["call"] == "endStudyAndRedirect") {
+      ++ends;
+      CHECK(e["call"] == end);
+      CHECK(e["open"] == 0);  // nothing still being sent
+      CHECK(answered == appends);
+    }
+  }
+  CHECK(ends == 1);
+  CHECK(log.back()["call"] == end);
+  CHECK(stub["ended"] == end);
+  std::vector<nlohmann::json> lines;
+  for (const auto& line : stub["lines"]) {
+    const std::string text = line.get<std::string>();
+    CHECK(text.back() == '\n');  // one JSON line per append
+    CHECK(std::count(text.begin(), text.end(), '\n') == 1);
+    lines.push_back(nlohmann::json::parse(text));
+  }
+  CHECK(lines.size() == static_cast<size_t>(appends));
+  // The result data as JATOS exports them: the appended lines one after another.
+  std::ofstream results(out / "jatos-results.txt");
+  for (const auto& line : stub["lines"]) results << line.get<std::string>();
+  return lines;
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -340,6 +427,13 @@ TEST_CASE(
   // scroll, the clip is at least half the window high, the native background, and the six statements
   // in three columns of two rows, filled column by column as natively (Q1/Q2 share a column).
   const auto layout = nlohmann::json::parse(slurp(dir / "browser" / "layout.json"));
+  // The native window's background, read from a screen it draws (BGR), as CSS writes it.
+  cv::Mat native_screen(720, 1280, CV_8UC3);
+  draw_inter_trial(native_screen, layout_trial_screen({1280, 720}, qs), true);
+  const cv::Vec3b bg = native_screen.at<cv::Vec3b>(1, 1);
+  const std::string native_background =
+      "rgb(" + std::to_string(bg[2]) + ", " + std::to_string(bg[1]) + ", " + std::to_string(bg[0]) + ")";
+  CHECK(native_background == "rgb(230, 233, 236)");
   for (const std::string size : {"1280x720", "1366x768", "1440x900", "1920x1080"}) {
     CAPTURE(size, layout[size].dump());
     const auto& l = layout[size];
@@ -348,7 +442,7 @@ TEST_CASE(
     CHECK(l["scroll"][1].get<double>() <= height);
     CHECK(l["next_bottom"].get<double>() <= height);
     CHECK(l["picture"][1].get<double>() >= 0.5 * height);
-    CHECK(l["background"] == "rgb(230, 233, 236)");
+    CHECK(l["background"] == native_background);
     std::set<int> lefts, tops;
     for (const auto& c : l["cells"]) {
       lefts.insert(static_cast<int>(c[0].get<double>()));
@@ -409,4 +503,81 @@ TEST_CASE(
   CHECK(run_command(exe + " analyze report " + (dir / "web-responses").string() + " --spec " + spec_path +
                     " --out " + (dir / "report").string() + " > " + (dir / "report.log").string() +
                     " 2>&1") == 0);
+}
+
+TEST_CASE(
+    "browser: under JATOS the id comes from JATOS, every record and the consent are appended in order, the "
+    "study ends after the last append, and the appended lines import as the download does",
+    "[study][browser]") {
+  const fs::path modules = browser_modules();
+  if (modules.empty()) return;
+  const std::vector<std::pair<std::string, std::vector<std::string>>> factors = {
+      {"density", {"3.33", "6.66"}}, {"viewpoint", {"V1", "V3"}}, {"method", {"baseline", "ours"}}};
+  const std::string exe = test::crowdlab_exe().string();
+  const std::string prefix = "/publix/3f9c2a/";  // JATOS serves a study's files under its own path
+  auto import = [&](const WebStudy& w, const std::string& in, const std::string& out) {
+    return run_command(exe + " import-web " + in + " --spec " + w.spec_path + " --stimuli " +
+                       (w.dir / "stimuli").string() + " --out " + (w.dir / out).string() + " > " +
+                       (w.dir / (out + ".log")).string() + " 2>&1");
+  };
+  SECTION("a participant from a general link (worker id) completes; the end goes to the completion link") {
+    std::string yaml = demo_online_yaml();
+    yaml.insert(yaml.find("  scale:"), "  completion_url: \"https://panel.example/done?cc=C0DE\"\n");
+    const WebStudy w = export_study(test::scratch_dir("web-jatos"), yaml, factors);
+    write_jatos_stub(w.dir / "web", 17, nlohmann::json::object(), 250);
+    // No id in the page's own link: JATOS keeps the study link's query in jatos.urlQueryParameters.
+    run_participant(w, modules, "browser", {{"jatos", true}, {"participant", ""}, {"path_prefix", prefix}});
+    const fs::path out = w.dir / "browser";
+    const auto lines = check_jatos_run(out, prefix, "endStudyAndRedirect");
+    const auto stub = nlohmann::json::parse(slurp(out / "jatos.json"));
+    CHECK(stub["log"].back()["url"] == "https://panel.example/done?cc=C0DE");
+    // The id is JATOS's worker id; the page never asked for one (the participant fails on an id field).
+    const auto stored = nlohmann::json::parse(slurp(out / "localstorage.json"));
+    CHECK(stored["participant"] == "jatos17");
+    CHECK(stored["complete"] == true);
+    CHECK(stored["sessions"][0]["jatos"] == true);
+    // The consent first, then each trial's record once, in order, exactly as stored.
+    REQUIRE(lines.size() == 1 + stored["records"].size());
+    CHECK(lines[0] == stored["consent_record"]);
+    CHECK(lines[0]["consent"]["given"] == true);
+    for (size_t i = 1; i < lines.size(); ++i) {
+      CHECK(lines[i] == stored["records"][i - 1]);
+      CHECK(lines[i]["trial"] == static_cast<int>(i));
+    }
+    CHECK(stored["records"].size() == w.manifest.entries.size());
+    // The end screen of the plan, then the page waits; no download under JATOS.
+    CHECK(slurp(out / "end.json").find("Saving your answers") != std::string::npos);
+    // Its short body where every text screen's body starts (15 % of the width, as natively), not
+    // shrunk to its text and centred.
+    CHECK(nlohmann::json::parse(slurp(out / "end-layout.json"))["body_left"].get<double>() ==
+          Approx(0.15).margin(0.005));
+    CHECK_FALSE(fs::exists(out / "download.json"));
+    // The appended lines, saved as JATOS exports them, import to the same files as the participant's data
+    // file (the download is the stored data, byte for byte: the stand-alone test checks that).
+    std::ofstream(out / "download.json") << stored.dump(1);
+    REQUIRE(import(w, (out / "jatos-results.txt").string(), "from-jatos") == 0);
+    REQUIRE(import(w, (out / "download.json").string(), "from-download") == 0);
+    CHECK(read_csv((w.dir / "from-jatos" / "jatos17.csv").string()).rows.size() ==
+          w.manifest.entries.size() * resolve_questions(w.spec.protocol).size());
+    CHECK(slurp(w.dir / "from-jatos" / "jatos17.csv") == slurp(w.dir / "from-download" / "jatos17.csv"));
+    const auto meta = nlohmann::json::parse(slurp(w.dir / "from-jatos" / "jatos17.json"));
+    CHECK(meta["consent"] == stored["consent_record"]["consent"]);
+    CHECK(meta["status"] == "complete");
+  }
+  SECTION("a participant from a panel link (query id) declines; the consent is appended, then endStudy") {
+    const WebStudy w = export_study(test::scratch_dir("web-jatos-decline"), demo_online_yaml(), factors);
+    write_jatos_stub(w.dir / "web", 18, {{"participant", "P05"}}, 250);
+    run_participant(w, modules, "browser",
+                    {{"jatos", true}, {"participant", ""}, {"path_prefix", prefix}, {"decline", true}});
+    const fs::path out = w.dir / "browser";
+    const auto lines = check_jatos_run(out, prefix, "endStudy");
+    REQUIRE(lines.size() == 1);
+    CHECK(lines[0]["kind"] == "consent");
+    CHECK(lines[0]["participant"] == "P05");  // the query's id wins over the worker id
+    CHECK(lines[0]["consent"]["given"] == false);
+    REQUIRE(import(w, (out / "jatos-results.txt").string(), "from-jatos") == 0);
+    const auto meta = nlohmann::json::parse(slurp(w.dir / "from-jatos" / "P05.json"));
+    CHECK(meta["status"] == "declined");
+    CHECK(meta["consent"] == lines[0]["consent"]);
+  }
 }

@@ -1,18 +1,22 @@
 // A scripted participant for crowdlab's web study (export-web), in headless Chromium through the
-// DevTools protocol (puppeteer-core, pointed at the system chromium). Used by tests/study/test_web.cpp.
+// DevTools protocol (puppeteer-core, pointed at the system chromium). Used by tests/study/test_web_browser.cpp.
 //
 // node web_participant.mjs OPTIONS.json
 //   OPTIONS: {web_dir, chromium, node_modules, answers (a JSON file {stimulus: {question: raw}}),
 //   out_dir, participant, reload_after (0: no reload), layout_sizes ([[w, h], ...]: the first trial
 //   screen is measured and photographed at each), early_input (try to answer before the lock opens and
 //   during the inter-trial screen), decline (answer N at the consent), id_checks (open the page with ids
-//   that import-web refuses, and with no id)}.
+//   that import-web refuses, and with no id), jatos (web_dir holds a stub jatos.js that records its calls
+//   in window.jatosStub: the study ends at "Saving your answers...", then waits for the stub's end call),
+//   viewport ([w, h], default [1440, 900]), path_prefix (serve web_dir under this path, as JATOS serves a
+//   study's assets under /publix/...)}.
 // Serves web_dir on 127.0.0.1 (a tiny static server, no dependency), opens
-// index.html?participant=PARTICIPANT, plays every screen (scale answers by number keys, yes/no by Y/N,
-// Next by Enter), reloads once after reload_after answered trials, and writes to out_dir:
+// index.html?participant=PARTICIPANT (index.html alone when PARTICIPANT is empty), plays every screen
+// (scale answers by number keys, yes/no by Y/N, Next by Enter), reloads once after reload_after answered trials, and writes to out_dir:
 // download.json, localstorage.json, transcript.json (the page's transcript per page load), resume.json,
 // jspsych-1.csv / jspsych-2.csv (jsPsych.data.get().csv() before the reload and at the end),
-// layout.json with likert-WxH.png, early.json, ids.json and one screenshot per kind of screen.
+// layout.json with likert-WxH.png, early.json, ids.json, requests.json (the paths the page asked for),
+// jatos.json (the stub's record, with jatos), end-layout.json and one screenshot per kind of screen.
 // Exit code: 0 done, 1 failure (message on stderr).
 import fs from "node:fs";
 import http from "node:http";
@@ -22,16 +26,20 @@ import { createRequire } from "node:module";
 const options = JSON.parse(fs.readFileSync(process.argv[2], "utf8"));
 const { web_dir: webDir, chromium, node_modules: nodeModules, out_dir: outDir, participant } = options;
 const reloadAfter = options.reload_after || 0;
+const viewport = options.viewport || [1440, 900];
 const require = createRequire(path.join(nodeModules, "noop.js"));
 const puppeteer = require("puppeteer-core");
 const answers = JSON.parse(fs.readFileSync(options.answers, "utf8"));
 fs.mkdirSync(outDir, { recursive: true });
 
 const types = { ".html": "text/html", ".js": "text/javascript", ".css": "text/css", ".json": "application/json", ".mp4": "video/mp4" };
+const prefix = options.path_prefix || "/";
+const requests = [];
 const server = http.createServer((req, res) => {
   const url = new URL(req.url, "http://localhost");
-  const file = path.join(path.resolve(webDir), decodeURIComponent(url.pathname));
-  if (!file.startsWith(path.resolve(webDir)) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) {
+  requests.push(url.pathname);
+  const file = path.join(path.resolve(webDir), decodeURIComponent(url.pathname.slice(prefix.length - 1)));
+  if (!url.pathname.startsWith(prefix) || !file.startsWith(path.resolve(webDir)) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) {
     res.writeHead(404);
     res.end();
     return;
@@ -40,13 +48,13 @@ const server = http.createServer((req, res) => {
   fs.createReadStream(file).pipe(res);
 });
 await new Promise((resolve) => server.listen(0, "127.0.0.1", resolve));
-const origin = `http://127.0.0.1:${server.address().port}/index.html`;
+const origin = `http://127.0.0.1:${server.address().port}${prefix}index.html`;
 
 const browser = await puppeteer.launch({
   executablePath: chromium,
   headless: true,
   args: ["--no-sandbox", "--autoplay-policy=no-user-gesture-required", "--window-size=1920,1080"],
-  defaultViewport: { width: 1440, height: 900 },
+  defaultViewport: { width: viewport[0], height: viewport[1] },
 });
 const shots = new Set();
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
@@ -108,7 +116,7 @@ async function probeLayout(page) {
     });
     await page.screenshot({ path: path.join(outDir, `likert-${width}x${height}.png`) });
   }
-  await page.setViewport({ width: 1440, height: 900 });
+  await page.setViewport({ width: viewport[0], height: viewport[1] });
   fs.writeFileSync(path.join(outDir, "layout.json"), JSON.stringify(layout));
 }
 
@@ -123,7 +131,8 @@ async function waitGone(page, handle) {
   fail("a screen did not end after its answer");
 }
 
-const ANY_SCREEN = "#jspsych-fullscreen-btn, .crowdlab-text .crowdlab-hint, .crowdlab-trial, #crowdlab-download";
+const ANY_SCREEN = "#jspsych-fullscreen-btn, .crowdlab-text .crowdlab-hint, .crowdlab-trial, #crowdlab-download, #crowdlab-saving, #crowdlab-id";
+const END = "#crowdlab-download, #crowdlab-saving";
 const early = { during_inter_trial: null, after_onset: null };
 
 /// Plays one trial: waits for its onset, (optionally) tries to answer too early, waits for the lock to
@@ -176,7 +185,8 @@ async function playTrial(page, root, answered) {
 async function step(page, answered) {
   const found = await page.waitForSelector(ANY_SCREEN, { timeout: 30000 });
   const kind = await found.evaluate((el) => (el.id ? el.id : el.className));
-  if (kind === "crowdlab-download") return "done";
+  if (kind === "crowdlab-download" || kind === "crowdlab-saving") return "done";
+  if (kind === "crowdlab-id") fail("the page asked for a participant id");
   if (kind === "jspsych-fullscreen-btn") {
     await screenshot(page, "fullscreen");
     await found.click();
@@ -193,7 +203,7 @@ async function step(page, answered) {
   if (title === "Consent") {
     await page.keyboard.press(options.decline ? "n" : "y");
     if (options.decline) {
-      await page.waitForSelector("#crowdlab-download", { timeout: 20000 });
+      await page.waitForSelector(END, { timeout: 20000 });
       return "done";
     }
   } else {
@@ -209,7 +219,7 @@ try {
   page.on("pageerror", (e) => console.error("page error:", e.message));
   if (process.env.CROWDLAB_WEB_DEBUG) page.on("console", (m) => console.error("page console:", m.text()));
   if (options.id_checks) await idChecks(page);
-  await page.goto(`${origin}?participant=${encodeURIComponent(participant)}`);
+  await page.goto(participant ? `${origin}?participant=${encodeURIComponent(participant)}` : origin);
   const answered = [];
   const resume = {};
   const transcripts = [];
@@ -233,12 +243,22 @@ try {
     }
   }
   await screenshot(page, "end");
+  if (options.jatos) {
+    // The page ends the study only after its last appendResultData has resolved (the stub is slow).
+    await page.waitForFunction(() => window.jatosStub && window.jatosStub.ended, { timeout: 20000 });
+    fs.writeFileSync(path.join(outDir, "jatos.json"), JSON.stringify(await page.evaluate(() => window.jatosStub)));
+  }
   transcripts.push(await page.evaluate(() => window.crowdlab.transcript));
   fs.writeFileSync(path.join(outDir, "transcript.json"), JSON.stringify(transcripts));
   fs.writeFileSync(path.join(outDir, "end.json"), JSON.stringify(await page.evaluate(() => document.querySelector("#crowdlab-study").innerText)));
+  // Where the end page's body starts, as a share of the window width (text screens: 0.15, as natively).
+  const endBodyLeft = await page.$eval("#crowdlab-study .crowdlab-body", (el) => el.getBoundingClientRect().left / window.innerWidth);
+  fs.writeFileSync(path.join(outDir, "end-layout.json"), JSON.stringify({ body_left: endBodyLeft }));
   if (!options.decline) fs.writeFileSync(path.join(outDir, "jspsych-2.csv"), await jspsychCsv(page));
-  const download = await page.$eval("#crowdlab-download", async (a) => (await fetch(a.href)).text());
-  fs.writeFileSync(path.join(outDir, "download.json"), download);
+  if (await page.$("#crowdlab-download")) {
+    const download = await page.$eval("#crowdlab-download", async (a) => (await fetch(a.href)).text());
+    fs.writeFileSync(path.join(outDir, "download.json"), download);
+  }
   const storage = await page.evaluate(() => {
     const out = {};
     for (let i = 0; i < localStorage.length; i++) out[localStorage.key(i)] = JSON.parse(localStorage.getItem(localStorage.key(i)));
@@ -250,6 +270,7 @@ try {
   resume.answered = answered;
   fs.writeFileSync(path.join(outDir, "resume.json"), JSON.stringify(resume));
   fs.writeFileSync(path.join(outDir, "early.json"), JSON.stringify(early));
+  fs.writeFileSync(path.join(outDir, "requests.json"), JSON.stringify(requests));
   await browser.close();
   server.close();
 } catch (e) {
