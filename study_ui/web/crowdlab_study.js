@@ -620,18 +620,29 @@
     deliver(store, study, page);
   }
 
+  /// A participant who declines is never sent to the completion link: on a panel such as Prolific that
+  /// link submits the study as completed (and pays it), which a decline is not.
   function declinedPage(store) {
+    const study = window.crowdlabTimeline.study;
     const page = showMessage("Thank you", "You did not agree to take part, so the study ends here.");
+    if (study.completion_url)
+      page.append(element("p", "crowdlab-body",
+        "If you came from a participant panel, please return the study there; do not submit it as completed."));
     transcript.push({ screen: "declined" });
-    deliver(store, window.crowdlabTimeline.study, page);
+    deliver(store, study, page, { declined: true });
   }
 
-  function deliver(store, study, page) {
+  function deliver(store, study, page, { declined = false } = {}) {
     if (hasJatos()) {
       const saving = element("p", "crowdlab-hint", "Saving your answers...");
       saving.id = "crowdlab-saving";
       page.append(saving);
       store.pending.catch(() => {}).then(() => {
+        // A decline ends the study run as unsuccessful without JATOS's end redirect (the study's End
+        // Redirect URL is the completion link), and the page stays to say what to do.
+        if (declined && jatos.endStudyAjax) return jatos.endStudyAjax(false, "consent declined")
+          .catch(() => {}).then(() => { saving.textContent = "Your answer was saved. You may close this window."; });
+        if (declined) return jatos.endStudy(false, "consent declined");
         if (study.completion_url) jatos.endStudyAndRedirect(study.completion_url);
         else jatos.endStudy();
       });
@@ -650,7 +661,7 @@
     link.download = name;
     link.href = URL.createObjectURL(file);
     page.append(link);
-    if (study.completion_url) {
+    if (study.completion_url && !declined) {
       const back = element("a", "jspsych-btn", "Finish and return to the panel");
       back.id = "crowdlab-complete";
       back.href = study.completion_url;

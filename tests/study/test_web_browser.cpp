@@ -192,7 +192,8 @@ nlohmann::json comparable_transcript(nlohmann::json t) {
 /// A stand-in for the jatos.js that JATOS serves beside a component's HTML file (JATOS >= 3.3.1: the
 /// page's `<script src="jatos.js">`), written into the exported folder: the calls the page makes, as
 /// jatos.js documents them (onLoad calls back once initialised; appendResultData(data) returns a
-/// Promise; endStudy(); endStudyAndRedirect(url); urlQueryParameters: the study link's query; workerId).
+/// Promise; endStudy(); endStudyAjax(successful, message) (ends without JATOS's end redirect, returns a
+/// Promise); endStudyAndRedirect(url); urlQueryParameters: the study link's query; workerId).
 /// Every call is logged in window.jatosStub with the number of appends still unanswered at that moment;
 /// each append answers after `append_ms`, so a page that ended the study without waiting for its last
 /// append would be caught with one still open.
@@ -222,6 +223,11 @@ void write_jatos_stub(const fs::path& web_dir, int worker_id, const nlohmann::js
       << "    jatosStub.log.push({ call: 'endStudy', args, open: jatosStub.open });\n"
       << "    jatosStub.ended = 'endStudy';\n"
       << "  },\n"
+      << "  endStudyAjax(...args) {\n"
+      << "    jatosStub.log.push({ call: 'endStudyAjax', args, open: jatosStub.open });\n"
+      << "    jatosStub.ended = 'endStudyAjax';\n"
+      << "    return Promise.resolve();\n"
+      << "  },\n"
       << "  endStudyAndRedirect(url, ...rest) {\n"
       << "    jatosStub.log.push({ call: 'endStudyAndRedirect', url, rest, open: jatosStub.open });\n"
       << "    jatosStub.ended = 'endStudyAndRedirect';\n"
@@ -250,7 +256,7 @@ std::vector<nlohmann::json> check_jatos_run(const fs::path& out, const std::stri
       CHECK(e["type"] == "string");
     } else if (e["call"] == "appended") {
       CHECK(e["n"] == answered++);
-    } else if (e["call"] == "endStudy" || e["call"] == "endStudyAndRedirect") {
+    } else if (e["call"] == "endStudy" || e["call"] == "endStudyAndRedirect" || e["call"] == "endStudyAjax") {
       ++ends;
       CHECK(e["call"] == end);
       CHECK(e["open"] == 0);  // nothing still being sent
@@ -319,10 +325,17 @@ TEST_CASE(
 TEST_CASE("browser: a declined consent is recorded online and imported as natively", "[study][browser]") {
   const fs::path modules = browser_modules();
   if (modules.empty()) return;
+  std::string yaml = demo_online_yaml();
+  yaml.insert(yaml.find("  scale:"), "  completion_url: \"https://panel.example/done?cc=C0DE\"\n");
   const WebStudy w = export_study(
-      test::scratch_dir("web-decline"), demo_online_yaml(),
+      test::scratch_dir("web-decline"), yaml,
       {{"density", {"3.33", "6.66"}}, {"viewpoint", {"V1", "V3"}}, {"method", {"baseline", "ours"}}});
   run_participant(w, modules, "browser", {{"decline", true}});
+  // No completion link for a decline (it would submit the study as completed on a panel): the page asks
+  // to return the study instead.
+  const std::string end_text = slurp(w.dir / "browser" / "end.json");
+  CHECK(end_text.find("Finish and return to the panel") == std::string::npos);
+  CHECK(end_text.find("return the study") != std::string::npos);
   const auto download = nlohmann::json::parse(slurp(w.dir / "browser" / "download.json"));
   CHECK(download["records"].empty());
   REQUIRE(download.contains("consent_record"));
@@ -564,13 +577,21 @@ TEST_CASE(
     CHECK(meta["consent"] == stored["consent_record"]["consent"]);
     CHECK(meta["status"] == "complete");
   }
-  SECTION("a participant from a panel link (query id) declines; the consent is appended, then endStudy") {
-    const WebStudy w = export_study(test::scratch_dir("web-jatos-decline"), demo_online_yaml(), factors);
+  SECTION(
+      "a participant from a panel link (query id) declines; the consent is appended, then the study ends as "
+      "unsuccessful without going to the completion link") {
+    std::string yaml = demo_online_yaml();
+    yaml.insert(yaml.find("  scale:"), "  completion_url: \"https://panel.example/done?cc=C0DE\"\n");
+    const WebStudy w = export_study(test::scratch_dir("web-jatos-decline"), yaml, factors);
     write_jatos_stub(w.dir / "web", 18, {{"participant", "P05"}}, 250);
     run_participant(w, modules, "browser",
                     {{"jatos", true}, {"participant", ""}, {"path_prefix", prefix}, {"decline", true}});
     const fs::path out = w.dir / "browser";
-    const auto lines = check_jatos_run(out, prefix, "endStudy");
+    const auto lines = check_jatos_run(out, prefix, "endStudyAjax");
+    // A decline is not a completion: on a panel the completion link would submit (and pay) the study.
+    const auto stub = nlohmann::json::parse(slurp(out / "jatos.json"));
+    CHECK(stub["log"].back()["args"] == nlohmann::json::array({false, "consent declined"}));
+    CHECK(slurp(out / "end.json").find("return the study") != std::string::npos);
     REQUIRE(lines.size() == 1);
     CHECK(lines[0]["kind"] == "consent");
     CHECK(lines[0]["participant"] == "P05");  // the query's id wins over the worker id
