@@ -338,10 +338,14 @@ void add_analyze_command(Command& root) {
       }
       pr.probabilities.clear();
       for (const auto& s : split_list(o->probabilities)) {
+        // The whole text, in (0, 1): stod read "0.5abc" as 0.5, silently (issue 33).
         try {
-          pr.probabilities.push_back(std::stod(s));
+          size_t used = 0;
+          const double p = std::stod(s, &used);
+          if (used != s.size() || !(p > 0.0 && p < 1.0)) throw InputError("");
+          pr.probabilities.push_back(p);
         } catch (const std::exception&) {
-          throw InputError("--p: not a number: '" + s + "'");
+          throw InputError("--p: expected probabilities in (0, 1), comma-separated, got '" + s + "'");
         }
       }
       const auto result = analyze_psychometric(read_unmixed_csv(o->csv, o->allow_simulated_mix), pr);

@@ -187,3 +187,15 @@ TEST_CASE(
   CHECK_THAT(r.err, Catch::Contains(out + ": ") && Catch::Contains("Not a directory"));
   CHECK_THAT(r.err, !Catch::Contains("filesystem error:"));
 }
+
+TEST_CASE("analysis: psychometric --p reads the whole text of each probability", "[analysis][cli]") {
+  // Issue 33: std::stod read "0.5abc" as 0.5 (exit 0), and "nan" was refused without the option's name.
+  for (const std::string p : {"0.5abc", "nan", "1"}) {
+    const auto r =
+        run_cli({"analyze", "psychometric", "--csv", analysis_data("psychometric_trials.csv"), "--subject",
+                 "participant", "--x", "distance", "--response", "collision", "--p", "0.25," + p});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err,
+               Catch::Contains("--p: expected probabilities in (0, 1), comma-separated, got '" + p + "'"));
+  }
+}
