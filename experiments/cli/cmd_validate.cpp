@@ -8,6 +8,7 @@
 #include "experiments/cli/command_table.hpp"
 #include "framework/animation/import_motion_clip.hpp"
 #include "framework/crowd/check_crowd_size_known.hpp"
+#include "framework/pipeline/body_model.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 #include "framework/spec/locate_spec_key.hpp"
 #include "framework/surface/spec_surface.hpp"
@@ -102,7 +103,7 @@ void read_referenced(const ExperimentSpec& spec, const std::string& key, Read&& 
 // The files `run` parses beyond the spec (issue 33 item 2: a clip or character that was not a clip or a
 // character passed validate, and `run` refused it later without the spec's line): the motion clips of
 // the scenario kinds the conditions use (dance clips for stationary crowds, walk clips otherwise), and
-// the glTF characters of render.characters.
+// the MPFB2 asset folder of animation.body_model and the glTF characters of render.characters.
 void read_referenced_files(const ExperimentSpec& spec, const std::vector<Condition>& conditions) {
   const AnimationSpec& a = spec.animation;
   if (a.motion == MotionSource::clips) {
@@ -118,6 +119,8 @@ void read_referenced_files(const ExperimentSpec& spec, const std::vector<Conditi
       read_referenced(spec, "animation.walk_clips[" + std::to_string(i) + "].file",
                       [&] { import_motion_clip(a.walk_clips[i]); });
   }
+  if (a.body_model == BodyModel::mpfb2)
+    read_referenced(spec, "animation.body_model", [&] { load_body_model_assets(a); });
   for (size_t i = 0; i < spec.render.characters.size(); ++i)
     read_referenced(spec, "render.characters[" + std::to_string(i) + "]",
                     [&] { stimuli::load_gltf_character(spec.render.characters[i]); });

@@ -1,6 +1,7 @@
 // `crowdlab validate` on the shipped specs and on broken ones, through the real binary.
 #include <catch2/catch.hpp>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -242,4 +243,16 @@ TEST_CASE("validate reads the motion clips and characters a spec names, as run d
   CHECK(character.exit_code == 2);
   CHECK_THAT(character.err,
              Catch::Contains("character.yaml:14:16: render.characters[0]: ") && Catch::Contains("bad.glb"));
+}
+
+TEST_CASE("validate loads the MPFB2 asset folder a spec names, as run does") {
+  // Issue 33 item 2: an asset folder without its files passed validate (it only had to be a folder); run
+  // refused it in the animation stage.
+  const auto dir = test::scratch_dir("validate-mpfb2");
+  std::filesystem::create_directories(dir / "empty");
+  std::ofstream(dir / "spec.yaml") << kValidSpec << "animation:\n  body_model: {type: mpfb2, path: empty}\n";
+  const auto r = run_cli({"validate", (dir / "spec.yaml").string()});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("spec.yaml:14:15: animation.body_model: ") &&
+                        Catch::Contains("base.obj: cannot open OBJ file"));
 }
