@@ -35,7 +35,7 @@ TEST_CASE("core: a filesystem error names its paths, the operation and the reaso
   CHECK(input_error_of([&] { throw e; }) == "out/x: cannot create directories: Not a directory");
 }
 
-TEST_CASE("core: Boost.Math errors and bad_alloc name the input; other exceptions pass unchanged") {
+TEST_CASE("core: Boost.Math errors and bad_alloc name the input, other exceptions pass unchanged") {
   CHECK(input_error_of([] { throw std::domain_error("Error in function boost::math::cdf: Scale is nan"); }) ==
         "answers.csv: a statistic could not be computed from it: Error in function boost::math::cdf: "
         "Scale is nan");
