@@ -26,7 +26,8 @@ int scenario_character_count(const ExperimentSpec& spec, const Condition& condit
     const std::string crowd = "factors.density: " + std::to_string(*p.density_per_m2) + " per m^2 on " +
                               std::to_string(area_m2) + " m^2";
     if (const auto problem = crowd_limit_problem(crowd, count, std::ceil(spec.duration_s * spec.fps),
-                                                 "lower the density or the area"))
+                                                 "lower the density or the area",
+                                                 "shorten the clip (duration_s x fps frames) or lower fps"))
       throw InputError(*problem);
     const long n = std::lround(count);
     if (n < 1)

@@ -92,15 +92,15 @@ SpecWork estimate_spec_work(const ExperimentSpec& spec) {
 }
 
 std::optional<std::string> crowd_limit_problem(const std::string& crowd, double characters, double frames,
-                                               const std::string& fix) {
+                                               const std::string& fix_characters,
+                                               const std::string& fix_frames) {
   if (characters > kMaxCharactersPerCrowd)
     return crowd + " has " + format_number(characters) + " characters, more than the limit of " +
-           format_number(kMaxCharactersPerCrowd) + " characters in one crowd; " + fix;
+           format_number(kMaxCharactersPerCrowd) + " characters in one crowd; " + fix_characters;
   if (characters * frames > kMaxCharacterFrames)
     return crowd + " has " + format_number(characters) + " characters x " + format_number(frames) +
-           " frames (duration_s x fps) = " + format_number(characters * frames) +
-           " character-frames, more than the limit of " + format_number(kMaxCharacterFrames) +
-           "; shorten the clip, lower fps or " + fix;
+           " frames = " + format_number(characters * frames) + " character-frames, more than the limit of " +
+           format_number(kMaxCharacterFrames) + "; " + fix_frames;
   return std::nullopt;
 }
 

@@ -35,9 +35,10 @@ double crowd_on_area(double density_per_m2, double area_m2);
 
 /// The crowd limits: nullopt within kMaxCharactersPerCrowd and kMaxCharacterFrames, else a sentence
 /// that gives the estimate and the limit. `crowd` names the crowd ("the largest crowd", "density 3 on
-/// 20 m^2"); `fix` says which key to change.
+/// 20 m^2"); `fix_characters` and `fix_frames` say which keys or options to change for each limit.
 std::optional<std::string> crowd_limit_problem(const std::string& crowd, double characters, double frames,
-                                               const std::string& fix);
+                                               const std::string& fix_characters,
+                                               const std::string& fix_frames);
 
 /// The report limit: participants x items fitted (one cumulative link mixed model per Likert item, each
 /// with a random intercept per participant). nullopt within `limit`, else the estimate, the limit and

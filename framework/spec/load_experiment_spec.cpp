@@ -496,7 +496,8 @@ void check_work_limits(YamlSection& top, const ExperimentSpec& spec) {
   const auto problem = crowd_limit_problem(
       "the largest crowd", work.largest_crowd, work.frames,
       "lower the density (density x area, or a flow's lattice of spacing 1/sqrt(density) or "
-      "initial_spacing_m over the area), the characters factor or scenario.agents");
+      "initial_spacing_m over the area), the characters factor or scenario.agents",
+      "shorten the clip (duration_s x fps frames), lower fps or the crowd");
   if (problem)
     diag.error(at(work.largest_crowd > kMaxCharactersPerCrowd ? "factors" : "duration_s"),
                work.largest_crowd > kMaxCharactersPerCrowd ? "factors" : "duration_s", *problem);

@@ -22,8 +22,10 @@ void check_surface_crowd_limits(const ExperimentSpec& spec, const SurfaceMesh& m
   const double characters = largest_crowd_on_area(spec, mesh.total_area_m2);
   const std::string crowd =
       "the largest crowd on '" + spec.scenario.mesh + "' (" + format_number(mesh.total_area_m2) + " m^2)";
-  if (const auto problem = crowd_limit_problem(crowd, characters, std::ceil(spec.duration_s * spec.fps),
-                                               "lower the density (x the mesh's area) or use a smaller mesh"))
+  if (const auto problem =
+          crowd_limit_problem(crowd, characters, std::ceil(spec.duration_s * spec.fps),
+                              "lower the density (x the mesh's area) or use a smaller mesh",
+                              "shorten the clip (duration_s x fps frames), lower fps or the density"))
     throw InputError(
         locate_spec_key(spec.source_path, spec.factor("density") ? "factors.density" : "factors"), *problem);
 }

@@ -42,15 +42,17 @@ TEST_CASE("spec: the work estimate counts conditions, practice, the largest crow
 }
 
 TEST_CASE("spec: one crowd limit, with the estimate, the limit and what to change") {
-  CHECK_FALSE(crowd_limit_problem("c", kMaxCharactersPerCrowd, 1, "fix").has_value());
-  const auto many = crowd_limit_problem("the largest crowd", 20000, 1, "lower the density");
+  CHECK_FALSE(crowd_limit_problem("c", kMaxCharactersPerCrowd, 1, "fix", "fix frames").has_value());
+  const auto many = crowd_limit_problem("the largest crowd", 20000, 1, "lower the density", "shorten");
   REQUIRE(many);
   CHECK_THAT(*many, Catch::Contains("the largest crowd has 20000 characters, more than the limit of 10000") &&
                         Catch::Contains("lower the density"));
-  const auto long_clip = crowd_limit_problem("c", 1000, 3000, "lower the density");
+  const auto long_clip = crowd_limit_problem("c", 1000, 3000, "lower the density", "shorten the clip");
   REQUIRE(long_clip);
-  CHECK_THAT(*long_clip, Catch::Contains("1000 characters x 3000 frames") &&
-                             Catch::Contains("3000000 character-frames, more than the limit of 2000000"));
+  CHECK_THAT(
+      *long_clip,
+      Catch::Contains("1000 characters x 3000 frames") &&
+          Catch::Contains("3000000 character-frames, more than the limit of 2000000; shorten the clip"));
   CHECK_FALSE(report_limit_problem(100, 6, 600, "--x").has_value());
   const auto report = report_limit_problem(101, 6, 600, "--x");
   REQUIRE(report);
