@@ -25,6 +25,7 @@
 #include "framework/core/error.hpp"
 #include "framework/core/printable_excerpt.hpp"
 #include "framework/core/write_file.hpp"
+#include "framework/spec/estimate_work.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
 namespace crowdlab::analysis {
@@ -423,17 +424,36 @@ void psychometric_section(Context& ctx, const QuestionSpec& q) {
             ".png)\n\nPoints: mean proportion over participants (±1 SE); "
             "curves: logistic fit to the pooled answers of each condition; dashed: its 50 % point.\n\n";
 }
+// One cumulative link mixed model per Likert item: the composites' items and the scale questions in none.
+double likert_items_fitted(const ExperimentSpec& spec) {
+  std::set<std::string> in_composite;
+  double items = 0;
+  for (const auto& comp : spec.protocol.composites) {
+    in_composite.insert(comp.items.begin(), comp.items.end());
+    items += static_cast<double>(comp.items.size());
+  }
+  for (const auto& q : spec.protocol.questions)
+    if (q.kind != "yesno" && !in_composite.count(q.id)) items += 1;
+  return items;
+}
+
 }  // namespace
 
 std::string write_study_report(const std::string& study_dir, const std::string& spec_path,
-                               const std::string& out_dir) {
+                               const std::string& out_dir, double max_participant_items) {
   Context ctx;
   ctx.spec = load_experiment_spec(spec_path);
   ctx.responses = read_study_responses(study_dir, ctx.spec);
   ctx.out = out_dir;
+  const CsvTable& t = ctx.responses.table;
+  std::set<std::string> participants;
+  for (const auto& row : t.rows) participants.insert(row[t.column("participant")]);
+  if (const auto problem =
+          report_limit_problem(static_cast<double>(participants.size()), likert_items_fitted(ctx.spec),
+                               max_participant_items, "--max-participant-items"))
+    throw InputError(study_dir + ": " + *problem);
   fs::create_directories(ctx.out / "figures");
   fs::create_directories(ctx.out / "stats");
-  const CsvTable& t = ctx.responses.table;
   for (const auto& f : ctx.responses.factors) {
     std::set<std::string> levels;
     const size_t c = t.column(f);
@@ -441,8 +461,6 @@ std::string write_study_report(const std::string& study_dir, const std::string& 
     if (levels.size() >= 2) ctx.factors.push_back(f);
   }
   if (ctx.factors.empty()) throw InputError(study_dir + ": no spec factor varies in the responses");
-  std::set<std::string> participants;
-  for (const auto& row : t.rows) participants.insert(row[t.column("participant")]);
   ctx.md = "# " + ctx.spec.name + ": study report\n\n" +
            (ctx.spec.description.empty() ? "" : ctx.spec.description + "\n\n");
   ctx.md += "- Spec: `" + spec_path + "` (sha256 " + ctx.spec.source_hash.substr(0, 12) + ")\n";

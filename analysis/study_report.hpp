@@ -14,12 +14,19 @@
 //  - for yes/no questions with a numeric factor (distance, or the first numeric factor with >= 3
 //    levels): per-participant psychometric fits by condition (the other factors), seed 001 Table 1,
 //    the RM-ANOVA of the 50 % thresholds and psychometric curves (seed 001 Figure 5 style).
+// Participants x Likert items are limited (work_limits.hpp, `--max-participant-items`): each item's
+// model has a random intercept per participant.
 // Writes <out>/report.md, <out>/figures/*.png|svg, <out>/stats/*.json|csv. Returns the report path.
 #include <string>
 
+#include "framework/spec/work_limits.hpp"
+
 namespace crowdlab::analysis {
 
+/// Refuses (InputError, before any model is fitted or file written) a study whose participants x Likert
+/// items exceed `max_participant_items` (framework/spec/estimate_work.hpp, report_limit_problem).
 std::string write_study_report(const std::string& study_dir, const std::string& spec_path,
-                               const std::string& out_dir);
+                               const std::string& out_dir,
+                               double max_participant_items = kMaxReportParticipantItems);
 
 }  // namespace crowdlab::analysis

@@ -14,7 +14,7 @@
 #include "framework/correction/swaying_crowd_fixture.hpp"
 #include "framework/metrics/measure_crowd.hpp"
 #include "framework/pipeline/metrics_json.hpp"
-#include "framework/spec/work_limits.hpp"
+#include "framework/spec/estimate_work.hpp"
 
 namespace crowdlab::cli {
 namespace {
@@ -32,14 +32,16 @@ double peak_rss_mb() {
 
 CorrectBenchResult run_correct_bench(const CorrectBenchOptions& o) {
   if (o.characters < 1) throw InputError("--characters must be >= 1");
-  if (o.characters > kMaxCharactersPerCrowd)  // refused before the crowd is built (issue 32)
-    throw InputError("--characters: " + std::to_string(o.characters) +
-                     " characters, more than the limit of " +
-                     std::to_string(static_cast<int>(kMaxCharactersPerCrowd)) +
-                     " characters of one crowd (framework/spec/work_limits.hpp)");
   if (o.steps < 1) throw InputError("--steps must be >= 1");
   if (o.warmup < 0) throw InputError("--warmup must be >= 0");
   if (o.threads < 0) throw InputError("--threads must be >= 0");
+  // The fixture keeps every pose of every frame: refused by the one crowd estimate before it is built
+  // (issue 32: --characters 1000000; issue 33: --steps 1000000 with 100 characters, a raw bad_alloc).
+  if (const auto problem =
+          crowd_limit_problem("the benchmark crowd (--characters " + std::to_string(o.characters) + ")",
+                              o.characters, static_cast<double>(o.warmup) + o.steps, "lower --characters",
+                              "lower --steps (+ --warmup " + std::to_string(o.warmup) + ") or --characters"))
+    throw InputError(*problem);
   CorrectBenchResult r;
   r.options = o;
   r.threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();

@@ -19,6 +19,8 @@
 #include "experiments/cli/command_table.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/library_error.hpp"
+#include "framework/spec/work_limits.hpp"
 
 namespace crowdlab::cli {
 namespace {
@@ -153,6 +155,7 @@ void print_clmm(const ClmmResult& r) {
 struct ReportOptions {
   std::string study_dir, spec_path, out_dir;
   bool allow_simulated_mix = false;
+  double max_participant_items = kMaxReportParticipantItems;  // framework/spec/work_limits.hpp
 };
 
 WithinDesign load_design(const DesignArgs& a) {
@@ -183,15 +186,17 @@ void add_analyze_command(Command& root) {
       "Print {\"effects\": [{\"effect\", \"df1\", \"df2\", \"F\", \"p\", \"pes\", \"ges\", \"mauchly_W\", "
       "\"mauchly_p\", \"gg_eps\", \"hf_eps\", \"p_gg\", \"p_hf\", ...}]} (null where not applicable)");
   anova->callback([o = anova_opt] {
-    const auto design = load_design(o->design);
-    const auto result = rm_anova(design);
-    const char* kind = design.between.empty()   ? "Repeated-measures ANOVA"
-                       : design.factors.empty() ? "Between-subjects ANOVA (Type III)"
-                                                : "Mixed ANOVA (Type III)";
-    if (o->json)
-      std::cout << anova_to_json(result).dump(2) << "\n";
-    else
-      std::cout << kind << ", " << result.subjects << " subjects\n\n" << anova_text_table(result);
+    at_input_boundary(o->design.csv, [&] {
+      const auto design = load_design(o->design);
+      const auto result = rm_anova(design);
+      const char* kind = design.between.empty()   ? "Repeated-measures ANOVA"
+                         : design.factors.empty() ? "Between-subjects ANOVA (Type III)"
+                                                  : "Mixed ANOVA (Type III)";
+      if (o->json)
+        std::cout << anova_to_json(result).dump(2) << "\n";
+      else
+        std::cout << kind << ", " << result.subjects << " subjects\n\n" << anova_text_table(result);
+    });
   });
 
   // ---- posthoc ----
@@ -221,58 +226,61 @@ void add_analyze_command(Command& root) {
       ->capture_default_str();
   ph->add_flag("--json", ph_opt->json, "Print JSON");
   ph->callback([o = ph_opt] {
-    const auto design = load_design(o->design);
-    const auto method = o->method == "tukey" ? PosthocMethod::tukey : PosthocMethod::bonferroni;
-    const auto error = o->error == "pooled"     ? PosthocError::pooled
-                       : o->error == "separate" ? PosthocError::separate
-                                                : PosthocError::classic;
-    // "(emmeans' univariate model, Tukey-adjusted p)" for --error pooled|separate.
-    const std::string model = std::string("emmeans' ") +
-                              (error == PosthocError::pooled ? "univariate" : "multivariate") + " model, " +
-                              (method == PosthocMethod::tukey ? "Tukey" : "Bonferroni") + "-adjusted p";
-    if (!design.between.empty()) {
-      const auto result = posthoc_mixed(design, parse_mixed_effect(design, o->effect), method, o->simple,
-                                        o->max_comparisons, error);
-      if (o->json)
-        std::cout << posthoc_to_json(result).dump(2) << "\n";
-      else
-        std::cout << "Post-hoc comparisons for " << result.effect << " (" << model << ")\n\n"
-                  << posthoc_markdown_table(result);
-      return;
-    }
-    if (split_list(o->design.within).empty()) throw InputError("--within: no within-subject factor given");
-    const auto factors = parse_effect(design, o->effect);
-    const auto result = posthoc(design, factors, method, o->simple, o->max_comparisons, error);
-    if (o->json) {
-      auto j = posthoc_to_json(result);
+    at_input_boundary(o->design.csv, [&] {
+      const auto design = load_design(o->design);
+      const auto method = o->method == "tukey" ? PosthocMethod::tukey : PosthocMethod::bonferroni;
+      const auto error = o->error == "pooled"     ? PosthocError::pooled
+                         : o->error == "separate" ? PosthocError::separate
+                                                  : PosthocError::classic;
+      // "(emmeans' univariate model, Tukey-adjusted p)" for --error pooled|separate.
+      const std::string model = std::string("emmeans' ") +
+                                (error == PosthocError::pooled ? "univariate" : "multivariate") + " model, " +
+                                (method == PosthocMethod::tukey ? "Tukey" : "Bonferroni") + "-adjusted p";
+      if (!design.between.empty()) {
+        const auto result = posthoc_mixed(design, parse_mixed_effect(design, o->effect), method, o->simple,
+                                          o->max_comparisons, error);
+        if (o->json)
+          std::cout << posthoc_to_json(result).dump(2) << "\n";
+        else
+          std::cout << "Post-hoc comparisons for " << result.effect << " (" << model << ")\n\n"
+                    << posthoc_markdown_table(result);
+        return;
+      }
+      if (split_list(o->design.within).empty()) throw InputError("--within: no within-subject factor given");
+      const auto factors = parse_effect(design, o->effect);
+      const auto result = posthoc(design, factors, method, o->simple, o->max_comparisons, error);
+      if (o->json) {
+        auto j = posthoc_to_json(result);
+        if (factors.size() > 1) {
+          nlohmann::json simple = nlohmann::json::array();
+          for (size_t at : factors)
+            for (const auto& se : simple_effects(design, factors, at))
+              simple.push_back({{"at", se.at},
+                                {"effect", se.effect.name},
+                                {"df1", se.effect.df1},
+                                {"df2", se.effect.df2},
+                                {"F", se.effect.f},
+                                {"p", se.effect.p},
+                                {"pes", se.effect.pes}});
+          j["simple_effects"] = simple;
+        }
+        std::cout << j.dump(2) << "\n";
+        return;
+      }
+      std::cout << "Post-hoc comparisons for " << result.effect << " ("
+                << (error != PosthocError::classic   ? model
+                    : method == PosthocMethod::tukey ? "Tukey HSD"
+                                                     : "paired t-tests, Bonferroni")
+                << ")\n\n"
+                << posthoc_markdown_table(result);
       if (factors.size() > 1) {
-        nlohmann::json simple = nlohmann::json::array();
+        std::cout << "\nSimple effects:\n";
         for (size_t at : factors)
           for (const auto& se : simple_effects(design, factors, at))
-            simple.push_back({{"at", se.at},
-                              {"effect", se.effect.name},
-                              {"df1", se.effect.df1},
-                              {"df2", se.effect.df2},
-                              {"F", se.effect.f},
-                              {"p", se.effect.p},
-                              {"pes", se.effect.pes}});
-        j["simple_effects"] = simple;
+            std::cout << "  " << se.effect.name << " at " << se.at << ": " << apa_f_sentence(se.effect)
+                      << "\n";
       }
-      std::cout << j.dump(2) << "\n";
-      return;
-    }
-    std::cout << "Post-hoc comparisons for " << result.effect << " ("
-              << (error != PosthocError::classic   ? model
-                  : method == PosthocMethod::tukey ? "Tukey HSD"
-                                                   : "paired t-tests, Bonferroni")
-              << ")\n\n"
-              << posthoc_markdown_table(result);
-    if (factors.size() > 1) {
-      std::cout << "\nSimple effects:\n";
-      for (size_t at : factors)
-        for (const auto& se : simple_effects(design, factors, at))
-          std::cout << "  " << se.effect.name << " at " << se.at << ": " << apa_f_sentence(se.effect) << "\n";
-    }
+    });
   });
 
   // ---- psychometric ----
@@ -312,47 +320,54 @@ void add_analyze_command(Command& root) {
   psy->add_flag("--allow-simulated-mix", psy_opt->allow_simulated_mix, kAllowMixHelp);
   psy->add_flag("--json", psy_opt->json, "Print {\"fits\": [...], \"groups\": [...], \"anova\": ...}");
   psy->callback([o = psy_opt] {
-    PsychometricRequest& pr = o->request;
-    if (o->lapse == "symmetric") {
-      pr.options.fit_symmetric_lapse = true;
-    } else if (o->lapse != "fixed") {
-      try {
-        size_t used = 0;
-        pr.options.lapse = std::stod(o->lapse, &used);
-        // "nan" parses, and was then reported as a CSV problem of the first subject (issue 33).
-        if (used != o->lapse.size() || !(pr.options.lapse >= 0.0 && pr.options.lapse < 1.0))
-          throw InputError("");
-      } catch (const std::exception&) {
-        throw InputError("--lapse: expected fixed, symmetric or a number in [0, 1), got '" + o->lapse + "'");
+    at_input_boundary(o->csv, [&] {
+      PsychometricRequest& pr = o->request;
+      if (o->lapse == "symmetric") {
+        pr.options.fit_symmetric_lapse = true;
+      } else if (o->lapse != "fixed") {
+        try {
+          size_t used = 0;
+          pr.options.lapse = std::stod(o->lapse, &used);
+          // "nan" parses, and was then reported as a CSV problem of the first subject (issue 33).
+          if (used != o->lapse.size() || !(pr.options.lapse >= 0.0 && pr.options.lapse < 1.0))
+            throw InputError("");
+        } catch (const std::exception&) {
+          throw InputError("--lapse: expected fixed, symmetric or a number in [0, 1), got '" + o->lapse +
+                           "'");
+        }
       }
-    }
-    pr.probabilities.clear();
-    for (const auto& s : split_list(o->probabilities)) {
-      try {
-        pr.probabilities.push_back(std::stod(s));
-      } catch (const std::exception&) {
-        throw InputError("--p: not a number: '" + s + "'");
+      pr.probabilities.clear();
+      for (const auto& s : split_list(o->probabilities)) {
+        // The whole text, in (0, 1): stod read "0.5abc" as 0.5, silently (issue 33).
+        try {
+          size_t used = 0;
+          const double p = std::stod(s, &used);
+          if (used != s.size() || !(p > 0.0 && p < 1.0)) throw InputError("");
+          pr.probabilities.push_back(p);
+        } catch (const std::exception&) {
+          throw InputError("--p: expected probabilities in (0, 1), comma-separated, got '" + s + "'");
+        }
       }
-    }
-    const auto result = analyze_psychometric(read_unmixed_csv(o->csv, o->allow_simulated_mix), pr);
-    if (o->json) {
-      std::cout << psychometric_to_json(result).dump(2) << "\n";
-      return;
-    }
-    for (const auto& row : result.fits) {
-      std::printf("%-10s %-12s intercept %9.4f slope %9.4f", row.subject.c_str(), row.by.c_str(),
-                  row.fit.intercept, row.fit.slope);
-      if (row.fit.lapse_fitted)
-        std::printf(" lapse %.4f%s", row.fit.lapse, row.fit.lapse_at_boundary ? " (bound)" : "");
-      std::printf(" nll %.4f dev %.2f/%d%s", row.fit.nll, row.goodness.deviance, row.goodness.df,
-                  row.goodness.overdispersed ? " OVERDISPERSED" : "");
-      for (size_t k = 0; k < pr.probabilities.size(); ++k) {
-        std::printf("  x(%s) %.4f", probability_key(pr.probabilities[k]).c_str(), row.thresholds[k]);
-        if (!row.ci.empty()) std::printf(" [%.4f, %.4f]", row.ci[k].lower, row.ci[k].upper);
+      const auto result = analyze_psychometric(read_unmixed_csv(o->csv, o->allow_simulated_mix), pr);
+      if (o->json) {
+        std::cout << psychometric_to_json(result).dump(2) << "\n";
+        return;
       }
-      std::printf("%s\n", row.fit.warning.empty() ? "" : ("  WARNING: " + row.fit.warning).c_str());
-    }
-    std::cout << "\n" << psychometric_markdown_table(result, "");
+      for (const auto& row : result.fits) {
+        std::printf("%-10s %-12s intercept %9.4f slope %9.4f", row.subject.c_str(), row.by.c_str(),
+                    row.fit.intercept, row.fit.slope);
+        if (row.fit.lapse_fitted)
+          std::printf(" lapse %.4f%s", row.fit.lapse, row.fit.lapse_at_boundary ? " (bound)" : "");
+        std::printf(" nll %.4f dev %.2f/%d%s", row.fit.nll, row.goodness.deviance, row.goodness.df,
+                    row.goodness.overdispersed ? " OVERDISPERSED" : "");
+        for (size_t k = 0; k < pr.probabilities.size(); ++k) {
+          std::printf("  x(%s) %.4f", probability_key(pr.probabilities[k]).c_str(), row.thresholds[k]);
+          if (!row.ci.empty()) std::printf(" [%.4f, %.4f]", row.ci[k].lower, row.ci[k].upper);
+        }
+        std::printf("%s\n", row.fit.warning.empty() ? "" : ("  WARNING: " + row.fit.warning).c_str());
+      }
+      std::cout << "\n" << psychometric_markdown_table(result, "");
+    });
   });
 
   // ---- lmm ----
@@ -381,12 +396,14 @@ void add_analyze_command(Command& root) {
       ->check(check::range(1, 100000))
       ->capture_default_str();
   lmm->callback([o = lmm_opt] {
-    const auto result =
-        fit_lmm(read_unmixed_csv(o->csv, o->allow_simulated_mix), o->formula, !o->ml, o->limits);
-    if (o->json)
-      std::cout << lmm_to_json(result).dump(2) << "\n";
-    else
-      print_lmm(result);
+    at_input_boundary(o->csv, [&] {
+      const auto result =
+          fit_lmm(read_unmixed_csv(o->csv, o->allow_simulated_mix), o->formula, !o->ml, o->limits);
+      if (o->json)
+        std::cout << lmm_to_json(result).dump(2) << "\n";
+      else
+        print_lmm(result);
+    });
   });
 
   // ---- clmm ----
@@ -410,11 +427,13 @@ void add_analyze_command(Command& root) {
                  "\"warnings\"}");
   clmm->add_flag("--allow-simulated-mix", clmm_opt->allow_simulated_mix, kAllowMixHelp);
   clmm->callback([o = clmm_opt] {
-    const auto result = fit_clmm(read_unmixed_csv(o->csv, o->allow_simulated_mix), o->formula, o->link);
-    if (o->json)
-      std::cout << clmm_to_json(result).dump(2) << "\n";
-    else
-      print_clmm(result);
+    at_input_boundary(o->csv, [&] {
+      const auto result = fit_clmm(read_unmixed_csv(o->csv, o->allow_simulated_mix), o->formula, o->link);
+      if (o->json)
+        std::cout << clmm_to_json(result).dump(2) << "\n";
+      else
+        print_clmm(result);
+    });
   });
 
   // ---- report ----
@@ -428,11 +447,20 @@ void add_analyze_command(Command& root) {
   report->add_option("--spec", report_opt->spec_path, "The experiment spec (YAML) the study ran")->required();
   report->add_option("--out", report_opt->out_dir, "Output folder (report.md, figures/)")->required();
   report->add_flag("--allow-simulated-mix", report_opt->allow_simulated_mix, kAllowMixHelp);
+  report
+      ->add_option("--max-participant-items", report_opt->max_participant_items,
+                   "Refuse (exit 2), before any model is fitted, studies with more participants x Likert "
+                   "items than this (one mixed model per item, a random intercept per participant; about "
+                   "0.01 s each)")
+      ->check(check::range(1.0, 1e9))
+      ->capture_default_str();
   report->callback([o = report_opt] {
-    const OutputFolderLock lock(o->out_dir);  // one process per folder (output_folder_lock.hpp)
-    check_study_dir_unmixed(o->study_dir, o->allow_simulated_mix);
-    const auto path = write_study_report(o->study_dir, o->spec_path, o->out_dir);
-    std::cout << "wrote " << path << "\n";
+    at_input_boundary(o->study_dir, [&] {
+      const OutputFolderLock lock(o->out_dir);  // one process per folder (output_folder_lock.hpp)
+      check_study_dir_unmixed(o->study_dir, o->allow_simulated_mix);
+      const auto path = write_study_report(o->study_dir, o->spec_path, o->out_dir, o->max_participant_items);
+      std::cout << "wrote " << path << "\n";
+    });
   });
 }
 

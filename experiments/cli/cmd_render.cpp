@@ -15,6 +15,7 @@
 #include "framework/core/error.hpp"
 #include "framework/core/write_file.hpp"
 #include "framework/io/read_crowd_glb.hpp"
+#include "framework/spec/estimate_work.hpp"
 #include "framework/spec/work_limits.hpp"
 #include "stimuli/clip_sidecar.hpp"
 #include "stimuli/render_clip.hpp"
@@ -22,6 +23,9 @@
 
 namespace crowdlab::cli {
 namespace {
+
+/// Frames of the `--synthetic` crowd.
+constexpr int kSyntheticFrames = 90;
 
 struct RenderArgs {
   std::string crowd_path, viewpoint = "V3", out, frames_png, contact_sheet, background = "#d8dde3",
@@ -77,18 +81,22 @@ stimuli::Viewpoint chosen_viewpoint(const RenderArgs& a,
 }
 
 void run(const RenderArgs& a) {
-  if (a.synthetic < 0 || a.synthetic > kMaxCharactersPerCrowd)  // refused before the crowd is built
+  if (a.synthetic < 0)
     throw InputError(SourceLocation{"", 0, 0, "--synthetic"},
                      std::to_string(a.synthetic) + " characters; give 1 to " +
-                         std::to_string(static_cast<int>(kMaxCharactersPerCrowd)) +
-                         " (the limit of characters in one crowd, framework/spec/work_limits.hpp)");
+                         std::to_string(static_cast<int>(kMaxCharactersPerCrowd)));
+  // The one crowd estimate (framework/spec/estimate_work.hpp), before the crowd is built.
+  if (const auto problem =
+          crowd_limit_problem("--synthetic " + std::to_string(a.synthetic), a.synthetic, kSyntheticFrames,
+                              "give 1 to 10000 characters", "give fewer characters"))
+    throw InputError(SourceLocation{"", 0, 0, "--synthetic"}, *problem);
   if (a.crowd_path.empty() == (a.synthetic == 0))
     throw InputError("render: give either a crowd file (CROWD.glb) or --synthetic N");
   CrowdAnimation crowd;
   if (a.synthetic > 0) {
     stimuli::SyntheticCrowdOptions co;
     co.characters = a.synthetic;
-    co.frames = 90;
+    co.frames = kSyntheticFrames;
     if (a.synthetic_corridor) {
       co.columns = 3;
       co.walk_speed_mps = 1.2;

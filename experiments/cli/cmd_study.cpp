@@ -260,8 +260,12 @@ void add_power_command(Command& root) {
     opt.seed = a->seed;
     opt.sample_sizes.clear();
     for (const auto& s : split(a->n, ',')) {
+      // The whole text: stoi read "10.5" and "10abc" as 10, silently (issue 33).
       try {
-        opt.sample_sizes.push_back(std::stoi(s));
+        size_t used = 0;
+        const int n = std::stoi(s, &used);
+        if (used != s.size()) throw InputError("");
+        opt.sample_sizes.push_back(n);
       } catch (const std::exception&) {
         throw InputError(SourceLocation{"", 0, 0, "--n"}, "not an integer: '" + s + "'");
       }

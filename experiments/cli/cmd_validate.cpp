@@ -6,9 +6,13 @@
 #include <vector>
 
 #include "experiments/cli/command_table.hpp"
+#include "framework/animation/import_motion_clip.hpp"
 #include "framework/crowd/check_crowd_size_known.hpp"
+#include "framework/pipeline/body_model.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
+#include "framework/spec/locate_spec_key.hpp"
 #include "framework/surface/spec_surface.hpp"
+#include "stimuli/gltf_character.hpp"
 
 namespace crowdlab::cli {
 namespace {
@@ -86,6 +90,42 @@ void print_table(const ExperimentSpec& spec, const std::vector<Condition>& condi
   }
 }
 
+// Reads a file the spec names as `run` would; its problems are prefixed with the spec key's place.
+template <class Read>
+void read_referenced(const ExperimentSpec& spec, const std::string& key, Read&& read) {
+  try {
+    read();
+  } catch (const InputError& e) {
+    throw InputError(locate_spec_key(spec.source_path, key), e.what());
+  }
+}
+
+// The files `run` parses beyond the spec (issue 33 item 2: a clip or character that was not a clip or a
+// character passed validate, and `run` refused it later without the spec's line): the motion clips of
+// the scenario kinds the conditions use (dance clips for stationary crowds, walk clips otherwise), and
+// the MPFB2 asset folder of animation.body_model and the glTF characters of render.characters.
+void read_referenced_files(const ExperimentSpec& spec, const std::vector<Condition>& conditions) {
+  const AnimationSpec& a = spec.animation;
+  if (a.motion == MotionSource::clips) {
+    bool stationary = false, walking = false;
+    for (const Condition& c : conditions) {
+      stationary = stationary || c.params.scenario == ScenarioKind::stationary;
+      walking = walking || c.params.scenario != ScenarioKind::stationary;
+    }
+    for (size_t i = 0; stationary && i < a.dance_clips.size(); ++i)
+      read_referenced(spec, "animation.dance_clips[" + std::to_string(i) + "]",
+                      [&] { import_motion_clip(a.dance_clips[i]); });
+    for (size_t i = 0; walking && i < a.walk_clips.size(); ++i)
+      read_referenced(spec, "animation.walk_clips[" + std::to_string(i) + "].file",
+                      [&] { import_motion_clip(a.walk_clips[i]); });
+  }
+  if (a.body_model == BodyModel::mpfb2)
+    read_referenced(spec, "animation.body_model", [&] { load_body_model_assets(a); });
+  for (size_t i = 0; i < spec.render.characters.size(); ++i)
+    read_referenced(spec, "render.characters[" + std::to_string(i) + "]",
+                    [&] { stimuli::load_gltf_character(spec.render.characters[i]); });
+}
+
 void run_validate(const ValidateOptions& opt) {
   ExperimentSpec spec;
   try {
@@ -103,6 +143,9 @@ void run_validate(const ValidateOptions& opt) {
   const std::vector<Condition> practice = enumerate_practice_conditions(spec);
   check_crowd_size_known(spec, conditions);
   check_crowd_size_known(spec, practice);
+  std::vector<Condition> all = conditions;
+  all.insert(all.end(), practice.begin(), practice.end());
+  read_referenced_files(spec, all);
   print_summary(spec);
   if (!opt.no_table) {
     std::printf("\n");

@@ -11,6 +11,7 @@
 #include "experiments/cli/command_table.hpp"
 #include "experiments/cli/range_message.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/library_error.hpp"
 #include "framework/core/progress.hpp"
 
 int main(int argc, char** argv) {
@@ -57,6 +58,11 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   } catch (const crowdlab::InputError& e) {
     std::fprintf(stderr, "crowdlab: error: %s\n", e.what());
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A folder or file the user named could not be made or read (an --out under a regular file, a
+    // folder without permission): named by its path and the system's reason, as an input error (issue 33).
+    std::fprintf(stderr, "crowdlab: error: %s\n", crowdlab::describe_filesystem_error(e).c_str());
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "crowdlab: error: %s\n", e.what());

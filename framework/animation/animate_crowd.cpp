@@ -11,7 +11,7 @@
 #include "framework/animation/clip_in_place.hpp"
 #include "framework/animation/clip_loop.hpp"
 #include "framework/animation/dance_animation.hpp"
-#include "framework/animation/gltf_motion.hpp"
+#include "framework/animation/import_motion_clip.hpp"
 #include "framework/animation/retarget.hpp"
 #include "framework/animation/sample_bodies.hpp"
 #include "framework/animation/shoulder_reactions.hpp"
@@ -63,8 +63,7 @@ CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Enviro
     const std::filesystem::path path = std::filesystem::path(file).is_absolute()
                                            ? std::filesystem::path(file)
                                            : context.clip_directory / file;
-    const std::string ext = path.extension().string();
-    return ext == ".gltf" || ext == ".glb" ? import_gltf_animation(path) : import_bvh(path);
+    return import_motion_clip(path);
   };
   std::vector<BvhMotion> dance_clips, walk_clips;
   if (clips && stationary)

@@ -5,7 +5,7 @@
 #include "framework/core/error.hpp"
 #include "framework/core/precondition.hpp"
 #include "framework/crowd/check_crowd_size_known.hpp"
-#include "framework/spec/work_limits.hpp"
+#include "framework/spec/estimate_work.hpp"
 
 namespace crowdlab {
 namespace {
@@ -22,11 +22,13 @@ int scenario_character_count(const ExperimentSpec& spec, const Condition& condit
   if (p.density_per_m2) {
     // Counted in double and refused past the limit before the narrowing to int: a density on a huge OBJ
     // wrapped around and was reported as "agents: must be >= 1" (issue 33).
-    const double count = std::round(*p.density_per_m2 * area_m2);
-    if (count > kMaxCharactersPerCrowd)
-      throw InputError("factors.density: " + std::to_string(*p.density_per_m2) + " per m^2 on " +
-                       std::to_string(area_m2) + " m^2 gives " + std::to_string(count) +
-                       " characters, more than the limit of " + std::to_string(kMaxCharactersPerCrowd));
+    const double count = crowd_on_area(*p.density_per_m2, area_m2);
+    const std::string crowd = "factors.density: " + std::to_string(*p.density_per_m2) + " per m^2 on " +
+                              std::to_string(area_m2) + " m^2";
+    if (const auto problem = crowd_limit_problem(crowd, count, std::ceil(spec.duration_s * spec.fps),
+                                                 "lower the density or the area",
+                                                 "shorten the clip (duration_s x fps frames) or lower fps"))
+      throw InputError(*problem);
     const long n = std::lround(count);
     if (n < 1)
       throw InputError("factors.density: " + std::to_string(*p.density_per_m2) + " per m^2 on " +

@@ -40,14 +40,22 @@ std::shared_ptr<const Mpfb2Wardrobe> cached_wardrobe(const std::filesystem::path
   return it->second;
 }
 
+// The spec loader fills the path (spec, else CROWDLAB_MPFB2, else the shipped assets); a spec built in
+// code may leave it empty.
+std::shared_ptr<const Mpfb2Model> spec_model(const AnimationSpec& spec) {
+  return cached_model(spec.body_model_path.empty() ? default_mpfb2_dir()
+                                                   : std::filesystem::path(spec.body_model_path));
+}
+
 }  // namespace
+
+void load_body_model_assets(const AnimationSpec& spec) {
+  if (spec.body_model != BodyModel::procedural) (void)spec_model(spec);
+}
 
 void apply_body_model(const AnimationSpec& spec, std::size_t agents, AnimationContext& context) {
   if (spec.body_model == BodyModel::procedural) return;
-  // The spec loader fills the path (spec, else CROWDLAB_MPFB2, else the shipped assets); a spec built in
-  // code may leave it empty.
-  const auto model = cached_model(spec.body_model_path.empty() ? default_mpfb2_dir()
-                                                               : std::filesystem::path(spec.body_model_path));
+  const auto model = spec_model(spec);
   const auto wardrobe = cached_wardrobe(default_makehuman_dir(), *model);
   const std::vector<Mpfb2Sample> samples =
       sample_mpfb2_bodies(*model, static_cast<int>(agents), derive_seed(context.seed, "bodies"),

@@ -16,4 +16,9 @@ namespace crowdlab {
 /// Throws InputError when the asset folder is missing or broken (naming the file).
 void apply_body_model(const AnimationSpec& spec, std::size_t agents, AnimationContext& context);
 
+/// Loads the asset folder apply_body_model would load (once per process; nothing for procedural
+/// bodies), so that `validate` refuses a broken folder as `run` would (issue 33). Throws InputError
+/// naming the asset file.
+void load_body_model_assets(const AnimationSpec& spec);
+
 }  // namespace crowdlab

@@ -21,6 +21,7 @@
 #include "framework/core/sha256.hpp"
 #include "framework/core/utf8_validity.hpp"
 #include "framework/core/viewpoint_catalogue.hpp"
+#include "framework/spec/estimate_work.hpp"
 #include "framework/spec/parse_factor.hpp"
 #include "framework/spec/parse_protocol.hpp"
 #include "framework/spec/surface_scene_names.hpp"
@@ -473,89 +474,33 @@ void check_consistency(YamlSection& top, ExperimentSpec& spec) {
   }
 }
 
-// The largest crowd any condition shows: the characters factor, else density x area (area scenarios),
-// else scenario.agents. 0 when the spec does not say (pair crossings).
-double largest_crowd(const ExperimentSpec& spec) {
-  double most = spec.scenario.agents;
-  // Flows place a lattice of spacing s = 1/sqrt(density) (else initial_spacing_m) over the area, one per
-  // group (generate_flow_scenario.cpp); counted here in double, so that a flow-B of density 10 on 1000 m
-  // (20 million agents: 5 GB at 180 s) is refused before it is placed (issue 33).
-  if (spec.scenario.type == ScenarioKind::flow_a || spec.scenario.type == ScenarioKind::flow_b) {
-    const double groups = spec.scenario.type == ScenarioKind::flow_b ? 2.0 : 1.0;
-    std::vector<double> spacings;
-    if (const Factor* density = spec.factor("density"))
-      for (const FactorLevel& l : density->levels)
-        if (l.number.value_or(0.0) > 0.0) spacings.push_back(1.0 / std::sqrt(*l.number));
-    if (spacings.empty()) spacings.push_back(spec.scenario.initial_spacing_m);
-    for (const double s : spacings) {
-      if (!(s > 0.0)) continue;
-      const double cols = std::floor(spec.scenario.width_m / s + 1e-9);
-      const double rows = spec.scenario.agents > 0
-                              ? std::ceil(spec.scenario.agents / groups / std::max(cols, 1.0))
-                              : std::floor(spec.scenario.depth_m / (groups * s) + 1e-9);
-      most = std::max(most, groups * rows * cols + (groups == 1.0 ? 1.0 : 0.0));
-    }
-  }
-  if (const Factor* characters = spec.factor("characters"))
-    for (const FactorLevel& l : characters->levels) most = std::max(most, l.number.value_or(0.0));
-  const bool area_scenario = is_area_scenario(spec.scenario.type);
-  if (const Factor* density = spec.factor("density"); density && area_scenario && !spec.factor("characters"))
-    for (const FactorLevel& l : density->levels)
-      most =
-          std::max(most, std::round(l.number.value_or(0.0) * spec.scenario.width_m * spec.scenario.depth_m));
-  return most;
-}
-
-/// How many conditions enumerate_practice_conditions makes, from the level counts (nothing enumerated):
-/// the practice factors crossed with the block factor when practice does not name it.
-double practice_condition_count(const ExperimentSpec& spec) {
-  const ProtocolSpec& p = spec.protocol;
-  if (p.practice_factors.empty()) return 0.0;
-  double count = 1.0;
-  bool blocks_named = false;
-  for (const Factor& f : p.practice_factors) {
-    count *= static_cast<double>(f.levels.size());
-    blocks_named = blocks_named || f.name == p.block_by;
-  }
-  if (!p.block_by.empty() && !blocks_named)
-    if (const Factor* block = spec.factor(p.block_by)) count *= static_cast<double>(block->levels.size());
-  return count;
-}
-
 // Estimates of the work a spec asks for, refused beyond the documented limits (load_experiment_spec.hpp).
 void check_work_limits(YamlSection& top, const ExperimentSpec& spec) {
   SpecDiagnostics& diag = top.diagnostics();
   const auto at = [&](const std::string& key) { return top.has(key) ? top.get(key) : top.node(); };
-  double conditions = spec.repetitions;
-  for (const Factor& f : spec.factors) conditions *= static_cast<double>(f.levels.size());
-  if (conditions > kMaxConditions)
+  const SpecWork work = estimate_spec_work(spec);
+  if (work.conditions > kMaxConditions)
     diag.error(at("factors"), "factors",
                "the factor levels x " + std::to_string(spec.repetitions) + " repetitions make " +
-                   format_number(conditions) + " conditions, more than the limit of " +
+                   format_number(work.conditions) + " conditions, more than the limit of " +
                    format_number(kMaxConditions) + "; split the study into several specs");
   // Practice conditions are rendered too (issue 32: a practice block multiplying to 1e7 conditions
   // passed `validate` and ran `plan` out of memory).
-  const double practice = practice_condition_count(spec);
-  if (conditions <= kMaxConditions && conditions + practice > kMaxConditions)
+  const double all = work.conditions + work.practice_conditions;
+  if (work.conditions <= kMaxConditions && all > kMaxConditions)
     diag.error(top.has("protocol") ? top.get("protocol") : top.node(), "protocol.practice",
-               format_number(conditions) + " conditions + " + format_number(practice) +
+               format_number(work.conditions) + " conditions + " + format_number(work.practice_conditions) +
                    " practice conditions (the practice levels, crossed with the blocks) make " +
-                   format_number(conditions + practice) + ", more than the limit of " +
-                   format_number(kMaxConditions) + "; list fewer practice levels or split the study");
-  const double characters = largest_crowd(spec);
-  if (characters > kMaxCharactersPerCrowd)
-    diag.error(at("factors"), "factors",
-               "the largest crowd has " + format_number(characters) + " characters, more than the limit of " +
-                   format_number(kMaxCharactersPerCrowd) +
-                   " (density x area, a flow's lattice of spacing 1/sqrt(density) or initial_spacing_m over "
-                   "the area, or the characters factor)");
-  const double frames = std::ceil(spec.duration_s * spec.fps);
-  if (characters <= kMaxCharactersPerCrowd && characters * frames > kMaxCharacterFrames)
-    diag.error(at("duration_s"), "duration_s",
-               format_number(characters) + " characters x " + format_number(frames) +
-                   " frames (duration_s x fps) = " + format_number(characters * frames) +
-                   " character-frames, more than the limit of " + format_number(kMaxCharacterFrames) +
-                   "; shorten the clip or lower fps");
+                   format_number(all) + ", more than the limit of " + format_number(kMaxConditions) +
+                   "; list fewer practice levels or split the study");
+  const auto problem = crowd_limit_problem(
+      "the largest crowd", work.largest_crowd, work.frames,
+      "lower the density (density x area, or a flow's lattice of spacing 1/sqrt(density) or "
+      "initial_spacing_m over the area), the characters factor or scenario.agents",
+      "shorten the clip (duration_s x fps frames), lower fps or the crowd");
+  if (problem)
+    diag.error(at(work.largest_crowd > kMaxCharactersPerCrowd ? "factors" : "duration_s"),
+               work.largest_crowd > kMaxCharactersPerCrowd ? "factors" : "duration_s", *problem);
 }
 
 }  // namespace

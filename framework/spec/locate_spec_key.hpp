@@ -9,7 +9,8 @@
 namespace crowdlab {
 
 /// SourceLocation{spec_path, line, column, key_path} of the value of the dotted `key_path`
-/// ("scenario.mesh"); line and column are 0 when the file or the key cannot be found.
+/// ("scenario.mesh", or with list items "animation.walk_clips[1].file"); line and column are 0 when the file
+/// or the key cannot be found.
 SourceLocation locate_spec_key(const std::string& spec_path, const std::string& key_path);
 
 }  // namespace crowdlab

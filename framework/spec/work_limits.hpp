@@ -17,5 +17,9 @@ inline constexpr double kMaxCharactersPerCrowd = 10000;
 inline constexpr double kMaxCharacterFrames = 2e6;
 /// Size of a spec file (the demo is 3 kB; YAML parsing takes memory many times the text).
 inline constexpr unsigned long kMaxSpecBytes = 4ul << 20;
+/// Participants x Likert items of `analyze report` (each item's cumulative link mixed model has one random
+/// intercept per participant): 500 participants x 6 items took 29 s at load 11, 2,000 ran for minutes
+/// (issue 33). `analyze report --max-participant-items` raises it.
+inline constexpr double kMaxReportParticipantItems = 6000;
 
 }  // namespace crowdlab

@@ -134,3 +134,68 @@ TEST_CASE("analysis: a random slope of a many-level factor is refused before the
                                "y ~ 1 + (stimulus | participant)", "--max-covariance-parameters", "10"});
   CHECK_THAT(raised.err, Catch::Contains("more than the limit of 10"));
 }
+
+TEST_CASE("analysis: report refuses participants x items above its limit before any model, with the option",
+          "[analysis][cli]") {
+  // Issue 33: `analyze report` on 2,000 participants ran for minutes (one mixed model per Likert item, a
+  // random intercept per participant each). The demo spec fits 6 items.
+  const auto base = test::scratch_dir("issue33-report-limit");
+  const std::string spec = (test::source_dir() / "experiments" / "demo.yaml").string();
+  const auto study = likert_study(base / "study", "1");  // row 9's own value: a valid study of 4 people
+  const auto small = run_cli({"analyze", "report", study.string(), "--spec", spec, "--out",
+                              (base / "out").string(), "--max-participant-items", "20"});
+  CHECK(small.exit_code == 2);
+  CHECK_THAT(small.err, Catch::Contains("4 participants x 6 Likert items") &&
+                            Catch::Contains("= 24 participant-items, more than the limit of 20") &&
+                            Catch::Contains("--max-participant-items"));
+  CHECK_FALSE(fs::exists(base / "out" / "report.md"));
+  CHECK_FALSE(fs::exists(base / "out" / "figures"));
+  // The issue's study: 2,000 participants under the default limit, refused in about the time it takes to
+  // read the answers (it ran for minutes before).
+  fs::create_directories(base / "many");
+  {
+    std::ofstream out(base / "many" / "responses.csv");
+    out << "participant,session,trial,stimulus,density,viewpoint,method,question,response,reverse_coded,"
+           "practice\n";
+    for (int p = 1; p <= 2000; ++p)
+      for (const char* method : {"baseline", "ours"})
+        for (int q = 1; q <= 6; ++q)
+          out << p << ",1,1,s_" << method << ",3.33,V1," << method << ",Q" << q << ",3," << (q % 2 ? 3 : 4)
+              << ",0\n";
+  }
+  const auto many = run_cli(
+      {"analyze", "report", (base / "many").string(), "--spec", spec, "--out", (base / "out2").string()},
+      120);
+  CHECK(many.exit_code == 2);
+  CHECK_THAT(many.err, Catch::Contains("2000 participants x 6 Likert items") &&
+                           Catch::Contains("limit of 6000") && Catch::Contains("--max-participant-items"));
+}
+
+TEST_CASE(
+    "analysis: an output folder that cannot be made is named as an input error, not a raw "
+    "filesystem_error",
+    "[analysis][cli]") {
+  // Issue 33 item 4: "crowdlab: error: filesystem error: cannot create directories: Not a directory
+  // [afile/sub]", exit 1.
+  const auto base = test::scratch_dir("issue33-report-out");
+  const std::string spec = (test::source_dir() / "experiments" / "demo.yaml").string();
+  const auto study = likert_study(base / "study", "1");
+  std::ofstream(base / "afile") << "x";
+  const auto out = (base / "afile" / "sub").string();
+  const auto r = run_cli({"analyze", "report", study.string(), "--spec", spec, "--out", out});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains(out + ": ") && Catch::Contains("Not a directory"));
+  CHECK_THAT(r.err, !Catch::Contains("filesystem error:"));
+}
+
+TEST_CASE("analysis: psychometric --p reads the whole text of each probability", "[analysis][cli]") {
+  // Issue 33: std::stod read "0.5abc" as 0.5 (exit 0), and "nan" was refused without the option's name.
+  for (const std::string p : {"0.5abc", "nan", "1"}) {
+    const auto r =
+        run_cli({"analyze", "psychometric", "--csv", analysis_data("psychometric_trials.csv"), "--subject",
+                 "participant", "--x", "distance", "--response", "collision", "--p", "0.25," + p});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err,
+               Catch::Contains("--p: expected probabilities in (0, 1), comma-separated, got '" + p + "'"));
+  }
+}

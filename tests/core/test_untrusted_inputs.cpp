@@ -149,6 +149,12 @@ TEST_CASE("cli: huge counts are refused from the count, before the work, exit 2"
   r = test::run_cli({"bench", "correct", "--characters", "1000000", "--steps", "1"});
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Catch::Contains("--characters") && Catch::Contains("limit of 10000"));
+  // Issue 33: 100 characters x a million steps passed the character limit and ended in a raw bad_alloc
+  // (the fixture keeps every pose): the one crowd estimate counts character-frames too.
+  r = test::run_cli({"bench", "correct", "--characters", "100", "--steps", "1000000"}, 60);
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("--characters 100") && Catch::Contains("100001000 character-frames") &&
+                        Catch::Contains("lower --steps"));
 }
 
 TEST_CASE("a provenance sidecar nested deep or a FIFO is not up to date, never a crash or a hang", "[core]") {

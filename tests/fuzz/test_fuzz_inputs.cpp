@@ -478,6 +478,51 @@ TEST_CASE("hostile families of issue 33 are refused with exit 2, naming the file
     record_named_refusal(c, index, std::to_string(junk.size()) + " binary bytes", "import_bvh",
                          run_limited(read, run_limit_s(), err), path.string());
   }
+  // Specs naming a dance clip or a glTF character of random bytes (validate only checked that the file
+  // existed; run refused it later without the spec's line), through validate.
+  for (int k = 0; k < cases; ++k, ++index) {
+    const bool character = m.below(2) == 1;
+    std::string junk(10 + m.below(5000), '\0');
+    for (char& ch : junk) ch = static_cast<char>(m.below(256));
+    const fs::path file = c.dir / ("asset-" + std::to_string(index) + (character ? ".glb" : ".bvh"));
+    write_file(file, junk);
+    write_file(
+        c.input_path(index),
+        "crowdlab: 1\nname: a\nseed: 1\nfactors: {characters: [2]}\n" +
+            std::string(character ? "render: {characters: [" : "animation: {motion: clips, dance_clips: [") +
+            file.string() + "]}\nprotocol:\n  type: likert\n  questions: [{id: Q1, text: x}]\n");
+    const std::string in = c.input_path(index).string();
+    record_named_refusal(
+        c, index,
+        std::to_string(junk.size()) + " random bytes as a " + (character ? "character" : "dance clip"),
+        "`crowdlab validate`", run_crowdlab_limited({"validate", in}, run_limit_s(), err), in);
+  }
+  // Reports over their participant-item limit (2,000 participants ran for minutes), through analyze report.
+  for (int k = 0; k < cases; ++k, ++index) {
+    const fs::path study = c.dir / ("study-" + std::to_string(index));
+    fs::create_directories(study);
+    const std::size_t participants = 2 + m.below(30);
+    std::string rows =
+        "participant,session,trial,stimulus,density,viewpoint,method,question,response,reverse_coded,"
+        "practice\n";
+    for (std::size_t p = 1; p <= participants; ++p)
+      for (const char* method : {"baseline", "ours"})
+        for (int q = 1; q <= 6; ++q) {
+          const int r = 1 + static_cast<int>(m.below(6));  // Q2, Q4 and Q6 are reverse-keyed in the demo
+          rows += std::to_string(p) + ",1,1,s_" + method + ",3.33,V1," + method + ",Q" + std::to_string(q) +
+                  "," + std::to_string(r) + "," + std::to_string(q % 2 ? r : 7 - r) + ",0\n";
+        }
+    write_file(study / "responses.csv", rows);
+    const std::string limit = std::to_string(1 + m.below(participants * 6 - 1));  // below participants x 6
+    record_named_refusal(c, index,
+                         std::to_string(participants) + " participants at --max-participant-items " + limit,
+                         "`crowdlab analyze report`",
+                         run_crowdlab_limited({"analyze", "report", study.string(), "--spec",
+                                               (source_dir() / "experiments" / "demo.yaml").string(), "--out",
+                                               (study / "out").string(), "--max-participant-items", limit},
+                                              run_limit_s(), err),
+                         "--max-participant-items");
+  }
   c.report();
 }
 

@@ -1,6 +1,7 @@
 // `crowdlab validate` on the shipped specs and on broken ones, through the real binary.
 #include <catch2/catch.hpp>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -215,4 +216,43 @@ TEST_CASE("validate reads the manifold mesh as run does: a bad file and a crowd 
   CHECK(broken.exit_code == 2);
   CHECK_THAT(broken.err,
              Catch::Contains("spec_broken.obj.yaml:6:9: scenario.mesh: ") && Catch::Contains("broken.obj"));
+}
+
+TEST_CASE("validate reads the motion clips and characters a spec names, as run does") {
+  // Issue 33 item 2: a dance clip or a glTF character that was not one passed validate (it only checked
+  // that the file existed); run refused it later, without the spec's line.
+  const auto dir = test::scratch_dir("validate-referenced");
+  std::ofstream(dir / "bad.bvh") << "not a bvh\n";
+  std::ofstream(dir / "bad.glb") << "junk";
+  const std::string walk = (test::source_dir() / "tests/data/fuzz/walk.bvh").string();
+  const auto write = [&](const std::string& name, const std::string& extra) {
+    std::ofstream(dir / name) << kValidSpec << extra;
+    return (dir / name).string();
+  };
+  // kValidSpec is 12 lines: "animation:" is line 13, its dance_clips line 15.
+  const auto clip = run_cli({"validate", write("clip.yaml", "animation:\n  motion: clips\n  dance_clips: [" +
+                                                                walk + ", bad.bvh]\n")});
+  CHECK(clip.exit_code == 2);
+  CHECK_THAT(clip.err, Catch::Contains("clip.yaml:15:") && Catch::Contains("animation.dance_clips[1]: ") &&
+                           Catch::Contains("bad.bvh"));
+  const auto good = run_cli(
+      {"validate", write("good.yaml", "animation:\n  motion: clips\n  dance_clips: [" + walk + "]\n")});
+  INFO(good.err);
+  CHECK(good.exit_code == 0);
+  const auto character = run_cli({"validate", write("character.yaml", "render:\n  characters: [bad.glb]\n")});
+  CHECK(character.exit_code == 2);
+  CHECK_THAT(character.err,
+             Catch::Contains("character.yaml:14:16: render.characters[0]: ") && Catch::Contains("bad.glb"));
+}
+
+TEST_CASE("validate loads the MPFB2 asset folder a spec names, as run does") {
+  // Issue 33 item 2: an asset folder without its files passed validate (it only had to be a folder); run
+  // refused it in the animation stage.
+  const auto dir = test::scratch_dir("validate-mpfb2");
+  std::filesystem::create_directories(dir / "empty");
+  std::ofstream(dir / "spec.yaml") << kValidSpec << "animation:\n  body_model: {type: mpfb2, path: empty}\n";
+  const auto r = run_cli({"validate", (dir / "spec.yaml").string()});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("spec.yaml:14:15: animation.body_model: ") &&
+                        Catch::Contains("base.obj: cannot open OBJ file"));
 }

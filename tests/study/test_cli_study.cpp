@@ -319,6 +319,13 @@ TEST_CASE("crowdlab simulate-study and power", "[study]") {
   CHECK(r.out.find("\"power\"") != std::string::npos);
   CHECK(test::run_cli({"power", spec.string(), "--stimuli", (dir / "stimuli").string(), "--contrast", "nope"})
             .exit_code == 2);
+  // Issue 33: "4.5" and "12abc" were read as 4 and 12 (std::stoi stops at the first non-digit), silently.
+  for (const std::string n : {"4.5", "12abc"}) {
+    const auto bad = test::run_cli({"-q", "power", spec.string(), "--stimuli", (dir / "stimuli").string(),
+                                    "--contrast", "method:baseline,ours", "--n", n, "--simulations", "2"});
+    CHECK(bad.exit_code == 2);
+    CHECK_THAT(bad.err, Catch::Contains("--n") && Catch::Contains("not an integer: '" + n + "'"));
+  }
 }
 
 TEST_CASE("participant test: the real window under Xvfb, driven by xdotool, killed and resumed",

@@ -1,0 +1,53 @@
+// Library exceptions become InputErrors that name the input (framework/core/library_error.hpp, issue 33
+// item 4): the standard library's filesystem errors, Boost.Math's errors and bad_alloc, raw before.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <functional>
+#include <new>
+#include <stdexcept>
+#include <system_error>
+
+#include "framework/core/error.hpp"
+#include "framework/core/library_error.hpp"
+
+using namespace crowdlab;
+
+namespace {
+
+std::string input_error_of(const std::function<void()>& work) {
+  try {
+    at_input_boundary("answers.csv", work);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
+
+}  // namespace
+
+TEST_CASE("core: a filesystem error names its paths, the operation and the reason") {
+  const std::filesystem::filesystem_error e("cannot create directories", "out/x",
+                                            std::make_error_code(std::errc::not_a_directory));
+  CHECK(describe_filesystem_error(e) == "out/x: cannot create directories: Not a directory");
+  const std::filesystem::filesystem_error two("cannot copy", "a", "b",
+                                              std::make_error_code(std::errc::permission_denied));
+  CHECK(describe_filesystem_error(two) == "a, b: cannot copy: Permission denied");
+  CHECK(input_error_of([&] { throw e; }) == "out/x: cannot create directories: Not a directory");
+}
+
+TEST_CASE("core: Boost.Math errors and bad_alloc name the input, other exceptions pass unchanged") {
+  CHECK(input_error_of([] { throw std::domain_error("Error in function boost::math::cdf: Scale is nan"); }) ==
+        "answers.csv: a statistic could not be computed from it: Error in function boost::math::cdf: "
+        "Scale is nan");
+  CHECK_THAT(input_error_of([] { throw std::overflow_error("Overflow Error"); }),
+             Catch::StartsWith("answers.csv: a statistic"));
+  // boost::math::evaluation_error is a runtime_error with Boost.Math's head.
+  CHECK_THAT(input_error_of([] { throw std::runtime_error("Error in function boost::math::x: Evaluation"); }),
+             Catch::StartsWith("answers.csv: a statistic"));
+  CHECK_THAT(input_error_of([] { throw std::bad_alloc(); }),
+             Catch::StartsWith("answers.csv: not enough memory for it"));
+  CHECK(input_error_of([] { throw InputError("x.csv:3: bad"); }) == "x.csv:3: bad");
+  CHECK_THROWS_AS(at_input_boundary("a", [] { throw std::runtime_error("other"); }), std::runtime_error);
+  CHECK_THROWS_AS(at_input_boundary("a", [] { throw std::logic_error("bug"); }), std::logic_error);
+  CHECK(at_input_boundary("a", [] { return 7; }) == 7);
+}
