@@ -6,13 +6,25 @@
 #include <cstdio>
 #include <exception>
 #include <memory>
+#include <new>
+#include <string>
 
 #include "crowdlab_version.hpp"
 #include "experiments/cli/command_table.hpp"
 #include "experiments/cli/range_message.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/library_error.hpp"
+#include "framework/core/printable_excerpt.hpp"
 #include "framework/core/progress.hpp"
+
+namespace {
+/// The arguments after the program's name, space separated, for messages that must say what was run.
+std::string command_line(int argc, char** argv) {
+  std::string line;
+  for (int i = 1; i < argc; ++i) line += (i > 1 ? " " : "") + std::string(argv[i]);
+  return line;
+}
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"crowdlab " CROWDLAB_VERSION
@@ -64,6 +76,15 @@ int main(int argc, char** argv) {
     // folder without permission): named by its path and the system's reason, as an input error (issue 33).
     std::fprintf(stderr, "crowdlab: error: %s\n", crowdlab::describe_filesystem_error(e).c_str());
     return 2;
+  } catch (const std::bad_alloc&) {
+    // Readers and stages that know their file turn an allocation failure into an error naming it
+    // (framework/core/library_error.hpp); one that reaches here is named by the command and what it
+    // was given, not by "std::bad_alloc" alone (issue 33).
+    std::fprintf(stderr,
+                 "crowdlab: error: out of memory in 'crowdlab %s': the inputs or options given ask for more "
+                 "memory than this machine has (lower the sizes, counts or durations given)\n",
+                 crowdlab::message_excerpt(command_line(argc, argv)).c_str());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "crowdlab: error: %s\n", e.what());
     return 1;

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "framework/correction/swaying_crowd_fixture.hpp"
 #include "framework/io/read_crowd_glb.hpp"
@@ -110,4 +111,26 @@ TEST_CASE("correction cli: an environment too large to sample is refused with th
   r = test::run_cli({"correct", cube.string(), "--out", (dir / "out.glb").string()});
   INFO(r.err);
   CHECK(r.exit_code == 0);
+}
+
+TEST_CASE("correction cli: running out of memory is named by the command, not by std::bad_alloc",
+          "[correction][cli]") {
+  // Under the sanitizers the address space limit below cannot be set (they reserve terabytes).
+  if (test::kSanitized) return;
+  // 3000 characters fit the character limit but not 420 MB of address space (the libraries take about
+  // 250 MB of it): the allocation fails inside the benchmark, far from any reader that knows a file.
+  const auto dir = test::scratch_dir("correction_cli_oom");
+  const std::string cmd = "ulimit -v 420000; " + test::shell_quote(test::crowdlab_exe().string()) +
+                          " -q bench correct --characters 3000 --steps 2 >/dev/null 2>" +
+                          test::shell_quote((dir / "err.txt").string());
+  const int status = std::system(("bash -c " + test::shell_quote(cmd)).c_str());
+  std::ifstream in(dir / "err.txt");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string err = text.str();
+  INFO(err);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 1);
+  CHECK_THAT(err, Catch::Contains("out of memory in 'crowdlab -q bench correct --characters 3000"));
+  CHECK_THAT(err, !Catch::Contains("std::bad_alloc"));
 }
