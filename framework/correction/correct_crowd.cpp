@@ -82,6 +82,9 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
   // the pre-roll's end), then none.
   const double limit = deepest(out, 0, frames) + kClosureDepthSlackM;
   const double d_finished = deepest(finished, first, frames), d_blended = deepest(blended, first, frames);
+  spdlog::debug(
+      "correct_crowd: loop closure depths (m): unclosed {:.4f}, corrected blend {:.4f}, blend {:.4f}",
+      limit - kClosureDepthSlackM, d_finished, d_blended);
   if (d_finished <= limit && d_finished <= d_blended) {
     out = std::move(finished);
     r.loop_closure = "corrected blend";
