@@ -4,12 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <optional>
 
-#include "framework/core/blend_poses.hpp"
+#include "framework/core/crowd_penetration_depth.hpp"
 #include "framework/core/forward_kinematics.hpp"
-#include "framework/core/penetration_depth.hpp"
+#include "framework/correction/blend_keeping_planted_feet.hpp"
 #include "framework/correction/corrector.hpp"
 
 namespace crowdlab {
@@ -27,12 +26,6 @@ bool input_loops(const CrowdAnimation& crowd) {
   return true;
 }
 
-/// 0 at k = 0 rising to 1 at k = len (raised cosine); 1 beyond.
-double raised_cosine(int k, int len) {
-  if (k >= len) return 1.0;
-  return 0.5 - 0.5 * std::cos(std::numbers::pi * k / len);
-}
-
 /// Deepest inter-body penetration (m) over frames [first, last) of a crowd.
 double deepest(const CrowdAnimation& crowd, int first, int last) {
   double depth = 0.0;
@@ -41,9 +34,7 @@ double deepest(const CrowdAnimation& crowd, int first, int last) {
     for (size_t c = 0; c < bodies.size(); ++c)
       bodies[c] =
           world_capsules(crowd.characters[c].shape, crowd.characters[c].frames[static_cast<size_t>(f)]);
-    for (size_t a = 0; a < bodies.size(); ++a)
-      for (size_t b = a + 1; b < bodies.size(); ++b)
-        depth = std::max(depth, max_penetration_depth(bodies[a], bodies[b]));
+    depth = std::max(depth, deepest_crowd_penetration(bodies));
   }
   return depth;
 }
@@ -59,39 +50,41 @@ constexpr double kClosureDepthSlackM = 0.001;
 /// (issue 28: 17-66 mm on 1 s clips, 76 mm on a 4 s concert at 6.66/m^2, where the unclosed clip has 0 and
 /// 16 mm), and so, less often, does (a); when both go deeper than the unclosed clip, the clip stays
 /// unclosed: a seam rather than a collision.
-void close_loop(const std::vector<std::vector<Pose>>& preroll_out, Corrector before_window,
-                CrowdAnimation& out, CorrectionReport& r) {
+void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>>& preroll_out,
+                Corrector before_window, const CorrectorParams& params, CrowdAnimation& out,
+                CorrectionReport& r) {
   const size_t n = out.characters.size();
   const int frames = out.frame_count(), preroll = static_cast<int>(preroll_out.front().size());
   const int first = frames - preroll;
+  // (b): the plain blend, planted feet kept where they stand (blend_keeping_planted_feet.hpp).
   CrowdAnimation blended = out, corrected = out;
+  blend_keeping_planted_feet(input, preroll_out, preroll, params, blended);
+  // (a): corrected again from the corrector's state before the window, its targets the INPUT blended
+  // into the pre-roll's output. Targets blended from the corrected clip (as before session 11) start off
+  // the input by the correction: on the window's first frame every target foot then jumped by that
+  // offset, the corrector released its holds and planted feet slid by up to 14 mm (tests/pipeline's
+  // loop_seam.yaml).
+  CrowdAnimation aims = input;
+  blend_keeping_planted_feet(input, preroll_out, preroll, params, aims);
   std::vector<Pose> targets(n);
   for (int k = 0; k < preroll; ++k) {
     const size_t f = static_cast<size_t>(first + k);
-    for (size_t c = 0; c < n; ++c) {
-      targets[c] = blend_poses(out.characters[c].frames[f], preroll_out[c][static_cast<size_t>(k)],
-                               raised_cosine(k + 1, preroll));
-      blended.characters[c].frames[f] = targets[c];
-    }
+    for (size_t c = 0; c < n; ++c) targets[c] = aims.characters[c].frames[f];
     const std::vector<Pose> stepped = before_window.step(targets);
     for (size_t c = 0; c < n; ++c) corrected.characters[c].frames[f] = stepped[c];
     if (before_window.last_stats().rejected) ++r.rejected_steps;
   }
   // (c): the corrected blend, its remaining distance to the pre-roll's output blended out over the
-  // window's second half, which closes the loop exactly.
+  // window's second half (feet kept again), which closes the loop exactly.
   CrowdAnimation finished = corrected;
-  const int tail = std::max(1, preroll / 2);
-  for (int k = preroll - tail; k < preroll; ++k) {
-    const size_t f = static_cast<size_t>(first + k);
-    const double w = raised_cosine(k - (preroll - tail) + 1, tail);
-    for (size_t c = 0; c < n; ++c)
-      finished.characters[c].frames[f] =
-          blend_poses(corrected.characters[c].frames[f], preroll_out[c][static_cast<size_t>(k)], w);
-  }
+  blend_keeping_planted_feet(input, preroll_out, std::max(1, preroll / 2), params, finished);
   // Exact closures first (the shallower of the two), then the corrected blend alone (the clip ends near
   // the pre-roll's end), then none.
   const double limit = deepest(out, 0, frames) + kClosureDepthSlackM;
   const double d_finished = deepest(finished, first, frames), d_blended = deepest(blended, first, frames);
+  spdlog::debug(
+      "correct_crowd: loop closure depths (m): unclosed {:.4f}, corrected blend {:.4f}, blend {:.4f}",
+      limit - kClosureDepthSlackM, d_finished, d_blended);
   if (d_finished <= limit && d_finished <= d_blended) {
     out = std::move(finished);
     r.loop_closure = "corrected blend";
@@ -164,7 +157,7 @@ CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams&
     if (!st.converged) ++r.unconverged_steps;
     if (progress) progress->advance();
   }
-  if (before_window) close_loop(preroll_out, *before_window, out, r);
+  if (before_window) close_loop(crowd, preroll_out, *before_window, params, out, r);
   r.contacts_mean = frames > 0 ? contacts / frames : 0.0;
   r.cg_iterations_mean = frames > 0 ? iterations / frames : 0.0;
   if (r.rejected_steps > 0)

@@ -18,7 +18,10 @@
 // alone left a 3.2x seam), so they blend into the pre-roll's output (weight rising 0 -> 1, raised
 // cosine, rotations slerped), the blend corrected again from the corrector's state before frame N - P, or
 // plainly blended, whichever penetrates less, and neither when both penetrate deeper than the unclosed
-// clip (correct_crowd.cpp, close_loop, says why). The clip so ends next to the pre-roll's end.
+// clip (correct_crowd.cpp, close_loop, says why). The clip so ends next to the pre-roll's end. Every
+// blend keeps planted feet where they stand and moves a foot only while the input lifts it
+// (blend_keeping_planted_feet.hpp): a plain blend slid standing feet, and `ours`' stance-foot drift failed
+// its check (issue 28, session 10).
 //
 // Throws InputError for an invalid crowd (validate_crowd: empty crowd, NaN/Inf poses,
 // missing/zero-length bones, unequal frame counts) or invalid params.

@@ -106,12 +106,10 @@ CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Conditio
   }
 
   r.correction.correction = spec.correction;
-  // The loop pre-roll (correct_crowd.hpp) stays off in runs. Its loop closure no longer re-opens collisions
-  // (session 10: it corrects the blend again), but it still moves planted feet in the clip's last 2 s:
-  // `reproduce gomez2024 --quick` then finds ours' stance-foot drift p99 at 14.8 and 12.2 mm at 5.55 and
-  // 6.66/m² (accepted <= 10 mm). Turn it on (2 s when protocol.loop_video) once the closure keeps
-  // held feet on their anchors.
-  r.correction.loop_preroll_s = 0.0;
+  // The loop pre-roll (correct_crowd.hpp): 2 s for clips shown looping. Its closure keeps planted feet
+  // on their anchors (blend_keeping_planted_feet.hpp); a crowd whose input does not loop (walking) gets
+  // none whatever is asked (correct_crowd.cpp, input_loops).
+  r.correction.loop_preroll_s = spec.protocol.loop_video ? kLoopPrerollS : 0.0;
   return r;
 }
 

@@ -51,15 +51,21 @@ struct AnimationRecipe {
   std::string key;                                   ///< crowd key, recorded in the crowd file
 };
 
+/// Loop pre-roll of looping clips (s): the clip's last 2 s are run before frame 0 and blended into
+/// (correct_crowd.hpp). 2 s is about two dance steps at the concert's tempi, so most feet lift inside
+/// the window and can move to the pre-roll's spots while they swing (blend_keeping_planted_feet.hpp).
+inline constexpr double kLoopPrerollS = 2.0;
+
 /// The correction stage: the collision corrector on baseline.glb (ours.glb).
 struct CorrectionRecipe {
   static constexpr std::string_view kStage = "correction";
   /// 2: issue 27's free joints; 3: barrier rows in the depenetration pass, planted feet held in height and
-  /// returning their tilt (issue 27, session 10).
-  static constexpr std::string_view kCodeVersion = "3";
+  /// returning their tilt (issue 27, session 10); 4: the loop pre-roll on for looping clips, its closure
+  /// keeping planted feet (issue 28, session 11).
+  static constexpr std::string_view kCodeVersion = "4";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
-  /// (correct_crowd.hpp; issue 28). 0 in runs for now (crowd_recipes.cpp says why).
+  /// (correct_crowd.hpp; issue 28): kLoopPrerollS when protocol.loop_video, else 0.
   double loop_preroll_s = 0.0;
 };
 

@@ -1,0 +1,32 @@
+// Looping clips of `ours` (issue 28, item 5): `run` corrects a looping crowd with the loop pre-roll, so
+// the clip's last-to-first step is no larger than 1.5x its median frame step, and the loop closure keeps
+// planted feet where they stand (stance-foot drift within `reproduce gomez2024`'s 10 mm).
+#include <catch2/catch.hpp>
+#include <filesystem>
+
+#include "framework/core/stimulus_manifest.hpp"
+#include "tests/support/run_cli.hpp"
+
+using namespace crowdlab;
+using namespace crowdlab::test;
+namespace fs = std::filesystem;
+
+TEST_CASE("ours loops without a seam and keeps its planted feet", "[pipeline][loop]") {
+  const fs::path out = scratch_dir("pipeline_loop_seam");
+  const std::string spec = (source_dir() / "tests/data/pipeline/loop_seam.yaml").string();
+  const CliResult r = run_cli({"-q", "run", spec, "--out", out.string()});
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  int seen = 0;
+  for (const StimulusEntry& e : read_manifest((out / "manifest.csv").string()).entries) {
+    if (e.factors.at("method") != "ours") continue;
+    ++seen;
+    INFO("seam step ratio " << e.check.seam_step_ratio << ", stance-foot drift p99 "
+                            << e.quality.stance_foot_drift_p99_m << " m");
+    CHECK(e.check.seam_step_ratio > 0.0);
+    CHECK(e.check.seam_step_ratio <= 1.5);
+    CHECK(e.quality.stance_foot_drift_p99_m >= 0.0);
+    CHECK(e.quality.stance_foot_drift_p99_m <= 0.010);
+  }
+  CHECK(seen == 1);
+}
