@@ -56,25 +56,46 @@ double needed_radius(const Capsule& c, const std::vector<const Vec3*>& points,
   return r;
 }
 
-/// The axis translation (perpendicular to the axis, |d| <= kMaxShift_m) that minimises the needed radius,
-/// on a 2 cm grid and then a 5 mm grid around its best point.
-Vec3 best_shift(const Capsule& c, const std::vector<const Vec3*>& points, const std::vector<double>& tol) {
+/// A bone's fitted capsule: the axis translation, the radius, and how far (m) the farthest of its
+/// points stays beyond its tolerance (0 unless the floor cap stopped the radius).
+struct BoneFit {
+  Vec3 shift = Vec3::Zero();
+  double radius_m = 0.0;
+  double miss_m = 0.0;
+};
+
+/// Capsule c moved by d, fitted to the points: the radius they need, at most the floor cap (the axis's
+/// lowest end's height above floor_y, or the unfitted radius when that is larger) when floor_y is finite.
+BoneFit fit_at(const Capsule& c, const Vec3& d, const std::vector<const Vec3*>& points,
+               const std::vector<double>& tol, double floor_y) {
+  const Capsule moved{c.a + d, c.b + d, 0.0};
+  BoneFit f{d, std::max(kMinRadius_m, needed_radius(moved, points, tol) + 1e-9), 0.0};
+  if (std::isfinite(floor_y)) {
+    const double cap = std::max(std::min(moved.a.y(), moved.b.y()) - floor_y, c.radius_m);
+    f.miss_m = std::max(0.0, f.radius_m - cap);
+    f.radius_m = std::min(f.radius_m, cap);
+  }
+  return f;
+}
+
+/// The axis translation (perpendicular to the axis, |d| <= kMaxShift_m) that first minimises the miss and
+/// then the radius, on a 2 cm grid and then a 5 mm grid around its best point.
+BoneFit best_fit(const Capsule& c, const std::vector<const Vec3*>& points, const std::vector<double>& tol,
+                 double floor_y) {
   const Vec3 dir = (c.b - c.a).norm() > 1e-9 ? Vec3((c.b - c.a).normalized()) : Vec3::UnitY();
   const Vec3 u = any_perpendicular(dir).normalized(), w = dir.cross(u).normalized();
-  Vec3 best = Vec3::Zero();
-  double best_r = needed_radius(c, points, tol);
+  BoneFit best = fit_at(c, Vec3::Zero(), points, tol, floor_y);
+  auto better = [](const BoneFit& x, const BoneFit& y) {
+    return x.miss_m < y.miss_m - 1e-9 || (x.miss_m <= y.miss_m + 1e-9 && x.radius_m < y.radius_m - 1e-9);
+  };
   for (const double step : {0.02, 0.005}) {
-    const Vec3 centre = best;
+    const Vec3 centre = best.shift;
     for (int i = -4; i <= 4; ++i)
       for (int k = -4; k <= 4; ++k) {
         const Vec3 d = centre + step * (i * u + k * w);
         if (d.norm() > kMaxShift_m || (i == 0 && k == 0)) continue;
-        const Capsule moved{c.a + d, c.b + d, 0.0};
-        const double r = needed_radius(moved, points, tol);
-        if (r < best_r - 1e-9) {
-          best_r = r;
-          best = d;
-        }
+        const BoneFit f = fit_at(c, d, points, tol, floor_y);
+        if (better(f, best)) best = f;
       }
   }
   return best;
@@ -92,6 +113,7 @@ SurfaceTolerances SurfaceTolerances::per_surface() {
   SurfaceTolerances t = uniform(0.005);
   t.tolerance_m[static_cast<size_t>(SurfaceKind::kHair)] = 0.02;
   t.sole_height_m = 0.015;
+  t.keep_above_floor = true;
   return t;
 }
 
@@ -123,25 +145,26 @@ CoverReport fit_capsules_to_mesh(BodyShape& shape, const SkinnedMesh& mesh,
     points[best].push_back(&vertices[v]);
     point_tol[best].push_back(tol[v]);
   }
+  double floor_y = kInf;  // the rest pose's lowest vertex: the capsules may not reach below it
+  if (tolerances.keep_above_floor)
+    for (const Vec3& v : vertices) floor_y = std::min(floor_y, v.y());
   WorldCapsules fitted = caps;
   for (size_t j = 0; j < kJointCount; ++j) {
     const Capsule& c = caps[j];
     // 1 nm more, so that the round-off of recomputing the distance cannot leave a vertex a hair outside.
-    double r = std::max(c.radius_m, needed_radius(c, points[j], point_tol[j]) + 1e-9);
-    Vec3 shift = Vec3::Zero();
-    if (move_axes && !points[j].empty()) {
-      shift = best_shift(c, points[j], point_tol[j]);
-      r = std::max(kMinRadius_m,
-                   needed_radius({c.a + shift, c.b + shift, 0.0}, points[j], point_tol[j]) + 1e-9);
-    }
+    // Radii only: grow, never shrink.
+    BoneFit fit = fit_at(c, Vec3::Zero(), points[j], point_tol[j], floor_y);
+    fit.radius_m = std::max(fit.radius_m, c.radius_m);
+    if (move_axes && !points[j].empty()) fit = best_fit(c, points[j], point_tol[j], floor_y);
     // The shift in bone j's frame (world_capsules applies the bone's rest rotation).
-    const Vec3 local_shift = bones[j].rotation.conjugate() * shift;
-    report.growth_m[j] = r - shape.capsules[j].radius_m;
-    report.shift_m[j] = shift.norm();
+    const Vec3 local_shift = bones[j].rotation.conjugate() * fit.shift;
+    report.growth_m[j] = fit.radius_m - shape.capsules[j].radius_m;
+    report.shift_m[j] = fit.shift.norm();
+    report.floor_miss_m[j] = fit.miss_m;
     shape.capsules[j].a += local_shift;
     shape.capsules[j].b += local_shift;
-    shape.capsules[j].radius_m = r;
-    fitted[j] = {c.a + shift, c.b + shift, r};
+    shape.capsules[j].radius_m = fit.radius_m;
+    fitted[j] = {c.a + fit.shift, c.b + fit.shift, fit.radius_m};
   }
   compute_rest_contact_pairs(shape);
   report.within_after = share_within(vertices, fitted, kReportTolerance_m);

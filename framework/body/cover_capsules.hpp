@@ -12,7 +12,8 @@
 //                 give way in a real contact, and a head capsule grown to the hair pushes heads apart);
 //                 shoe soles (shoe vertices within 15 mm of the lowest rest vertex) not bounded: they
 //                 meet the ground, never another body, and a foot capsule grown down to them stands
-//                 below the ground.
+//                 below the ground; and no capsule reaches below the floor the rest pose stands on
+//                 (a shoe wider than its foot capsule keeps its lower edge out: floor_miss_m).
 //
 // For every bounded rest-pose vertex v, the capsule it is nearest the surface of, j*(v) = argmin_j
 // (|v - axis_j| - r_j), is the one that has to take it in (the least change); then per bone j, over its
@@ -21,9 +22,11 @@
 //   with the axis moved (true):     the axis is translated by d, perpendicular to it, chosen on a
 //                                   coarse-to-fine grid (2 cm, then 5 mm steps, |d| <= 8 cm) to minimise
 //                                   r_j(d) = max(r_min, max_{v in V_j} |v - (axis_j + d)| - t_v), with
-//                                   r_min = 1 cm. One capsule per bone cannot take in a face in front of
-//                                   the head or a belly in front of the spine without growing around the
-//                                   back of the head or torso too; moving the axis toward the surface it
+//                                   r_min = 1 cm, and with keep_above_floor r_j(d) at most the axis's
+//                                   lowest end's height above the floor (the shift first minimises
+//                                   what that leaves out). One capsule per bone cannot take in a face in
+//                                   front of the head or a belly in front of the spine without growing around
+//                                   the back of the head or torso too; moving the axis toward the surface it
 //                                   must take in grows it far less (so neighbours are pushed apart less).
 // One pass (assignment to the unfitted capsules). The rest-contact pairs (self-collision exclusions) are
 // recomputed. Posed, linear-blend skinning bends the mesh at the joints where the rigid capsules do not,
@@ -41,6 +44,9 @@ namespace crowdlab {
 struct SurfaceTolerances {
   std::array<double, static_cast<size_t>(SurfaceKind::kCount)> tolerance_m{};
   double sole_height_m = -1.0;
+  /// No capsule reaches below the rest pose's lowest vertex (the floor it stands on) further than its
+  /// unfitted radius did: a shoe wider than its foot capsule then stays partly outside (floor_miss_m).
+  bool keep_above_floor = false;
   /// Every surface within tol_m (soles too).
   static SurfaceTolerances uniform(double tol_m);
   /// The per-surface choice of the header.
@@ -53,6 +59,7 @@ struct CoverReport {
   double bounded_within_after = 0.0;           ///< share of bounded vertices within their tolerance, after
   std::array<double, kJointCount> growth_m{};  ///< radius change per bone (m; negative: shrunk)
   std::array<double, kJointCount> shift_m{};   ///< axis translation per bone (m)
+  std::array<double, kJointCount> floor_miss_m{};  ///< how far a bone's farthest vertex stays out (floor cap)
 };
 
 /// Fits shape's capsules so that mesh (in the rest pose of `shape`) lies within each surface's tolerance
