@@ -113,7 +113,6 @@ SurfaceTolerances SurfaceTolerances::per_surface() {
   SurfaceTolerances t = uniform(0.005);
   t.tolerance_m[static_cast<size_t>(SurfaceKind::kHair)] = 0.02;
   t.sole_height_m = 0.015;
-  t.keep_above_floor = true;
   return t;
 }
 

@@ -12,8 +12,8 @@
 //                 give way in a real contact, and a head capsule grown to the hair pushes heads apart);
 //                 shoe soles (shoe vertices within 15 mm of the lowest rest vertex) not bounded: they
 //                 meet the ground, never another body, and a foot capsule grown down to them stands
-//                 below the ground; and no capsule reaches below the floor the rest pose stands on
-//                 (a shoe wider than its foot capsule keeps its lower edge out: floor_miss_m).
+//                 below the ground. (keep_above_floor, which also keeps every capsule above the floor
+//                 the rest pose stands on, is off: measured worse in motion, docs/correction.md.)
 //
 // For every bounded rest-pose vertex v, the capsule it is nearest the surface of, j*(v) = argmin_j
 // (|v - axis_j| - r_j), is the one that has to take it in (the least change); then per bone j, over its

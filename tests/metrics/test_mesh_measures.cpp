@@ -302,12 +302,14 @@ TEST_CASE("capsules fitted per surface bound each surface to its tolerance, abov
   const SkinnedMesh& mesh = body.mesh;
   BodyShape uniform = body.shape, fitted = body.shape, unfloored = body.shape;
   cover_mesh_with_capsules(uniform, mesh);
-  const SurfaceTolerances tol = SurfaceTolerances::per_surface();
+  // Without the floor cap (the default) every bounded vertex is taken in.
+  const CoverReport unfloored_report =
+      fit_capsules_to_mesh(unfloored, mesh, SurfaceTolerances::per_surface(), true);
+  CHECK(unfloored_report.bounded_within_after == 1.0);
+  CHECK(unfloored.capsule_volume_sum_m3() < uniform.capsule_volume_sum_m3());
+  SurfaceTolerances tol = SurfaceTolerances::per_surface();
+  tol.keep_above_floor = true;
   const CoverReport report = fit_capsules_to_mesh(fitted, mesh, tol, true);
-  // Without the floor cap every bounded vertex is taken in.
-  SurfaceTolerances no_floor = tol;
-  no_floor.keep_above_floor = false;
-  CHECK(fit_capsules_to_mesh(unfloored, mesh, no_floor, true).bounded_within_after == 1.0);
   // With it, checked here from the rest-pose mesh itself: no capsule reaches below the floor further than
   // it did unfitted, and every bounded vertex is within its surface's tolerance but for what a capped
   // bone misses (soles aside).
