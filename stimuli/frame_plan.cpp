@@ -11,6 +11,8 @@
 #include "framework/core/capsule_box.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/metrics/mesh_overlap.hpp"
+#include "framework/metrics/surfaces_inside.hpp"
 
 namespace crowdlab::stimuli {
 namespace {
@@ -99,6 +101,7 @@ void gather_overlap_candidates(const std::vector<WorldCapsules>& world, const st
     plan.own_offset[a] = static_cast<int>(plan.capsules.size() / 8);
     for (const Capsule& c : world[a]) push_capsule(c);
     plan.cap_offset[a] = static_cast<int>(plan.capsules.size() / 8);
+    if (plan.inside_offset[a] >= 0) continue;  // tested on its rendered surface instead
     for (std::size_t b = 0; b < n; ++b) {
       if (a == b || !boxes[a].overlaps(boxes[b])) continue;
       for (const Capsule& c : world[b]) {
@@ -108,6 +111,55 @@ void gather_overlap_candidates(const std::vector<WorldCapsules>& world, const st
       }
     }
   }
+}
+
+/// The level character i draws this frame (its key is plan.mesh[i]).
+const LodLevel& drawn_level(const FrameScene& scene, const FramePlan& plan, std::size_t i) {
+  for (const LodLevel& l : *scene.lod_sets[i])
+    if (l.key == plan.mesh[i]) return l;
+  return scene.lod_sets[i]->front();
+}
+
+/// Vertex v skinned by the frame's skin matrices of character i (the vertex shader's linear blend).
+Vec3 skin_drawn_vertex(const MannequinVertex& v, const FramePlan& plan, std::size_t i) {
+  const Eigen::Vector4f p(v.position[0], v.position[1], v.position[2], 1.0f);
+  Eigen::Vector4f out = Eigen::Vector4f::Zero();
+  for (int k = 0; k < 4; ++k) {
+    if (v.weights[k] == 0) continue;
+    const Eigen::Map<const Eigen::Matrix4f> m(&plan.skin_matrices[(i * kJointCount + v.bones[k]) * 16]);
+    out += (static_cast<float>(v.weights[k]) / 255.0f) * (m * p);
+  }
+  return out.head<3>().cast<double>();
+}
+
+/// Overlap mode: the inside flags of every drawn vertex of the characters that carry a rendered mesh
+/// (FramePlan::inside). Offsets are laid out first and filled in parallel: thread-count independent.
+void flag_inside_vertices(const CrowdAnimation& crowd, int frame, const FrameScene& scene, FramePlan& plan) {
+  const std::size_t n = crowd.characters.size();
+  plan.inside.clear();
+  plan.inside_offset.assign(n, -1);
+  std::vector<const LodLevel*> level(n, nullptr);
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const LodLevel& l = drawn_level(scene, plan, i);
+    if (!crowd.characters[i].mesh || !l.vertices) continue;
+    level[i] = &l;
+    plan.inside_offset[i] = static_cast<int>(total);
+    total += l.vertices->size();
+  }
+  if (total == 0) return;
+  plan.inside.assign(total, 0.0f);
+  const FrameSurfaces surfaces(crowd, frame);
+  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+    if (!level[i]) return;
+    const std::vector<MannequinVertex>& vs = *level[i]->vertices;
+    float* flags = &plan.inside[static_cast<std::size_t>(plan.inside_offset[i])];
+    for (std::size_t v = 0; v < vs.size(); ++v)
+      flags[v] =
+          surfaces.inside_depth(skin_drawn_vertex(vs[v], plan, i), static_cast<int>(i), kMaxBodyDepth_m) > 0.0
+              ? 1.0f
+              : 0.0f;
+  });
 }
 
 void cut_away_boxes(const CrowdAnimation& crowd, int frame, const Camera& camera, const FrameScene& scene,
@@ -186,11 +238,16 @@ void prepare_frame(const CrowdAnimation& crowd, int frame, const Camera& camera,
   plan.own_offset.assign(n, 0);
   plan.cap_offset.assign(n, 0);
   plan.cap_count.assign(n, 0);
-  if (options.overlap) gather_overlap_candidates(world, boxes, plan);
+  plan.inside.clear();
+  plan.inside_offset.assign(n, -1);
+  choose_levels_of_detail(crowd, frame, camera, options, scene, plan);
+  if (options.overlap) {
+    flag_inside_vertices(crowd, frame, scene, plan);
+    gather_overlap_candidates(world, boxes, plan);
+  }
   plan.lights = frame_lights(camera, scene.bounds_lo, scene.bounds_hi);
   plan.view_proj = camera.projection() * camera.view();
   cut_away_boxes(crowd, frame, camera, scene, plan);
-  choose_levels_of_detail(crowd, frame, camera, options, scene, plan);
   sort_near_to_far(crowd, frame, camera, plan);
   if (!options.characters) plan.order.clear();
   plan.contacts.clear();

@@ -14,6 +14,10 @@
 // view fitted to the clip-wide bounds (the same for every frame and both methods of a condition).
 // Cut-away: an environment box that any segment from the eye to a character's chest (root + 0.35 m)
 // passes through is not drawn (the near wall of a corridor seen from the side).
+// Overlap mode on rendered surfaces: a character with a mesh is not tested against capsules; every vertex
+// of the level drawn is skinned here (the GPU's linear blend with the same 8-bit weights) and flagged when
+// it lies inside another character's posed full mesh (metrics/surfaces_inside.hpp, at most
+// kMaxBodyDepth_m deep, as the mesh-level overlap counts). The renderer paints the flagged surface.
 // Level of detail: the coarsest level whose geometric error spans at most lod_pixels pixels at the
 // character's root distance (stimuli/level_of_detail.hpp).
 #include <array>
@@ -52,6 +56,12 @@ struct FramePlan {
   /// cap_count[i] capsules from cap_offset[i]. Empty otherwise, with zero offsets and counts.
   std::vector<float> capsules;
   std::vector<int> own_offset, cap_offset, cap_count;
+  /// Overlap mode, characters that carry a rendered mesh (CharacterAnimation::mesh): per vertex of the
+  /// level drawn, 1 when it lies inside another character's rendered surface (the mesh-level overlap's
+  /// inside test, metrics/surfaces_inside.hpp), else 0. Character i's flags start at inside_offset[i]
+  /// (-1: none; it keeps the capsule test, with no capsule candidates for the ones that have flags).
+  std::vector<float> inside;
+  std::vector<int> inside_offset;
   FrameLights lights;
   Mat4 view_proj = Mat4::Identity();
   std::vector<char> box_hidden;     ///< per environment box: 1 = cut away this frame

@@ -8,7 +8,10 @@
 // thread. The error of a level is its mannequin grid spacing (procedural bodies) or meshoptimizer's
 // deviation from the full mesh (skinned surfaces, simplify_character_mesh.hpp).
 #include <cstdint>
+#include <memory>
 #include <vector>
+
+#include "stimuli/mannequin_mesh.hpp"
 
 namespace crowdlab::stimuli {
 
@@ -16,6 +19,10 @@ struct LodLevel {
   std::uint64_t key = 0;  ///< the renderer's mesh-cache key
   double error_m = 0.0;   ///< geometric error of this level (metres)
   int index_count = 0;    ///< 3 x triangles
+  /// The level's vertices as uploaded (bind pose, bones, weights), kept on the CPU for characters that
+  /// carry a rendered mesh: overlap mode tests each drawn vertex against the other characters' surfaces
+  /// (frame_plan.hpp). Null otherwise.
+  std::shared_ptr<const std::vector<MannequinVertex>> vertices;
 };
 
 /// The coarsest level of `levels` (finest first, errors increasing) whose error is at most

@@ -218,7 +218,12 @@ void Renderer::load_crowd(const CrowdAnimation& crowd) {
     for (size_t l = 0; l < built[k].size(); ++l) {
       const std::uint64_t key = stable_hash(std::to_string(jobs[k].set_key) + "/lod" + std::to_string(l));
       g.mesh_cache.emplace(key, upload_mannequin(built[k][l].mesh));
-      levels.push_back({key, built[k][l].error_m, static_cast<int>(built[k][l].mesh.indices.size())});
+      levels.push_back(
+          {key, built[k][l].error_m, static_cast<int>(built[k][l].mesh.indices.size()), nullptr});
+      // Overlap mode flags the drawn vertices of characters with a rendered mesh on the CPU (frame_plan.hpp).
+      if (crowd.characters[jobs[k].character].mesh)
+        levels.back().vertices =
+            std::make_shared<const std::vector<MannequinVertex>>(std::move(built[k][l].mesh.vertices));
       spdlog::debug("mesh set {:016x} level {}: {} triangles, error {:.4f} m", jobs[k].set_key, l,
                     built[k][l].mesh.indices.size() / 3, built[k][l].error_m);
     }
@@ -308,12 +313,14 @@ void Renderer::draw(int frame, const Camera& camera, const SceneOptions& options
   end_stage(pass_times_.resolve_ms, true);
 }
 
-// The frame's skin matrices and overlap capsules, into the shader storage buffers 0 and 1.
+// The frame's skin matrices, overlap capsules and inside flags, into the shader storage buffers 0, 1 and 2.
 void Renderer::upload_frame(Gl& g) {
   Gl::upload(g.skin_ssbo, g.skin_capacity, g.plan.skin_matrices);
   Gl::upload(g.caps_ssbo, g.caps_capacity, g.plan.capsules);
+  Gl::upload(g.inside_ssbo, g.inside_capacity, g.plan.inside);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g.skin_ssbo);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g.caps_ssbo);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, g.inside_ssbo);
 }
 
 // The uniforms every lit program shares: camera, lights, shadow map, ground noise, background and fog.
@@ -321,8 +328,8 @@ void Renderer::set_frame_uniforms(Gl& g, const Camera& camera, const SceneOption
   const FrameLights& lights = g.plan.lights;
   glBindTextureUnit(0, g.shadow_tex);
   glBindTextureUnit(1, g.noise_tex);
-  for (GlProgram* prog :
-       {&g.ground_lit, &g.flat_lit, &character_program(g, options), &g.ground_unshadowed, &g.ground_shadow}) {
+  for (GlProgram* prog : {&g.ground_lit, &g.flat_lit, &character_program(g, options), &g.ground_unshadowed,
+                          &g.ground_shadow, &g.skinned_inside}) {
     const GLuint id = prog->id();
     set_mat4(id, prog->uniform("u_view_proj"), g.plan.view_proj);
     set_mat4(id, prog->uniform("u_light_view_proj"), lights.light_view_proj);
@@ -399,6 +406,7 @@ void Renderer::colour_pass(Gl& g, const Camera& camera, const SceneOptions& opti
   glNamedFramebufferDrawBuffers(g.msaa_fbo, options.overlap ? 2 : 1, attachments);
   if (options.overlap) glClearNamedFramebufferfv(g.msaa_fbo, GL_COLOR, 1, zero);
   draw_characters(g, options);
+  if (options.overlap) draw_inside_surfaces(g);
   const GLuint p = g.flat_lit.id();
   glUseProgram(p);
   draw_environment(g, p, g.flat_lit.uniform("u_model"), g.flat_lit.uniform("u_base_color"),
@@ -444,6 +452,29 @@ void Renderer::draw_characters(Gl& g, const SceneOptions& options) {
     triangles_ += static_cast<size_t>(m.count) / 3;
   }
   glDisable(GL_CULL_FACE);
+}
+
+// Overlap mode, characters with a rendered mesh: the part of their surface inside another character's, drawn
+// 30 cm nearer the eye over the finished characters (depth test on, no depth writes, both sides: an inside
+// surface may face away from the eye; shaders.cpp).
+void Renderer::draw_inside_surfaces(Gl& g) {
+  const FramePlan& plan = g.plan;
+  if (plan.inside.empty()) return;
+  GlProgram& program = g.skinned_inside;
+  const GLuint p = program.id();
+  glUseProgram(p);
+  glDisable(GL_CULL_FACE);
+  glDepthMask(GL_FALSE);
+  const int base_loc = program.uniform("u_skin_base"), offset_loc = program.uniform("u_inside_offset");
+  for (const size_t i : plan.order) {
+    if (plan.inside_offset[i] < 0) continue;
+    const GpuMesh& m = g.mesh_cache.at(plan.mesh[i]);
+    glProgramUniform1i(p, base_loc, static_cast<int>(i * kJointCount));
+    glProgramUniform1i(p, offset_loc, plan.inside_offset[i]);
+    glBindVertexArray(m.vao);
+    glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
+  }
+  glDepthMask(GL_TRUE);
 }
 
 // Resolves the multisampled colour attachment (and the overlap mask in overlap mode); nothing to do at

@@ -11,7 +11,8 @@
 //   2. Shadow pass: characters and environment into a depth map from the key light (orthographic,
 //      fitted to the crowd's clip-wide bounds).
 //   3. Colour pass into a 4x multisampled FBO (colour + overlap mask + depth): characters (near to far,
-//      back faces culled; the mannequin surface is closed), environment, ground. Environment boxes
+//      back faces culled; the mannequin surface is closed), in overlap mode the parts of rendered meshes
+//      that lie inside another character's (shaders.cpp), environment, ground. Environment boxes
 //      that stand between the camera and any character's chest are cut away (not drawn, no shadow),
 //      so corridor walls do not hide the crowd from side and tracking views.
 //   4. Resolve (blit) to single-sample buffers; pixels are then read back, optionally through a pair
@@ -33,7 +34,7 @@ struct GltfCharacter;
 class GlProgram;
 
 struct SceneOptions {
-  bool overlap = false;                       ///< paint fragments inside other characters red
+  bool overlap = false;  ///< paint red what lies inside other characters (rendered meshes; capsules without)
   Rgb background = {0.847f, 0.867f, 0.890f};  ///< sRGB clear colour (#d8dde3)
   double fog_density = 0.0;                   ///< EXP2 fog density (1/m); 0 = off
   int msaa_samples = 1;  ///< 1: the fast path (cached ground); 4: the quality reference (docs/stimuli.md)
@@ -119,6 +120,7 @@ class Renderer {
   void shadow_pass(Gl& g, const SceneOptions& options);
   void colour_pass(Gl& g, const Camera& camera, const SceneOptions& options);
   void draw_characters(Gl& g, const SceneOptions& options);
+  void draw_inside_surfaces(Gl& g);
   void resolve_pass(Gl& g, const SceneOptions& options);
   void fxaa_pass(Gl& g, const SceneOptions& options);
   void draw_contacts(Gl& g, const SceneOptions& options);

@@ -40,6 +40,10 @@ struct Renderer::Gl {
   GlProgram skinned_lit_overlap{glsl::specialise(glsl::kSkinnedVertex, "").c_str(),
                                 glsl::specialise(glsl::kLitFragment, "MATERIAL_CHARACTER OVERLAP").c_str(),
                                 "skinned_lit_overlap"};
+  /// Overlap mode's second character pass: only the surface flagged inside another character's (shaders.cpp).
+  GlProgram skinned_inside{glsl::specialise(glsl::kSkinnedVertex, "INSIDE_SURFACE").c_str(),
+                           glsl::specialise(glsl::kLitFragment, "MATERIAL_CHARACTER INSIDE_SURFACE").c_str(),
+                           "skinned_inside"};
   GlProgram ground_lit{glsl::kStaticVertex, glsl::specialise(glsl::kLitFragment, "MATERIAL_GROUND").c_str(),
                        "ground_lit"};
   GlProgram flat_lit{glsl::kStaticVertex, glsl::specialise(glsl::kLitFragment, "MATERIAL_FLAT").c_str(),
@@ -75,8 +79,8 @@ struct Renderer::Gl {
   GLuint noise_tex = 0;
   FrameScene scene;  ///< per crowd: what prepare_frame reads besides the poses (load_crowd)
   FramePlan plan;    ///< the frame being drawn (prepare_frame)
-  GLuint skin_ssbo = 0, caps_ssbo = 0;
-  GLsizeiptr skin_capacity = 0, caps_capacity = 0;
+  GLuint skin_ssbo = 0, caps_ssbo = 0, inside_ssbo = 0;
+  GLsizeiptr skin_capacity = 0, caps_capacity = 0, inside_capacity = 0;
   GLuint msaa_fbo = 0, msaa_color = 0, msaa_mask = 0, msaa_depth = 0;
   GLuint resolve_fbo = 0, resolve_color = 0, resolve_mask = 0;
   bool multisampled = true;  ///< false: the "msaa" targets have one sample and are read directly
@@ -97,6 +101,7 @@ struct Renderer::Gl {
   Gl() {
     glCreateBuffers(1, &skin_ssbo);
     glCreateBuffers(1, &caps_ssbo);
+    glCreateBuffers(1, &inside_ssbo);
     glCreateBuffers(1, &contact_ssbo);
     glCreateVertexArrays(1, &empty_vao);
     noise_tex = make_noise_texture();
@@ -109,6 +114,7 @@ struct Renderer::Gl {
     free_targets();
     glDeleteBuffers(1, &skin_ssbo);
     glDeleteBuffers(1, &caps_ssbo);
+    glDeleteBuffers(1, &inside_ssbo);
     glDeleteBuffers(1, &contact_ssbo);
     glDeleteVertexArrays(1, &empty_vao);
     glDeleteTextures(1, &noise_tex);

@@ -13,6 +13,12 @@
 // behind the visible surface, passes through a point inside both this character's capsules and
 // another's. The second test is needed because an interpenetration volume is enclosed by the two
 // bodies' surfaces and is never itself the visible surface.
+// Characters that carry a rendered mesh are tested on that surface instead (issue 27: what is measured
+// is what is shown): the CPU flags every drawn vertex inside another character's mesh (frame_plan.hpp),
+// and after the characters a second pass (INSIDE_SURFACE) draws only the flagged surface, moved 30 cm
+// toward the eye, with the depth test on and depth writes off. The surface of one body inside another
+// bounds their common volume, so its pixels are the pixels whose ray meets that volume; the 30 cm shift
+// keeps the capsule test's rule that it counts only within 30 cm behind the visible surface.
 // Ground shadows on a cached ground (ground_cache.cpp): with one sample per pixel the ground is lit once per
 // camera without any shadow (NO_SHADOW) and copied into each frame; the frame's shadows are then applied by
 // a multiplicative pass (MATERIAL_GROUND_SHADOW) over the ground that stays visible. Its factor is the
@@ -45,6 +51,13 @@ out vec3 v_normal;
 flat out uint v_region;
 out vec4 v_colour;
 out vec3 v_rest;
+#ifdef INSIDE_SURFACE
+// Overlap mode on rendered surfaces (frame_plan.hpp FramePlan::inside): this character's per-vertex flags.
+layout(std430, binding = 2) readonly buffer InsideFlags { float inside[]; };
+uniform int u_inside_offset;
+uniform vec3 u_eye;
+out float v_inside;
+#endif
 void main() {
   mat4 m = a_weights.x * skin[u_skin_base + int(a_bones.x)] + a_weights.y * skin[u_skin_base + int(a_bones.y)] +
            a_weights.z * skin[u_skin_base + int(a_bones.z)] + a_weights.w * skin[u_skin_base + int(a_bones.w)];
@@ -54,6 +67,12 @@ void main() {
   v_region = a_region;
   v_colour = a_colour;
   v_rest = a_position;
+#ifdef INSIDE_SURFACE
+  v_inside = inside[u_inside_offset + gl_VertexID];
+  // Drawn 30 cm nearer the eye than it is, so that it passes the depth test exactly where it lies within
+  // 30 cm behind the visible surface (the capsule test's ray-march depth, kOverlapDepth below).
+  world.xyz += normalize(u_eye - world.xyz) * 0.30;
+#endif
   gl_Position = u_view_proj * world;
 }
 )";
@@ -171,7 +190,22 @@ vec3 light(vec3 albedo, vec3 n, vec3 v, float sh, float specular) {
          vec3(nh * specular * sh);
 }
 
+#ifdef INSIDE_SURFACE
+in float v_inside;
+#endif
+
 void main() {
+#ifdef INSIDE_SURFACE
+  // The part of a character's rendered surface that lies inside another character's (interpolated flags:
+  // the red region ends halfway along an edge from a flagged to an unflagged vertex).
+  if (v_inside < 0.5) discard;
+  vec3 ni = normalize(v_normal);
+  if (!gl_FrontFacing) ni = -ni;
+  float lit = 0.45 + 0.55 * max(dot(ni, u_key_dir), 0.0) + 0.3 * max(dot(ni, u_fill_dir), 0.0);
+  o_color = vec4(sqrt(clamp(vec3(0.9, 0.02, 0.02) * lit, 0.0, 1.0)), 1.0);
+  o_overlap = 1.0;
+  return;
+#endif
 #ifdef MATERIAL_GROUND_SHADOW
   // The factor that turns the ground lit without shadows into the ground lit with this frame's shadows.
   vec3 up = vec3(0.0, 1.0, 0.0), to_eye = normalize(u_eye - v_world), base = to_linear(u_base_color);

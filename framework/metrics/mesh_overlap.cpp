@@ -1,13 +1,11 @@
 #include "framework/metrics/mesh_overlap.hpp"
 
 #include <algorithm>
-#include <memory>
 
 #include <tbb/parallel_for.h>
 
-#include "framework/core/triangle_tree.hpp"
 #include "framework/metrics/correction_quality.hpp"
-#include "framework/metrics/posed_meshes.hpp"
+#include "framework/metrics/surfaces_inside.hpp"
 
 namespace crowdlab {
 namespace {
@@ -20,37 +18,14 @@ struct FrameOverlap {
 };
 
 FrameOverlap frame_overlap(const CrowdAnimation& crowd, int f, double max_depth_m) {
-  const std::vector<PosedMesh> meshes = posed_meshes(crowd, f);
-  std::vector<std::vector<bool>> rims(meshes.size());
+  const FrameSurfaces surfaces(crowd, f);
   FrameOverlap out;
-  std::vector<std::unique_ptr<TriangleTree>> trees(meshes.size());
-  auto tree_of = [&](size_t b) -> const TriangleTree& {
-    if (!trees[b])
-      trees[b] = std::make_unique<TriangleTree>(
-          meshes[b].vertices, crowd.characters[static_cast<size_t>(meshes[b].character)].mesh->triangles);
-    return *trees[b];
-  };
-  for (size_t a = 0; a < meshes.size(); ++a) {
-    const PosedMesh& ma = meshes[a];
+  for (const PosedMesh& ma : surfaces.meshes()) {
     out.vertices += static_cast<long>(ma.vertices.size());
     std::vector<double> depth(ma.vertices.size(), 0.0);
     std::vector<int> by(ma.vertices.size(), -1);
-    for (size_t b = 0; b < meshes.size(); ++b) {
-      if (b == a || !ma.bounds.overlaps(meshes[b].bounds)) continue;
-      const Aabb& box = meshes[b].bounds;
-      for (size_t v = 0; v < ma.vertices.size(); ++v) {
-        if (!box.contains(ma.vertices[v])) continue;
-        if (rims[b].empty()) {
-          const auto& tris = crowd.characters[static_cast<size_t>(meshes[b].character)].mesh->triangles;
-          rims[b] = boundary_vertices(static_cast<int>(meshes[b].vertices.size()), tris);
-        }
-        const double s = tree_of(b).signed_distance(ma.vertices[v], meshes[b].normals, rims[b]);
-        if (s < 0.0 && -s <= max_depth_m && -s > depth[v]) {
-          depth[v] = -s;
-          by[v] = meshes[b].character;
-        }
-      }
-    }
+    for (size_t v = 0; v < ma.vertices.size(); ++v)
+      depth[v] = surfaces.inside_depth(ma.vertices[v], ma.character, max_depth_m, &by[v]);
     for (size_t v = 0; v < depth.size(); ++v) {
       if (by[v] < 0) continue;
       out.depths.push_back(depth[v]);

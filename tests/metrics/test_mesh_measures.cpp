@@ -296,3 +296,56 @@ TEST_CASE("capsules grown to a dressed MPFB2 body bound its rendered mesh in the
   CHECK(after.within_share == 1.0);
   CHECK(after.outside_max_m <= kProxyCoverageTolerance_m + 1e-12);
 }
+
+TEST_CASE("capsules fitted per surface bound each surface to its tolerance, above the floor") {
+  const Mpfb2Body& body = dressed_body();
+  const SkinnedMesh& mesh = body.mesh;
+  BodyShape uniform = body.shape, fitted = body.shape, unfloored = body.shape;
+  cover_mesh_with_capsules(uniform, mesh);
+  // Without the floor cap (the default) every bounded vertex is taken in.
+  const CoverReport unfloored_report =
+      fit_capsules_to_mesh(unfloored, mesh, SurfaceTolerances::per_surface(), true);
+  CHECK(unfloored_report.bounded_within_after == 1.0);
+  CHECK(unfloored.capsule_volume_sum_m3() < uniform.capsule_volume_sum_m3());
+  SurfaceTolerances tol = SurfaceTolerances::per_surface();
+  tol.keep_above_floor = true;
+  const CoverReport report = fit_capsules_to_mesh(fitted, mesh, tol, true);
+  // With it, checked here from the rest-pose mesh itself: no capsule reaches below the floor further than
+  // it did unfitted, and every bounded vertex is within its surface's tolerance but for what a capped
+  // bone misses (soles aside).
+  const BoneTransforms bones = forward_kinematics(fitted, Pose::rest(fitted));
+  const std::vector<Vec3> v = skin_vertices(mesh, bones);
+  const WorldCapsules caps = world_capsules(fitted, bones);
+  const WorldCapsules before = world_capsules(body.shape, bones);
+  double lowest = 1e300, max_miss = 0.0;
+  for (const Vec3& p : v) lowest = std::min(lowest, p.y());
+  const auto bottom = [](const Capsule& c) { return std::min(c.a.y(), c.b.y()) - c.radius_m; };
+  for (size_t j = 0; j < kJointCount; ++j) {
+    CAPTURE(j);
+    CHECK(bottom(caps[j]) >= std::min(lowest, bottom(before[j])) - 1e-9);
+    max_miss = std::max(max_miss, report.floor_miss_m[j]);
+  }
+  CHECK(max_miss < 0.03);  // a shoe's edge, not a body part
+  int soles = 0, bounded = 0, missed = 0;
+  for (size_t k = 0; k < v.size(); ++k) {
+    const auto kind = static_cast<SurfaceKind>(mesh.surface[k]);
+    if (kind == SurfaceKind::kShoes && v[k].y() - lowest <= tol.sole_height_m) {
+      ++soles;
+      continue;
+    }
+    ++bounded;
+    const double out = outside_capsules_m(v[k], caps), t = tol.tolerance_m[static_cast<size_t>(kind)];
+    missed += out > t + 1e-9;
+    if (out <= t + 1e-9) continue;
+    CAPTURE(k, surface_kind_name(kind), out);
+    CHECK(v[k].y() - lowest < 0.1);  // only the feet (shoes, the skin inside them) meet the floor cap
+    CHECK(out <= t + max_miss + 1e-6);
+  }
+  CHECK(soles > 0);
+  CHECK(report.bounded_within_after == Approx(1.0 - static_cast<double>(missed) / bounded).margin(1e-9));
+  // Moving the axes toward the surface they must take in: less capsule volume than growing radii alone,
+  // and the head (face in front of it) moved forward (+Z in the rest frame).
+  CHECK(fitted.capsule_volume_sum_m3() < uniform.capsule_volume_sum_m3());
+  CHECK(report.shift_m[kHead] > 0.0);
+  CHECK(fitted.capsules[kHead].a.z() > body.shape.capsules[kHead].a.z());
+}

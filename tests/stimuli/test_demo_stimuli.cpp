@@ -106,19 +106,20 @@ TEST_CASE("demo stimuli at 640x360: not blank, characters where predicted, less 
     }
     CHECK(heads >= static_cast<int>(crowd.characters.size()) / 2);
     CHECK(seen >= 0.9 * heads);
-    // Overlap mode: mean red-pixel fraction over the clip's frames.
+    // Overlap mode: mean red-pixel fraction over every other frame of the clip (overlap mode on rendered
+    // surfaces runs the mesh inside test per frame: a few seconds for 40 MPFB2 characters on 2 cores).
     options.scene.characters = true;
     options.scene.overlap = true;
     double sum = 0.0;
-    for (int f = 0; f < crowd.frame_count(); ++f) {
+    int sampled = 0;
+    for (int f = 0; f < crowd.frame_count(); f += 2, ++sampled) {
       double fraction = 0.0;
       render_frame(renderer, crowd, options, Viewpoint(*find_viewpoint(viewpoint), crowd, 640, 360).at(f), f,
                    &fraction);
       sum += fraction;
     }
     // The practice crowd (its own seed) is checked like every clip, but compared with nothing.
-    if (!e.practice)
-      red[e.factors.at("density") + "/" + viewpoint][e.factors.at("method")] = sum / crowd.frame_count();
+    if (!e.practice) red[e.factors.at("density") + "/" + viewpoint][e.factors.at("method")] = sum / sampled;
   }
   for (const auto& [scene, by_method] : red) {
     INFO(scene << ": baseline " << by_method.at("baseline") << ", ours " << by_method.at("ours"));

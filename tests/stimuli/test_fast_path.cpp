@@ -88,7 +88,8 @@ TEST_CASE(
 }
 
 TEST_CASE("select_lod picks the coarsest level within the error bound", "[stimuli][lod]") {
-  const std::vector<LodLevel> levels = {{1, 0.0, 300}, {2, 0.002, 120}, {3, 0.005, 48}, {4, 0.01, 18}};
+  const std::vector<LodLevel> levels = {
+      {1, 0.0, 300, {}}, {2, 0.002, 120, {}}, {3, 0.005, 48, {}}, {4, 0.01, 18, {}}};
   CHECK(select_lod(levels, 0.0).key == 1);
   CHECK(select_lod(levels, 0.003).key == 2);
   CHECK(select_lod(levels, 0.006).key == 3);

@@ -4,8 +4,10 @@
 #include "framework/core/capsule_box.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/metrics/mesh_overlap.hpp"
 #include "stimuli/frame_plan.hpp"
 #include "stimuli/synthetic_crowd.hpp"
+#include "tests/support/two_sphere_crowd.hpp"
 
 using namespace crowdlab;
 using namespace crowdlab::stimuli;
@@ -15,7 +17,7 @@ namespace {
 /// The scene prepare_frame reads, built as Renderer::load_crowd builds it, with one made-up level of
 /// detail set per character (two levels: 1 cm and 5 cm error).
 struct TestScene {
-  std::vector<LodLevel> levels{{11, 0.01, 3}, {22, 0.05, 3}};
+  std::vector<LodLevel> levels{{11, 0.01, 3, {}}, {22, 0.05, 3, {}}};
   FrameScene scene;
   explicit TestScene(const CrowdAnimation& crowd, int height_px = 1080) {
     for (const CharacterAnimation& c : crowd.characters) {
@@ -134,4 +136,52 @@ TEST_CASE("prepare_frame: overlap candidates are exactly the capsules of others 
   }
   CHECK(total > 0);
   CHECK(plan.capsules.size() == 8 * (world.size() * world[0].size() + static_cast<std::size_t>(total)));
+}
+
+TEST_CASE("prepare_frame: overlap mode flags the drawn vertices inside another character's rendered mesh") {
+  // Spheres of 1.2 m around pelvises 2 m apart: they overlap, the capsules do not (tests/support).
+  constexpr double kRadius = 1.2, kApart = 2.0;
+  const CrowdAnimation crowd = test::two_sphere_crowd(kApart, kRadius, 1);
+  // The level drawn is the mesh itself, as the renderer keeps it (bind pose, pelvis-skinned, weight 255).
+  auto vertices = std::make_shared<std::vector<MannequinVertex>>();
+  for (const Vec3& p : crowd.characters[0].mesh->rest_vertices_m) {
+    MannequinVertex v{};
+    v.position = {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())};
+    v.weights = {255, 0, 0, 0};
+    vertices->push_back(v);
+  }
+  TestScene t(crowd);
+  t.levels = {{11, 0.0, 3, vertices}};
+  SceneOptions options;
+  FramePlan plan;
+  prepare_frame(crowd, 0, front_camera(), options, t.scene, plan);
+  CHECK(plan.inside.empty());  // only in overlap mode
+  options.overlap = true;
+  prepare_frame(crowd, 0, front_camera(), options, t.scene, plan);
+  REQUIRE(plan.inside_offset.size() == 2);
+  REQUIRE(plan.inside.size() == 2 * vertices->size());
+  int flagged = 0, checked = 0;
+  for (int a = 0; a < 2; ++a) {
+    const Vec3 own = crowd.characters[static_cast<size_t>(a)].frames[0].root_position_m;
+    const Vec3 other = crowd.characters[static_cast<size_t>(1 - a)].frames[0].root_position_m;
+    CHECK(plan.cap_count[static_cast<size_t>(a)] == 0);  // tested on the surface, not the capsules
+    for (std::size_t v = 0; v < vertices->size(); ++v) {
+      const Vec3 p = own + (crowd.characters[0].mesh->rest_vertices_m[v] -
+                            crowd.characters[0].mesh->rest_joints_m[kPelvis]);
+      const double d = (p - other).norm() - kRadius;
+      // Within the polygon's sagitta (3 mm) of the other sphere, or of the inside test's depth bound.
+      if (std::abs(d) < 0.01 || std::abs(d + kMaxBodyDepth_m) < 0.01) continue;
+      ++checked;
+      const float f = plan.inside[static_cast<std::size_t>(plan.inside_offset[static_cast<size_t>(a)]) + v];
+      CAPTURE(a, v, d);
+      CHECK(f == (d < 0.0 && d > -kMaxBodyDepth_m ? 1.0f : 0.0f));
+      flagged += f > 0.5f;
+    }
+  }
+  CHECK(flagged > 0);
+  CHECK(checked > static_cast<int>(vertices->size()));
+  // Apart, nothing is flagged.
+  const CrowdAnimation apart = test::two_sphere_crowd(3.0, kRadius, 1);
+  prepare_frame(apart, 0, front_camera(), options, t.scene, plan);
+  for (const float f : plan.inside) CHECK(f == 0.0f);
 }

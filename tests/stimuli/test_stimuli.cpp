@@ -21,6 +21,7 @@ extern "C" {
 #include "stimuli/synthetic_crowd.hpp"
 #include "stimuli/video_encoder.hpp"
 #include "tests/support/test_paths.hpp"
+#include "tests/support/two_sphere_crowd.hpp"
 
 using namespace crowdlab;
 using namespace crowdlab::stimuli;
@@ -243,6 +244,32 @@ TEST_CASE("overlap mode: more red pixels on an interpenetrating crowd than on a 
   render_frame(shared_renderer(), overlapping, options,
                Viewpoint(ViewpointId::V2, overlapping, 320, 180).at(0), 0, &red_off);
   CHECK(red_off == 0.0);
+}
+
+TEST_CASE("overlap mode paints rendered meshes inside each other, where the capsules do not meet",
+          "[stimuli]") {
+  // Spheres of 1.2 m around pelvises 2 m apart: the rendered meshes overlap by 40 cm, the capsules are
+  // 25 cm apart, so the capsule test painted nothing here (tests/support/two_sphere_crowd.hpp).
+  RenderOptions options = small_options();
+  options.scene.overlap = true;
+  const CrowdAnimation overlapping = test::two_sphere_crowd(2.0, 1.2);
+  const CrowdAnimation apart = test::two_sphere_crowd(2.6, 1.2);
+  Camera cam;
+  cam.eye = Vec3(1.0, 1.0, -4.0);
+  cam.target = Vec3(1.0, 1.0, 0.0);
+  cam.width = options.width;
+  cam.height = options.height;
+  double red_overlapping = -1, red_apart = -1;
+  const BgrImage b = render_frame(shared_renderer(), overlapping, options, cam, 0, &red_overlapping);
+  render_frame(shared_renderer(), apart, options, cam, 0, &red_apart);
+  CHECK(red_apart == 0.0);
+  // The common lens seen from the front lies within 30 cm behind the visible surface over its middle
+  // ~0.19 m (|x - 1| < 0.095) and up to ~1.2 m tall: at 4 m (62 px/m) some 700 px, 1.2 % of the image.
+  CHECK(red_overlapping > 0.002);
+  int red_in_image = 0;
+  for (size_t p = 0; p + 2 < b.bgr.size(); p += 3)
+    red_in_image += b.bgr[p + 2] > 120 && b.bgr[p + 1] < 40 && b.bgr[p] < 40;
+  CHECK(red_in_image > 0.5 * red_overlapping * 320 * 180);
 }
 
 TEST_CASE("re-rendering gives bit-identical frames, with 1 or many TBB threads and a fresh renderer",
