@@ -24,7 +24,7 @@ namespace {
 constexpr double kContactHeightM = 0.03;   // ball within 3 cm of its lowest height
 constexpr double kContactSpeedMps = 0.35;  // ... and slower than this
 constexpr double kMinCycleS = 0.6, kMaxCycleS = 2.0;
-constexpr double kSwingLiftM = 0.06;      // peak ball lift of a planned swing
+constexpr double kSwingLiftM = 0.06;  // peak ball lift of a planned swing
 constexpr double kStandingSpeedMps = 0.05;
 
 Vec3 ground(const Vec3& p) {
