@@ -15,16 +15,13 @@
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/core/write_file.hpp"
+#include "stimuli/elapsed_ms.hpp"
 #include "stimuli/video_encoder.hpp"
 
 namespace crowdlab::stimuli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
-
 /// Writes `image` as a PNG. Encoded in memory and written with write_text_file, because cv::imwrite only
 /// answers false: a full disk must name the file and the OS's reason (issue 21).
 void write_png(const std::string& path, const cv::Mat& image) {

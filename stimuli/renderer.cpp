@@ -22,6 +22,7 @@
 #include "framework/core/seed.hpp"
 #include "stimuli/character_mesh.hpp"
 #include "stimuli/egl_context.hpp"
+#include "stimuli/elapsed_ms.hpp"
 #include "stimuli/gl_program.hpp"
 #include "stimuli/gltf_character.hpp"
 #include "stimuli/gpu_geometry.hpp"
@@ -36,10 +37,6 @@ namespace {
 // seen from afar, so a 4.5 cm mesh casts the same shadow at a fraction of the vertex work.
 constexpr double kShadowVoxelM = 0.045;
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
-
 /// Back-face culling for closed surfaces (`face` culled), none for open sheets (hair, garments).
 void set_culling(bool two_sided, GLenum face) {
   if (two_sided) {

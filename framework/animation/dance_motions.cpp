@@ -10,9 +10,7 @@ namespace {
 using anim::kPi;
 constexpr double k2Pi = 2.0 * kPi;
 
-double frac(double x) {
-  return x - std::floor(x);
-}
+using anim::frac;
 // 1 on the beat, 0 half-way between beats, smooth (a "dip" envelope).
 double on_beat(double b) {
   return 0.5 + 0.5 * std::cos(k2Pi * b);

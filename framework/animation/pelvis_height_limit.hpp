@@ -11,6 +11,9 @@
 
 namespace crowdlab::anim {
 
+/// The reach fraction both walk generators use: the knee stays a touch bent, never a locked leg.
+inline constexpr double kLegReachFraction = 0.995;
+
 /// root_height: (frames) nominal heights in, limited heights out (metres).
 /// pelvis_rotation, root_xz: (frames) the pelvis world rotation and ground position (x, ·, z).
 /// feet: per side, (frames) foot states whose ankles are the IK targets.

@@ -36,6 +36,11 @@ inline double wrap_angle(double a) {
   return a - kPi;
 }
 
+/// The fractional part of x, in [0, 1): the phase within a cycle counted in cycles.
+inline double frac(double x) {
+  return x - std::floor(x);
+}
+
 /// Hermite smoothstep on [0, 1] (zero slope at both ends); inputs outside are clamped.
 inline double smoothstep01(double x) {
   x = x < 0 ? 0 : (x > 1 ? 1 : x);

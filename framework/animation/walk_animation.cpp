@@ -33,7 +33,6 @@ namespace {
 
 constexpr double kDeg = kPi / 180.0;
 constexpr double kGravity = 9.81;
-constexpr double kReachFraction = 0.995;  // keep the knee a touch bent: never a locked leg
 
 bool in_swing(double phase) {
   const double f = phase - std::floor(phase);
@@ -70,10 +69,6 @@ std::vector<double> integrate_phase(const PaddedTrack& p, double fps, double hei
     ph += rate / fps;
   }
   return phase;
-}
-
-double frac(double x) {
-  return x - std::floor(x);
 }
 
 }  // namespace
@@ -148,7 +143,7 @@ WalkResult animate_walking(const BodyShape& shape, const AgentTrajectory& trajec
   for (size_t f = 0; f < n && !reaction.empty(); ++f)
     pelvis_rot[pad + f] =
         (pelvis_rot[pad + f] * yaw(std::clamp(reaction[f], -1.0, 1.0) * 5.0 * kDeg)).normalized();
-  limit_pelvis_height(shape, root_h, pelvis_rot, root_xz, {&feet[0], &feet[1]}, kReachFraction,
+  limit_pelvis_height(shape, root_h, pelvis_rot, root_xz, {&feet[0], &feet[1]}, kLegReachFraction,
                       std::max(1, static_cast<int>(std::lround(0.12 * fps))));
 
   // ---- poses -------------------------------------------------------------------------------------

@@ -24,13 +24,8 @@ namespace {
 constexpr double kContactHeightM = 0.03;   // ball within 3 cm of its lowest height
 constexpr double kContactSpeedMps = 0.35;  // ... and slower than this
 constexpr double kMinCycleS = 0.6, kMaxCycleS = 2.0;
-constexpr double kReachFraction = 0.995;  // as walk_animation: never a locked knee
-constexpr double kSwingLiftM = 0.06;      // peak ball lift of a planned swing
+constexpr double kSwingLiftM = 0.06;  // peak ball lift of a planned swing
 constexpr double kStandingSpeedMps = 0.05;
-
-double frac(double x) {
-  return x - std::floor(x);
-}
 
 Vec3 ground(const Vec3& p) {
   return {p.x(), 0.0, p.z()};
@@ -280,7 +275,7 @@ WalkResult animate_walking_from_clips(const BodyShape& shape, const std::vector<
     pelvis_rot[k] = poses[k].local_rotations[kPelvis];
     root_xz[k] = ground(poses[k].root_position_m);
   }
-  limit_pelvis_height(shape, root_h, pelvis_rot, root_xz, {&feet[0], &feet[1]}, kReachFraction,
+  limit_pelvis_height(shape, root_h, pelvis_rot, root_xz, {&feet[0], &feet[1]}, kLegReachFraction,
                       std::max(1, static_cast<int>(std::lround(0.12 * fps))));
   WalkResult out(n);
   for (size_t f = 0; f < n; ++f) {
