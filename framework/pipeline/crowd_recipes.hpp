@@ -55,8 +55,9 @@ struct AnimationRecipe {
 struct CorrectionRecipe {
   static constexpr std::string_view kStage = "correction";
   /// 2: issue 27's free joints; 3: barrier rows in the depenetration pass, planted feet held in height and
-  /// returning their tilt (issue 27, session 10).
-  static constexpr std::string_view kCodeVersion = "3";
+  /// returning their tilt (issue 27, session 10); 4: knees of held legs flex about their hinge when
+  /// nearly straight and turn about the shank at most at the light-joint rate (issue 27, session 11).
+  static constexpr std::string_view kCodeVersion = "4";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
   /// (correct_crowd.hpp; issue 28). 0 in runs for now (crowd_recipes.cpp says why).
