@@ -20,6 +20,8 @@
 //                      D_j(t) = slerp(D_j(t-1), I, min(1, ω h / ∠D_j(t-1))),   R_j(t) = R̂_j(t) D_j(t),
 //                  i.e. the deviation of the last output turned back toward none at ω =
 //                  free_joint_return_radps, whatever the solve gave the joint this step.
+//   knee twist     an engaged knee keeps the swing the solve gave it, its twist about the shank is
+//                  limited to the same rate (limit_twist; issue 27, session 11).
 // It runs after the projection and before the foot holds (stage_integrate), so held feet are still
 // re-planted; the bones are rebuilt from the released pose, so the next step starts from it and its
 // velocities are those of the released motion (a stronger PD pull in the limit: the free joint follows
