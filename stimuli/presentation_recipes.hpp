@@ -31,8 +31,9 @@ struct RenderRecipe {
   /// Bump when the framing rule (viewpoint.hpp, crowd_extent.hpp), the clip's making or the stimulus
   /// check in its sidecar (stimulus_check.hpp) changes. 2: cameras follow a travelling crowd, the stimulus
   /// check, dressed bodies and the clean image (issue 28). look/3: faces and hands weighted in the level-of-
-  /// detail simplifier (issue 28, session 10).
-  static constexpr std::string_view kCodeVersion = "shared-extent/2+check/1+look/3";
+  /// detail simplifier (issue 28, session 10). check/2: the check's overlap visibility (and overlap mode)
+  /// from the rendered meshes' inside test, not the capsules (issue 27, session 11).
+  static constexpr std::string_view kCodeVersion = "shared-extent/2+check/2+look/3";
   StimulusLook look;
   ViewpointId viewpoint = ViewpointId::V1;  ///< the catalogue id (framework/core/viewpoint_catalogue.hpp)
   int crf = 18;
@@ -45,7 +46,8 @@ struct RenderRecipe {
 
 struct ContactSheetRecipe {
   static constexpr std::string_view kStage = "contact_sheet";
-  static constexpr std::string_view kCodeVersion = "shared-extent/2+look/3";  ///< look/3: as RenderRecipe
+  /// look/3: as RenderRecipe; overlap/2: overlap mode from the rendered meshes (issue 27, session 11).
+  static constexpr std::string_view kCodeVersion = "shared-extent/2+look/3+overlap/2";
   StimulusLook look;
 };
 

@@ -38,8 +38,10 @@ double solve_leg_ik(const BodyShape& shape, Pose& pose, LegSide side, const Vec3
 
 /// Least-change two-bone IK: moves the ankle of a posed leg onto `ankle_target` (world, m) by the
 /// smallest edit of the existing rotations, and sets the ankle bone's world rotation to
-/// `foot_rotation`. The knee flexes or extends about its current bend axis (the thigh x shank normal;
-/// the thigh's lateral axis when the leg is straight) to give the hip-target distance, then the
+/// `foot_rotation`. The knee flexes or extends about its current bend axis (the thigh x shank normal,
+/// turned toward the knee's hinge; for a leg bent less than 10 deg a continuous blend that reaches the
+/// hinge, the thigh's lateral axis, when straight; a nearly straight knee that must shorten the leg
+/// flexes forward) to give the hip-target distance, then the
 /// whole leg swings about the hip by the shortest arc onto the target. Unlike solve_leg_ik the
 /// thigh's and shank's twists and the knee's off-hinge components are kept, so a leg already on its
 /// target is left exactly as it was. Targets out of reach are clamped onto the reachable shell as in

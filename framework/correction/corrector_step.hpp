@@ -65,6 +65,9 @@ void stage_record_deviation(const CorrectorModel& model, CorrectorState& state);
 /// params.free_joint_return_radps away from the last output's deviation. Returns whether the rate
 /// limit changed an engaged joint.
 bool release_free_joints(const CorrectorModel& model, const CorrectorState& state, int c, Pose& pose);
+/// The rotation `to` with its twist about `axis` (unit, in the frame the rotations act on from the right)
+/// relative to `from` limited to max_turn_rad: from * swing * twist, twist turned back toward none.
+Quat limit_twist(const Quat& from, const Quat& to, const Vec3& axis, double max_turn_rad);
 /// How much more (rad) each joint of character c may turn this step: what the rate limit of
 /// stage_free_joints.cpp leaves of it from the last output's deviation to `pose`'s (infinite for the joints
 /// it does not limit, 0 for free joints).

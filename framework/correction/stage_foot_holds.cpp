@@ -16,13 +16,13 @@
 //       turned feet by up to 20 deg in one frame (foot pops).
 //   hold_feet (stage_integrate)  after the projection to a pose, a held foot more than
 //       foot_hold_tolerance_m from its anchor is put back by the least-change two-bone leg IK
-//       (core/leg_ik.hpp, reach_ankle: the knee flexes about its own bend axis and the leg swings about
-//       the hip, so the solved leg's twists stay). The IK moves it horizontally only: the height stays
-//       the solve's, whose planted-foot spring pulls it to the input's height (foot_goal), so the
-//       ground can still lift a foot. For a rolling foot held at the ball only, the
-//       ankle goes where the ball anchor and the foot rotation put it. If the leg cannot reach, the
-//       pelvis is lowered first; if it moved, both held feet are re-planted. The bones are then rebuilt
-//       from that pose, so the next step starts from the held foot.
+//       (core/leg_ik.hpp, reach_ankle: the knee flexes about its own bend axis, about its hinge when
+//       the leg is nearly straight, and the leg swings about the hip, so the solved leg's twists stay). The
+//       IK moves it horizontally only: the height stays the solve's, whose planted-foot spring pulls it to
+//       the input's height (foot_goal), so the ground can still lift a foot. For a rolling foot held at the
+//       ball only, the ankle goes where the ball anchor and the foot rotation put it. If the leg cannot
+//       reach, the pelvis is lowered first; if it moved, both held feet are re-planted. The bones are then
+//       rebuilt from that pose, so the next step starts from the held foot.
 //
 // The same criterion (1 mm per frame at 30 fps, 15 cm) defines "planted" in the quality measure
 // (metrics/correction_quality.hpp), the usual foot-contact test on joint speed and height (e.g.

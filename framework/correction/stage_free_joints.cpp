@@ -20,6 +20,8 @@
 //                      D_j(t) = slerp(D_j(t-1), I, min(1, ω h / ∠D_j(t-1))),   R_j(t) = R̂_j(t) D_j(t),
 //                  i.e. the deviation of the last output turned back toward none at ω =
 //                  free_joint_return_radps, whatever the solve gave the joint this step.
+//   knee twist     an engaged knee keeps the swing the solve gave it, its twist about the shank is
+//                  limited to the same rate (limit_twist; issue 27, session 11).
 // It runs after the projection and before the foot holds (stage_integrate), so held feet are still
 // re-planted; the bones are rebuilt from the released pose, so the next step starts from it and its
 // velocities are those of the released motion (a stronger PD pull in the limit: the free joint follows
@@ -71,7 +73,36 @@ bool limited(const CorrectorModel& model, int j) {
   return model.params.rate_limit_light_joints && rate_limited_joint(j);
 }
 
+/// The knees, whose engaged twist (about the shank) is rate-limited. The twist of a shank moves no
+/// capsule of the leg (a capsule is symmetric about its axis; the held foot keeps its own rotation), so
+/// limiting it costs no separation; without the limit the solve and the pass turned knees of held legs
+/// by 10-16 deg per frame about the shank, and their ankles the other way (issue 27: the corridor's
+/// knee and ankle flips).
+int twist_limited_child(int j) {
+  switch (j) {
+    case kLeftKnee:
+      return kLeftAnkle;
+    case kRightKnee:
+      return kRightAnkle;
+    default:
+      return -1;
+  }
+}
+
 }  // namespace
+
+Quat limit_twist(const Quat& from, const Quat& to, const Vec3& axis, double max_turn_rad) {
+  const Quat change = (from.conjugate() * to).normalized();
+  const double along = change.vec().dot(axis);
+  const double norm = std::hypot(change.w(), along);
+  if (norm < 1e-12) return to;  // a half turn of swing: no twist to speak of
+  Quat twist(change.w() / norm, along * axis.x() / norm, along * axis.y() / norm, along * axis.z() / norm);
+  const double angle = twist.angularDistance(Quat::Identity());
+  if (!(angle > max_turn_rad)) return to;
+  const Quat swing = (change * twist.conjugate()).normalized();
+  twist = Quat::Identity().slerp(max_turn_rad / angle, twist);
+  return (from * swing * twist).normalized();
+}
 
 void mark_touched(CorrectorState& s, int global_bone) {
   s.touched[static_cast<size_t>(global_bone / kJointCount)] |= BoneMask{1} << (global_bone % kJointCount);
@@ -126,7 +157,18 @@ bool release_free_joints(const CorrectorModel& model, const CorrectorState& s, i
     const double angle = 2.0 * std::acos(std::min(1.0, std::abs(d_old.dot(want))));
     // Engaged trunk, shoulder and leg joints follow the solve at any rate (they carry the pushes);
     // the light distal ones are rate-limited (rate_limited_joint).
-    if (engaged && (angle <= step || !limited(model, j))) continue;
+    if (engaged && !limited(model, j)) {
+      const int child = twist_limited_child(j);
+      if (child < 0 || !model.params.rate_limit_light_joints) continue;
+      const Vec3 axis =
+          model.bodies[static_cast<size_t>(c)].shape.joint_offsets_m[static_cast<size_t>(child)].normalized();
+      const Quat d = limit_twist(d_old, want, axis, step);
+      if (std::abs(d.dot(want)) >= 1.0 - 1e-12) continue;
+      pose.local_rotations[jj] = (target.local_rotations[jj] * d).normalized();
+      changed = true;
+      continue;
+    }
+    if (engaged && angle <= step) continue;
     const Quat d = angle <= step ? want : d_old.slerp(step / angle, want);
     const Quat next = (target.local_rotations[jj] * d).normalized();
     if (std::abs(next.dot(pose.local_rotations[jj])) < 1.0 - 1e-12) changed = true;

@@ -61,8 +61,9 @@ struct CorrectionRecipe {
   static constexpr std::string_view kStage = "correction";
   /// 2: issue 27's free joints; 3: barrier rows in the depenetration pass, planted feet held in height and
   /// returning their tilt (issue 27, session 10); 4: the loop pre-roll on for looping clips, its closure
-  /// keeping planted feet (issue 28, session 11).
-  static constexpr std::string_view kCodeVersion = "4";
+  /// keeping planted feet (issue 28, session 11); 5: knees of held legs flex about their hinge when
+  /// nearly straight and turn about the shank at most at the light-joint rate (issue 27, session 11).
+  static constexpr std::string_view kCodeVersion = "5";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
   /// (correct_crowd.hpp; issue 28): kLoopPrerollS when protocol.loop_video, else 0.

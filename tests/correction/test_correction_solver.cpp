@@ -377,3 +377,40 @@ TEST_CASE("correction: a held foot keeps its heading offset and returns its tilt
   // A pure heading offset is left alone.
   CHECK(return_foot_tilt(yaw, 0.1).angularDistance(yaw) < 1e-12);
 }
+
+TEST_CASE(
+    "correction: an engaged knee turns about its shank at most at the light-joint rate, and bends freely",
+    "[correction]") {
+  // Issue 27: the solve and the depenetration pass turned the knees of held legs by 10-16 deg per frame
+  // about the shank (which moves no capsule of the leg), and the ankle the other way under the held
+  // foot: the corridor's knee and ankle flips. The twist is now limited like a light joint; the bend
+  // (what separates a contact) is kept.
+  const BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
+  const CorrectorModel model = make_corrector_model({shape}, {}, {}, 30);
+  CorrectorState s;
+  s.step_index = 5;
+  s.target = {Pose::rest(shape)};
+  s.output_deviation.assign(kJointCount, Quat::Identity());
+  s.engaged_until.assign(kJointCount, 100);  // every joint engaged (in contact)
+  const Vec3 shank = shape.joint_offsets_m[kLeftAnkle].normalized();
+  const Quat bend(Eigen::AngleAxisd(0.4, Vec3::UnitX()));
+  const Quat twist(Eigen::AngleAxisd(0.5, shank));
+  Pose pose = Pose::rest(shape);
+  pose.local_rotations[kLeftKnee] = bend * twist;
+  release_free_joints(model, s, 0, pose);
+  const Quat knee = pose.local_rotations[kLeftKnee];
+  const double step = model.params.free_joint_return_radps * model.h;
+  // The shank points where the solve bent it...
+  CHECK((knee * shank - bend * shank).norm() < 1e-9);
+  // ...and is turned about itself by at most one step's rate.
+  const Quat left_twist = bend.conjugate() * knee;
+  CHECK(left_twist.angularDistance(Quat::Identity()) == Approx(step).margin(1e-9));
+  // A pure bend is left as it is.
+  pose.local_rotations[kLeftKnee] = bend;
+  release_free_joints(model, s, 0, pose);
+  CHECK(pose.local_rotations[kLeftKnee].angularDistance(bend) < 1e-12);
+  // limit_twist itself: the twist part limited, the swing part kept.
+  const Quat limited = limit_twist(Quat::Identity(), bend * twist, shank, 0.1);
+  CHECK((limited * shank - bend * shank).norm() < 1e-9);
+  CHECK((bend.conjugate() * limited).angularDistance(Quat::Identity()) == Approx(0.1).margin(1e-9));
+}
