@@ -1,5 +1,7 @@
 #include "framework/body/mpfb2_body.hpp"
 
+#include "framework/body/tuck_under_garments.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -551,6 +553,7 @@ Mpfb2Body make_mpfb2_body(const Mpfb2Model& model, const Mpfb2ShapeParams& param
              gone[static_cast<size_t>(t[2])];
     });
     mesh.triangles.insert(mesh.triangles.end(), outfit_triangles.begin(), outfit_triangles.end());
+    tuck_under_garments(mesh);
     mesh.rest_normals = vertex_normals(mesh.rest_vertices_m, mesh.triangles);
     for (size_t i = body_vertex_count; i < mesh.rest_normals.size(); ++i)
       if (mesh.rest_normals[i].norm() < 0.5) mesh.rest_normals[i] = Vec3::UnitY();
