@@ -78,6 +78,7 @@ int tuck_layer(SkinnedMesh& mesh, SurfaceKind inner, const std::vector<SurfaceKi
 int tuck_under_garments(SkinnedMesh& mesh, double margin_m) {
   if (mesh.surface.size() != mesh.rest_vertices_m.size()) return 0;
   int moved = tuck_layer(mesh, SurfaceKind::kLowerGarment, {SurfaceKind::kUpperGarment}, margin_m);
+  moved += tuck_layer(mesh, SurfaceKind::kShoes, {SurfaceKind::kLowerGarment}, margin_m);
   moved +=
       tuck_layer(mesh, SurfaceKind::kSkin,
                  {SurfaceKind::kUpperGarment, SurfaceKind::kLowerGarment, SurfaceKind::kShoes}, margin_m);

@@ -1,7 +1,7 @@
 #pragma once
 // Skin and inner garments tucked behind the garments that cover them, so nothing under a garment shows
 // through it (issue 28: triangles of thigh skin through a pair of shorts, a trouser waistband through a
-// shirt's hem).
+// shirt's hem, a shoe's collar through a trouser leg).
 //
 // MakeHuman's `.mhclo` delete_verts remove the skin well inside a garment (body/mpfb2_outfit.hpp), but keep
 // a band of skin under every hem and wherever the asset's author kept it; there the garment lies only a few
@@ -14,7 +14,8 @@
 // the layer's triangles, so skin beside a hem is never moved), and in front of or behind it rather than
 // beside it (|d| >= half the distance, with d the offset along the vertex's outward normal). A covered
 // vertex with d < margin moves inward along its normal until d = margin. Layers, inner to outer: the
-// lower garment under the upper garment, then the skin (SurfaceKind::kSkin) under every garment and the
+// lower garment under the upper garment, the shoes under the lower garment (a trouser leg over a shoe's
+// collar), then the skin (SurfaceKind::kSkin) under every garment and the
 // shoes. The normals are the area-weighted vertex normals of the inner layer's own triangles (the skin's
 // and the garments' triangles are counter-clockwise from outside, as MakeHuman writes them).
 // The capsules are fitted before this (body/mpfb2_body.cpp): the collision bodies stay the skin's own.

@@ -183,9 +183,10 @@ TEST_CASE("hands rest slightly flexed: the fingertips hang below the knuckles in
   }
 }
 
-TEST_CASE("skin and trousers stay behind the garments that cover them, for every outfit") {
-  // Issue 28: thigh skin through shorts and a waistband through a shirt's hem, where the garment lay a few
-  // millimetres over what it covers (less than the renderer's levels of detail deviate).
+TEST_CASE("skin, trousers and shoes stay behind the garments that cover them, for every outfit") {
+  // Issue 28: thigh skin through shorts and a waistband through a shirt's hem, a shoe through a trouser leg,
+  // where the garment lay a few millimetres over what it covers (less than the renderer's levels of detail
+  // deviate).
   const auto m = model();
   const auto w = wardrobe();
   const std::vector<SurfaceKind> garments = {SurfaceKind::kUpperGarment, SurfaceKind::kLowerGarment,
@@ -210,12 +211,17 @@ TEST_CASE("skin and trousers stay behind the garments that cover them, for every
       for (const double d :
            cover_depths(b.mesh, SurfaceKind::kLowerGarment, {SurfaceKind::kUpperGarment}, normal))
         shallow_trousers += d < 0.002;
+      int shallow_shoes = 0;
+      for (const double d : cover_depths(b.mesh, SurfaceKind::kShoes, {SurfaceKind::kLowerGarment}, normal))
+        shallow_shoes += d < 0.002;
       INFO(o->name << ": " << covered << " covered skin vertices, " << outside << " through the garment, "
-                   << shallow << " within 2 mm; trousers within 2 mm of the top: " << shallow_trousers);
+                   << shallow << " within 2 mm; trousers within 2 mm of the top: " << shallow_trousers
+                   << "; shoe vertices within 2 mm of the trousers: " << shallow_shoes);
       CHECK(covered > 50);  // the rule finds the skin under the hems
       CHECK(outside == 0);
       CHECK(shallow <= covered / 100);
       CHECK(shallow_trousers == 0);
+      CHECK(shallow_shoes == 0);
     }
   }
 }
