@@ -9,7 +9,8 @@
 namespace crowdlab {
 namespace {
 
-constexpr int kTuckPasses = 4;
+constexpr int kTuckPasses = 8;
+constexpr double kTuckSettledM = 1e-4;  // a vertex this close to its depth stays
 
 bool is_one_of(std::uint8_t s, const std::vector<SurfaceKind>& kinds) {
   return std::any_of(kinds.begin(), kinds.end(),
@@ -61,14 +62,17 @@ namespace {
 /// One layer tucked under the outer ones; returns how many vertices moved.
 int tuck_layer(SkinnedMesh& mesh, SurfaceKind inner, const std::vector<SurfaceKind>& outer, double margin_m) {
   std::vector<bool> moved(mesh.rest_vertices_m.size(), false);
+  // A move turns the neighbours' normals, so what it leaves is measured again (a few passes settle it).
   for (int pass = 0; pass < kTuckPasses; ++pass) {
     std::vector<Vec3> normal;
     const std::vector<double> depth = cover_depths(mesh, inner, outer, normal);
+    bool any = false;
     for (size_t v = 0; v < depth.size(); ++v) {
-      if (!(depth[v] < margin_m)) continue;  // NaN (not covered) or deep enough
+      if (!(depth[v] < margin_m - kTuckSettledM)) continue;  // NaN (not covered) or deep enough
       mesh.rest_vertices_m[v] += (depth[v] - margin_m) * normal[v];
-      moved[v] = true;
+      moved[v] = any = true;
     }
+    if (!any) break;
   }
   return static_cast<int>(std::count(moved.begin(), moved.end(), true));
 }
