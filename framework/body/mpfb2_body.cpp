@@ -138,7 +138,8 @@ BodyLandmarks place_landmarks(const Mpfb2Model& model, const std::vector<Vec3>& 
 /// Each finger (index..pinky) bends about the knuckle line (index to pinky knuckle) by kFingerCurlDeg per
 /// joint (MCP, PIP, DIP), toward the palm (the side facing the body's midline in the A-pose), and the
 /// skin follows by linear blend skinning with the rig's finger weights; first each finger closes 60 % of its
-/// spread toward the middle finger (kFingerCloseFraction). The thumb is left as it is.
+/// spread toward the middle finger (kFingerCloseFraction). The thumb flexes toward the palm by
+/// kThumbCurlDeg per joint.
 /// Landmarks (the middle fingertip that aims the hand in to_t_pose) are not moved.
 constexpr std::array<std::array<double, 3>, 4> kFingerCurlDeg = {{{12, 20, 10},    // index
                                                                   {16, 24, 12},    // middle
@@ -146,6 +147,7 @@ constexpr std::array<std::array<double, 3>, 4> kFingerCurlDeg = {{{12, 20, 10}, 
                                                                   {24, 30, 12}}};  // pinky
 
 constexpr double kFingerCloseFraction = 0.6;
+constexpr std::array<double, 3> kThumbCurlDeg = {10, 15, 20};  // Thumb1 (CMC), Thumb2 (MCP), Thumb3 (IP)
 
 void relax_fingers(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm, const std::vector<int>& ids,
                    std::vector<Vec3>& verts) {
@@ -189,6 +191,22 @@ void relax_fingers(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm, 
         chain = chain * bend;
         transform[b.name] = chain;
       }
+    }
+    // The thumb: MakeHuman's lies nearly straight beside the palm. At rest it is flexed a little at each
+    // joint (kThumbCurlDeg: the carpometacarpal joint, then MCP and IP), across the palm: each thumb bone
+    // turns about the axis normal to it and to the palm's normal, toward the palm normal's lateral side
+    // (its tip then lies 4.1 cm from the index knuckle instead of 7.1 cm on the default body; the other
+    // side moves it 9.8 cm away, out of the hand).
+    const Vec3 palm_side = palm_normal.dot(medial) >= 0.0 ? Vec3(-palm_normal) : palm_normal;
+    Eigen::Affine3d chain = Eigen::Affine3d::Identity();
+    for (int k = 1; k <= 3; ++k) {
+      const RigBone& b = bone(model, hand + "Thumb" + std::to_string(k));
+      const Vec3 head = place(b.head, shaped_dm), tail = place(b.tail, shaped_dm);
+      const Vec3 bend_axis = (tail - head).cross(palm_side).normalized();  // turns the tail across the palm
+      const double angle = kThumbCurlDeg[static_cast<size_t>(k - 1)] * std::numbers::pi / 180.0;
+      chain = chain * (Eigen::Translation3d(head) * Eigen::AngleAxisd(angle, bend_axis) *
+                       Eigen::Translation3d(-head));
+      transform[b.name] = chain;
     }
   }
   std::vector<Vec3> moved(verts.size(), Vec3::Zero());

@@ -226,3 +226,49 @@ TEST_CASE("skin, trousers and shoes stay behind the garments that cover them, fo
     }
   }
 }
+
+namespace {
+
+/// The body vertex nearest to a rig placement on the unshaped base mesh (decimetres).
+int vertex_at(const Mpfb2Model& m, const JointPlacement& p) {
+  Vec3 c = Vec3::Zero();
+  for (int v : p.vertices) c += m.base().vertices[static_cast<size_t>(v)];
+  c = p.vertices.empty() ? Vec3(10.0 * blender_to_y_up(p.default_position_blender))
+                         : Vec3(c / static_cast<double>(p.vertices.size()));
+  int best = m.body_vertices().front();
+  for (int v : m.body_vertices())
+    if ((m.base().vertices[static_cast<size_t>(v)] - c).norm() <
+        (m.base().vertices[static_cast<size_t>(best)] - c).norm())
+      best = v;
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("the thumb rests flexed toward the palm, its tip near the index finger's knuckle") {
+  // Issue 28: MakeHuman's base mesh holds its thumb nearly straight beside the palm (bent 27 degrees
+  // between its first segment and its outer two, tip 7 cm from the index knuckle); a resting thumb is
+  // flexed at each joint, its tip near the side of the index finger.
+  const auto m = model();
+  std::vector<int> local(m->base().vertices.size(), -1);
+  for (size_t i = 0; i < m->body_vertices().size(); ++i)
+    local[static_cast<size_t>(m->body_vertices()[i])] = static_cast<int>(i);
+  const Mpfb2Body b = make_mpfb2_body(*m, Mpfb2ShapeParams{});
+  for (const char* side : {"Left", "Right"}) {
+    const auto at = [&](const std::string& bone, bool tail) {
+      const RigBone& r = m->bones().at("mixamorig:" + std::string(side) + bone);
+      const int v = local[static_cast<size_t>(vertex_at(*m, tail ? r.tail : r.head))];
+      REQUIRE(v >= 0);
+      return b.mesh.rest_vertices_m[static_cast<size_t>(v)];
+    };
+    const Vec3 first = at("HandThumb2", false) - at("HandThumb1", false);
+    const Vec3 outer = at("HandThumb3", true) - at("HandThumb2", false);
+    const double bend_deg = std::acos(first.normalized().dot(outer.normalized())) * 180.0 / M_PI;
+    const double tip_cm = (at("HandThumb3", true) - at("HandIndex1", false)).norm() * 100.0;
+    INFO(side << " thumb bent " << bend_deg << " degrees, tip " << tip_cm << " cm from the index knuckle");
+    CHECK(bend_deg > 30.0);
+    CHECK(bend_deg < 50.0);
+    CHECK(tip_cm < 5.5);
+    CHECK(tip_cm > 2.0);  // not through the palm
+  }
+}
