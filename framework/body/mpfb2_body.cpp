@@ -136,17 +136,19 @@ BodyLandmarks place_landmarks(const Mpfb2Model& model, const std::vector<Vec3>& 
 /// Step 2b: a relaxed hand. MakeHuman's base mesh holds its fingers straight and spread; a hand at rest
 /// is flexed a little at every finger joint, more toward the little finger (the hand's resting "cascade").
 /// Each finger (index..pinky) bends about the knuckle line (index to pinky knuckle) by kFingerCurlDeg per
-/// joint (MCP, PIP, DIP), toward the palm (the side facing the body's midline in the A-pose), and the
-/// skin follows by linear blend skinning with the rig's finger weights; first each finger closes 60 % of its
-/// spread toward the middle finger (kFingerCloseFraction). The thumb flexes toward the palm by
-/// kThumbCurlDeg per joint.
+/// joint (MCP, PIP, DIP), toward the palm (the side facing the body's midline in the A-pose), most at the
+/// knuckle (MCP) and least at the tip, since a finger bent mostly at its middle joints reads as a claw
+/// (issue 28), and the skin follows by linear blend skinning with the rig's finger weights; first each
+/// finger closes 75 % of its spread toward the middle finger (kFingerCloseFraction; index to little
+/// finger 23 degrees apart instead of 27 at 60 %). The thumb flexes across the palm by kThumbCurlDeg per
+/// joint.
 /// Landmarks (the middle fingertip that aims the hand in to_t_pose) are not moved.
-constexpr std::array<std::array<double, 3>, 4> kFingerCurlDeg = {{{12, 20, 10},    // index
-                                                                  {16, 24, 12},    // middle
-                                                                  {20, 28, 12},    // ring
-                                                                  {24, 30, 12}}};  // pinky
+constexpr std::array<std::array<double, 3>, 4> kFingerCurlDeg = {{{24, 16, 8},     // index
+                                                                  {28, 18, 9},     // middle
+                                                                  {32, 20, 10},    // ring
+                                                                  {36, 22, 10}}};  // pinky
 
-constexpr double kFingerCloseFraction = 0.6;
+constexpr double kFingerCloseFraction = 0.75;
 constexpr std::array<double, 3> kThumbCurlDeg = {10, 15, 20};  // Thumb1 (CMC), Thumb2 (MCP), Thumb3 (IP)
 
 void relax_fingers(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm, const std::vector<int>& ids,

@@ -1,5 +1,6 @@
 // Dressed MPFB2 bodies (body/mpfb2_outfit.hpp, body/mhclo_proxy.hpp) on the shipped assets: MakeHuman's proxy
 // fitting, eyes, hair, garments and shoes following the shaped body, and relaxed hands.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -270,5 +271,36 @@ TEST_CASE("the thumb rests flexed toward the palm, its tip near the index finger
     CHECK(bend_deg < 50.0);
     CHECK(tip_cm < 5.5);
     CHECK(tip_cm > 2.0);  // not through the palm
+  }
+}
+
+TEST_CASE("the fingers rest together and bend most at the knuckles, as a relaxed hand does") {
+  // Issue 28: raised hands showed fanned fingers hooked at their middle joints (claws). A relaxed hand's
+  // fingers lie close together and flex most at the knuckle (MCP), less at the middle (PIP) joint.
+  const auto m = model();
+  std::vector<int> local(m->base().vertices.size(), -1);
+  for (size_t i = 0; i < m->body_vertices().size(); ++i)
+    local[static_cast<size_t>(m->body_vertices()[i])] = static_cast<int>(i);
+  const Mpfb2Body b = make_mpfb2_body(*m, Mpfb2ShapeParams{});
+  const auto angle_deg = [](const Vec3& a, const Vec3& c) {
+    return std::acos(std::clamp(a.normalized().dot(c.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
+  };
+  for (const char* side : {"Left", "Right"}) {
+    const auto at = [&](const std::string& bone) {
+      const RigBone& r = m->bones().at("mixamorig:" + std::string(side) + bone);
+      const int v = local[static_cast<size_t>(vertex_at(*m, r.head))];
+      REQUIRE(v >= 0);
+      return b.mesh.rest_vertices_m[static_cast<size_t>(v)];
+    };
+    const double fan = angle_deg(at("HandIndex2") - at("HandIndex1"), at("HandPinky2") - at("HandPinky1"));
+    const Vec3 palm = at("HandMiddle1") - at("Hand");
+    const Vec3 proximal = at("HandMiddle2") - at("HandMiddle1"),
+               middle = at("HandMiddle3") - at("HandMiddle2");
+    const double mcp = angle_deg(palm, proximal), pip = angle_deg(proximal, middle);
+    INFO(side << ": index to little finger " << fan << " degrees apart; middle finger MCP " << mcp << ", PIP "
+              << pip << " degrees");
+    CHECK(fan < 25.0);  // MakeHuman's spread closed by 60 %: 27.4
+    CHECK(mcp > pip);
+    CHECK(mcp > 15.0);
   }
 }
