@@ -31,7 +31,8 @@ std::vector<Eigen::Vector3i> layer_triangles(const SkinnedMesh& mesh, const std:
 }  // namespace
 
 std::vector<double> cover_depths(const SkinnedMesh& mesh, SurfaceKind inner,
-                                 const std::vector<SurfaceKind>& outer, std::vector<Vec3>& normal) {
+                                 const std::vector<SurfaceKind>& outer, std::vector<Vec3>& normal,
+                                 double reach_m) {
   const size_t n = mesh.rest_vertices_m.size();
   std::vector<double> depth(n, std::numeric_limits<double>::quiet_NaN());
   const std::vector<Eigen::Vector3i> inner_tris = layer_triangles(mesh, {inner});
@@ -44,7 +45,7 @@ std::vector<double> cover_depths(const SkinnedMesh& mesh, SurfaceKind inner,
     if (normal[v].squaredNorm() < 0.25) continue;  // not used by the inner layer's triangles
     const Vec3& p = mesh.rest_vertices_m[v];
     const TriangleHit hit = tree.closest(p);
-    if (hit.triangle < 0 || hit.distance > kTuckReachM) continue;
+    if (hit.triangle < 0 || hit.distance > reach_m) continue;
     const Eigen::Vector3i& t = outer_tris[static_cast<size_t>(hit.triangle)];
     bool on_rim = true;
     for (int k = 0; k < 3; ++k)
@@ -60,12 +61,13 @@ std::vector<double> cover_depths(const SkinnedMesh& mesh, SurfaceKind inner,
 namespace {
 
 /// One layer tucked under the outer ones; returns how many vertices moved.
-int tuck_layer(SkinnedMesh& mesh, SurfaceKind inner, const std::vector<SurfaceKind>& outer, double margin_m) {
+int tuck_layer(SkinnedMesh& mesh, SurfaceKind inner, const std::vector<SurfaceKind>& outer, double margin_m,
+               double reach_m = kTuckReachM) {
   std::vector<bool> moved(mesh.rest_vertices_m.size(), false);
   // A move turns the neighbours' normals, so what it leaves is measured again (a few passes settle it).
   for (int pass = 0; pass < kTuckPasses; ++pass) {
     std::vector<Vec3> normal;
-    const std::vector<double> depth = cover_depths(mesh, inner, outer, normal);
+    const std::vector<double> depth = cover_depths(mesh, inner, outer, normal, reach_m);
     bool any = false;
     for (size_t v = 0; v < depth.size(); ++v) {
       if (!(depth[v] < margin_m - kTuckSettledM)) continue;  // NaN (not covered) or deep enough
@@ -86,6 +88,8 @@ int tuck_under_garments(SkinnedMesh& mesh, double margin_m) {
   moved +=
       tuck_layer(mesh, SurfaceKind::kSkin,
                  {SurfaceKind::kUpperGarment, SurfaceKind::kLowerGarment, SurfaceKind::kShoes}, margin_m);
+  // Legs swing inside a skirt: the thighs under it go deeper (see the header).
+  moved += tuck_layer(mesh, SurfaceKind::kSkin, {SurfaceKind::kLowerGarment}, kSkirtMarginM, kSkirtReachM);
   return moved;
 }
 

@@ -18,6 +18,10 @@
 // collar), then the skin (SurfaceKind::kSkin) under every garment and the
 // shoes. The normals are the area-weighted vertex normals of the inner layer's own triangles (the skin's
 // and the garments' triangles are counter-clockwise from outside, as MakeHuman writes them).
+// Under a lower garment the skin goes deeper (kSkirtMarginM, found within kSkirtReachM): a skirt hangs
+// around both legs, weighted from both, and a thigh that swings forward in a stride or a dance broke
+// through the front of it in triangles even 1 cm behind it. Trousers delete the legs' skin
+// (delete_verts), so this moves only the thighs under a skirt and the bands under the trouser hems.
 // The capsules are fitted before this (body/mpfb2_body.cpp): the collision bodies stay the skin's own.
 #include <vector>
 
@@ -26,6 +30,8 @@
 namespace crowdlab {
 
 constexpr double kTuckReachM = 0.03;    ///< how far from a garment a vertex can be covered by it
+constexpr double kSkirtReachM = 0.06;   ///< the same for skin under a lower garment (a skirt's thighs)
+constexpr double kSkirtMarginM = 0.03;  ///< depth behind a lower garment: a leg swings inside a skirt
 constexpr double kTuckMarginM = 0.010;  ///< depth behind a garment; above the LOD errors up to level 3
 
 /// Moves covered vertices of `mesh` (labelled: mesh.surface) behind their garments as above; returns how
@@ -37,6 +43,7 @@ int tuck_under_garments(SkinnedMesh& mesh, double margin_m = kTuckMarginM);
 /// `outer` when it is a vertex of `inner`'s triangles that they cover (the rule above), NaN otherwise.
 /// What tuck_under_garments moves by; exposed for tests and diagnostics.
 std::vector<double> cover_depths(const SkinnedMesh& mesh, SurfaceKind inner,
-                                 const std::vector<SurfaceKind>& outer, std::vector<Vec3>& normal);
+                                 const std::vector<SurfaceKind>& outer, std::vector<Vec3>& normal,
+                                 double reach_m = kTuckReachM);
 
 }  // namespace crowdlab
