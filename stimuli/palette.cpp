@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "framework/core/error.hpp"
+#include "stimuli/fabric_palette.hpp"
 
 namespace crowdlab::stimuli {
 namespace {
@@ -86,9 +87,8 @@ Rgb skin_tone_colour(int tone) {
 }
 
 Palette character_palette(int appearance) {
-  Palette p = palette(clothing_of(appearance));
-  if (skin_tone_of(appearance) >= 0) p.skin = skin_tone_colour(skin_tone_of(appearance));
-  return p;
+  if (skin_tone_of(appearance) >= 0) return fabric_palette(clothing_of(appearance), skin_tone_of(appearance));
+  return palette(clothing_of(appearance));
 }
 
 }  // namespace crowdlab::stimuli

@@ -32,7 +32,8 @@ const Palette& palette(int index);
 Rgb skin_tone_colour(int tone);
 
 /// A character's palette from its appearance index (CharacterAnimation::palette, core/appearance.hpp):
-/// the clothing palette, with its skin replaced by the skin tone's colour when the index carries one.
+/// the clothing palette; when the index carries a skin tone (a body model with an ethnicity: MPFB2), the
+/// colours drawn for that clothing index and tone instead (fabric_palette.hpp), skin from the tone.
 Palette character_palette(int appearance);
 
 }  // namespace crowdlab::stimuli

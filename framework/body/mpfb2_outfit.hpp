@@ -15,7 +15,8 @@
 // from the eyeball's centre lies within 24 degrees of straight ahead (+Z; a human iris spans about 12 mm
 // of a 24 mm eyeball, i.e. a half-angle near 30 degrees, drawn a little smaller so the sclera reads).
 // Base-mesh vertices an outfit or shoes cover (their delete_verts) are removed from the skin after the
-// capsules are fitted, so no skin pokes through a garment and the collision bodies stay the body's own.
+// capsules are fitted, so the collision bodies stay the body's own; what they keep under the hems is tucked
+// behind the garment (body/tuck_under_garments.hpp), so no skin pokes through a garment.
 #include <cstdint>
 #include <filesystem>
 #include <memory>

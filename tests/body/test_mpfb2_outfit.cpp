@@ -1,5 +1,6 @@
 // Dressed MPFB2 bodies (body/mpfb2_outfit.hpp, body/mhclo_proxy.hpp) on the shipped assets: MakeHuman's proxy
 // fitting, eyes, hair, garments and shoes following the shaped body, and relaxed hands.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "framework/body/mpfb2_model.hpp"
 #include "framework/body/mpfb2_outfit.hpp"
 #include "framework/body/sample_mpfb2_bodies.hpp"
+#include "framework/body/tuck_under_garments.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/mpfb2_asset_dir.hpp"
 
@@ -179,5 +181,129 @@ TEST_CASE("hands rest slightly flexed: the fingertips hang below the knuckles in
     tip_y /= n;
     INFO("side " << side << ": finger ends " << (knuckle.y() - tip_y) * 100 << " cm below the knuckles");
     CHECK(knuckle.y() - tip_y > 0.012);
+  }
+}
+
+TEST_CASE("skin, trousers and shoes stay behind the garments that cover them, for every outfit") {
+  // Issue 28: thigh skin through shorts, a waistband through a shirt's hem, a shoe through a trouser leg,
+  // where the garment lay a few millimetres over what it covers (less than the renderer's levels of detail
+  // deviate).
+  const auto m = model();
+  const auto w = wardrobe();
+  struct Layer {
+    const char* name;
+    SurfaceKind inner;
+    std::vector<SurfaceKind> outer;
+    double reach_m = kTuckReachM, shallow_m = 0.002;
+  };
+  const std::vector<Layer> layers = {
+      {"skin",
+       SurfaceKind::kSkin,
+       {SurfaceKind::kUpperGarment, SurfaceKind::kLowerGarment, SurfaceKind::kShoes}},
+      {"trousers", SurfaceKind::kLowerGarment, {SurfaceKind::kUpperGarment}},
+      {"shoes", SurfaceKind::kShoes, {SurfaceKind::kLowerGarment}},
+      // A thigh swings inside a skirt: it stays 2.5 cm behind.
+      {"skin under a lower garment", SurfaceKind::kSkin, {SurfaceKind::kLowerGarment}, kSkirtReachM, 0.025}};
+  for (const bool female : {true, false}) {
+    Mpfb2ShapeParams p;
+    p.gender = female ? 0.0 : 1.0;
+    for (const auto& o : female ? w->outfit_female : w->outfit_male) {
+      Mpfb2Outfit outfit;
+      outfit.outfit = o.get();
+      outfit.shoes = w->shoes.front().get();
+      const Mpfb2Body b = make_mpfb2_body(*m, p, &outfit);
+      for (const Layer& layer : layers) {
+        std::vector<Vec3> normal;
+        int covered = 0, outside = 0, shallow = 0;
+        for (const double d : cover_depths(b.mesh, layer.inner, layer.outer, normal, layer.reach_m)) {
+          if (std::isnan(d)) continue;
+          ++covered;
+          outside += d < 0.0;
+          shallow += d < layer.shallow_m;
+        }
+        INFO(o->name << ", " << layer.name << ": " << covered << " covered vertices, " << outside
+                     << " through the garment, " << shallow << " within " << layer.shallow_m * 1000 << " mm");
+        if (layer.outer.size() == 3) CHECK(covered > 50);  // the rule finds the skin under the hems
+        CHECK(outside == 0);
+        CHECK(shallow <= covered / 100);
+      }
+    }
+  }
+}
+
+namespace {
+
+/// The body vertex nearest to a rig placement on the unshaped base mesh (decimetres).
+int vertex_at(const Mpfb2Model& m, const JointPlacement& p) {
+  Vec3 c = Vec3::Zero();
+  for (int v : p.vertices) c += m.base().vertices[static_cast<size_t>(v)];
+  c = p.vertices.empty() ? Vec3(10.0 * blender_to_y_up(p.default_position_blender))
+                         : Vec3(c / static_cast<double>(p.vertices.size()));
+  int best = m.body_vertices().front();
+  for (int v : m.body_vertices())
+    if ((m.base().vertices[static_cast<size_t>(v)] - c).norm() <
+        (m.base().vertices[static_cast<size_t>(best)] - c).norm())
+      best = v;
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("the thumb rests flexed toward the palm, its tip near the index finger's knuckle") {
+  // Issue 28: MakeHuman's base mesh holds its thumb nearly straight beside the palm (bent 27 degrees
+  // between its first segment and its outer two, tip 7 cm from the index knuckle); a resting thumb is
+  // flexed at each joint, its tip near the side of the index finger.
+  const auto m = model();
+  std::vector<int> local(m->base().vertices.size(), -1);
+  for (size_t i = 0; i < m->body_vertices().size(); ++i)
+    local[static_cast<size_t>(m->body_vertices()[i])] = static_cast<int>(i);
+  const Mpfb2Body b = make_mpfb2_body(*m, Mpfb2ShapeParams{});
+  for (const char* side : {"Left", "Right"}) {
+    const auto at = [&](const std::string& bone, bool tail) {
+      const RigBone& r = m->bones().at("mixamorig:" + std::string(side) + bone);
+      const int v = local[static_cast<size_t>(vertex_at(*m, tail ? r.tail : r.head))];
+      REQUIRE(v >= 0);
+      return b.mesh.rest_vertices_m[static_cast<size_t>(v)];
+    };
+    const Vec3 first = at("HandThumb2", false) - at("HandThumb1", false);
+    const Vec3 outer = at("HandThumb3", true) - at("HandThumb2", false);
+    const double bend_deg = std::acos(first.normalized().dot(outer.normalized())) * 180.0 / M_PI;
+    const double tip_cm = (at("HandThumb3", true) - at("HandIndex1", false)).norm() * 100.0;
+    INFO(side << " thumb bent " << bend_deg << " degrees, tip " << tip_cm << " cm from the index knuckle");
+    CHECK(bend_deg > 30.0);
+    CHECK(bend_deg < 50.0);
+    CHECK(tip_cm < 5.5);
+    CHECK(tip_cm > 2.0);  // not through the palm
+  }
+}
+
+TEST_CASE("the fingers rest together and bend most at the knuckles, as a relaxed hand does") {
+  // Issue 28: raised hands showed fanned fingers hooked at their middle joints (claws). A relaxed hand's
+  // fingers lie close together and flex most at the knuckle (MCP), less at the middle (PIP) joint.
+  const auto m = model();
+  std::vector<int> local(m->base().vertices.size(), -1);
+  for (size_t i = 0; i < m->body_vertices().size(); ++i)
+    local[static_cast<size_t>(m->body_vertices()[i])] = static_cast<int>(i);
+  const Mpfb2Body b = make_mpfb2_body(*m, Mpfb2ShapeParams{});
+  const auto angle_deg = [](const Vec3& a, const Vec3& c) {
+    return std::acos(std::clamp(a.normalized().dot(c.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
+  };
+  for (const char* side : {"Left", "Right"}) {
+    const auto at = [&](const std::string& bone) {
+      const RigBone& r = m->bones().at("mixamorig:" + std::string(side) + bone);
+      const int v = local[static_cast<size_t>(vertex_at(*m, r.head))];
+      REQUIRE(v >= 0);
+      return b.mesh.rest_vertices_m[static_cast<size_t>(v)];
+    };
+    const double fan = angle_deg(at("HandIndex2") - at("HandIndex1"), at("HandPinky2") - at("HandPinky1"));
+    const Vec3 palm = at("HandMiddle1") - at("Hand");
+    const Vec3 proximal = at("HandMiddle2") - at("HandMiddle1"),
+               middle = at("HandMiddle3") - at("HandMiddle2");
+    const double mcp = angle_deg(palm, proximal), pip = angle_deg(proximal, middle);
+    INFO(side << ": index to little finger " << fan << " degrees apart; middle finger MCP " << mcp << ", PIP "
+              << pip << " degrees");
+    CHECK(fan < 25.0);  // MakeHuman's spread closed by 60 %: 27.4
+    CHECK(mcp > pip);
+    CHECK(mcp > 15.0);
   }
 }
