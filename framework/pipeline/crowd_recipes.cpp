@@ -108,8 +108,10 @@ CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Conditio
   r.correction.correction = spec.correction;
   // The loop pre-roll (correct_crowd.hpp): 2 s for clips shown looping. Its closure keeps planted feet
   // on their anchors (blend_keeping_planted_feet.hpp); a crowd whose input does not loop (walking) gets
-  // none whatever is asked (correct_crowd.cpp, input_loops).
-  r.correction.loop_preroll_s = spec.protocol.loop_video ? kLoopPrerollS : 0.0;
+  // none whatever is asked (correct_crowd.cpp, input_loops). Clips shorter than twice the pre-roll stay
+  // open: the closing blend would span most of the clip (crowd_recipes.hpp).
+  const bool closable = spec.duration_s >= kLoopPrerollMinClipS;
+  r.correction.loop_preroll_s = spec.protocol.loop_video && closable ? kLoopPrerollS : 0.0;
   return r;
 }
 

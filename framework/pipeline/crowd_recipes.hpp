@@ -55,18 +55,24 @@ struct AnimationRecipe {
 /// (correct_crowd.hpp). 2 s is about two dance steps at the concert's tempi, so most feet lift inside
 /// the window and can move to the pre-roll's spots while they swing (blend_keeping_planted_feet.hpp).
 inline constexpr double kLoopPrerollS = 2.0;
+/// Shortest looping clip that gets the pre-roll (s): twice the pre-roll. On a shorter clip the closing
+/// blend spans half the clip or more and rewrites it toward a second correction of itself, which edits
+/// limbs that touch nobody: on `reproduce gomez2024 --quick`'s 1 s clips a free wrist ended 6.9 deg off
+/// its input at 5.55/m^2 (issue 27's limit: 5). Such clips stay open (issue 28: or not looped).
+inline constexpr double kLoopPrerollMinClipS = 2.0 * kLoopPrerollS;
 
 /// The correction stage: the collision corrector on baseline.glb (ours.glb).
 struct CorrectionRecipe {
   static constexpr std::string_view kStage = "correction";
   /// 2: issue 27's free joints; 3: barrier rows in the depenetration pass, planted feet held in height and
   /// returning their tilt (issue 27, session 10); 4: the loop pre-roll on for looping clips, its closure
-  /// keeping planted feet (issue 28, session 11); 5: knees of held legs flex about their hinge when
+  /// keeping planted feet (issue 28, session 11; clips of at least 4 s); 5: knees of held legs flex about their hinge when
   /// nearly straight and turn about the shank at most at the light-joint rate (issue 27, session 11).
   static constexpr std::string_view kCodeVersion = "5";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
-  /// (correct_crowd.hpp; issue 28): kLoopPrerollS when protocol.loop_video, else 0.
+  /// (correct_crowd.hpp; issue 28): kLoopPrerollS when protocol.loop_video and the clip lasts at least
+  /// kLoopPrerollMinClipS, else 0.
   double loop_preroll_s = 0.0;
 };
 
