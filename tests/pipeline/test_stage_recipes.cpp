@@ -244,3 +244,21 @@ TEST_CASE("stage recipes: a crowd recipe holds only the values its scenario kind
     }
   }
 }
+
+TEST_CASE(
+    "stage recipes: a looping clip gets the loop pre-roll only when it lasts at least twice the pre-roll",
+    "[pipeline][loop]") {
+  ExperimentSpec spec = load_experiment_spec((source_dir() / "tests/data/pipeline/loop_seam.yaml").string());
+  REQUIRE(spec.protocol.loop_video);
+  auto preroll = [&] {
+    return crowd_group_recipes(spec, enumerate_conditions(spec).front()).correction.loop_preroll_s;
+  };
+  spec.duration_s = kLoopPrerollMinClipS;
+  CHECK(preroll() == kLoopPrerollS);
+  // A shorter clip stays open: the closing blend would span most of it and edit limbs that touch nobody.
+  spec.duration_s = 1.0;
+  CHECK(preroll() == 0.0);
+  spec.duration_s = kLoopPrerollMinClipS;
+  spec.protocol.loop_video = false;
+  CHECK(preroll() == 0.0);
+}
