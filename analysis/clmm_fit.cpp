@@ -222,7 +222,7 @@ std::vector<double> to_natural(const Data& d, const double* v) {
   return out;
 }
 
-double objective(unsigned, const double* v, double*, void* data) {
+double clmm_objective(unsigned, const double* v, double*, void* data) {
   const auto& d = *static_cast<const Data*>(data);
   const auto natural = to_natural(d, v);
   const double ll = laplace_loglik(d, unpack_natural(d, natural.data()));
@@ -458,12 +458,12 @@ ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std
   // BOBYQA to a relative change of 1e-10, then Newton steps on the finite-difference gradient and
   // Hessian (which the SEs need anyway): they land closer to the optimum than BOBYQA's last digits
   // (docs/analysis.md). Where Newton cannot (a flat direction), BOBYQA goes on to 1e-15 from there.
-  NloptOutcome opt = minimise_derivative_free(v, {}, objective, const_cast<Data*>(&d), 200000, 1e-10);
+  NloptOutcome opt = minimise_derivative_free(v, {}, clmm_objective, const_cast<Data*>(&d), 200000, 1e-10);
   std::vector<double> natural = to_natural(d, v.data());
   Eigen::MatrixXd info = information(d, natural);
   if (!newton_polish(d, natural, info)) {
     v = from_natural(d, natural);
-    opt = minimise_derivative_free(v, {}, objective, const_cast<Data*>(&d), 200000);
+    opt = minimise_derivative_free(v, {}, clmm_objective, const_cast<Data*>(&d), 200000);
     natural = to_natural(d, v.data());
     info = information(d, natural);
   }

@@ -120,7 +120,7 @@ SatterthwaiteResult fixed_effect_df(const Problem& pr, const std::vector<double>
                           [&](const std::vector<double>& v) { return vcov_at(pr, v); }, varpar, scale);
 }
 
-double objective(unsigned, const double* theta, double*, void* data) {
+double lmm_objective(unsigned, const double* theta, double*, void* data) {
   auto& pr = *static_cast<Problem*>(data);
   ++pr.evaluations;
   return profile(pr, theta).deviance;
@@ -243,7 +243,7 @@ LmmResult fit_lmm(const CsvTable& table, const std::string& formula, bool reml, 
     theta[k] = pr.diagonal[k] ? 1.0 : 0.0;  // lme4's start: identity factors
     lower[k] = pr.diagonal[k] ? 0.0 : -HUGE_VAL;
   }
-  const NloptOutcome opt = minimise_derivative_free(theta, lower, objective, &pr, 100000);
+  const NloptOutcome opt = minimise_derivative_free(theta, lower, lmm_objective, &pr, 100000);
   LmmResult out;
   out.reml = reml;
   out.observations = static_cast<size_t>(pr.n);

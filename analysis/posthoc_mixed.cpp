@@ -131,23 +131,23 @@ Eigen::MatrixXd cell_weights(const WithinDesign& design, const MixedEffect& effe
   return (group_w / group_w.sum()) * (cell_w / cell_w.sum()).transpose();
 }
 
-struct Stratum {
+struct MixedStratum {
   Eigen::MatrixXd contrasts;  ///< cells x d, orthonormal
   double ms_error = 0, df = 0;
 };
 
 // The univariate model's strata: the subjects (the between effects' error) and each within effect.
-std::vector<Stratum> mixed_strata(const WithinDesign& design) {
-  std::map<std::vector<size_t>, Stratum> by_within;
+std::vector<MixedStratum> mixed_strata(const WithinDesign& design) {
+  std::map<std::vector<size_t>, MixedStratum> by_within;
   for (const auto& e : rm_anova(design).effects)
     if (!by_within.count(e.factors))
       by_within[e.factors] = {effect_contrasts(design, e.factors), e.ms_error, e.df2};
-  std::vector<Stratum> out;
+  std::vector<MixedStratum> out;
   for (auto& [factors, s] : by_within) out.push_back(std::move(s));
   return out;
 }
 
-std::pair<double, double> contrast_error(const Groups& g, const std::vector<Stratum>& strata,
+std::pair<double, double> contrast_error(const Groups& g, const std::vector<MixedStratum>& strata,
                                          const Eigen::MatrixXd& c, PosthocError error) {
   if (error == PosthocError::separate) {
     double var = 0;
@@ -222,8 +222,8 @@ PosthocResult posthoc_mixed(const WithinDesign& design, const MixedEffect& effec
     return d;
   };
   const Groups g = build_groups(design);
-  const std::vector<Stratum> strata =
-      error == PosthocError::pooled ? mixed_strata(design) : std::vector<Stratum>{};
+  const std::vector<MixedStratum> strata =
+      error == PosthocError::pooled ? mixed_strata(design) : std::vector<MixedStratum>{};
   std::vector<Eigen::MatrixXd> weights;
   PosthocResult res;
   res.effect = name;

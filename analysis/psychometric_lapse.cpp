@@ -23,7 +23,7 @@ struct LapseProblem {
 
 // Negative log-likelihood of (a, b, lambda) with p = lambda + (1 - 2 lambda) F(a + b z), and its
 // gradient (NLopt's objective signature).
-double objective(unsigned n, const double* theta, double* grad, void* data) {
+double lapse_objective(unsigned n, const double* theta, double* grad, void* data) {
   auto& prob = *static_cast<LapseProblem*>(data);
   ++prob.evaluations;
   const double a = theta[0], b = theta[1], lambda = theta[2];
@@ -58,7 +58,7 @@ Optimum minimise(LapseProblem& prob, const std::array<double, 3>& start) {
   const double upper[3] = {HUGE_VAL, kMaxStandardSlope, kMaxLapse};
   nlopt_set_lower_bounds(opt, lower);
   nlopt_set_upper_bounds(opt, upper);
-  nlopt_set_min_objective(opt, objective, &prob);
+  nlopt_set_min_objective(opt, lapse_objective, &prob);
   // Tight tolerances: the estimates are compared with R's nlminb to 1e-6 (tests/analysis/).
   nlopt_set_ftol_rel(opt, 1e-15);
   nlopt_set_xtol_rel(opt, 1e-12);
