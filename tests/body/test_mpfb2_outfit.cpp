@@ -45,6 +45,23 @@ std::map<SurfaceKind, int> label_counts(const SkinnedMesh& mesh) {
   return count;
 }
 
+/// Calls visit(outfit, body) for every shipped outfit of both sexes, worn with the first pair of shoes on
+/// the default body of its sex.
+template <typename Visit>
+void for_every_outfit(Visit visit) {
+  const auto w = wardrobe();
+  for (const bool female : {true, false}) {
+    Mpfb2ShapeParams p;
+    p.gender = female ? 0.0 : 1.0;
+    for (const auto& o : female ? w->outfit_female : w->outfit_male) {
+      Mpfb2Outfit outfit;
+      outfit.outfit = o.get();
+      outfit.shoes = w->shoes.front().get();
+      visit(*o, make_mpfb2_body(*model(), p, &outfit));
+    }
+  }
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -189,8 +206,6 @@ TEST_CASE("skin, trousers and shoes stay behind the garments that cover them, fo
   // Issue 28: thigh skin through shorts, a waistband through a shirt's hem, a shoe through a trouser leg,
   // where the garment lay a few millimetres over what it covers (less than the renderer's levels of detail
   // deviate).
-  const auto m = model();
-  const auto w = wardrobe();
   struct Layer {
     const char* name;
     SurfaceKind inner;
@@ -205,31 +220,23 @@ TEST_CASE("skin, trousers and shoes stay behind the garments that cover them, fo
       {"shoes", SurfaceKind::kShoes, {SurfaceKind::kLowerGarment}},
       // A thigh swings inside a skirt: it stays 2.5 cm behind.
       {"skin under a lower garment", SurfaceKind::kSkin, {SurfaceKind::kLowerGarment}, kSkirtReachM, 0.025}};
-  for (const bool female : {true, false}) {
-    Mpfb2ShapeParams p;
-    p.gender = female ? 0.0 : 1.0;
-    for (const auto& o : female ? w->outfit_female : w->outfit_male) {
-      Mpfb2Outfit outfit;
-      outfit.outfit = o.get();
-      outfit.shoes = w->shoes.front().get();
-      const Mpfb2Body b = make_mpfb2_body(*m, p, &outfit);
-      for (const Layer& layer : layers) {
-        std::vector<Vec3> normal;
-        int covered = 0, outside = 0, shallow = 0;
-        for (const double d : cover_depths(b.mesh, layer.inner, layer.outer, normal, layer.reach_m)) {
-          if (std::isnan(d)) continue;
-          ++covered;
-          outside += d < 0.0;
-          shallow += d < layer.shallow_m;
-        }
-        INFO(o->name << ", " << layer.name << ": " << covered << " covered vertices, " << outside
-                     << " through the garment, " << shallow << " within " << layer.shallow_m * 1000 << " mm");
-        if (layer.outer.size() == 3) CHECK(covered > 50);  // the rule finds the skin under the hems
-        CHECK(outside == 0);
-        CHECK(shallow <= covered / 100);
+  for_every_outfit([&](const auto& o, const Mpfb2Body& b) {
+    for (const Layer& layer : layers) {
+      std::vector<Vec3> normal;
+      int covered = 0, outside = 0, shallow = 0;
+      for (const double d : cover_depths(b.mesh, layer.inner, layer.outer, normal, layer.reach_m)) {
+        if (std::isnan(d)) continue;
+        ++covered;
+        outside += d < 0.0;
+        shallow += d < layer.shallow_m;
       }
+      INFO(o.name << ", " << layer.name << ": " << covered << " covered vertices, " << outside
+                  << " through the garment, " << shallow << " within " << layer.shallow_m * 1000 << " mm");
+      if (layer.outer.size() == 3) CHECK(covered > 50);  // the rule finds the skin under the hems
+      CHECK(outside == 0);
+      CHECK(shallow <= covered / 100);
     }
-  }
+  });
 }
 
 namespace {
@@ -354,32 +361,21 @@ TEST_CASE("skin under a garment's hem lies a few millimetres behind it, for ever
   // Issue 28 (session 11's close-ups): necklines showed notches of skin where the body bends. The skin
   // straight under a hem was never tucked (its closest garment point is on the rim), so it lay within a
   // millimetre or two of the garment and came through it when posed or simplified.
-  const auto m = model();
-  const auto w = wardrobe();
-  for (const bool female : {true, false}) {
-    Mpfb2ShapeParams p;
-    p.gender = female ? 0.0 : 1.0;
-    for (const auto& o : female ? w->outfit_female : w->outfit_male) {
-      Mpfb2Outfit outfit;
-      outfit.outfit = o.get();
-      outfit.shoes = w->shoes.front().get();
-      const Mpfb2Body b = make_mpfb2_body(*m, p, &outfit);
-      std::vector<Vec3> normal;
-      int under = 0, shallow = 0;
-      double shallowest_mm = HUGE_VAL;
-      for (const double d :
-           cover_depths(b.mesh, SurfaceKind::kSkin,
-                        {SurfaceKind::kUpperGarment, SurfaceKind::kLowerGarment, SurfaceKind::kShoes}, normal,
-                        kTuckReachM, true)) {
-        if (std::isnan(d)) continue;
-        ++under;
-        shallow += d < kHemMarginM - 0.0005;
-        shallowest_mm = std::min(shallowest_mm, d * 1000.0);
-      }
-      INFO(o->name << ": " << under << " skin vertices under a hem, " << shallow << " less than "
-                   << (kHemMarginM - 0.0005) * 1000 << " mm behind it (shallowest " << shallowest_mm
-                   << " mm)");
-      CHECK(shallow == 0);
+  for_every_outfit([&](const auto& o, const Mpfb2Body& b) {
+    std::vector<Vec3> normal;
+    int under = 0, shallow = 0;
+    double shallowest_mm = HUGE_VAL;
+    for (const double d :
+         cover_depths(b.mesh, SurfaceKind::kSkin,
+                      {SurfaceKind::kUpperGarment, SurfaceKind::kLowerGarment, SurfaceKind::kShoes}, normal,
+                      kTuckReachM, true)) {
+      if (std::isnan(d)) continue;
+      ++under;
+      shallow += d < kHemMarginM - 0.0005;
+      shallowest_mm = std::min(shallowest_mm, d * 1000.0);
     }
-  }
+    INFO(o.name << ": " << under << " skin vertices under a hem, " << shallow << " less than "
+                << (kHemMarginM - 0.0005) * 1000 << " mm behind it (shallowest " << shallowest_mm << " mm)");
+    CHECK(shallow == 0);
+  });
 }
