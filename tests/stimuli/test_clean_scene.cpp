@@ -75,15 +75,19 @@ double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
 }
 
+/// `count` dressed MPFB2 bodies sampled from `seed` (half women, world heights), from the shipped assets.
+std::vector<Mpfb2Sample> dressed_bodies(int count, std::uint64_t seed) {
+  const auto model = Mpfb2Model::load(shipped_mpfb2_dir());
+  const auto wardrobe =
+      Mpfb2Wardrobe::load(default_makehuman_dir(), static_cast<int>(model->base().vertices.size()));
+  return sample_mpfb2_bodies(*model, count, seed, 0.5, kWorldFemaleHeight, kWorldMaleHeight, wardrobe.get());
+}
+
 }  // namespace
 
 TEST_CASE("a dressed MPFB2 body renders eyes, lips, brows, hair, garments and shoes as two-sided regions",
           "[stimuli]") {
-  const auto model = Mpfb2Model::load(shipped_mpfb2_dir());
-  const auto wardrobe =
-      Mpfb2Wardrobe::load(default_makehuman_dir(), static_cast<int>(model->base().vertices.size()));
-  const auto bodies =
-      sample_mpfb2_bodies(*model, 2, 11, 0.5, kWorldFemaleHeight, kWorldMaleHeight, wardrobe.get());
+  const auto bodies = dressed_bodies(2, 11);
   for (const Mpfb2Sample& s : bodies) {
     const MannequinMesh r = skinned_body_mesh(s.body.mesh);
     CHECK(r.two_sided);
@@ -186,11 +190,7 @@ TEST_CASE("the lips' outline is a smooth curve, not a sawtooth along the mesh's 
   // Issue 28 (session 11's close-ups: "lips with a sawtooth outline"): the lips were the triangles with
   // lips-labelled vertices, so their outline ran along mesh edges in steps. Measured as the outline's
   // length over its convex hull's perimeter (seen from the front; the lips' outline is nearly convex).
-  const auto model = Mpfb2Model::load(shipped_mpfb2_dir());
-  const auto wardrobe =
-      Mpfb2Wardrobe::load(default_makehuman_dir(), static_cast<int>(model->base().vertices.size()));
-  const auto bodies =
-      sample_mpfb2_bodies(*model, 4, 23, 0.5, kWorldFemaleHeight, kWorldMaleHeight, wardrobe.get());
+  const auto bodies = dressed_bodies(4, 23);
   for (const Mpfb2Sample& s : bodies) {
     const Segments drawn = drawn_lip_outline(skinned_body_mesh(s.body.mesh));
     const Segments labelled = labelled_lip_outline(s.body.mesh);
@@ -280,11 +280,7 @@ TEST_CASE("levels of detail hold the face to half their error bound", "[stimuli]
   // further from the full mesh than the level's error said (flattened noses, lips beside the mouth in the
   // close-ups drawn at lod_pixels 6). The face and hands now weigh kDetailGain times more in its metric,
   // so a level chosen for its error keeps the face well inside it.
-  const auto model = Mpfb2Model::load(shipped_mpfb2_dir());
-  const auto wardrobe =
-      Mpfb2Wardrobe::load(default_makehuman_dir(), static_cast<int>(model->base().vertices.size()));
-  const auto bodies =
-      sample_mpfb2_bodies(*model, 1, 11, 0.5, kWorldFemaleHeight, kWorldMaleHeight, wardrobe.get());
+  const auto bodies = dressed_bodies(1, 11);
   const MannequinMesh full = skinned_body_mesh(bodies.front().body.mesh);
   const std::vector<CharacterLod> levels = simplify_character_mesh(full, 5, 2.5);
   REQUIRE(levels.size() >= 4);
