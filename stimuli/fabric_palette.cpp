@@ -105,12 +105,25 @@ Rgb shoes(Rng& rng) {
   }
 }
 
-Rgb hair(Rng& rng, int skin_tone) {
+/// Where clothing index `clothing` falls in [0, 1): the fractional part of (clothing + 0.5) times the
+/// golden ratio's conjugate (a Weyl sequence). Any run of consecutive indices spreads evenly over [0, 1),
+/// so the indices 0..N-1 of a crowd of N (animate_crowd's permutation) hold share * N of any share, to
+/// within about one.
+double evenly_spread(int clothing) {
+  const double x = (clothing + 0.5) * 0.6180339887498949;
+  return x - std::floor(x);
+}
+
+Rgb hair(Rng& rng, int clothing, int skin_tone) {
+  // Grey first, at its own share (grey_hair_share) and spread evenly over the clothing indices: every crowd
+  // uses the indices 0..N-1, so a random draw per index fixed the grey heads of every crowd of a size (two
+  // in every crowd of 20 before, issue 28).
+  if (evenly_spread(clothing) < grey_hair_share(skin_tone))
+    return hsv(between(rng, 30, 40), between(rng, 0.02, 0.08), between(rng, 0.55, 0.72));
   // Black and dark brown weigh more the darker the skin; fair hair only on the three lighter tones.
   const double dark = 1.0 + 2.0 * skin_tone;
   const double fair = skin_tone <= 2 ? 3.0 - skin_tone : 0.0;
-  switch (
-      family(rng, std::array<double, 7>{dark, dark, 2, 1.5 * fair / 3.0 + 0.2, fair, 0.6 * fair / 3.0, 1})) {
+  switch (family(rng, std::array<double, 6>{dark, dark, 2, 1.5 * fair / 3.0 + 0.2, fair, 0.6 * fair / 3.0})) {
     case 0:  // black
       return hsv(between(rng, 20, 30), between(rng, 0.2, 0.4), between(rng, 0.08, 0.13));
     case 1:  // dark brown
@@ -121,14 +134,16 @@ Rgb hair(Rng& rng, int skin_tone) {
       return hsv(between(rng, 28, 34), between(rng, 0.45, 0.55), between(rng, 0.42, 0.55));
     case 4:  // blond
       return hsv(between(rng, 36, 44), between(rng, 0.4, 0.55), between(rng, 0.62, 0.78));
-    case 5:  // auburn
+    default:  // auburn
       return hsv(between(rng, 14, 22), between(rng, 0.6, 0.72), between(rng, 0.35, 0.48));
-    default:  // grey
-      return hsv(between(rng, 30, 40), between(rng, 0.02, 0.08), between(rng, 0.55, 0.72));
   }
 }
 
 }  // namespace
+
+double grey_hair_share(int skin_tone) {
+  return skin_tone <= 2 ? 0.03 : 0.015;
+}
 
 Palette fabric_palette(int clothing, int skin_tone) {
   Palette p = palette(clothing);
@@ -137,7 +152,7 @@ Palette fabric_palette(int clothing, int skin_tone) {
   p.shirt = top(rng);
   p.trousers = bottom(rng);
   p.shoes = shoes(rng);
-  p.hair = hair(rng, skin_tone);
+  p.hair = hair(rng, clothing, skin_tone);
   return p;
 }
 

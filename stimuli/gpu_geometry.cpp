@@ -42,7 +42,7 @@ GpuMesh upload_mannequin(const MannequinMesh& mesh) {
                        mesh.indices.data(), 0);
   glVertexArrayVertexBuffer(m.vao, 0, m.vbo, 0, sizeof(MannequinVertex));
   glVertexArrayElementBuffer(m.vao, m.ibo);
-  for (GLuint a = 0; a < 6; ++a) {
+  for (GLuint a = 0; a < 7; ++a) {
     glEnableVertexArrayAttrib(m.vao, a);
     glVertexArrayAttribBinding(m.vao, a, 0);
   }
@@ -52,6 +52,7 @@ GpuMesh upload_mannequin(const MannequinMesh& mesh) {
   glVertexArrayAttribFormat(m.vao, 3, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(MannequinVertex, weights));
   glVertexArrayAttribIFormat(m.vao, 4, 1, GL_UNSIGNED_BYTE, offsetof(MannequinVertex, region));
   glVertexArrayAttribFormat(m.vao, 5, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(MannequinVertex, colour));
+  glVertexArrayAttribFormat(m.vao, 6, 1, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(MannequinVertex, lips));
   m.count = static_cast<GLsizei>(mesh.indices.size());
   m.two_sided = mesh.two_sided;
   return m;

@@ -49,6 +49,10 @@ struct MannequinVertex {
   std::uint8_t region;                  ///< SkinRegion
   std::array<std::uint8_t, 4> colour{};  ///< sRGB vertex colour (mesh files); alpha 255 replaces the
                                          ///< palette's region colour, alpha 0 (the mannequin) keeps it
+  /// Lip weight * 255 of a skin vertex (dressed bodies, skinned_body_mesh.hpp): the shader paints the lip
+  /// colour where the weight, interpolated across a triangle, passes 0.5, so the lips' outline is a
+  /// smooth curve through the triangles instead of a sawtooth along their edges.
+  std::uint8_t lips = 0;
 };
 
 struct MannequinMesh {

@@ -43,6 +43,7 @@ layout(location = 2) in uvec4 a_bones;
 layout(location = 3) in vec4 a_weights;
 layout(location = 4) in uint a_region;
 layout(location = 5) in vec4 a_colour;  // sRGB vertex colour; alpha 1 replaces the palette colour
+layout(location = 6) in float a_lips;   // lip weight of a skin vertex (MannequinVertex::lips)
 layout(std430, binding = 0) readonly buffer SkinMatrices { mat4 skin[]; };
 uniform mat4 u_view_proj;
 uniform int u_skin_base;
@@ -50,6 +51,7 @@ out vec3 v_world;
 out vec3 v_normal;
 flat out uint v_region;
 out vec4 v_colour;
+out float v_lips;
 out vec3 v_rest;
 #ifdef INSIDE_SURFACE
 // Overlap mode on rendered surfaces (frame_plan.hpp FramePlan::inside): this character's per-vertex flags.
@@ -66,6 +68,7 @@ void main() {
   v_normal = mat3(m) * a_normal;
   v_region = a_region;
   v_colour = a_colour;
+  v_lips = a_lips;
   v_rest = a_position;
 #ifdef INSIDE_SURFACE
   v_inside = inside[u_inside_offset + gl_VertexID];
@@ -86,6 +89,7 @@ out vec3 v_world;
 out vec3 v_normal;
 flat out uint v_region;
 out vec4 v_colour;
+out float v_lips;
 out vec3 v_rest;
 void main() {
   vec4 world = u_model * vec4(a_position, 1.0);
@@ -94,6 +98,7 @@ void main() {
   v_normal = mat3(u_model) * a_normal;
   v_region = 0u;
   v_colour = vec4(0.0);
+  v_lips = 0.0;
   gl_Position = u_view_proj * world;
 }
 )";
@@ -107,6 +112,7 @@ in vec3 v_world;
 in vec3 v_normal;
 flat in uint v_region;
 in vec4 v_colour;
+in float v_lips;
 in vec3 v_rest;  // the rest-pose position (character frame, metres): procedural detail that moves with the body
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out float o_overlap;
@@ -222,6 +228,11 @@ void main() {
   bool overlap = false;
 #if defined(MATERIAL_CHARACTER)
   albedo = v_colour.a > 0.5 ? to_linear(v_colour.rgb) : u_palette[min(v_region, 11u)];
+  // Lips: the skin takes the lip colour (slot 9, SkinRegion::kLips) where the interpolated lip weight
+  // passes 0.5, blended over about a pixel either side (its screen-space rate), so the outline is a
+  // smooth, anti-aliased curve rather than the triangles' edges.
+  float lip_edge = max(fwidth(v_lips), 1e-4);
+  albedo = mix(albedo, u_palette[9], smoothstep(0.5 - lip_edge, 0.5 + lip_edge, v_lips));
   // Procedural material detail from one noise lookup in rest-pose coordinates (no textures ship): hair gets
   // streaks along its fall (fine across, long down), garments a soft mottle like folds and weave, skin
   // nothing; the eyes get a wet highlight.

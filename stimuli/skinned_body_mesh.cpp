@@ -28,8 +28,6 @@ bool on_arm(int j) {
 
 SkinRegion region_of_surface(std::uint8_t surface) {
   switch (static_cast<SurfaceKind>(surface)) {
-    case SurfaceKind::kLips:
-      return SkinRegion::kLips;
     case SurfaceKind::kEyeWhite:
       return SkinRegion::kEyeWhite;
     case SurfaceKind::kIris:
@@ -56,7 +54,47 @@ SkinRegion labelled_triangle_region(const SkinnedMesh& mesh, const Eigen::Vector
   return region_of_surface(s);
 }
 
+bool skin_or_lips(std::uint8_t surface) {
+  return surface == static_cast<std::uint8_t>(SurfaceKind::kSkin) ||
+         surface == static_cast<std::uint8_t>(SurfaceKind::kLips);
+}
+
 }  // namespace
+
+std::vector<double> lip_weights(const SkinnedMesh& mesh) {
+  std::vector<double> weight(mesh.surface.size(), 0.0);
+  for (size_t v = 0; v < mesh.surface.size(); ++v)
+    weight[v] = mesh.surface[v] == static_cast<std::uint8_t>(SurfaceKind::kLips) ? 1.0 : 0.0;
+  if (mesh.surface.empty()) return weight;
+  // The skin's edges, each vertex's neighbours once (a mean over neighbours).
+  std::vector<std::vector<std::uint32_t>> neighbours(weight.size());
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    if (!skin_or_lips(mesh.surface[static_cast<size_t>(t[0])]) ||
+        !skin_or_lips(mesh.surface[static_cast<size_t>(t[1])]) ||
+        !skin_or_lips(mesh.surface[static_cast<size_t>(t[2])]))
+      continue;
+    for (int k = 0; k < 3; ++k) {
+      const auto a = static_cast<size_t>(t[k]), b = static_cast<size_t>(t[(k + 1) % 3]);
+      neighbours[a].push_back(static_cast<std::uint32_t>(b));
+      neighbours[b].push_back(static_cast<std::uint32_t>(a));
+    }
+  }
+  for (auto& n : neighbours) {
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+  }
+  for (int pass = 0; pass < kLipSmoothingPasses; ++pass) {
+    std::vector<double> next = weight;
+    for (size_t v = 0; v < weight.size(); ++v) {
+      if (neighbours[v].empty()) continue;
+      double sum = 0.0;
+      for (const std::uint32_t u : neighbours[v]) sum += weight[u];
+      next[v] = 0.5 * weight[v] + 0.5 * sum / static_cast<double>(neighbours[v].size());
+    }
+    weight = std::move(next);
+  }
+  return weight;
+}
 
 SkinRegion body_mesh_region(const Vec3& p, int joint, const std::array<Vec3, kJointCount>& rest_joints,
                             double head_top_y) {
@@ -100,6 +138,7 @@ MannequinMesh skinned_body_mesh(const SkinnedMesh& mesh, double inset_m) {
   validate_skinned_mesh(mesh, "render");
   double top = -HUGE_VAL;
   for (const Vec3& v : mesh.rest_vertices_m) top = std::max(top, v.y());
+  const std::vector<double> lips = lip_weights(mesh);
   // Per-vertex geometry and skinning.
   std::vector<MannequinVertex> base;
   base.reserve(mesh.rest_vertices_m.size());  // (reserve + push_back: GCC 12 warns on resize)
@@ -125,6 +164,8 @@ MannequinMesh skinned_body_mesh(const SkinnedMesh& mesh, double inset_m) {
       assigned += w;
     }
     mv.weights[0] = static_cast<std::uint8_t>(255 - assigned);
+    if (!lips.empty())
+      mv.lips = static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(lips[i], 0.0, 1.0)));
     base.push_back(mv);
   }
   // Regions per triangle (at its centroid, by the dominant joint of its first vertex), so a garment

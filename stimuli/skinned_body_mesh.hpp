@@ -20,9 +20,14 @@
 //     lower leg (trouser colour or skin) to 3.5 cm above the ankle joint, shoes below.
 // Regions are assigned per triangle (at its centroid), and vertices on a border are duplicated, one
 // copy per region, so garment edges follow mesh edges (no zig-zag from flat per-vertex regions).
+// A dressed body (SkinnedMesh::surface) takes its regions from its labels, except the lips: their label
+// marks a set of vertices whose border, drawn along mesh edges, was a sawtooth around the mouth (issue 28,
+// session 11's close-ups). They are skin with a lip weight per vertex (lip_weights), which the shader
+// thresholds at 0.5 after interpolation: an outline through the triangles, smoothed like the label set.
 // The proportions are everyday-clothing conventions chosen by eye on rendered frames (no published
 // standard applies).
 #include <cstdint>
+#include <vector>
 
 #include "framework/core/skinned_mesh.hpp"
 #include "stimuli/mannequin_mesh.hpp"
@@ -33,6 +38,16 @@ namespace crowdlab::stimuli {
 /// inward along its normal (shadow casters, as MannequinOptions::inset_m). Throws InputError when the mesh is
 /// invalid.
 MannequinMesh skinned_body_mesh(const SkinnedMesh& mesh, double inset_m = 0.0);
+
+/// Passes of neighbour averaging that turn the lips label into a weight (lip_weights).
+inline constexpr int kLipSmoothingPasses = 3;
+
+/// Per vertex of `mesh`, its lip weight in [0, 1]: 1 on the vertices labelled lips, 0 on the others, then
+/// kLipSmoothingPasses passes that replace each skin or lips vertex's weight by the mean of its own and
+/// its skin neighbours' mean (a diffusion of the label over the skin's edges; garments, eyes and hair do
+/// not take part). Its 0.5 level set is the label set's outline with the vertex-sized steps smoothed out.
+/// Empty when the mesh has no labels.
+std::vector<double> lip_weights(const SkinnedMesh& mesh);
 
 /// A stable 64-bit key of the mesh's geometry and skinning and of `inset_m`, for mesh caches.
 std::uint64_t skinned_body_mesh_key(const SkinnedMesh& mesh, double inset_m = 0.0);

@@ -138,18 +138,47 @@ BodyLandmarks place_landmarks(const Mpfb2Model& model, const std::vector<Vec3>& 
 /// Each finger (index..pinky) bends about the knuckle line (index to pinky knuckle) by kFingerCurlDeg per
 /// joint (MCP, PIP, DIP), toward the palm (the side facing the body's midline in the A-pose), most at the
 /// knuckle (MCP) and least at the tip, since a finger bent mostly at its middle joints reads as a claw
-/// (issue 28), and the skin follows by linear blend skinning with the rig's finger weights; first each
-/// finger closes 75 % of its spread toward the middle finger (kFingerCloseFraction; index to little
-/// finger 23 degrees apart instead of 27 at 60 %). The thumb flexes across the palm by kThumbCurlDeg per
-/// joint.
+/// (issue 28), and the skin follows by linear blend skinning with the rig's finger weights. First each
+/// finger closes its spread (adduction_rad): relaxed fingers lie side by side. Session 11 closed 75 % of
+/// the rig bones' spread, which left the fingers of a raised hand, seen from the palm or the back, visibly
+/// apart (neighbouring fingers 2.4-3.7 mm farther apart at their last segment than at their first).
+/// The thumb flexes across the palm by kThumbCurlDeg per joint.
 /// Landmarks (the middle fingertip that aims the hand in to_t_pose) are not moved.
 constexpr std::array<std::array<double, 3>, 4> kFingerCurlDeg = {{{24, 16, 8},     // index
                                                                   {28, 18, 9},     // middle
                                                                   {32, 20, 10},    // ring
                                                                   {36, 22, 10}}};  // pinky
 
-constexpr double kFingerCloseFraction = 0.75;
+/// How much closer the fingertips lie to the middle finger's line than their knuckles do, once the
+/// fingers are parallel: the fingers of a resting hand converge slightly, tips touching (a knuckle 2 cm
+/// beside the middle finger's brings its tip to 1.7 cm).
+constexpr double kFingertipConvergence = 0.15;
+/// The little finger leans this much more toward the ring finger: it flexes most (kFingerCurlDeg) about
+/// the rig's knuckle line, which is tilted against the skin's, and that fanned its skin out from the ring
+/// finger's by 1.4 mm at the tip with kFingertipConvergence alone (test "relaxed fingers lie side by side").
+constexpr double kLittleFingerExtraLeanDeg = 3.0;
 constexpr std::array<double, 3> kThumbCurlDeg = {10, 15, 20};  // Thumb1 (CMC), Thumb2 (MCP), Thumb3 (IP)
+
+/// The extra turn (radians, about `palm_normal`) that leans a finger parallel to the middle finger toward
+/// it, so that its tip is kFingertipConvergence closer to the middle finger's line than its knuckle:
+/// `knuckle_offset` is the knuckle's offset from the middle finger's, `length` the finger's length.
+double adduction_rad(const Vec3& knuckle_offset, double length, const Vec3& middle_dir, const Vec3& axis,
+                     const Vec3& palm_normal) {
+  const double lateral = knuckle_offset.dot(axis);  // signed, along the knuckle line
+  if (std::abs(lateral) < 1e-9 || length <= 0.0) return 0.0;
+  const double lean = std::atan2(kFingertipConvergence * std::abs(lateral), length);
+  // The sign that brings the tip toward the middle finger's line.
+  const Vec3 turned = Eigen::AngleAxisd(lean, palm_normal) * middle_dir.normalized();
+  return turned.dot(axis) * lateral < 0.0 ? lean : -lean;
+}
+
+/// kLittleFingerExtraLeanDeg, signed toward the middle finger's line (as adduction_rad).
+double pinky_extra_lean_rad(const Vec3& knuckle_offset, const Vec3& middle_dir, const Vec3& axis,
+                            const Vec3& palm_normal) {
+  const double lean = kLittleFingerExtraLeanDeg * std::numbers::pi / 180.0;
+  const Vec3 turned = Eigen::AngleAxisd(lean, palm_normal) * middle_dir.normalized();
+  return turned.dot(axis) * knuckle_offset.dot(axis) < 0.0 ? lean : -lean;
+}
 
 void relax_fingers(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm, const std::vector<int>& ids,
                    std::vector<Vec3>& verts) {
@@ -158,6 +187,21 @@ void relax_fingers(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm, 
   for (const auto& [name, list] : model.weights())
     for (const auto& [v, w] : list) total[static_cast<size_t>(v)] += std::max(w, 0.0);
   std::map<std::string, Eigen::Affine3d> transform;
+  std::vector<int> to_local(model.base().vertices.size(), -1);
+  for (size_t i = 0; i < ids.size(); ++i) to_local[static_cast<size_t>(ids[i])] = static_cast<int>(i);
+  // The centroid of the skin a rig bone dominates (weight > 0.5).
+  const auto skin_of = [&](const std::string& bone_name) {
+    Vec3 sum = Vec3::Zero();
+    double n = 0.0;
+    const auto it = model.weights().find(bone(model, bone_name).name);
+    if (it != model.weights().end())
+      for (const auto& [v, w] : it->second)
+        if (const int l = to_local[static_cast<size_t>(v)]; w > 0.5 && l >= 0) {
+          sum += verts[static_cast<size_t>(l)];
+          n += 1.0;
+        }
+    return Vec3(n > 0.0 ? Vec3(sum / n) : Vec3::Zero());
+  };
   static const std::array<const char*, 4> kFingers = {"Index", "Middle", "Ring", "Pinky"};
   for (const char* side : {"Left", "Right"}) {
     const std::string hand = std::string(side) + "Hand";
@@ -172,11 +216,25 @@ void relax_fingers(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm, 
     };
     const Vec3 middle_dir = finger_dir("Middle");
     const Vec3 palm_normal = axis.cross(middle_dir).normalized();
+    const Vec3 middle1 = place(bone(model, hand + "Middle1").head, shaped_dm);
+    // The fingers' directions as the skin shows them (first to last segment's skin): the rig's bones
+    // follow the mesh's fingers only roughly, and closing the bones' spread left the little finger's skin
+    // fanned out from the ring finger's.
+    const auto skin_dir = [&](const char* finger) {
+      return Vec3(skin_of(hand + finger + "3") - skin_of(hand + finger + "1"));
+    };
+    const Vec3 middle_skin = skin_dir("Middle");
     for (size_t f = 0; f < kFingers.size(); ++f) {
-      // Spread: the base mesh's fingers fan out; a resting hand holds them closer (kFingerCloseFraction of
-      // the angle to the middle finger closed, at the knuckle, about the palm's normal).
-      const Vec3 dir = finger_dir(kFingers[f]);
-      const double spread = std::atan2(dir.cross(middle_dir).dot(palm_normal), dir.dot(middle_dir));
+      // Spread: the base mesh's fingers fan out; a resting hand holds them together, parallel to the middle
+      // finger and then leaning toward it (adduction_rad), turned at the knuckle about the palm's normal.
+      const Vec3 dir = finger_dir(kFingers[f]), skin = skin_dir(kFingers[f]);
+      const double spread =
+          std::atan2(skin.cross(middle_skin).dot(palm_normal), skin.dot(middle_skin)) +
+          adduction_rad(place(bone(model, hand + kFingers[f] + "1").head, shaped_dm) - middle1, dir.norm(),
+                        middle_dir, axis, palm_normal) +
+          (f == 3 ? pinky_extra_lean_rad(place(bone(model, hand + "Pinky1").head, shaped_dm) - middle1,
+                                         middle_dir, axis, palm_normal)
+                  : 0.0);
       Eigen::Affine3d chain = Eigen::Affine3d::Identity();
       for (int k = 1; k <= 3; ++k) {
         const RigBone& b = bone(model, hand + kFingers[f] + std::to_string(k));
@@ -188,8 +246,8 @@ void relax_fingers(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm, 
         Eigen::Affine3d bend =
             Eigen::Translation3d(head) * Eigen::AngleAxisd(sign * angle, axis) * Eigen::Translation3d(-head);
         if (k == 1)
-          bend = bend * Eigen::Translation3d(head) *
-                 Eigen::AngleAxisd(kFingerCloseFraction * spread, palm_normal) * Eigen::Translation3d(-head);
+          bend = bend * Eigen::Translation3d(head) * Eigen::AngleAxisd(spread, palm_normal) *
+                 Eigen::Translation3d(-head);
         chain = chain * bend;
         transform[b.name] = chain;
       }
@@ -213,8 +271,6 @@ void relax_fingers(const Mpfb2Model& model, const std::vector<Vec3>& shaped_dm, 
   }
   std::vector<Vec3> moved(verts.size(), Vec3::Zero());
   std::vector<double> moved_weight(verts.size(), 0.0);
-  std::vector<int> to_local(model.base().vertices.size(), -1);
-  for (size_t i = 0; i < ids.size(); ++i) to_local[static_cast<size_t>(ids[i])] = static_cast<int>(i);
   for (const auto& [name, xf] : transform) {
     const auto it = model.weights().find(name);
     if (it == model.weights().end()) continue;

@@ -10,6 +10,8 @@ namespace crowdlab {
 namespace {
 
 constexpr int kTuckPasses = 8;
+/// A point under a hem: the hem lies within 26 degrees of straight along its normal (cos 26 = 0.9).
+constexpr double kUnderHemCosine = 0.9;
 constexpr double kTuckSettledM = 1e-4;  // a vertex this close to its depth stays
 
 bool is_one_of(std::uint8_t s, const std::vector<SurfaceKind>& kinds) {
@@ -41,8 +43,10 @@ class Cover {
   bool empty() const { return triangles_.empty(); }
 
   /// Offset d of p in front of the outer layers along the unit outward normal n, NaN where they do not
-  /// cover p (see the header).
-  double depth(const Vec3& p, const Vec3& n) const {
+  /// cover p (see the header). With `under_hem`, a point whose closest point lies on a rim counts too when
+  /// the hem lies nearly straight in front of or behind it (|d| >= kUnderHemCosine of the distance), and
+  /// *under_hem says so; without it such a point is NaN.
+  double depth(const Vec3& p, const Vec3& n, bool* under_hem = nullptr) const {
     constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
     if (tree_.bounds().squared_distance(p) > reach_m_ * reach_m_) return kNaN;  // far from every garment
     const TriangleHit hit = tree_.closest(p);
@@ -51,8 +55,13 @@ class Cover {
     bool on_rim = true;
     for (int k = 0; k < 3; ++k)
       if (hit.barycentric[k] > 1e-9 && !rim_[static_cast<size_t>(t[k])]) on_rim = false;
-    if (on_rim) return kNaN;  // beside a hem, not under it
     const double d = (hit.point - p).dot(n);
+    if (on_rim) {
+      if (under_hem == nullptr || std::abs(d) < kUnderHemCosine * hit.distance) return kNaN;  // beside a hem
+      *under_hem = true;
+      return d;
+    }
+    if (under_hem != nullptr) *under_hem = false;
     if (std::abs(d) < 0.5 * hit.distance) return kNaN;  // the garment lies beside the vertex
     return d;
   }
@@ -86,9 +95,11 @@ int tuck_layer(SkinnedMesh& mesh, SurfaceKind inner, const std::vector<SurfaceKi
     bool any = false;
     for (size_t v = 0; v < normal.size(); ++v) {
       if (!used(normal[v])) continue;
-      const double d = cover.depth(mesh.rest_vertices_m[v], normal[v]);
-      if (!(d < margin_m - kTuckSettledM)) continue;  // NaN (not covered) or deep enough
-      mesh.rest_vertices_m[v] += (d - margin_m) * normal[v];
+      bool under_hem = false;
+      const double d = cover.depth(mesh.rest_vertices_m[v], normal[v], &under_hem);
+      const double margin = under_hem ? std::min(margin_m, kHemMarginM) : margin_m;
+      if (!(d < margin - kTuckSettledM)) continue;  // NaN (not covered) or deep enough
+      mesh.rest_vertices_m[v] += (d - margin) * normal[v];
       moved[v] = any = true;
     }
     if (!any) break;
@@ -100,13 +111,17 @@ int tuck_layer(SkinnedMesh& mesh, SurfaceKind inner, const std::vector<SurfaceKi
 
 std::vector<double> cover_depths(const SkinnedMesh& mesh, SurfaceKind inner,
                                  const std::vector<SurfaceKind>& outer, std::vector<Vec3>& normal,
-                                 double reach_m) {
+                                 double reach_m, bool under_hems_only) {
   std::vector<double> depth(mesh.rest_vertices_m.size(), std::numeric_limits<double>::quiet_NaN());
   normal = inner_normals(mesh, inner);
   const Cover cover(mesh, outer, reach_m);
   if (cover.empty()) return depth;
-  for (size_t v = 0; v < depth.size(); ++v)
-    if (used(normal[v])) depth[v] = cover.depth(mesh.rest_vertices_m[v], normal[v]);
+  for (size_t v = 0; v < depth.size(); ++v) {
+    if (!used(normal[v])) continue;
+    bool under_hem = false;
+    const double d = cover.depth(mesh.rest_vertices_m[v], normal[v], under_hems_only ? &under_hem : nullptr);
+    if (under_hem || !under_hems_only) depth[v] = d;
+  }
   return depth;
 }
 

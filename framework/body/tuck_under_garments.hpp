@@ -33,6 +33,11 @@ constexpr double kTuckReachM = 0.03;    ///< how far from a garment a vertex can
 constexpr double kSkirtReachM = 0.06;   ///< the same for skin under a lower garment (a skirt's thighs)
 constexpr double kSkirtMarginM = 0.03;  ///< depth behind a lower garment: a leg swings inside a skirt
 constexpr double kTuckMarginM = 0.010;  ///< depth behind a garment; above the LOD errors up to level 3
+/// Depth behind a hem (issue 28, session 12): what lies straight under a garment's rim, where the rule
+/// above stops (its closest point is on the rim), is pushed this far in. It lay 0-2 mm under necklines and
+/// broke through them in posed frames where the body bends (notches in the close-ups); a full margin there
+/// would open a visible gap under the hem, so this is shallower.
+constexpr double kHemMarginM = 0.004;
 
 /// Moves covered vertices of `mesh` (labelled: mesh.surface) behind their garments as above; returns how
 /// many moved. Positions only: triangles, weights, labels and normals are kept (the caller recomputes
@@ -41,9 +46,10 @@ int tuck_under_garments(SkinnedMesh& mesh, double margin_m = kTuckMarginM);
 
 /// Per vertex: its offset d (metres, along its outward normal, returned in `normal`) behind the layers
 /// `outer` when it is a vertex of `inner`'s triangles that they cover (the rule above), NaN otherwise.
-/// What tuck_under_garments moves by; exposed for tests and diagnostics.
+/// What tuck_under_garments moves by; exposed for tests and diagnostics. `under_hems_only`: the offsets
+/// of the vertices under a rim instead (kHemMarginM), NaN elsewhere.
 std::vector<double> cover_depths(const SkinnedMesh& mesh, SurfaceKind inner,
                                  const std::vector<SurfaceKind>& outer, std::vector<Vec3>& normal,
-                                 double reach_m = kTuckReachM);
+                                 double reach_m = kTuckReachM, bool under_hems_only = false);
 
 }  // namespace crowdlab

@@ -42,7 +42,9 @@ struct CrowdRecipe {
 /// The animation stage: full-body motion on the crowd's trajectories (baseline.glb).
 struct AnimationRecipe {
   static constexpr std::string_view kStage = "animation";
-  static constexpr std::string_view kCodeVersion = "2";  ///< 2: dressed bodies, the new stage (issue 28)
+  /// 2: dressed bodies, the new stage (issue 28); 3: fingers side by side, skin under hems tucked (issue 28,
+  /// session 12).
+  static constexpr std::string_view kCodeVersion = "3";
   AnimationSpec animation;  ///< body_model_path only with MPFB2 bodies (empty for procedural ones)
   ScenarioKind scenario = ScenarioKind::stationary;  ///< stationary: dancing; otherwise walking
   std::optional<int> shoulder_count;                 ///< `shoulder` factor
@@ -66,8 +68,9 @@ struct CorrectionRecipe {
   static constexpr std::string_view kStage = "correction";
   /// 2: issue 27's free joints; 3: barrier rows in the depenetration pass, planted feet held in height and
   /// returning their tilt (issue 27, session 10); 4: the loop pre-roll on for looping clips, its closure
-  /// keeping planted feet (issue 28, session 11; clips of at least 4 s); 5: knees of held legs flex about their hinge when
-  /// nearly straight and turn about the shank at most at the light-joint rate (issue 27, session 11).
+  /// keeping planted feet (issue 28, session 11; clips of at least 4 s); 5: knees of held legs flex about
+  /// their hinge when nearly straight and turn about the shank at most at the light-joint rate (issue 27,
+  /// session 11).
   static constexpr std::string_view kCodeVersion = "5";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam

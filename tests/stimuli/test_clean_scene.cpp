@@ -1,9 +1,14 @@
 // Issue 28 items 2-4 on the renderer side: dressed bodies (surface labels -> regions, two-sided sheets), the
 // set dressing per scenario, and the clean image (FXAA, soft shadows, contact darkening).
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 #include <set>
+#include <utility>
+#include <vector>
 
 #include "framework/body/sample_mpfb2_bodies.hpp"
 #include "framework/core/mpfb2_asset_dir.hpp"
@@ -70,15 +75,19 @@ double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
 }
 
+/// `count` dressed MPFB2 bodies sampled from `seed` (half women, world heights), from the shipped assets.
+std::vector<Mpfb2Sample> dressed_bodies(int count, std::uint64_t seed) {
+  const auto model = Mpfb2Model::load(shipped_mpfb2_dir());
+  const auto wardrobe =
+      Mpfb2Wardrobe::load(default_makehuman_dir(), static_cast<int>(model->base().vertices.size()));
+  return sample_mpfb2_bodies(*model, count, seed, 0.5, kWorldFemaleHeight, kWorldMaleHeight, wardrobe.get());
+}
+
 }  // namespace
 
 TEST_CASE("a dressed MPFB2 body renders eyes, lips, brows, hair, garments and shoes as two-sided regions",
           "[stimuli]") {
-  const auto model = Mpfb2Model::load(shipped_mpfb2_dir());
-  const auto wardrobe =
-      Mpfb2Wardrobe::load(default_makehuman_dir(), static_cast<int>(model->base().vertices.size()));
-  const auto bodies =
-      sample_mpfb2_bodies(*model, 2, 11, 0.5, kWorldFemaleHeight, kWorldMaleHeight, wardrobe.get());
+  const auto bodies = dressed_bodies(2, 11);
   for (const Mpfb2Sample& s : bodies) {
     const MannequinMesh r = skinned_body_mesh(s.body.mesh);
     CHECK(r.two_sided);
@@ -87,10 +96,14 @@ TEST_CASE("a dressed MPFB2 body renders eyes, lips, brows, hair, garments and sh
       lips += k == static_cast<std::uint8_t>(SurfaceKind::kLips);
     INFO("lips vertices " << lips);
     std::set<int> regions;
-    for (const MannequinVertex& v : r.vertices) regions.insert(v.region);
-    for (SkinRegion k :
-         {SkinRegion::kSkin, SkinRegion::kLips, SkinRegion::kEyeWhite, SkinRegion::kIris, SkinRegion::kBrow,
-          SkinRegion::kHair, SkinRegion::kShirt, SkinRegion::kTrousers, SkinRegion::kShoes}) {
+    int lip_coloured = 0;  // the lips are skin with a lip weight (drawn in the lip colour above 0.5)
+    for (const MannequinVertex& v : r.vertices) {
+      regions.insert(v.region);
+      lip_coloured += v.lips > 127 && v.region == static_cast<std::uint8_t>(SkinRegion::kSkin);
+    }
+    CHECK(lip_coloured > lips / 3);
+    for (SkinRegion k : {SkinRegion::kSkin, SkinRegion::kEyeWhite, SkinRegion::kIris, SkinRegion::kBrow,
+                         SkinRegion::kHair, SkinRegion::kShirt, SkinRegion::kTrousers, SkinRegion::kShoes}) {
       INFO("region " << static_cast<int>(k));
       CHECK(regions.count(static_cast<int>(k)) == 1);
     }
@@ -103,6 +116,94 @@ TEST_CASE("a dressed MPFB2 body renders eyes, lips, brows, hair, garments and sh
   CHECK(lum(p.colour(SkinRegion::kIris)) < 0.5f * lum(p.colour(SkinRegion::kEyeWhite)));
   CHECK(lum(p.colour(SkinRegion::kBrow)) < lum(p.colour(SkinRegion::kHair)));
   CHECK(lum(p.colour(SkinRegion::kLips)) < lum(p.colour(SkinRegion::kSkin)));
+}
+
+namespace {
+
+/// A 2D outline as segments (x, y of the rest pose: the face seen from the front).
+using Segments = std::vector<std::array<Eigen::Vector2d, 2>>;
+
+/// Length of the segments over the perimeter of their end points' convex hull: 1 for a convex outline,
+/// about 1.3-1.4 for a staircase along a grid's edges.
+double length_over_hull(const Segments& s) {
+  std::vector<cv::Point2f> points;
+  double length = 0.0;
+  for (const auto& seg : s) {
+    length += (seg[1] - seg[0]).norm();
+    for (const auto& p : seg) points.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()));
+  }
+  std::vector<cv::Point2f> hull;
+  cv::convexHull(points, hull);
+  return length / cv::arcLength(hull, true);
+}
+
+Eigen::Vector2d front(const Vec3& p) {
+  return {p.x(), p.y()};
+}
+
+/// The outline of the lips as session 11 drew it: the mesh edges between triangles painted lips (two of
+/// their three vertices labelled lips, else the first vertex's label) and the others.
+Segments labelled_lip_outline(const SkinnedMesh& mesh) {
+  const auto lips = [&](int v) {
+    return mesh.surface[static_cast<size_t>(v)] == std::uint8_t(SurfaceKind::kLips);
+  };
+  std::map<std::pair<int, int>, int> painted_sides;  // edge -> painted lips (+1) / other (+2) triangles
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    const bool painted = lips(t[1]) == lips(t[2]) ? lips(t[1]) : lips(t[0]);
+    for (int k = 0; k < 3; ++k) {
+      const auto e = std::minmax(t[k], t[(k + 1) % 3]);
+      painted_sides[{e.first, e.second}] |= painted ? 1 : 2;
+    }
+  }
+  Segments out;
+  for (const auto& [e, sides] : painted_sides)
+    if (sides == 3)
+      out.push_back({front(mesh.rest_vertices_m[static_cast<size_t>(e.first)]),
+                     front(mesh.rest_vertices_m[static_cast<size_t>(e.second)])});
+  return out;
+}
+
+/// The outline the shader draws: the 0.5 level of the lip weight, linear across each skin triangle.
+Segments drawn_lip_outline(const MannequinMesh& mesh) {
+  Segments out;
+  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+    std::vector<Eigen::Vector2d> crossing;
+    for (int k = 0; k < 3; ++k) {
+      const MannequinVertex& a = mesh.vertices[mesh.indices[i + static_cast<size_t>(k)]];
+      const MannequinVertex& b = mesh.vertices[mesh.indices[i + static_cast<size_t>((k + 1) % 3)]];
+      if (a.region != std::uint8_t(SkinRegion::kSkin) || b.region != std::uint8_t(SkinRegion::kSkin))
+        continue;
+      const double wa = a.lips / 255.0 - 0.5, wb = b.lips / 255.0 - 0.5;
+      if ((wa < 0.0) == (wb < 0.0)) continue;
+      const double s = wa / (wa - wb);
+      crossing.push_back((1.0 - s) * Eigen::Vector2d(a.position[0], a.position[1]) +
+                         s * Eigen::Vector2d(b.position[0], b.position[1]));
+    }
+    if (crossing.size() == 2) out.push_back({crossing[0], crossing[1]});
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("the lips' outline is a smooth curve, not a sawtooth along the mesh's edges", "[stimuli]") {
+  // Issue 28 (session 11's close-ups: "lips with a sawtooth outline"): the lips were the triangles with
+  // lips-labelled vertices, so their outline ran along mesh edges in steps. Measured as the outline's
+  // length over its convex hull's perimeter (seen from the front; the lips' outline is nearly convex).
+  const auto bodies = dressed_bodies(4, 23);
+  for (const Mpfb2Sample& s : bodies) {
+    const Segments drawn = drawn_lip_outline(skinned_body_mesh(s.body.mesh));
+    const Segments labelled = labelled_lip_outline(s.body.mesh);
+    REQUIRE(drawn.size() >= 12);
+    const double smooth = length_over_hull(drawn), stepped = length_over_hull(labelled);
+    INFO("outline length over hull perimeter: drawn " << smooth << " (" << drawn.size()
+                                                      << " segments), edges of "
+                                                      << "the labelled triangles " << stepped);
+    // Measured (session 12, 4 bodies): drawn 1.01-1.54, the labelled triangles' edges 1.55-2.71 (the lips
+    // are one or two loops, upper and lower lip, under one hull, so a smooth outline is not exactly 1).
+    CHECK(smooth < 1.6);
+    CHECK(smooth < 0.7 * stepped);
+  }
 }
 
 TEST_CASE("set dressing: a hall around the concert and walls along the corridor, never inside the crowd",
@@ -179,11 +280,7 @@ TEST_CASE("levels of detail hold the face to half their error bound", "[stimuli]
   // further from the full mesh than the level's error said (flattened noses, lips beside the mouth in the
   // close-ups drawn at lod_pixels 6). The face and hands now weigh kDetailGain times more in its metric,
   // so a level chosen for its error keeps the face well inside it.
-  const auto model = Mpfb2Model::load(shipped_mpfb2_dir());
-  const auto wardrobe =
-      Mpfb2Wardrobe::load(default_makehuman_dir(), static_cast<int>(model->base().vertices.size()));
-  const auto bodies =
-      sample_mpfb2_bodies(*model, 1, 11, 0.5, kWorldFemaleHeight, kWorldMaleHeight, wardrobe.get());
+  const auto bodies = dressed_bodies(1, 11);
   const MannequinMesh full = skinned_body_mesh(bodies.front().body.mesh);
   const std::vector<CharacterLod> levels = simplify_character_mesh(full, 5, 2.5);
   REQUIRE(levels.size() >= 4);
