@@ -73,7 +73,9 @@ std::vector<PowerRow> estimate_power(const ExperimentSpec& spec, const StimulusM
   std::vector<PowerRow> rows;
   for (int n : opt.sample_sizes) {
     if (n < 2) throw InputError(SourceLocation{"", 0, 0, "--n"}, "sample sizes must be >= 2");
-    Progress progress("power n=" + std::to_string(n), static_cast<size_t>(opt.simulations));
+    // Counted in simulated observers, not studies: one study of --n 1000000000 takes hours (issue 33).
+    Progress progress("power n=" + std::to_string(n),
+                      static_cast<size_t>(opt.simulations) * static_cast<size_t>(n));
     PowerRow row;
     row.n = n;
     row.simulations = opt.simulations;
@@ -88,12 +90,12 @@ std::vector<PowerRow> estimate_power(const ExperimentSpec& spec, const StimulusM
         const double a = mean_dv(o, at_a, rng);
         const double b = mean_dv(o, at_b, rng);
         diffs.push_back(b - a);
+        progress.advance();
       }
       const PairedTTest t = paired_t_test(diffs);
       if (t.p_two_sided < opt.alpha) ++significant;
       row.mean_difference += t.mean_difference;
       row.mean_cohens_dz += std::isfinite(t.cohens_dz) ? t.cohens_dz : 0.0;
-      progress.advance();
     }
     row.power = static_cast<double>(significant) / opt.simulations;
     row.mean_difference /= opt.simulations;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "experiments/cli/command_estimates.hpp"
 #include "experiments/cli/timing.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
@@ -51,6 +52,8 @@ CorrectBenchResult run_correct_bench(const CorrectBenchOptions& o) {
   fixture.characters = o.characters;
   fixture.density_per_m2 = o.density;
   fixture.frames = o.warmup + o.steps;
+  announce_estimate("bench correct",
+                    bench_correct_estimate(o.characters, fixture.frames));  // before the fixture
   const CrowdAnimation crowd = make_swaying_crowd_fixture(fixture);
   std::vector<BodyShape> shapes;
   for (const auto& ch : crowd.characters) shapes.push_back(ch.shape);

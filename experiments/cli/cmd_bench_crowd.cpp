@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "experiments/cli/bench_group.hpp"
+#include "experiments/cli/command_estimates.hpp"
 #include "experiments/cli/command_table.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
@@ -91,6 +92,7 @@ void run(const Args& a) {
     throw InputError("bench crowd: --overlap-free applies to --model orca only");
   spec.overlap_free = a.overlap_free;  // crowd.overlap_free
   const std::shared_ptr<const NavigationModel> model = make_navigation_model(spec);
+  announce_estimate("bench crowd", bench_crowd_estimate(a.agents, a.steps));  // before the warm-up
   const std::vector<AgentInit> agents = circle_agents(a.agents);
   {
     CrowdSimulation warm(model, agents, {}, spec.dt_s);

@@ -16,6 +16,7 @@
 #include <map>
 #include <memory>
 
+#include "experiments/cli/command_estimates.hpp"
 #include "experiments/cli/command_table.hpp"
 #include "experiments/cli/experiment_group.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
@@ -41,16 +42,19 @@ struct Options {
 
 void run(const Options& o) {
   namespace fs = std::filesystem;
-  fs::create_directories(o.out);
   const std::vector<std::string> scenes = {"floor_ceiling", "building", "floor_wall"};
   const std::vector<RelevantMode> modes = {RelevantMode::kVisibility, RelevantMode::kVisibilityMesh,
                                            RelevantMode::kEuclidean, RelevantMode::kSurface};
   const std::vector<SurfaceAvoidance> models = {SurfaceAvoidance::kSocialForces, SurfaceAvoidance::kOrca};
+  const size_t all_runs = scenes.size() * models.size() * modes.size() * static_cast<size_t>(o.runs);
+  announce_estimate("manifold-compare",
+                    manifold_compare_estimate(static_cast<double>(all_runs), o.agents, o.steps));
+  fs::create_directories(o.out);
   std::ofstream csv(fs::path(o.out) / "manifold_compare.csv");
   csv << csv_line({"scene", "model", "relevant", "run", "agents", "steps", "collision_percent",
                    "false_positives_per_agent_step", "false_negatives_per_agent_step"});
-  Progress progress("manifold-compare",
-                    scenes.size() * models.size() * modes.size() * static_cast<size_t>(o.runs));
+  // Counted in steps, not runs: one run of --agents 100000 takes minutes (issue 33).
+  Progress progress("manifold-compare", all_runs * static_cast<size_t>(o.steps));
   std::printf("%-14s %-7s %-15s %14s %12s %12s\n", "scene", "model", "relevant", "collisions %",
               "FP/agent-step", "FN/agent-step");
   // (relevant mode, model) -> collision % of every run
@@ -73,6 +77,7 @@ void run(const Options& o) {
           for (int k = 0; k < o.steps; ++k) {
             step_surface_crowd(model, state);
             accumulate_surface_measures(model, state, bvh, m);
+            progress.advance();
           }
           const double per = 1.0 / static_cast<double>(m.agent_frames);
           coll.push_back(m.collision_percent());
@@ -82,7 +87,6 @@ void run(const Options& o) {
           csv << csv_line({scene, surface_avoidance_name(model_kind), relevant_mode_name(mode),
                            std::to_string(r), std::to_string(o.agents), std::to_string(o.steps),
                            csv_number(coll.back()), csv_number(fp.back()), csv_number(fn.back())});
-          progress.advance();
         }
         std::printf("%-14s %-7s %-15s %14.4f %12.4f %12.4f   (medians of %d runs)\n", scene.c_str(),
                     surface_avoidance_name(model_kind), relevant_mode_name(mode), median_of(coll),

@@ -13,7 +13,9 @@
 #include <optional>
 #include <string>
 
+#include "experiments/cli/command_estimates.hpp"
 #include "experiments/cli/command_table.hpp"
+#include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/core/skeleton.hpp"
 #include "framework/core/surface_kind_name.hpp"
@@ -120,7 +122,18 @@ void print_quality(const CorrectionQuality& q) {
 }
 
 void run(const MetricsArgs& args) {
+  // Checked here, by option name, before the crowd is read (the quadrature refused them only at its
+  // first pair, as "overlap_volume: options need ...").
+  if (args.base_cells < 1 || args.base_cells > 4096)
+    throw InputError(SourceLocation{"", 0, 0, "--base-cells"},
+                     "must be 1 to 4096, got " + std::to_string(args.base_cells));
+  if (args.depth < 0 || args.depth > 12)
+    throw InputError(SourceLocation{"", 0, 0, "--depth"},
+                     "must be 0 to 12, got " + std::to_string(args.depth));
   const CrowdAnimation crowd = read_crowd_glb(args.path);
+  announce_estimate("metrics " + args.path,
+                    metrics_estimate(static_cast<double>(crowd.characters.size()), crowd.frame_count(),
+                                     args.base_cells, args.depth));
   MetricsOptions options;
   options.pair_volumes = args.pair_volumes;
   options.overlap.base_cells = args.base_cells;

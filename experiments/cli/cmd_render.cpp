@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "experiments/cli/command_estimates.hpp"
 #include "experiments/cli/command_table.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/write_file.hpp"
@@ -92,8 +93,16 @@ void run(const RenderArgs& a) {
     throw InputError(SourceLocation{"", 0, 0, "--synthetic"}, *problem);
   if (a.crowd_path.empty() == (a.synthetic == 0))
     throw InputError("render: give either a crowd file (CROWD.glb) or --synthetic N");
+  // Before the crowd is built or rendered (issue 33); --max-frames cuts the clip.
+  const auto announce_render = [&a](double characters, double frames) {
+    announce_estimate(
+        "render " + a.out,
+        render_estimate(characters, a.max_frames >= 0 ? std::min<double>(frames, a.max_frames) : frames,
+                        a.width, a.height));
+  };
   CrowdAnimation crowd;
   if (a.synthetic > 0) {
+    announce_render(a.synthetic, kSyntheticFrames);
     stimuli::SyntheticCrowdOptions co;
     co.characters = a.synthetic;
     co.frames = kSyntheticFrames;
@@ -106,6 +115,7 @@ void run(const RenderArgs& a) {
     crowd = stimuli::make_synthetic_crowd(co);
   } else {
     crowd = read_crowd_glb(a.crowd_path);
+    announce_render(static_cast<double>(crowd.characters.size()), crowd.frame_count());
   }
   stimuli::RenderOptions o;
   o.width = a.width;

@@ -2,12 +2,14 @@
 // simulated participant), synthetic data sets and power by simulated studies. Logic lives in study_ui/.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "experiments/cli/command_estimates.hpp"
 #include "experiments/cli/command_table.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
 #include "framework/core/error.hpp"
@@ -193,6 +195,10 @@ void add_simulate_study_command(Command& root) {
     opt.seed = a->seed;
     opt.stimuli_dir = a->stimuli;
     opt.out_dir = a->out;
+    if (a->observers >= 1)  // fewer is refused by simulate_study
+      announce_estimate("simulating observers",
+                        simulate_study_estimate(a->observers, static_cast<double>(manifest.entries.size()),
+                                                static_cast<double>(spec.protocol.questions.size())));
     const std::string merged = study::simulate_study(spec, manifest, observer_model(a->observer), opt);
     std::printf("%d simulated participant(s) written to %s\nmerged responses: %s\n", a->observers,
                 a->out.c_str(), merged.c_str());
@@ -200,6 +206,15 @@ void add_simulate_study_command(Command& root) {
 }
 
 namespace {
+
+/// Test stimuli at either level of the contrast: the ones every simulated observer of `power` answers.
+double contrast_stimuli(const StimulusManifest& manifest, const std::string& factor,
+                        const std::vector<std::string>& levels) {
+  return static_cast<double>(std::ranges::count_if(manifest.entries, [&](const StimulusEntry& e) {
+    const auto it = e.factors.find(factor);
+    return !e.practice && it != e.factors.end() && std::ranges::find(levels, it->second) != levels.end();
+  }));
+}
 
 struct PowerArgs {
   std::string spec, stimuli, contrast, dv, n = "10,20,30", observer = "default";
@@ -273,6 +288,10 @@ void add_power_command(Command& root) {
     study::ObserverModel model = observer_model(a->observer);
     model.level_effects.erase("method=ours");
     model.level_effects[opt.factor + "=" + opt.level_b] = a->effect;
+    if (opt.simulations >= 1 && std::ranges::all_of(opt.sample_sizes, [](int n) { return n >= 2; }))
+      announce_estimate("power",
+                        power_estimate(opt.sample_sizes, opt.simulations,
+                                       contrast_stimuli(manifest, opt.factor, {levels[0], levels[1]})));
     const auto rows = study::estimate_power(spec, manifest, model, opt);
     if (a->json) {
       nlohmann::json j = {{"factor", opt.factor},

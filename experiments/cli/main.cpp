@@ -86,6 +86,16 @@ int main(int argc, char** argv) {
                  crowdlab::message_excerpt(command_line(argc, argv)).c_str());
     return 1;
   } catch (const std::exception& e) {
+    // A library's bare message (a JSON type error, "stod", Boost.Math) that no reader turned into an
+    // InputError naming its file: named by the command line that was run, exit 2 (issue 33).
+    try {
+      crowdlab::rethrow_library_error_as_input("'crowdlab " +
+                                               crowdlab::message_excerpt(command_line(argc, argv)) + "'");
+    } catch (const crowdlab::InputError& named) {
+      std::fprintf(stderr, "crowdlab: error: %s\n", named.what());
+      return 2;
+    } catch (...) {
+    }
     std::fprintf(stderr, "crowdlab: error: %s\n", e.what());
     return 1;
   }

@@ -14,6 +14,22 @@ bool is_boost_math_text(std::string_view what) {
   return what.starts_with("Error in function boost::math");
 }
 
+// nlohmann::json (which framework/core does not include) reports type, range and parse errors as
+// "[json.exception.<kind>.<id>] <reason>"; the reason is kept, the head is not a user's concern.
+constexpr std::string_view kJsonHead = "[json.exception.";
+
+std::string_view json_reason(std::string_view what) {
+  const auto end = what.find("] ");
+  return end == std::string_view::npos ? what : what.substr(end + 2);
+}
+
+// std::stod, std::stoi, ... throw invalid_argument or out_of_range whose what() is their name alone.
+bool is_number_conversion_text(std::string_view what) {
+  for (std::string_view name : {"stoi", "stol", "stoll", "stoul", "stoull", "stof", "stod", "stold"})
+    if (what == name) return true;
+  return false;
+}
+
 }  // namespace
 
 std::string describe_filesystem_error(const std::filesystem::filesystem_error& e) {
@@ -50,6 +66,15 @@ void rethrow_library_error_as_input(const std::string& input) {
   } catch (const std::runtime_error& e) {
     if (is_boost_math_text(e.what()))
       throw InputError(input + ": a statistic could not be computed from it: " + e.what());
+    throw;
+  } catch (const std::exception& e) {
+    const std::string_view what = e.what();
+    if (what.starts_with(kJsonHead))
+      throw InputError(input +
+                       ": a JSON value of the wrong type or shape: " + std::string(json_reason(what)));
+    if (is_number_conversion_text(what))
+      throw InputError(input + ": a number in it is not a number or out of range (std::" + std::string(what) +
+                       ")");
     throw;
   }
 }

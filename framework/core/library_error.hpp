@@ -10,6 +10,10 @@
 //   runtime_errors whose text starts "Error in function boost::math")
 //                                        -> "<input>: a statistic could not be computed from it: ..."
 //   std::bad_alloc                       -> "<input>: not enough memory for it; ..."
+//   nlohmann::json's exceptions ("[json.exception.type_error.302] type must be string, but is number")
+//                                        -> "<input>: a JSON value of the wrong type or shape: type must ..."
+//   std::stod and its kin (invalid_argument / out_of_range whose what() is the function's name alone)
+//                                        -> "<input>: a number in it is not a number or out of range (stod)"
 // Every other exception, InputError included, passes unchanged.
 #include <filesystem>
 #include <optional>

@@ -25,7 +25,7 @@ long resident_mb() {
   return got == 2 ? resident * (sysconf(_SC_PAGESIZE) / 1024) / 1024 : 0;
 }
 
-/// "42 s", "17 min", "3.2 h", "4.1 days".
+/// "42 s", "17 min", "3.2 h", "4.1 days", "3.1e+07 years" (the models of options with huge maxima).
 std::string duration_text(double s) {
   char buf[32];
   if (s < 120)
@@ -34,8 +34,10 @@ std::string duration_text(double s) {
     std::snprintf(buf, sizeof buf, "%.0f min", s / 60);
   else if (s < 172800)
     std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
-  else
+  else if (s < 2 * 365.25 * 86400)
     std::snprintf(buf, sizeof buf, "%.1f days", s / 86400);
+  else
+    std::snprintf(buf, sizeof buf, "%.3g years", s / (365.25 * 86400));
   return buf;
 }
 
@@ -47,6 +49,17 @@ void Progress::set_enabled(bool enabled) {
 
 void Progress::set_estimate_after(double seconds) {
   g_estimate_after_s = seconds;
+}
+
+void Progress::announce_estimate(const std::string& label, double units, const std::string& unit_name,
+                                 double seconds, double extra_mb) {
+  if (!g_enabled) return;
+  std::fprintf(stderr,
+               "[crowdlab] %s: estimated before starting: about %s and %.0f MB of memory for %.3g %s "
+               "(progress lines below give the time left)\n",
+               label.c_str(), duration_text(seconds).c_str(), static_cast<double>(resident_mb()) + extra_mb,
+               units, unit_name.c_str());
+  std::fflush(stderr);
 }
 
 Progress::Progress(std::string label, std::size_t total)

@@ -2,7 +2,9 @@
 // Progress reporting for long jobs: a redrawn bar on a terminal (stderr is a TTY), plain log lines
 // otherwise (CI, pipes), at most one line every few seconds plus start and finish, each with the time left.
 // A job still running after a couple of seconds prints, once, its estimated total time and the resident
-// memory (issue 33: options with huge accepted maxima ran for hours without an estimate).
+// memory (issue 33: options with huge accepted maxima ran for hours without an estimate). Commands whose
+// options allow hours of work also print, before any work, an estimate from their cost model
+// (announce_estimate; the models are in experiments/cli/command_estimates.hpp).
 #include <chrono>
 #include <cstddef>
 #include <mutex>
@@ -28,6 +30,13 @@ class Progress {
   /// After how many seconds of work a job's total time (from its rate so far) and the process's resident
   /// memory are printed, once (default 2 s; tests set 0).
   static void set_estimate_after(double seconds);
+
+  /// Prints, once and before any work, a job's estimated total time and memory from a cost model:
+  /// "[crowdlab] LABEL: estimated before starting: about T and M MB of memory for N UNITS". `extra_mb` is
+  /// the memory the job will add to what the process holds now (which is added in). Silent when
+  /// progress output is off (--quiet).
+  static void announce_estimate(const std::string& label, double units, const std::string& unit_name,
+                                double seconds, double extra_mb);
 
  private:
   void draw(bool final_line);

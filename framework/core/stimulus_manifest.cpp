@@ -5,6 +5,7 @@
 
 #include "framework/core/csv.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/library_error.hpp"
 #include "framework/core/write_file.hpp"
 
 namespace crowdlab {
@@ -87,7 +88,9 @@ void write_manifest(const StimulusManifest& m, const std::string& csv_path) {
   write_file_atomic(csv_path, out);
 }
 
-StimulusManifest read_manifest(const std::string& csv_path) {
+namespace {
+
+StimulusManifest read_manifest_unwrapped(const std::string& csv_path) {
   const CsvTable t = read_csv(csv_path);
   StimulusManifest m;
   const size_t id_col = t.column("id");
@@ -130,6 +133,13 @@ StimulusManifest read_manifest(const std::string& csv_path) {
     m.entries.push_back(std::move(e));
   }
   return m;
+}
+
+}  // namespace
+
+StimulusManifest read_manifest(const std::string& csv_path) {
+  // A library's exception the column checks miss names the manifest (issue 33).
+  return at_input_boundary(csv_path, [&] { return read_manifest_unwrapped(csv_path); });
 }
 
 }  // namespace crowdlab

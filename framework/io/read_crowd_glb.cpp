@@ -10,6 +10,7 @@
 
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/library_error.hpp"
 #include "framework/io/crowd_glb_format.hpp"
 #include "framework/io/gltf_accessor_reader.hpp"
 #include "framework/io/gltf_builder.hpp"
@@ -374,7 +375,9 @@ void read_metadata(const tinygltf::Scene& scene, CrowdMetadata& meta, const std:
 
 }  // namespace
 
-CrowdAnimation read_crowd_glb(const std::string& path) {
+namespace {
+
+CrowdAnimation read_crowd_glb_unwrapped(const std::string& path) {
   const tinygltf::Model model = load_gltf_model(path);
   if (model.scenes.empty()) throw InputError(path + ": the file has no scene");
   const size_t scene_index = model.defaultScene >= 0 ? static_cast<size_t>(model.defaultScene) : 0;
@@ -416,6 +419,13 @@ CrowdAnimation read_crowd_glb(const std::string& path) {
   validate_crowd(crowd, path);
   validate_environment(crowd.environment, path);
   return crowd;
+}
+
+}  // namespace
+
+CrowdAnimation read_crowd_glb(const std::string& path) {
+  // A library's exception the checks above miss (an allocation, a JSON type) names this file (issue 33).
+  return at_input_boundary(path, [&] { return read_crowd_glb_unwrapped(path); });
 }
 
 }  // namespace crowdlab

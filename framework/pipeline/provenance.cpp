@@ -49,16 +49,23 @@ static nlohmann::json read_sidecar(const fs::path& output) {
   }
 }
 
+/// A text field of a sidecar, "" when it is missing or not text: json's value() threw a bare type_error
+/// ("type must be string, but is number") out of `crowdlab run` for `"input_hash": 5` (issue 33).
+static std::string text_field(const nlohmann::json& j, const char* key) {
+  const auto it = j.find(key);
+  return it != j.end() && it->is_string() ? it->get<std::string>() : "";
+}
+
 std::string recorded_hash(const fs::path& output) {
   const nlohmann::json j = read_sidecar(output);
-  return j.is_object() ? j.value("input_hash", "") : "";
+  return j.is_object() ? text_field(j, "input_hash") : "";
 }
 
 bool output_up_to_date(const fs::path& output, const std::string& input_hash) {
   if (!fs::exists(output)) return false;
   const nlohmann::json j = read_sidecar(output);
-  return j.is_object() && j.value("input_hash", "") == input_hash &&
-         j.value("output_sha256", "") == sha256_file_hex(output.string());
+  return j.is_object() && text_field(j, "input_hash") == input_hash &&
+         text_field(j, "output_sha256") == sha256_file_hex(output.string());
 }
 
 nlohmann::json framework_library_versions() {

@@ -2,10 +2,30 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <string>
+
 #include "framework/core/error.hpp"
 #include "framework/core/sha256.hpp"
 
 namespace crowdlab {
+namespace {
+
+/// "from A, B and 2 more files": what a failed stage read, so that its error names the inputs and not
+/// only the output it was making (issue 33: a bad asset was reported as "stage 'animation'
+/// (.../baseline.glb): ...").
+std::string inputs_text(const Stage& stage) {
+  constexpr size_t kNamed = 3;
+  if (stage.inputs.empty()) return "";
+  std::string text = " from ";
+  for (size_t i = 0; i < std::min(kNamed, stage.inputs.size()); ++i)
+    text += (i ? ", " : "") + stage.inputs[i].string();
+  if (stage.inputs.size() > kNamed)
+    text += " and " + std::to_string(stage.inputs.size() - kNamed) + " more files";
+  return text;
+}
+
+}  // namespace
 
 std::string Stage::input_hash() const {
   std::vector<std::string> hashes = upstream;
@@ -50,7 +70,8 @@ bool StageRunner::run(const Stage& stage) {
     spdlog::error("stage '{}' failed on bad input while making {}", stage.name, current->path.string());
     throw;
   } catch (const std::exception& e) {
-    throw RuntimeError("stage '" + stage.name + "' (" + current->path.string() + "): " + e.what());
+    throw RuntimeError("stage '" + stage.name + "' (making " + current->path.string() + inputs_text(stage) +
+                       "): " + e.what());
   }
   return true;
 }

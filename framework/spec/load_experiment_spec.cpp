@@ -17,6 +17,7 @@
 
 #include "framework/core/control_characters.hpp"
 #include "framework/core/file_kind.hpp"
+#include "framework/core/library_error.hpp"
 #include "framework/core/mpfb2_asset_dir.hpp"
 #include "framework/core/sha256.hpp"
 #include "framework/core/utf8_validity.hpp"
@@ -574,7 +575,10 @@ ExperimentSpec load_experiment_spec(const std::string& path) {
     throw InputError(SourceLocation{path, 0, 0, ""}, "cannot open the spec file: no such file");
   const std::string text = read_regular_file(path, "the spec", kMaxSpecBytes, "nothing: a spec is a few kB");
   const std::string base = std::filesystem::path(path).parent_path().string();
-  return load_experiment_spec_text(text, path, base.empty() ? "." : base);
+  // A library's exception the key checks miss (an allocation, a JSON type in an asset the spec names)
+  // names the spec (issue 33).
+  return at_input_boundary(path,
+                           [&] { return load_experiment_spec_text(text, path, base.empty() ? "." : base); });
 }
 
 }  // namespace crowdlab

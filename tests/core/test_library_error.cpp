@@ -4,7 +4,9 @@
 #include <filesystem>
 #include <functional>
 #include <new>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <string>
 #include <system_error>
 
 #include "framework/core/error.hpp"
@@ -50,4 +52,19 @@ TEST_CASE("core: Boost.Math errors and bad_alloc name the input, other exception
   CHECK_THROWS_AS(at_input_boundary("a", [] { throw std::runtime_error("other"); }), std::runtime_error);
   CHECK_THROWS_AS(at_input_boundary("a", [] { throw std::logic_error("bug"); }), std::logic_error);
   CHECK(at_input_boundary("a", [] { return 7; }) == 7);
+}
+
+TEST_CASE("core: a JSON type error and a bare 'stod' name the input (issue 33)") {
+  // nlohmann::json's own exception, as a reader that trusted a value's type let it escape:
+  // "[json.exception.type_error.302] type must be string, but is number" reached the user, exit 1.
+  CHECK(input_error_of([] {
+          const nlohmann::json j = {{"parent", 5}};
+          (void)j.at("parent").get<std::string>();
+        }) == "answers.csv: a JSON value of the wrong type or shape: type must be string, but is number");
+  // std::stod's exceptions say only "stod".
+  CHECK(input_error_of([] { (void)std::stod("1e-400x"); }) ==
+        "answers.csv: a number in it is not a number or out of range (std::stod)");
+  CHECK(input_error_of([] { (void)std::stoi("x"); }) ==
+        "answers.csv: a number in it is not a number or out of range (std::stoi)");
+  CHECK_THROWS_AS(at_input_boundary("a", [] { throw std::out_of_range("vector::at"); }), std::out_of_range);
 }

@@ -171,6 +171,22 @@ TEST_CASE("a provenance sidecar nested deep or a FIFO is not up to date, never a
   CHECK(recorded_hash(out).empty());
 }
 
+TEST_CASE("a provenance sidecar with a number where a hash belongs is not up to date (issue 33)", "[core]") {
+  // json's value() threw "[json.exception.type_error.302] type must be string, but is number" out of
+  // `crowdlab run` (exit 1, no file named) before.
+  const auto dir = test::scratch_dir("untrusted-provenance-types");
+  const fs::path out = dir / "out.csv";
+  std::ofstream(out) << "x";
+  for (const char* record :
+       {R"({"input_hash": 5, "output_sha256": "x"})", R"({"input_hash": "h", "output_sha256": [1]})"}) {
+    INFO(record);
+    std::ofstream(dir / "out.csv.prov.json", std::ios::trunc) << record;
+    CHECK_FALSE(output_up_to_date(out, "h"));
+  }
+  std::ofstream(dir / "out.csv.prov.json", std::ios::trunc) << R"({"input_hash": 5})";
+  CHECK(recorded_hash(out).empty());
+}
+
 TEST_CASE("cli: a misspelt command is named, not 'A subcommand is required' (issue 33)", "[core][cli]") {
   const auto r = test::run_cli({"nosuchcommand"});
   CHECK(r.exit_code == 2);

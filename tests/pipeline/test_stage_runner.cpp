@@ -197,6 +197,10 @@ TEST_CASE("stage runner: a failure names the stage and the output, and leaves no
   CHECK(fs::exists(c.dir / "a.txt.prov.json"));  // the output made before the failure is kept
   CHECK_FALSE(fs::exists(c.dir / "b.txt"));
   CHECK_FALSE(fs::exists(c.dir / "b.txt.prov.json"));
+  // The files it read are named too (issue 33: a bad asset was reported by the output alone).
+  write_text_file(c.dir / "rig.json", "{}");
+  s.inputs = {c.dir / "rig.json"};
+  CHECK_THROWS_WITH(runner.run(s), Catch::Contains("from " + (c.dir / "rig.json").string()));
   // Bad input passes on as InputError (exit 2), not as a runtime failure.
   s.outputs[1].write = [](const fs::path&) { throw InputError("bad.yaml: key: broken"); };
   CHECK_THROWS_AS(runner.run(s), InputError);
