@@ -234,6 +234,12 @@ struct CorrectorParams {
   /// free_joint_return_radps while engaged, in the step and in the depenetration pass, so that they
   /// never flip (stage_free_joints.cpp, rate_limited_joint). false: engaged joints follow the solve.
   bool rate_limit_light_joints = true;
+
+  // ---- Feet on the ground (stage_settle_feet.cpp, issue 27, session 12)
+  /// Whether held feet are brought to the input's height: a held ball's goal height is its input's (not
+  /// where it landed, shifted with the ankle), and last in every step the root moves vertically (at most
+  /// foot_pop_budget_m) so that held feet stand at their goal heights. false = the session-11 solver.
+  bool held_feet_at_input_height = true;
 };
 
 /// Throws InputError naming the field when a parameter is out of range or not finite.
