@@ -52,7 +52,8 @@ inline void add_corrector_tuning_options(Command* cmd, CorrectorParams& params) 
          "Wrists, hands, ankles and balls turn at most --free-joint-return while in contact (true/false)")
       ->capture_default_str();
   cmd->add_option("--settle-feet", params.held_feet_at_input_height,
-                  "Hold planted feet at the input's height: held balls at their own, bodies settled onto held feet (true/false)")
+                  "Hold planted feet at the input's height: held balls at their own, bodies settled onto "
+                  "held feet (true/false)")
       ->capture_default_str();
 }
 
