@@ -8,8 +8,8 @@ namespace crowdlab::cli {
 
 /// Adds --contact-stiffness, --cg-tolerance, --active-set-passes, --depenetration-passes,
 /// --depenetration-tolerance, --foot-pop-budget, --free-joints, --free-joint-margin, --free-joint-hold,
-/// --free-joint-return and --light-joint-rate-limit to `cmd`, writing into `params` (which must outlive the
-/// parse).
+/// --free-joint-return, --light-joint-rate-limit and --settle-feet to `cmd`, writing into `params` (which
+/// must outlive the parse).
 inline void add_corrector_tuning_options(Command* cmd, CorrectorParams& params) {
   cmd->add_option("--contact-stiffness", params.contact_stiffness, "Collision penalty k_delta (N/m)")
       ->capture_default_str();
@@ -50,6 +50,10 @@ inline void add_corrector_tuning_options(Command* cmd, CorrectorParams& params) 
   cmd->add_option(
          "--light-joint-rate-limit", params.rate_limit_light_joints,
          "Wrists, hands, ankles and balls turn at most --free-joint-return while in contact (true/false)")
+      ->capture_default_str();
+  cmd->add_option("--settle-feet", params.held_feet_at_input_height,
+                  "Hold planted feet at the input's height: held balls at their own, bodies settled onto "
+                  "held feet (true/false)")
       ->capture_default_str();
 }
 

@@ -234,6 +234,15 @@ struct CorrectorParams {
   /// free_joint_return_radps while engaged, in the step and in the depenetration pass, so that they
   /// never flip (stage_free_joints.cpp, rate_limited_joint). false: engaged joints follow the solve.
   bool rate_limit_light_joints = true;
+
+  // ---- Feet on the ground (stage_settle_feet.cpp, issue 27, session 12)
+  /// Whether held feet are brought to the input's height: a held ball's goal height is its input's (not
+  /// where it landed, shifted with the ankle), and last in every step the root moves vertically (at most
+  /// foot_pop_budget_m) so that held feet stand at their goal heights. false = the session-11 solver.
+  /// Off by default: on 3 s corridor clips it lowered the planted-foot float (p99 30.8 -> 22.5 mm at 6.66
+  /// /m^2, 20.2 -> 16.4 at 4.44) but raised the p99 inter-body depth past issue 18's 10 mm (9.6 -> 12.3,
+  /// 6.8 -> 18.2 mm): the vertical moves undo some of the pass's separations (docs/correction.md).
+  bool held_feet_at_input_height = false;
 };
 
 /// Throws InputError naming the field when a parameter is out of range or not finite.

@@ -178,6 +178,7 @@ const std::vector<Pose>& corrector_step(const CorrectorModel& model, CorrectorSt
   stage_integrate(model, state);
   stage_depenetrate(model, state);
   stage_record_deviation(model, state);
+  stage_settle_feet(model, state);
   ++state.step_index;
   return state.output;
 }

@@ -21,6 +21,8 @@
 //   stage_depenetrate       push apart the inter-body capsule pairs the step left deeper than a
 //                           tolerance, by least-energy pose changes (stage_depenetrate.cpp)
 //   stage_record_deviation  every joint's deviation of the output from its input, for the next release
+//   stage_settle_feet       the root moved vertically so that held feet stand at the input's height
+//                           (stage_settle_feet.cpp)
 //
 // Why contacts are found at the predicted state (ours; the paper does not say where its one Newton
 // iteration finds its contacts): contacts found at the start-of-step state miss every contact that a
@@ -59,6 +61,15 @@ void stage_integrate(const CorrectorModel& model, CorrectorState& state);
 void stage_depenetrate(const CorrectorModel& model, CorrectorState& state);
 void stage_contact_scope(const CorrectorModel& model, CorrectorState& state);
 void stage_record_deviation(const CorrectorModel& model, CorrectorState& state);
+void stage_settle_feet(const CorrectorModel& model, CorrectorState& state);
+/// How far (m, + up) to move the root of a character whose held feet (held: left, right) are error_m
+/// above their goal heights: the one held foot's error, or both feet's smaller one when they agree in
+/// sign, 0 when one floats and the other sinks (stage_settle_feet.cpp).
+double held_feet_settle_m(const std::array<bool, 2>& held, const std::array<double, 2>& error_m);
+/// Moves character c's root vertically so that its held feet stand at their goal heights
+/// (held_feet_settle_m, at most foot_pop_budget_m, never lowering a swinging foot into the ground).
+/// Returns whether the pose changed.
+bool settle_held_feet(const CorrectorModel& model, const CorrectorState& state, int c, Pose& pose);
 
 /// Free joints (stage_free_joints.cpp): in character c's projected pose, every joint that is not
 /// engaged turns back toward its input rotation, and every engaged one toward the pose's, each at most

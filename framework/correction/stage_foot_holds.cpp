@@ -111,6 +111,22 @@ void update_foot_holds(const CorrectorModel& model, CorrectorState& s, int c,
   }
 }
 
+namespace {
+/// The input's height of character c's ankle (or ball) of `side` now, reached from where the last output
+/// had it at most at the foot motion budget: per step, the input's vertical motion plus foot_pop_budget_m
+/// (an unlimited pull threw feet: docs/correction.md).
+double input_height_within_budget(const CorrectorModel& model, const CorrectorState& s, int c, int side,
+                                  bool ball) {
+  const LegJoints lj = leg_joints(kSides[side]);
+  const size_t joint = static_cast<size_t>(c) * kJointCount + static_cast<size_t>(ball ? lj.foot : lj.ankle);
+  const double y = s.target_origin_m[joint].y();
+  if (!(model.params.foot_pop_budget_m > 0.0)) return y;
+  const double start_y = s.foot_start_m[static_cast<size_t>(4 * c + side + (ball ? 2 : 0))].y();
+  const double step = std::abs(y - s.target_origin_old_m[joint].y()) + model.params.foot_pop_budget_m;
+  return std::clamp(y, start_y - step, start_y + step);
+}
+}  // namespace
+
 FootGoal foot_goal(const CorrectorModel& model, const CorrectorState& s, int c, int side) {
   const FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
   const BodyShape& shape = model.bodies[static_cast<size_t>(c)].shape;
@@ -127,15 +143,17 @@ FootGoal foot_goal(const CorrectorModel& model, const CorrectorState& s, int c, 
   // motion plus foot_pop_budget_m, from where the last output had it (an unlimited pull threw feet:
   // docs/correction.md). The solve's planted-foot spring pulls to it (stage_assemble.cpp); the IK in
   // hold_feet keeps the solve's height.
-  double y = s.target_origin_m[ankle].y();
-  if (model.params.foot_pop_budget_m > 0.0) {
-    const double start_y = s.foot_start_m[static_cast<size_t>(4 * c + side)].y();
-    const double step = std::abs(y - s.target_origin_old_m[ankle].y()) + model.params.foot_pop_budget_m;
-    y = std::clamp(y, start_y - step, start_y + step);
-  }
-  const double shift = y - g.ankle_m.y();
+  const double shift = input_height_within_budget(model, s, c, side, false) - g.ankle_m.y();
   g.ankle_m.y() += shift;
   g.ball_m.y() += shift;
+  if (hold.ball && model.params.held_feet_at_input_height) {
+    // The ball's own height is the input's too (issue 27, session 12). Shifted with the ankle only, a
+    // ball anchor kept the height it landed at above the ankle: a foot that landed toes-up stood toes-up
+    // for the whole stance (ball 8-13 cm above the input's, ankle at its height), whatever its rotation
+    // goal said. A rolling foot held at the ball only hangs its ankle from the ball.
+    g.ball_m.y() = input_height_within_budget(model, s, c, side, true);
+    if (!hold.ankle) g.ankle_m = g.ball_m - ball_offset;
+  }
   return g;
 }
 
