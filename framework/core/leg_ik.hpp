@@ -21,6 +21,8 @@
 namespace crowdlab {
 
 enum class LegSide { kLeft, kRight };
+/// Both sides, indexed as the per-leg arrays of the corrector (0 left, 1 right).
+inline constexpr LegSide kLegSides[2] = {LegSide::kLeft, LegSide::kRight};
 
 struct LegJoints {
   int hip, knee, ankle, foot;

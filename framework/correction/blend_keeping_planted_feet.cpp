@@ -11,8 +11,6 @@
 namespace crowdlab {
 namespace {
 
-constexpr std::array<LegSide, 2> kSides = {LegSide::kLeft, LegSide::kRight};
-
 /// lifted[side][k]: the input lifts that foot on frame first + k (neither its ankle nor its ball planted,
 /// the corrector's test on the joint's step since the frame before; first >= 1).
 std::array<std::vector<bool>, 2> lifted_frames(const CharacterAnimation& in, int first, int window,
@@ -22,7 +20,7 @@ std::array<std::vector<bool>, 2> lifted_frames(const CharacterAnimation& in, int
   for (int k = 0; k < window; ++k) {
     const auto now = joint_positions(in.shape, in.frames[static_cast<size_t>(first + k)]);
     for (size_t s = 0; s < 2; ++s) {
-      const LegJoints leg = leg_joints(kSides[s]);
+      const LegJoints leg = leg_joints(kLegSides[s]);
       bool planted = false;
       for (int j : {leg.ankle, leg.foot}) {
         const auto ju = static_cast<size_t>(j);
@@ -58,8 +56,8 @@ std::vector<double> leg_weights(const std::vector<bool>& lifted) {
 void lower_pelvis_to_reach(const BodyShape& shape, const std::array<Vec3, 2>& goals, Pose& pose) {
   constexpr double kMargin_m = 1e-7;  // the IK's clamp would otherwise bite
   for (size_t s = 0; s < 2; ++s) {
-    const Vec3 to_hip = hip_position(shape, pose, kSides[s]) - goals[s];
-    const double reach = leg_length(shape, kSides[s]) - kMargin_m;
+    const Vec3 to_hip = hip_position(shape, pose, kLegSides[s]) - goals[s];
+    const double reach = leg_length(shape, kLegSides[s]) - kMargin_m;
     const double horizontal2 = to_hip.x() * to_hip.x() + to_hip.z() * to_hip.z();
     if (to_hip.norm() <= reach || horizontal2 >= reach * reach) continue;
     pose.root_position_m.y() -= to_hip.y() - std::sqrt(reach * reach - horizontal2);
@@ -82,12 +80,12 @@ void blend_character(const CharacterAnimation& in, const std::vector<Pose>& targ
     std::array<Quat, 2> turns;
     for (size_t s = 0; s < 2; ++s) {
       const double w = leg_w[s][static_cast<size_t>(k)];
-      const auto ankle = static_cast<size_t>(leg_joints(kSides[s]).ankle);
+      const auto ankle = static_cast<size_t>(leg_joints(kLegSides[s]).ankle);
       goals[s] = (1.0 - w) * from[ankle].translation + w * to[ankle].translation;
       turns[s] = from[ankle].rotation.slerp(w, to[ankle].rotation).normalized();
     }
     lower_pelvis_to_reach(clip.shape, goals, blended);
-    for (size_t s = 0; s < 2; ++s) reach_ankle(clip.shape, blended, kSides[s], goals[s], turns[s]);
+    for (size_t s = 0; s < 2; ++s) reach_ankle(clip.shape, blended, kLegSides[s], goals[s], turns[s]);
     pose = blended;
   }
 }

@@ -260,7 +260,7 @@ void constraint_rows(const CorrectorState& s, int c, const BoneTransforms& bones
   }
   for (int side = 0; side < 2; ++side) {
     const FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
-    const LegJoints lj = leg_joints(side == 0 ? LegSide::kLeft : LegSide::kRight);
+    const LegJoints lj = leg_joints(kLegSides[side]);
     for (const auto& [held, joint] : {std::pair{hold.ankle, lj.ankle}, std::pair{hold.ball, lj.foot}}) {
       if (!held) continue;
       // A joint's position moves with its parent's chain, not with its own rotation.

@@ -40,7 +40,6 @@
 
 namespace crowdlab {
 namespace {
-constexpr LegSide kSides[2] = {LegSide::kLeft, LegSide::kRight};
 constexpr bool kKeepSolvedHeight = true;
 constexpr double kTiltReturn_radps = 1.0;
 
@@ -60,8 +59,9 @@ bool lower_pelvis_to_reach(const BodyShape& shape, const std::array<FootGoal, 2>
   for (int round = 0; round < 2; ++round) {  // a second round when the other leg's fix moved the hip
     for (int side = 0; side < 2; ++side) {
       if (!held[static_cast<size_t>(side)]) continue;
-      const Vec3 to_hip = hip_position(shape, pose, kSides[side]) - goals[static_cast<size_t>(side)].ankle_m;
-      const double reach = leg_length(shape, kSides[side]) - kReachMargin_m;
+      const Vec3 to_hip =
+          hip_position(shape, pose, kLegSides[side]) - goals[static_cast<size_t>(side)].ankle_m;
+      const double reach = leg_length(shape, kLegSides[side]) - kReachMargin_m;
       if (to_hip.norm() <= reach) continue;
       const double horizontal2 = to_hip.x() * to_hip.x() + to_hip.z() * to_hip.z();
       if (horizontal2 < reach * reach) {
@@ -95,7 +95,7 @@ void update_foot_holds(const CorrectorModel& model, CorrectorState& s, int c,
       hold = FootHold{};
       continue;
     }
-    const LegJoints lj = leg_joints(kSides[side]);
+    const LegJoints lj = leg_joints(kLegSides[side]);
     const size_t ankle = base + static_cast<size_t>(lj.ankle), ball = base + static_cast<size_t>(lj.foot);
     const bool ankle_planted = planted(p, model.h, s.target_origin_old_m[ankle], s.target_origin_m[ankle]);
     const bool ball_planted = planted(p, model.h, s.target_origin_old_m[ball], s.target_origin_m[ball]);
@@ -117,7 +117,7 @@ namespace {
 /// (an unlimited pull threw feet: docs/correction.md).
 double input_height_within_budget(const CorrectorModel& model, const CorrectorState& s, int c, int side,
                                   bool ball) {
-  const LegJoints lj = leg_joints(kSides[side]);
+  const LegJoints lj = leg_joints(kLegSides[side]);
   const size_t joint = static_cast<size_t>(c) * kJointCount + static_cast<size_t>(ball ? lj.foot : lj.ankle);
   const double y = s.target_origin_m[joint].y();
   if (!(model.params.foot_pop_budget_m > 0.0)) return y;
@@ -130,7 +130,7 @@ double input_height_within_budget(const CorrectorModel& model, const CorrectorSt
 FootGoal foot_goal(const CorrectorModel& model, const CorrectorState& s, int c, int side) {
   const FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
   const BodyShape& shape = model.bodies[static_cast<size_t>(c)].shape;
-  const LegJoints lj = leg_joints(kSides[side]);
+  const LegJoints lj = leg_joints(kLegSides[side]);
   const size_t ankle = static_cast<size_t>(c) * kJointCount + static_cast<size_t>(lj.ankle);
   FootGoal g;
   g.rotation = (hold.rotation_offset * s.target_rotation[ankle]).normalized();
@@ -169,7 +169,7 @@ void hold_feet(const CorrectorModel& model, CorrectorState& s, int c, Pose& pose
     if (!held[static_cast<size_t>(side)]) continue;
     FootGoal& g = goals[static_cast<size_t>(side)];
     g = foot_goal(model, s, c, side);
-    const LegJoints lj = leg_joints(kSides[side]);
+    const LegJoints lj = leg_joints(kLegSides[side]);
     const Vec3& ankle = solved[static_cast<size_t>(lj.ankle)].translation;
     const Vec3& ball = solved[static_cast<size_t>(lj.foot)].translation;
     // Height: the solve's. Its planted-foot spring pulls the foot to the input's height, and the ground
@@ -189,9 +189,9 @@ void hold_feet(const CorrectorModel& model, CorrectorState& s, int c, Pose& pose
   for (int side = 0; side < 2; ++side) {
     if (!fix[static_cast<size_t>(side)]) continue;
     FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
-    const LegJoints lj = leg_joints(kSides[side]);
+    const LegJoints lj = leg_joints(kLegSides[side]);
     const FootGoal& goal = goals[static_cast<size_t>(side)];
-    if (reach_ankle(shape, pose, kSides[side], goal.ankle_m, goal.rotation) > 0.0) {
+    if (reach_ankle(shape, pose, kLegSides[side], goal.ankle_m, goal.rotation) > 0.0) {
       // Out of reach even so: the foot lands as near as the leg allows, and the anchors move there.
       const BoneTransforms reached = forward_kinematics(shape, pose);
       hold.ankle_anchor_m = reached[static_cast<size_t>(lj.ankle)].translation;

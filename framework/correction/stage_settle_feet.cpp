@@ -30,8 +30,6 @@
 namespace crowdlab {
 namespace {
 
-constexpr LegSide kSettleSides[2] = {LegSide::kLeft, LegSide::kRight};
-
 /// Lowest point (m) of one foot's capsules (ankle and ball bones).
 double sole_height_m(const WorldCapsules& capsules, const LegJoints& lj) {
   double y = 1e9;
@@ -48,7 +46,7 @@ double held_height_error_m(const CorrectorModel& model, const CorrectorState& s,
                            const BoneTransforms& bones) {
   const FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
   const FootGoal goal = foot_goal(model, s, c, side);
-  const LegJoints lj = leg_joints(kSettleSides[side]);
+  const LegJoints lj = leg_joints(kLegSides[side]);
   if (hold.ankle) return bones[static_cast<size_t>(lj.ankle)].translation.y() - goal.ankle_m.y();
   return bones[static_cast<size_t>(lj.foot)].translation.y() - goal.ball_m.y();
 }
@@ -82,7 +80,7 @@ bool settle_held_feet(const CorrectorModel& model, const CorrectorState& s, int 
     const WorldCapsules capsules = world_capsules(shape, bones);
     for (int side = 0; side < 2; ++side) {
       if (held[static_cast<size_t>(side)]) continue;
-      const double sole = sole_height_m(capsules, leg_joints(kSettleSides[side]));
+      const double sole = sole_height_m(capsules, leg_joints(kLegSides[side]));
       dy = std::max(dy, std::min(0.0, sole) - sole);
     }
   }
