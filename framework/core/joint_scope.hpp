@@ -10,6 +10,7 @@
 //                     holds bend the legs to keep planted feet where they are, so a leg of a pushed body
 //                     is part of its response, not a free limb.
 // Masks are bit sets over the 24 bones (bit b = bone b = joint b).
+#include <array>
 #include <cstdint>
 
 #include "framework/core/skeleton.hpp"
@@ -46,5 +47,13 @@ constexpr BoneMask contact_scope(int joint) {
       return subtree_mask(joint);
   }
 }
+
+/// contact_scope of every joint, computed once at compile time: the correction looks masks up per
+/// character and step, and computing one walks the tree (24 bones x their depth).
+inline constexpr std::array<BoneMask, kJointCount> kContactScopes = [] {
+  std::array<BoneMask, kJointCount> scopes{};
+  for (int j = 0; j < kJointCount; ++j) scopes[static_cast<size_t>(j)] = contact_scope(j);
+  return scopes;
+}();
 
 }  // namespace crowdlab

@@ -45,7 +45,8 @@ void engage(const CorrectorModel& model, CorrectorState& s, int c) {
   if (touched == 0) return;
   const std::int64_t until = s.step_index + hold_steps(model);
   for (int j = 0; j < kJointCount; ++j)
-    if (touched & contact_scope(j)) s.engaged_until[static_cast<size_t>(c * kJointCount + j)] = until;
+    if (touched & kContactScopes[static_cast<size_t>(j)])
+      s.engaged_until[static_cast<size_t>(c * kJointCount + j)] = until;
 }
 
 /// The joints whose engaged deviation is rate-limited: wrists, hands, ankles and balls of the feet.
