@@ -197,6 +197,12 @@ struct CorrectorState {
   std::vector<char> has_contacts;   ///< per character: some contact touches it this step
   std::vector<char> bad_character;  ///< per character: the integrated step is non-finite/too fast
 
+  // ---- the contact-free factorisation of stage_predict, per bone: S^-1 and the block its elimination
+  // subtracts from its parent's (H[b,p]^T S^-1 H[b,p]); stage_solve reuses both for every bone whose
+  // subtree has no contact block (tree_factor.hpp)
+  std::vector<Mat6> tree_inverse, tree_update;
+  std::vector<BoneMask> contact_blocks;  ///< per character: bones with a contact block in precond
+
   // ---- two-phase commit
   std::vector<Vec3> new_com_m;
   std::vector<Quat> new_rotation;

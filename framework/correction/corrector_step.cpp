@@ -46,6 +46,9 @@ CorrectorState make_corrector_state(const CorrectorModel& model) {
   s.incidence_offset.assign(n + 1, 0);
   s.incidence_cursor.assign(n, 0);
   s.diag.assign(bones, Mat6::Zero());
+  s.tree_inverse.assign(bones, Mat6::Zero());
+  s.tree_update.assign(bones, Mat6::Zero());
+  s.contact_blocks.assign(n, 0);
   s.target_origin_m.assign(bones, Vec3::Zero());
   s.target_origin_old_m.assign(bones, Vec3::Zero());
   s.foot_holds.assign(2 * n, FootHold{});

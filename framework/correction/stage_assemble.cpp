@@ -178,6 +178,8 @@ void assemble_character_contacts(CorrectorState& s, int c) {
     s.precond[j] = s.diag[j];
     s.rhs[j] = s.rhs_tree[j];
   }
+  BoneMask& blocks = s.contact_blocks[static_cast<size_t>(c)];
+  blocks = 0;
   const int begin = s.incidence_offset[static_cast<size_t>(c)],
             end = s.incidence_offset[static_cast<size_t>(c) + 1];
   for (int e = begin; e < end; ++e) {
@@ -187,6 +189,7 @@ void assemble_character_contacts(CorrectorState& s, int c) {
     const bool side_b = (entry & 1) != 0;
     const bool self = k.bone_b >= 0 && k.bone_b / kJointCount == k.bone_a / kJointCount;
     auto add_side = [&](int bone, const Vec6& w) {
+      blocks |= BoneMask{1} << (bone % kJointCount);
       s.precond[static_cast<size_t>(bone)] += (k.stiffness * w) * w.transpose();
       s.rhs[static_cast<size_t>(bone)] -= (k.stiffness * k.depth0) * w;
     };

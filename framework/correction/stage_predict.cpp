@@ -15,7 +15,7 @@ void stage_predict(const CorrectorModel& model, CorrectorState& s) {
   tbb::parallel_for(0, model.characters(), [&](int c) {
     const size_t base = static_cast<size_t>(c) * kJointCount;
     if (model.params.exact_prediction) {
-      s.factor_ok[static_cast<size_t>(c)] = factor_character(s, c) ? 1 : 0;
+      s.factor_ok[static_cast<size_t>(c)] = factor_tree_character(s, c) ? 1 : 0;
       apply_tree_inverse(s, c, s.rhs_tree, s.dq_free);
     } else {
       for (size_t g = base; g < base + kJointCount; ++g) {

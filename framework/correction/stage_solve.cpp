@@ -180,8 +180,13 @@ void stage_solve(const CorrectorModel& model, CorrectorState& s) {
   const int n = model.characters();
   // Characters with contacts: refactorise with their contact blocks (the others keep stage_predict's).
   tbb::parallel_for(0, n, [&](int c) {
-    if (s.has_contacts[static_cast<size_t>(c)] || !model.params.exact_prediction)
-      s.factor_ok[static_cast<size_t>(c)] = factor_character(s, c) ? 1 : 0;
+    char& ok = s.factor_ok[static_cast<size_t>(c)];
+    if (!model.params.exact_prediction)
+      ok = factor_character(s, c) ? 1 : 0;
+    else if (s.has_contacts[static_cast<size_t>(c)])  // stage_predict's blocks where contacts add none
+      ok = (ok ? refactor_character(s, c, s.contact_blocks[static_cast<size_t>(c)]) : factor_character(s, c))
+               ? 1
+               : 0;
   });
   s.contact_scalar.resize(s.contacts.size());
   // Warm start: the contact-free prediction where a character touches nothing (its exact answer), the

@@ -61,27 +61,81 @@ bool spd_inverse6(const Mat6& a, Mat6& inverse) {
   return true;
 }
 
-bool factor_character(CorrectorState& s, int c) {
-  const size_t base = static_cast<size_t>(c) * kJointCount;
+namespace {
+
+/// Eliminates bone g (child of gp) of a tree whose blocks below g are eliminated: precond[g] becomes
+/// S_g^-1 and precond[gp] loses H[g,p]^T S_g^-1 H[g,p] (`update`). False if S_g is not SPD.
+bool eliminate_bone(CorrectorState& s, size_t g, size_t gp, Mat6& inverse, Mat6& update) {
   bool ok = true;
-  Mat6 inverse;
-  for (size_t j = kJointCount - 1; j >= 1; --j) {
-    const size_t g = base + j, gp = base + static_cast<size_t>(kJointParent[j]);
-    if (!spd_inverse6(s.precond[g], inverse)) {
-      ok = false;
-      inverse.setZero();
-    }
-    const Mat6 b = coupling_matrix(s.coupling[g]);
-    const Mat6 elim = inverse.lazyProduct(b);
-    s.precond[gp].noalias() -= b.transpose().lazyProduct(elim);
-    s.precond[g] = inverse;
+  if (!spd_inverse6(s.precond[g], inverse)) {
+    ok = false;
+    inverse.setZero();
   }
+  const Mat6 b = coupling_matrix(s.coupling[g]);
+  const Mat6 elim = inverse.lazyProduct(b);
+  update.noalias() = b.transpose().lazyProduct(elim);
+  s.precond[gp] -= update;
+  s.precond[g] = inverse;
+  return ok;
+}
+
+bool invert_root(CorrectorState& s, size_t base, Mat6& inverse) {
+  bool ok = true;
   if (!spd_inverse6(s.precond[base], inverse)) {
     ok = false;
     inverse.setZero();
   }
   s.precond[base] = inverse;
   return ok;
+}
+
+}  // namespace
+
+bool factor_character(CorrectorState& s, int c) {
+  const size_t base = static_cast<size_t>(c) * kJointCount;
+  bool ok = true;
+  Mat6 inverse, update;
+  for (size_t j = kJointCount - 1; j >= 1; --j)
+    ok = eliminate_bone(s, base + j, base + static_cast<size_t>(kJointParent[j]), inverse, update) && ok;
+  return invert_root(s, base, inverse) && ok;
+}
+
+bool factor_tree_character(CorrectorState& s, int c) {
+  const size_t base = static_cast<size_t>(c) * kJointCount;
+  bool ok = true;
+  Mat6 inverse;
+  for (size_t j = kJointCount - 1; j >= 1; --j) {
+    const size_t g = base + j;
+    ok = eliminate_bone(s, g, base + static_cast<size_t>(kJointParent[j]), inverse, s.tree_update[g]) && ok;
+    s.tree_inverse[g] = inverse;
+  }
+  ok = invert_root(s, base, inverse) && ok;
+  s.tree_inverse[base] = inverse;
+  return ok;
+}
+
+bool refactor_character(CorrectorState& s, int c, BoneMask contact_blocks) {
+  // A bone must be refactorised when it or a descendant has a contact block (parents precede children).
+  BoneMask dirty = contact_blocks;
+  for (size_t j = kJointCount - 1; j >= 1; --j)
+    if (dirty & (BoneMask{1} << j)) dirty |= BoneMask{1} << kJointParent[j];
+  const size_t base = static_cast<size_t>(c) * kJointCount;
+  bool ok = true;
+  Mat6 inverse, update;
+  for (size_t j = kJointCount - 1; j >= 1; --j) {
+    const size_t g = base + j, gp = base + static_cast<size_t>(kJointParent[j]);
+    if (dirty & (BoneMask{1} << j)) {
+      ok = eliminate_bone(s, g, gp, inverse, update) && ok;
+    } else {
+      s.precond[gp] -= s.tree_update[g];
+      s.precond[g] = s.tree_inverse[g];
+    }
+  }
+  if (!(dirty & BoneMask{1})) {
+    s.precond[base] = s.tree_inverse[base];
+    return ok;
+  }
+  return invert_root(s, base, inverse) && ok;
 }
 
 void apply_tree_inverse(const CorrectorState& s, int c, const std::vector<Vec6>& r, std::vector<Vec6>& z) {

@@ -17,6 +17,7 @@
 #include <array>
 #include <vector>
 
+#include "framework/core/joint_scope.hpp"
 #include "framework/correction/corrector_state.hpp"
 
 namespace crowdlab {
@@ -49,6 +50,16 @@ bool spd_inverse6(const Mat6& a, Mat6& inverse);
 /// factorise (tree diagonal, possibly plus contact blocks), on exit S_g^-1. False if a block is not
 /// positive definite (cannot happen for valid parameters: every block contains M / h^2 > 0).
 bool factor_character(CorrectorState& s, int c);
+
+/// factor_character for stage_predict (blocks without contacts), which also saves every bone's S^-1
+/// and parent update in s.tree_inverse and s.tree_update.
+bool factor_tree_character(CorrectorState& s, int c);
+
+/// factor_character after contact blocks were added to the bones in `contact_blocks`: a bone whose
+/// subtree has none has the same S^-1 and parent update as in factor_tree_character, which are reused
+/// (same values subtracted in the same order: the result is bit-identical to factor_character's). The
+/// tree factorisation must be this step's and have succeeded.
+bool refactor_character(CorrectorState& s, int c, BoneMask contact_blocks);
 
 /// z = T'^-1 r for character c's 24 bones (block forward elimination, root solve, back substitution).
 /// r and z may be the same vector.
