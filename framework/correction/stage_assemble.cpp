@@ -39,6 +39,25 @@ Eigen::Matrix<double, 3, 6> point_jacobian(const Vec3& arm) {
   return a;
 }
 
+/// d += k a^T a for a = point_jacobian(arm) = [I, S], S = -[arm]x, with the values Eigen's product
+/// `k * a.transpose() * a` gives (bit-identical) at a fifth of its cost: every entry of that product has
+/// at most two non-zero terms (k a_mi) a_mj (the others are exact zeros, and d's entries are never -0),
+/// so the zeros need not be multiplied nor the 6 x 6 temporary formed.
+void add_point_hessian(Mat6& d, double k, const Vec3& arm) {
+  const Mat3 s = -skew(arm);
+  for (int i = 0; i < 3; ++i) {
+    d(i, i) += k;
+    for (int j = 0; j < 3; ++j) {
+      d(i, 3 + j) += k * s(i, j);
+      d(3 + i, j) += k * s(j, i);
+      double v = 0.0;
+      for (int m = 0; m < 3; ++m)
+        if (m != i && m != j) v += (k * s(m, i)) * s(m, j);
+      d(3 + i, 3 + j) += v;
+    }
+  }
+}
+
 Vec6 contact_row(const Vec3& normal, const Vec3& arm, double sign) {
   Vec6 w;
   w.head<3>() = sign * normal;
@@ -85,8 +104,8 @@ void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
     const auto a_c = point_jacobian(origin[j] - s.com_m[gc]);
     const auto a_p = point_jacobian(attach - s.com_m[gp]);
     const double kj = body.joint_stiffness[j];
-    s.diag[gc] += kj * a_c.transpose() * a_c;
-    s.diag[gp] += kj * a_p.transpose() * a_p;
+    add_point_hessian(s.diag[gc], kj, origin[j] - s.com_m[gc]);  // kj a_c^T a_c
+    add_point_hessian(s.diag[gp], kj, attach - s.com_m[gp]);     // kj a_p^T a_p
     JointCoupling& coupling = s.coupling[gc];
     coupling.arm_child = origin[j] - s.com_m[gc];
     coupling.arm_parent = attach - s.com_m[gp];
@@ -123,7 +142,7 @@ void assemble_character(const CorrectorModel& model, CorrectorState& s, int c) {
     const Vec3 resid_t = kt * (origin[0] - target.root_position_m) -
                          dt * (target.root_position_m - target_old.root_position_m);
     const auto a = point_jacobian(origin[0] - s.com_m[g]);
-    s.diag[g] += (kt + dt) * a.transpose() * a;
+    add_point_hessian(s.diag[g], kt + dt, origin[0] - s.com_m[g]);  // (kt + dt) a^T a
     s.rhs[g] -= a.transpose() * resid_t;
   }
 
