@@ -107,8 +107,8 @@ Rgb shoes(Rng& rng) {
 
 /// Where clothing index `clothing` falls in [0, 1): the fractional part of (clothing + 0.5) times the
 /// golden ratio's conjugate (a Weyl sequence). Any run of consecutive indices spreads evenly over [0, 1),
-/// so the indices 0..N-1 of a crowd of N (animate_crowd's permutation) hold share * N of any share, to
-/// within about one.
+/// so the N consecutive indices of a crowd of N (animate_crowd's shifted permutation) hold share * N of any
+/// share, to within about one.
 double evenly_spread(int clothing) {
   const double x = (clothing + 0.5) * 0.6180339887498949;
   return x - std::floor(x);
@@ -116,7 +116,7 @@ double evenly_spread(int clothing) {
 
 Rgb hair(Rng& rng, int clothing, int skin_tone) {
   // Grey first, at its own share (grey_hair_share) and spread evenly over the clothing indices: every crowd
-  // uses the indices 0..N-1, so a random draw per index fixed the grey heads of every crowd of a size (two
+  // used the indices 0..N-1, so a random draw per index fixed the grey heads of every crowd of a size (two
   // in every crowd of 20 before, issue 28).
   if (evenly_spread(clothing) < grey_hair_share(skin_tone))
     return hsv(between(rng, 30, 40), between(rng, 0.02, 0.08), between(rng, 0.55, 0.72));

@@ -4,7 +4,8 @@
 // repeats visibly (issue 28: "16 flat colour palettes").
 //
 // Input: the character's clothing index (core/appearance.hpp; animate_crowd gives every character of a
-// crowd its own, a permutation seeded per condition, and the corrected crowd keeps it, so `baseline` and
+// crowd its own, a permutation seeded per condition and shifted by a seeded offset, so each crowd wears
+// other colours; the corrected crowd keeps it, so `baseline` and
 // `ours` of a condition wear the same colours) and its skin tone (0 lightest .. 5 darkest). Output: sRGB
 // colours in [0, 1]. Each index draws from its own stream, derive_seed(kFabricSeed, "fabric/<index>").
 //

@@ -30,6 +30,15 @@ std::string character_name(size_t i) {
   return buf;
 }
 
+// Where a dressed crowd's clothing indices start: drawn from the crowd's seed, so that two crowds of a
+// study wear different colour sets (fabric_palette draws each index's colours from its own stream: with
+// the indices 0..N-1 every crowd of N wore the same N colour sets in another order, issue 28). The N
+// indices stay consecutive, so fabric_palette's evenly spread grey hair keeps its share in every crowd.
+int dressed_clothing_offset(std::uint64_t seed, size_t n) {
+  Rng rng(derive_seed(seed, "palette/dressed offset"));
+  return static_cast<int>(uniform_index(rng, static_cast<size_t>(kAppearanceStride) - n));
+}
+
 void check_trajectories(const CrowdTrajectories& t) {
   if (!(t.fps > 0) || !std::isfinite(t.fps)) throw InputError("animate_crowd: trajectories fps must be > 0");
   if (t.agents.empty()) throw InputError("animate_crowd: no agents in the trajectories");
@@ -110,6 +119,7 @@ CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Enviro
   std::iota(palette.begin(), palette.end(), 0);
   Rng prng(derive_seed(context.seed, "palette"));
   for (size_t i = n; i > 1; --i) std::swap(palette[i - 1], palette[uniform_index(prng, i)]);
+  const int dressed_offset = context.skin_tones.empty() ? 0 : dressed_clothing_offset(context.seed, n);
 
   CrowdAnimation crowd;
   crowd.environment = environment;
@@ -125,7 +135,8 @@ CrowdAnimation animate_crowd(const CrowdTrajectories& trajectories, const Enviro
     c.shape = shapes[i];
     c.palette = palette[i];
     if (!context.meshes.empty()) c.mesh = context.meshes[i];
-    if (!context.skin_tones.empty()) c.palette = pack_appearance(palette[i], context.skin_tones[i]);
+    if (!context.skin_tones.empty())
+      c.palette = pack_appearance(dressed_offset + palette[i], context.skin_tones[i]);
     const std::uint64_t cseed = derive_seed(context.seed, "character/" + c.name);
     if (clips && !stationary) {
       // Each walk clip's gait cycle on this body (retargeting scales to its proportions).

@@ -18,7 +18,9 @@
 //   - any other scenario: procedural walking along the trajectory (walk_animation.hpp) with shoulder
 //     reactions (shoulder_reactions.hpp) when trigger_probability > 0 or shoulder_count >= 0.
 // Characters are named "c000", "c001", ... in trajectory order; palette = a seeded permutation of
-// 0..N-1 (renderers take it modulo their palette count), so neighbours rarely share clothing.
+// 0..N-1 (renderers take it modulo their palette count), so neighbours rarely share clothing. With skin
+// tones (dressed MPFB2 bodies) the permutation is shifted by a seeded offset in [0, 2^16 - N), so each
+// crowd draws its own garment and hair colours (stimuli/fabric_palette.hpp).
 // Characters are processed in parallel (TBB) into per-index slots: identical output for any thread
 // count. The result passes validate_crowd().
 #include <cstdint>

@@ -43,8 +43,8 @@ struct CrowdRecipe {
 struct AnimationRecipe {
   static constexpr std::string_view kStage = "animation";
   /// 2: dressed bodies, the new stage (issue 28); 3: fingers side by side, skin under hems tucked (issue 28,
-  /// session 12).
-  static constexpr std::string_view kCodeVersion = "3";
+  /// session 12); 4: dressed crowds' clothing indices start at a seeded offset (other colours per crowd).
+  static constexpr std::string_view kCodeVersion = "4";
   AnimationSpec animation;  ///< body_model_path only with MPFB2 bodies (empty for procedural ones)
   ScenarioKind scenario = ScenarioKind::stationary;  ///< stationary: dancing; otherwise walking
   std::optional<int> shoulder_count;                 ///< `shoulder` factor
@@ -83,7 +83,7 @@ struct CorrectionRecipe {
 struct MetricsRecipe {
   static constexpr std::string_view kStage = "metrics";
   /// 2: free limbs, flips, environment; 3: mesh-level overlap and proxy coverage (issue 27)
-  static constexpr std::string_view kCodeVersion = "3";
+  static constexpr std::string_view kCodeVersion = "4";
   CrowdMethod method = CrowdMethod::baseline;  ///< the animation measured (against the baseline)
   bool surface_ground = false;  ///< manifold crowds: the feet's ground is the surface, not y = 0
 };

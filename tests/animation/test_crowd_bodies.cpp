@@ -1,10 +1,12 @@
 // Body sampling statistics and the animate_crowd entry point.
 #include <tbb/global_control.h>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 
 #include "framework/animation/animate_crowd.hpp"
 #include "framework/animation/sample_bodies.hpp"
+#include "framework/core/appearance.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
 #include "tests/support/test_paths.hpp"
@@ -86,6 +88,37 @@ TEST_CASE("animate_crowd: names, palettes, validity, stationary vs walking, dete
   CHECK_THROWS_AS(animate_crowd(CrowdTrajectories{}, Environment{}, spec, ctx), InputError);
   spec.body_model = BodyModel::mpfb2;
   CHECK_THROWS_AS(animate_crowd(line_crowd(2, 1, 10), Environment{}, spec, ctx), InputError);
+}
+
+TEST_CASE("animate_crowd: dressed crowds of other seeds wear other clothing indices, consecutive ones") {
+  // Fails before issue 28's session 13: every dressed crowd of N used the indices 0..N-1, so all crowds
+  // wore the same N colour sets (fabric_palette draws per index).
+  AnimationSpec spec;
+  AnimationContext ctx;
+  ctx.condition_id = "test";
+  const CrowdTrajectories t = line_crowd(6, 0.0, 10);
+  auto clothing_indices = [&](std::uint64_t seed) {
+    ctx.seed = seed;
+    ctx.shapes.clear();
+    ctx.skin_tones.clear();
+    for (const BodyParams& params : sample_bodies(6, 0.5, seed)) {
+      ctx.skin_tones.push_back(static_cast<int>(ctx.shapes.size() % kSkinToneCount));
+      ctx.shapes.push_back(make_procedural_body(params));
+    }
+    const CrowdAnimation a = animate_crowd(t, Environment{}, spec, ctx);
+    std::vector<int> clothing;
+    for (size_t i = 0; i < a.characters.size(); ++i) {
+      CHECK(skin_tone_of(a.characters[i].palette) == static_cast<int>(i % kSkinToneCount));
+      clothing.push_back(clothing_of(a.characters[i].palette));
+    }
+    std::sort(clothing.begin(), clothing.end());
+    for (size_t i = 1; i < clothing.size(); ++i) CHECK(clothing[i] == clothing[i - 1] + 1);
+    return clothing;
+  };
+  const std::vector<int> a = clothing_indices(77), a_again = clothing_indices(77), b = clothing_indices(78);
+  CHECK(a == a_again);
+  CHECK(a != b);
+  CHECK(a.front() != 0);
 }
 
 TEST_CASE("animate_crowd gives identical results with one thread and many, shoulder factor is honoured") {
