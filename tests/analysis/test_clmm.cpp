@@ -81,7 +81,7 @@ TEST_CASE("analysis: clmm agrees with ordinal::clmm (logit, probit, a factor col
 // logLik -272.377147539 and "Hessian is numerically singular: parameters are not uniquely determined"
 // (cells whose answers all lie at one end: coefficients run to infinity); with main effects only,
 // logLik -287.920650448 and the values below.
-TEST_CASE("analysis: clmm of separated data reaches R's log-likelihood and is not fitted; main effects agree",
+TEST_CASE("analysis: clmm of separated data reaches R's log-likelihood and is not fitted, main effects agree",
           "[analysis]") {
   const auto t = read_csv(analysis_data("clmm_separated.csv"));
   // BOBYQA stopped at its 200000 evaluations here (about 100 s) at logLik -272.562, 0.185 below R's,
