@@ -39,6 +39,14 @@ struct Link {
     }
     return -t * pdf(t);
   }
+  // d2 pdf / dt2 (the third derivative of the cdf), for the gradient of the Laplace curvature term
+  double ddpdf(double t) const {
+    if (logit) {
+      const double f = cdf(t);
+      return f * (1.0 - f) * (1.0 - 6.0 * f + 6.0 * f * f);
+    }
+    return (t * t - 1.0) * pdf(t);
+  }
 };
 
 // One random-intercept term (1 | group): its levels and each row's level.
@@ -210,6 +218,99 @@ double laplace_loglik_crossed(const Data& d, const Params& p) {
   return static_cast<double>(loglik - 0.5L * u2 - 0.5L * log_det);
 }
 
+// log P(y | a) = log(F(U) - F(L)), U = theta_y - a, L = theta_{y-1} - a, and its partial derivatives in
+// (U, L) to third order (the mixed ones from P_UL = 0): the chain rule of the analytic gradient below.
+struct LogProbDerivatives {
+  double logp = 0, u = 0, l = 0, uu = 0, ul = 0, ll = 0, uuu = 0, uul = 0, ull = 0, lll = 0;
+  // In b (a = eta + b enters U and L with sign -1): d/db = -(d/dU + d/dL).
+  double db1() const { return -(u + l); }
+  double db2() const { return uu + 2.0 * ul + ll; }
+  double db3() const { return -(uuu + 3.0 * uul + 3.0 * ull + lll); }
+};
+LogProbDerivatives log_prob_derivatives(const Data& d, const Params& p, int y, double a) {
+  auto at = [&](double t, double& f, double& f1, double& f2, double& f3) {
+    if (!std::isfinite(t)) {
+      f = t > 0 ? 1.0 : 0.0;
+      f1 = f2 = f3 = 0;
+      return;
+    }
+    f = d.link.cdf(t);
+    f1 = d.link.pdf(t);
+    f2 = d.link.dpdf(t);
+    f3 = d.link.ddpdf(t);
+  };
+  double fu = 0, pu = 0, pu2 = 0, pu3 = 0, fl = 0, pl = 0, pl2 = 0, pl3 = 0;
+  at(y < d.levels - 1 ? p.theta[static_cast<size_t>(y)] - a : HUGE_VAL, fu, pu, pu2, pu3);
+  at(y > 0 ? p.theta[static_cast<size_t>(y - 1)] - a : -HUGE_VAL, fl, pl, pl2, pl3);
+  const double prob = std::max(fu - fl, 1e-300);
+  // P's partials: P_U = f(U), P_L = -f(L), likewise for the higher orders; log P's follow.
+  const double gu = pu / prob, gl = -pl / prob;
+  LogProbDerivatives r;
+  r.logp = std::log(prob);
+  r.u = gu;
+  r.l = gl;
+  r.uu = pu2 / prob - gu * gu;
+  r.ll = -pl2 / prob - gl * gl;
+  r.ul = -gu * gl;
+  r.uuu = pu3 / prob - 3.0 * (pu2 / prob) * gu + 2.0 * gu * gu * gu;
+  r.lll = -pl3 / prob - 3.0 * (-pl2 / prob) * gl + 2.0 * gl * gl * gl;
+  r.uul = -(pu2 / prob) * gl + 2.0 * gu * gu * gl;
+  r.ull = (pl2 / prob) * gu + 2.0 * gu * gl * gl;
+  return r;
+}
+
+// Gradient of the one-term Laplace log-likelihood in the natural parameters (thresholds, beta, log sd),
+// exact up to the conditional modes' convergence (|step| < 1e-12). Per group, L = l(u*) - log(-h(u*)) / 2
+// with l the log posterior, g = dl/du = 0 at the mode u* and h = d2l/du2: by the envelope theorem
+// dL/dphi = dl/dphi - (dh/dphi + dh/du du*/dphi) / (2h), and du*/dphi = -(dg/dphi) / h (implicit
+// function theorem). Needs the third derivative of log P in b. Returns the log-likelihood.
+double laplace_gradient_nested(const Data& d, const Params& p, Eigen::VectorXd& grad) {
+  const double value = laplace_loglik_nested(d, p);  // converges d.modes
+  const Eigen::VectorXd eta = d.x * p.beta;
+  const double sd = std::exp(p.log_sd[0]);
+  const auto k1 = static_cast<Eigen::Index>(d.levels - 1), np = d.x.cols();
+  const Eigen::Index n = k1 + np + 1, s_index = n - 1;
+  grad = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd dl(n), dg(n), dh(n);
+  const auto& term = d.terms[0];
+  for (size_t g = 0; g < term.rows_of.size(); ++g) {
+    const double u = d.modes[g];
+    dl.setZero();
+    dg.setZero();
+    dh.setZero();
+    double sum_d1 = 0, sum_d2 = 0, sum_d3 = 0;
+    for (size_t r : term.rows_of[g]) {
+      const auto ri = static_cast<Eigen::Index>(r);
+      const int y = d.y[r];
+      const LogProbDerivatives q = log_prob_derivatives(d, p, y, eta[ri] + sd * u);
+      const double d1 = q.db1(), d2 = q.db2(), d3 = q.db3();
+      sum_d1 += d1;
+      sum_d2 += d2;
+      sum_d3 += d3;
+      if (y < d.levels - 1) {  // theta_y enters U
+        dl[y] += q.u;
+        dg[y] += -sd * (q.uu + q.ul);
+        dh[y] += sd * sd * (q.uuu + 2.0 * q.uul + q.ull);
+      }
+      if (y > 0) {  // theta_{y-1} enters L
+        dl[y - 1] += q.l;
+        dg[y - 1] += -sd * (q.ul + q.ll);
+        dh[y - 1] += sd * sd * (q.uul + 2.0 * q.ull + q.lll);
+      }
+      const auto xr = d.x.row(ri).transpose();
+      dl.segment(k1, np) += d1 * xr;
+      dg.segment(k1, np) += sd * d2 * xr;
+      dh.segment(k1, np) += sd * sd * d3 * xr;
+    }
+    dl[s_index] = sd * u * sum_d1;
+    dg[s_index] = sd * sum_d1 + sd * sd * u * sum_d2;
+    dh[s_index] = 2.0 * sd * sd * sum_d2 + sd * sd * sd * u * sum_d3;
+    const double h = -1.0 + sd * sd * sum_d2, dh_du = sd * sd * sd * sum_d3;
+    grad += dl - (dh - dh_du * dg / h) / (2.0 * h);
+  }
+  return value;
+}
+
 double laplace_loglik(const Data& d, const Params& p) {
   return d.terms.size() == 1 ? laplace_loglik_nested(d, p) : laplace_loglik_crossed(d, p);
 }
@@ -227,6 +328,28 @@ double clmm_objective(unsigned, const double* v, double*, void* data) {
   const auto natural = to_natural(d, v);
   const double ll = laplace_loglik(d, unpack_natural(d, natural.data()));
   return std::isfinite(ll) ? -ll : HUGE_VAL;
+}
+
+// The same with its gradient in the optimiser's coordinates (one random term only): by the chain rule,
+// theta_k = v_0 + sum_{1 <= j <= k} exp(v_j).
+double clmm_objective_with_gradient(unsigned, const double* v, double* grad, void* data) {
+  const auto& d = *static_cast<const Data*>(data);
+  const auto natural = to_natural(d, v);
+  if (!grad) {
+    const double ll = laplace_loglik(d, unpack_natural(d, natural.data()));
+    return std::isfinite(ll) ? -ll : HUGE_VAL;
+  }
+  Eigen::VectorXd g;
+  const double ll = laplace_gradient_nested(d, unpack_natural(d, natural.data()), g);
+  if (!std::isfinite(ll) || !g.allFinite()) return HUGE_VAL;
+  const auto k1 = static_cast<Eigen::Index>(d.levels - 1);
+  for (Eigen::Index j = 0; j < g.size(); ++j) grad[j] = -g[j];
+  double tail = 0;  // sum of dL/dtheta_k for k >= j
+  for (Eigen::Index j = k1 - 1; j >= 0; --j) {
+    tail += g[j];
+    grad[j] = -(j == 0 ? tail : std::exp(v[j]) * tail);
+  }
+  return -ll;
 }
 
 std::vector<std::string> response_levels(const CsvTable& table, size_t col) {
@@ -313,8 +436,29 @@ Data build_data(const CsvTable& table, const LmmFormula& f, const std::string& l
   return d;
 }
 
-// Negative Hessian of the Laplace log-likelihood in the natural parameters, by central differences.
+// Negative Hessian of the one-term Laplace log-likelihood: central differences of its analytic gradient
+// (2n gradients instead of 2n^2 log-likelihoods; the steps of `information`), symmetrised.
+Eigen::MatrixXd information_from_gradient(const Data& d, const std::vector<double>& at) {
+  const auto n = static_cast<Eigen::Index>(at.size());
+  Eigen::MatrixXd h(n, n);
+  Eigen::VectorXd up, down;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const auto sj = static_cast<size_t>(j);
+    const double step = 1e-4 * std::max(1.0, std::abs(at[sj]));
+    auto v = at;
+    v[sj] = at[sj] + step;
+    laplace_gradient_nested(d, unpack_natural(d, v.data()), up);
+    v[sj] = at[sj] - step;
+    laplace_gradient_nested(d, unpack_natural(d, v.data()), down);
+    h.col(j) = -(up - down) / (2.0 * step);
+  }
+  return 0.5 * (h + h.transpose());
+}
+
+// Negative Hessian of the Laplace log-likelihood in the natural parameters, by central differences
+// (of the analytic gradient with one random term, of the log-likelihood with several).
 Eigen::MatrixXd information(const Data& d, const std::vector<double>& at) {
+  if (d.terms.size() == 1) return information_from_gradient(d, at);
   const auto n = static_cast<Eigen::Index>(at.size());
   auto ll = [&](const std::vector<double>& v) { return laplace_loglik(d, unpack_natural(d, v.data())); };
   Eigen::MatrixXd h(n, n);
@@ -346,10 +490,14 @@ Eigen::MatrixXd information(const Data& d, const std::vector<double>& at) {
     }
   return h;
 }
-// Gradient of the Laplace log-likelihood in the natural parameters, by central differences (the steps of
-// `information`).
+// Gradient of the Laplace log-likelihood in the natural parameters: analytic with one random term, else
+// by central differences (the steps of `information`).
 Eigen::VectorXd gradient(const Data& d, const std::vector<double>& at) {
   Eigen::VectorXd g(static_cast<Eigen::Index>(at.size()));
+  if (d.terms.size() == 1) {
+    laplace_gradient_nested(d, unpack_natural(d, at.data()), g);
+    return g;
+  }
   for (size_t i = 0; i < at.size(); ++i) {
     const double h = 1e-4 * std::max(1.0, std::abs(at[i]));
     auto v = at;
@@ -455,15 +603,30 @@ ClmmResult fit_clmm(const CsvTable& table, const std::string& formula, const std
     v[k] = k == 0 ? q : std::log(std::max(q - prev, 1e-3));
     prev = k == 0 ? q : prev + std::exp(v[k]);
   }
-  // BOBYQA to a relative change of 1e-10, then Newton steps on the finite-difference gradient and
-  // Hessian (which the SEs need anyway): they land closer to the optimum than BOBYQA's last digits
-  // (docs/analysis.md). Where Newton cannot (a flat direction), BOBYQA goes on to 1e-15 from there.
-  NloptOutcome opt = minimise_derivative_free(v, {}, clmm_objective, const_cast<Data*>(&d), 200000, 1e-10);
+  // With one random term (every study report's model): L-BFGS on the analytic gradient to a relative
+  // change of 1e-15. With several, or where L-BFGS fails: BOBYQA to 1e-10. Then Newton steps on the
+  // gradient and the finite-difference Hessian (which the SEs need anyway): they land closer to the
+  // optimum than either optimiser's last digits (docs/analysis.md). Where Newton cannot finish (a flat
+  // direction: an SD running to 0, or a coefficient running to infinity in separated data), the first
+  // optimiser goes on from Newton's last point, BOBYQA to 1e-15. L-BFGS walks such a direction out in
+  // tens of gradients where BOBYQA took up to its 200000 evaluations (issue 31).
+  auto* data = const_cast<Data*>(&d);
+  const bool gradient_based = nt == 1;
+  auto optimise = [&](double bobyqa_ftol_rel) {
+    if (gradient_based) {
+      const auto start = v;
+      const NloptOutcome lbfgs = minimise_with_gradient(v, clmm_objective_with_gradient, data, 20000);
+      if (lbfgs.converged()) return lbfgs;
+      v = start;
+    }
+    return minimise_derivative_free(v, {}, clmm_objective, data, 200000, bobyqa_ftol_rel);
+  };
+  NloptOutcome opt = optimise(1e-10);
   std::vector<double> natural = to_natural(d, v.data());
   Eigen::MatrixXd info = information(d, natural);
   if (!newton_polish(d, natural, info)) {
     v = from_natural(d, natural);
-    opt = minimise_derivative_free(v, {}, clmm_objective, const_cast<Data*>(&d), 200000);
+    opt = optimise(1e-15);
     natural = to_natural(d, v.data());
     info = information(d, natural);
   }

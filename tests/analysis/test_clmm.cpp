@@ -12,6 +12,7 @@
 #include <set>
 
 #include "analysis/clmm_fit.hpp"
+#include "analysis/model_not_fitted.hpp"
 #include "framework/core/error.hpp"
 #include "tests/analysis/reference_table.hpp"
 #include "tests/support/run_cli.hpp"
@@ -72,6 +73,49 @@ TEST_CASE("analysis: clmm agrees with ordinal::clmm (logit, probit, a factor col
     }
     CHECK(fixed == fixed_terms);
   }
+}
+
+// clmm_separated.csv: one Likert item of `reproduce gomez2024 --quick`'s simulated study (8 observers x
+// 40 conditions, 6 answer levels used), density prefixed with "d" so that it is a factor. R 4.2.2,
+// ordinal 2022.11.16: clmm(factor(value) ~ density * viewpoint * method + (1 | participant)) stops with
+// logLik -272.377147539 and "Hessian is numerically singular: parameters are not uniquely determined"
+// (cells whose answers all lie at one end: coefficients run to infinity); with main effects only,
+// logLik -287.920650448 and the values below.
+TEST_CASE("analysis: clmm of separated data reaches R's log-likelihood and is not fitted, main effects agree",
+          "[analysis]") {
+  const auto t = read_csv(analysis_data("clmm_separated.csv"));
+  // BOBYQA stopped at its 200000 evaluations here (about 100 s) at logLik -272.562, 0.185 below R's,
+  // and reported arbitrary estimates near -11 with SEs of 300; L-BFGS on the analytic gradient walks the
+  // flat directions out in a fraction of a second, where the information is singular, as R says.
+  try {
+    (void)fit_clmm(t, "value ~ density * viewpoint * method + (1 | participant)");
+    FAIL("a separated model was fitted");
+  } catch (const analysis::ModelNotFitted& e) {
+    CHECK_THAT(e.what(), Catch::Contains("separated"));
+  }
+  const auto fit = fit_clmm(t, "value ~ density + viewpoint + method + (1 | participant)");
+  CHECK(fit.converged);
+  CHECK(fit.loglik >= -287.920650448 - 1e-6);  // at R's optimum or closer (R stops at gradTol 1e-4)
+  CHECK(fit.loglik == Approx(-287.920650448).margin(1e-4));
+  REQUIRE(fit.random.size() == 1);
+  CHECK(fit.random[0].sd == Approx(0.575175173).epsilon(1e-4));
+  const std::map<std::string, std::pair<double, double>> r = {
+      {"1|2", {0.8877571832, 0.41884884}},           {"2|3", {2.8299248227, 0.57754833}},
+      {"3|4", {4.8447829926, 0.87715362}},           {"4|5", {6.6355546489, 0.92089754}},
+      {"5|6", {8.2528484061, 0.93483284}},           {"densityd3.33", {-0.5400612025, 0.37864417}},
+      {"densityd4.44", {-0.4286210615, 0.36880256}}, {"densityd5.55", {-0.8605054204, 0.38248440}},
+      {"densityd6.66", {-0.7049672424, 0.37966157}}, {"viewpointV2", {-0.3696221915, 0.34037563}},
+      {"viewpointV3", {-0.3888445697, 0.33858349}},  {"viewpointV4", {-0.2169209612, 0.33922067}},
+      {"methodours", {8.4789933860, 0.86766998}}};
+  auto check = [&](const ClmmCoefficient& c) {
+    INFO(c.name);
+    REQUIRE(r.count(c.name));
+    CHECK(c.estimate == Approx(r.at(c.name).first).epsilon(1e-4).margin(5e-5));
+    CHECK(c.se == Approx(r.at(c.name).second).epsilon(5e-3));
+  };
+  for (const auto& c : fit.thresholds) check(c);
+  for (const auto& c : fit.fixed) check(c);
+  CHECK(fit.thresholds.size() + fit.fixed.size() == r.size());
 }
 
 TEST_CASE("analysis: analyze clmm --json and bad input (exit 2)", "[analysis][cli]") {
