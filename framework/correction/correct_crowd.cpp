@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <optional>
+#include <string>
 
 #include "framework/core/crowd_penetration_depth.hpp"
 #include "framework/core/forward_kinematics.hpp"
@@ -26,30 +28,70 @@ bool input_loops(const CrowdAnimation& crowd) {
   return true;
 }
 
-/// Deepest inter-body penetration (m) over frames [first, last) of a crowd.
-double deepest(const CrowdAnimation& crowd, int first, int last) {
-  double depth = 0.0;
+/// Per character, its deepest penetration (m) with any other over frames [first, last) of a crowd.
+std::vector<double> deepest_per_character(const CrowdAnimation& crowd, int first, int last) {
+  std::vector<double> depth(crowd.characters.size(), 0.0);
   std::vector<WorldCapsules> bodies(crowd.characters.size());
   for (int f = first; f < last; ++f) {
     for (size_t c = 0; c < bodies.size(); ++c)
       bodies[c] =
           world_capsules(crowd.characters[c].shape, crowd.characters[c].frames[static_cast<size_t>(f)]);
-    depth = std::max(depth, deepest_crowd_penetration(bodies));
+    const std::vector<double> now = deepest_penetration_per_body(bodies);
+    for (size_t c = 0; c < bodies.size(); ++c) depth[c] = std::max(depth[c], now[c]);
   }
   return depth;
 }
 
+/// Deepest inter-body penetration (m) over frames [first, last) of a crowd.
+double deepest(const CrowdAnimation& crowd, int first, int last) {
+  const std::vector<double> per_character = deepest_per_character(crowd, first, last);
+  return per_character.empty() ? 0.0 : *std::max_element(per_character.begin(), per_character.end());
+}
+
+/// A closure of some characters only: every character starts closed as in `closed`, and each whose
+/// penetration over frames [first, N) goes deeper than `limit_m` returns to its frames in `open` (both
+/// sides of a too-deep contact go back), again until no closed character is too deep. Terminates, since
+/// `open` alone stays within the limit. Returns the number of characters left closed.
+int close_some_characters(const CrowdAnimation& closed, int first, double limit_m, CrowdAnimation& open) {
+  const int frames = open.frame_count();
+  CrowdAnimation mixed = closed;
+  std::vector<bool> kept(closed.characters.size(), true);
+  for (bool reverted = true; reverted;) {
+    reverted = false;
+    const std::vector<double> depth = deepest_per_character(mixed, first, frames);
+    for (size_t c = 0; c < kept.size(); ++c) {
+      if (!kept[c] || depth[c] <= limit_m) continue;
+      kept[c] = false;
+      mixed.characters[c].frames = open.characters[c].frames;
+      reverted = true;
+    }
+  }
+  open = std::move(mixed);
+  return static_cast<int>(std::count(kept.begin(), kept.end(), true));
+}
+
+/// Whole laps of the clip corrected (unrecorded) before the recorded one, for looping clips (issue 28):
+/// the recorded clip starts from the end of the last, so its seam is the distance between two laps' ends.
+/// A 2 s pre-roll from a freshly settled crowd left histories that resolved dense contacts on other sides
+/// than the clip (gomez2024 concert, 4 s, 6.66/m^2: seam 1.64x, every closure 82-84 mm deep). Measured
+/// there (V3, 320x180, load 11 on 2 cores) with the per-character closure below: one lead lap 1.76x
+/// (the laps' ends up to 91 mm apart for the worst character), two 1.41x; 4.44/m^2 1.13x / 1.21x;
+/// 2.22/m^2 0.90x / 0.89x. Each lap costs one correction of the clip (6 s of 60 characters x 120 frames
+/// at that load).
+constexpr int kLeadLaps = 2;
+
 /// Penetration a loop closure may add beyond the unclosed clip's deepest (m): below what shows.
 constexpr double kClosureDepthSlackM = 0.001;
 
-/// Loop closure of a corrected clip `out` whose last P = preroll_out[c].size() frames should end where the
-/// pre-roll ended: they blend into the pre-roll's output (weight rising to 1, raised cosine). Two ways, the
-/// one with the shallower penetration kept: (a) the blend corrected again, from `before_window` (the
-/// corrector before frame N - P), so contacts that the two corrected histories resolved on different sides
-/// are resolved in the blend too; (b) the plain blend. A plain blend alone re-opened contacts mid-way
-/// (issue 28: 17-66 mm on 1 s clips, 76 mm on a 4 s concert at 6.66/m^2, where the unclosed clip has 0 and
-/// 16 mm), and so, less often, does (a); when both go deeper than the unclosed clip, the clip stays
-/// unclosed: a seam rather than a collision.
+/// Loop closure of a corrected clip `out` whose last W = preroll_out[c].size() frames should end where the
+/// last lead lap ended (the state frame 0 continued from): they blend into that lap's output (weight rising
+/// to 1, raised cosine). (a) the blend corrected again, from `before_window` (the corrector before frame
+/// N - W), so contacts that the two laps resolved on different sides are resolved in the blend too, and
+/// what then remains blended out; (b) the plain blend. The shallower is kept when it is no deeper than the
+/// unclosed clip (+1 mm). A plain blend re-opened contacts mid-way (issue 28: 17-66 mm on 1 s clips, 76 mm
+/// on a 4 s concert at 6.66/m^2, where the unclosed clip has 0 and 16 mm), and so, less often, does (a);
+/// then (a) closes only the characters it keeps within that depth (close_some_characters), the others stay
+/// unclosed: a seam for some rather than a collision (all of them stayed unclosed before session 12).
 void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>>& preroll_out,
                 Corrector before_window, const CorrectorParams& params, CrowdAnimation& out,
                 CorrectionReport& r) {
@@ -91,12 +133,29 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
   } else if (d_blended <= limit) {
     out = std::move(blended);
     r.loop_closure = "blend";
-  } else if (deepest(corrected, first, frames) <= limit) {
-    out = std::move(corrected);
-    r.loop_closure = "corrected, open";
   } else {
-    r.loop_closure = "none";
+    const int closed = close_some_characters(finished, first, limit, out);
+    r.loop_closure =
+        "corrected blend, " + std::to_string(closed) + " of " + std::to_string(n) + " characters";
   }
+}
+
+/// The targets of frame f: every character's input pose.
+void frame_targets(const CrowdAnimation& crowd, int f, std::vector<Pose>& targets) {
+  for (size_t c = 0; c < targets.size(); ++c) targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
+}
+
+/// Largest mean joint distance (m) of any character between two crowds' poses on frame f.
+double lap_difference_m(const CrowdAnimation& a, const CrowdAnimation& b, int f) {
+  double worst = 0.0;
+  for (size_t c = 0; c < a.characters.size(); ++c) {
+    const auto pa = joint_positions(a.characters[c].shape, a.characters[c].frames[static_cast<size_t>(f)]);
+    const auto pb = joint_positions(b.characters[c].shape, b.characters[c].frames[static_cast<size_t>(f)]);
+    double sum = 0.0;
+    for (size_t j = 0; j < pa.size(); ++j) sum += (pa[j] - pb[j]).norm();
+    worst = std::max(worst, sum / static_cast<double>(pa.size()));
+  }
+  return worst;
 }
 
 }  // namespace
@@ -116,15 +175,13 @@ CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams&
   CorrectionReport r;
   r.frames = frames;
   double contacts = 0.0, iterations = 0.0;
-  const int preroll =
+  const int window =
       frames > 1 && params.loop_preroll_s > 0.0 && input_loops(crowd)
           ? std::min(frames - 1, static_cast<int>(std::lround(params.loop_preroll_s * crowd.meta.fps)))
           : 0;
-  r.preroll_frames = preroll;
+  r.preroll_frames = window > 0 ? kLeadLaps * frames : 0;
   if (frames > 0) {
-    for (size_t c = 0; c < n; ++c)
-      targets[c] =
-          crowd.characters[c].frames[static_cast<size_t>(frames - preroll) % static_cast<size_t>(frames)];
+    frame_targets(crowd, 0, targets);
     // Feet are free while the crowd settles (the first frame's overlaps are pushed out, feet included);
     // holds start on the first output frame.
     corrector.set_foot_holds(false);
@@ -135,21 +192,27 @@ CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams&
     r.settle_steps = params.settle_steps;
     corrector.set_foot_holds(true);
   }
-  // The pre-roll's output of frames N - P .. N - 1, per character: the clip's end blends into it.
-  std::vector<std::vector<Pose>> preroll_out(n);
-  for (int f = frames - preroll; f < frames && preroll > 0; ++f) {
-    for (size_t c = 0; c < n; ++c) targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
-    const std::vector<Pose> corrected = corrector.step(targets);
-    for (size_t c = 0; c < n; ++c) preroll_out[c].push_back(corrected[c]);
-    if (corrector.last_stats().rejected) ++r.rejected_steps;
+  // Lead laps (unrecorded), each from the previous one's end; the recorded clip starts from the last's end,
+  // whose final window frames its own end blends into.
+  std::vector<std::vector<Pose>> lead_end(n);
+  CrowdAnimation lap = crowd;
+  for (int l = 0; l < (window > 0 ? kLeadLaps : 0); ++l) {
+    for (int f = 0; f < frames; ++f) {
+      frame_targets(crowd, f, targets);
+      const std::vector<Pose> corrected = corrector.step(targets);
+      for (size_t c = 0; c < n; ++c) lap.characters[c].frames[static_cast<size_t>(f)] = corrected[c];
+      if (corrector.last_stats().rejected) ++r.rejected_steps;
+    }
   }
-  // The corrector as it stood before frame N - P (P <= N - 1): the loop closure below runs on from there.
+  for (size_t c = 0; c < n && window > 0; ++c)
+    lead_end[c].assign(lap.characters[c].frames.end() - window, lap.characters[c].frames.end());
+  // The corrector as it stood before frame N - W: the loop closure below runs on from there.
   std::optional<Corrector> before_window;
   for (int f = 0; f < frames; ++f) {
-    for (size_t c = 0; c < n; ++c) targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
+    frame_targets(crowd, f, targets);
     const std::vector<Pose> corrected = corrector.step(targets);
     for (size_t c = 0; c < n; ++c) out.characters[c].frames[static_cast<size_t>(f)] = corrected[c];
-    if (preroll > 0 && f == frames - preroll - 1) before_window = corrector;
+    if (window > 0 && f == frames - window - 1) before_window = corrector;
     const StepStats& st = corrector.last_stats();
     contacts += st.contacts();
     iterations += st.cg_iterations;
@@ -157,7 +220,11 @@ CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams&
     if (!st.converged) ++r.unconverged_steps;
     if (progress) progress->advance();
   }
-  if (before_window) close_loop(crowd, preroll_out, *before_window, params, out, r);
+  if (before_window) {
+    spdlog::debug("correct_crowd: the recorded lap ends {:.4f} m from the lead lap (worst character)",
+                  lap_difference_m(out, lap, frames - 1));
+    close_loop(crowd, lead_end, *before_window, params, out, r);
+  }
   r.contacts_mean = frames > 0 ? contacts / frames : 0.0;
   r.cg_iterations_mean = frames > 0 ? iterations / frames : 0.0;
   if (r.rejected_steps > 0)
@@ -165,8 +232,8 @@ CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams&
         "correct_crowd: {} of {} steps were rejected (solver did not converge); the last stable state was "
         "kept",
         r.rejected_steps, frames);
-  if (preroll > 0)
-    spdlog::debug("correct_crowd: loop pre-roll of {} frames, closure: {}", preroll, r.loop_closure);
+  if (window > 0)
+    spdlog::debug("correct_crowd: loop pre-roll of {} frames, closure: {}", r.preroll_frames, r.loop_closure);
   if (report) *report = r;
   return out;
 }
