@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <optional>
@@ -48,26 +49,32 @@ double deepest(const CrowdAnimation& crowd, int first, int last) {
   return per_character.empty() ? 0.0 : *std::max_element(per_character.begin(), per_character.end());
 }
 
-/// A closure of some characters only: every character starts closed as in `closed`, and each whose
-/// penetration over frames [first, N) goes deeper than `limit_m` returns to its frames in `open` (both
-/// sides of a too-deep contact go back), again until no closed character is too deep. Terminates, since
-/// `open` alone stays within the limit. Returns the number of characters left closed.
-int close_some_characters(const CrowdAnimation& closed, int first, double limit_m, CrowdAnimation& open) {
+/// A closure of some characters only: every character starts on the first of `closures` (the closed
+/// candidates, best first) and each whose penetration over frames [first, N) goes deeper than `limit_m`
+/// moves to the next candidate, or back to its frames in `open` after the last (both sides of a too-deep
+/// contact move on), again until no character is too deep. Terminates, since `open` alone stays within the
+/// limit. Returns how many characters ended on each candidate.
+std::vector<int> close_some_characters(const std::vector<const CrowdAnimation*>& closures, int first,
+                                       double limit_m, CrowdAnimation& open) {
   const int frames = open.frame_count();
-  CrowdAnimation mixed = closed;
-  std::vector<bool> kept(closed.characters.size(), true);
-  for (bool reverted = true; reverted;) {
-    reverted = false;
+  const size_t rungs = closures.size();
+  CrowdAnimation mixed = *closures.front();
+  std::vector<size_t> rung(mixed.characters.size(), 0);
+  for (bool moved = true; moved;) {
+    moved = false;
     const std::vector<double> depth = deepest_per_character(mixed, first, frames);
-    for (size_t c = 0; c < kept.size(); ++c) {
-      if (!kept[c] || depth[c] <= limit_m) continue;
-      kept[c] = false;
-      mixed.characters[c].frames = open.characters[c].frames;
-      reverted = true;
+    for (size_t c = 0; c < rung.size(); ++c) {
+      if (rung[c] == rungs || depth[c] <= limit_m) continue;
+      ++rung[c];
+      mixed.characters[c].frames = (rung[c] < rungs ? closures[rung[c]] : &open)->characters[c].frames;
+      moved = true;
     }
   }
   open = std::move(mixed);
-  return static_cast<int>(std::count(kept.begin(), kept.end(), true));
+  std::vector<int> on(rungs, 0);
+  for (size_t r : rung)
+    if (r < rungs) ++on[r];
+  return on;
 }
 
 /// Whole laps of the clip corrected (unrecorded) before the recorded one, for looping clips (issue 28):
@@ -76,12 +83,33 @@ int close_some_characters(const CrowdAnimation& closed, int first, double limit_
 /// than the clip (gomez2024 concert, 4 s, 6.66/m^2: seam 1.64x, every closure 82-84 mm deep). Measured
 /// there (V3, 320x180, load 11 on 2 cores) with the per-character closure below: one lead lap 1.76x
 /// (the laps' ends up to 91 mm apart for the worst character), two 1.41x; 4.44/m^2 1.13x / 1.21x;
-/// 2.22/m^2 0.90x / 0.89x. Each lap costs one correction of the clip (6 s of 60 characters x 120 frames
-/// at that load).
-constexpr int kLeadLaps = 2;
+/// 2.22/m^2 0.90x / 0.89x. Session 13 (arms aimed at the input in the re-corrected closure, which left
+/// fewer characters closable): two laps 1.57x, three 1.31x but the unclosed clip 15.6 mm deep, four 1.48x
+/// and 9.8 mm (load 15-20; the laps are chaotic, so a seam varies by +-0.2 from crowd to crowd). Each lap
+/// costs one correction of the clip (6 s of 60 characters x 120 frames at load 11).
+constexpr int kLeadLaps = 4;
 
 /// Penetration a loop closure may add beyond the unclosed clip's deepest (m): below what shows.
 constexpr double kClosureDepthSlackM = 0.001;
+
+/// Joints whose aims in the re-corrected closure stay the input's: collars, shoulders, elbows, wrists, hands.
+/// Aimed at the input blended into the last lap's output, the second correction turned hands and wrists
+/// away from their input within a few frames (issue 27's flips: gomez2024 concert, 4 s, 6.66/m^2, 756
+/// flip joint-frames in the window against 72 unclosed); aimed at the input, as the clip's own correction
+/// is, it flips as that does, and the closing blend (c) brings the arms to the lap's over the window's
+/// second half.
+constexpr std::array<Joint, 10> kArmJoints = {kLeftCollar, kRightCollar, kLeftShoulder, kRightShoulder,
+                                              kLeftElbow,  kRightElbow,  kLeftWrist,    kRightWrist,
+                                              kLeftHand,   kRightHand};
+
+/// The arm joints' local rotations on frames [first, N) of `aims` set back to the input's.
+void arms_from_input(const CrowdAnimation& input, int first, CrowdAnimation& aims) {
+  for (size_t c = 0; c < aims.characters.size(); ++c)
+    for (size_t f = static_cast<size_t>(first); f < aims.characters[c].frames.size(); ++f)
+      for (Joint j : kArmJoints)
+        aims.characters[c].frames[f].local_rotations[static_cast<size_t>(j)] =
+            input.characters[c].frames[f].local_rotations[static_cast<size_t>(j)];
+}
 
 /// Loop closure of a corrected clip `out` whose last W = preroll_out[c].size() frames should end where the
 /// last lead lap ended (the state frame 0 continued from): they blend into that lap's output (weight rising
@@ -108,6 +136,7 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
   // loop_seam.yaml).
   CrowdAnimation aims = input;
   blend_keeping_planted_feet(input, preroll_out, preroll, params, aims);
+  arms_from_input(input, first, aims);
   std::vector<Pose> targets(n);
   for (int k = 0; k < preroll; ++k) {
     const size_t f = static_cast<size_t>(first + k);
@@ -116,6 +145,9 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
     for (size_t c = 0; c < n; ++c) corrected.characters[c].frames[f] = stepped[c];
     if (before_window.last_stats().rejected) ++r.rejected_steps;
   }
+  // The second correction lags a swinging foot and can set it down away from where it stood the frame
+  // before (loop_seam.yaml: 12 mm, stance-foot drift p99 12.0 mm): planted feet follow the input instead.
+  keep_planted_feet_planted(input, preroll, params, corrected);
   // (c): the corrected blend, its remaining distance to the pre-roll's output blended out over the
   // window's second half (feet kept again), which closes the loop exactly.
   CrowdAnimation finished = corrected;
@@ -134,9 +166,9 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
     out = std::move(blended);
     r.loop_closure = "blend";
   } else {
-    const int closed = close_some_characters(finished, first, limit, out);
-    r.loop_closure =
-        "corrected blend, " + std::to_string(closed) + " of " + std::to_string(n) + " characters";
+    const std::vector<int> on = close_some_characters({&finished, &blended}, first, limit, out);
+    r.loop_closure = "corrected blend for " + std::to_string(on[0]) + ", blend for " + std::to_string(on[1]) +
+                     " of " + std::to_string(n) + " characters";
   }
 }
 

@@ -315,7 +315,7 @@ TEST_CASE("correction: a looping input gives a looping output with the loop pre-
   CHECK(report.preroll_frames == 0);
   params.loop_preroll_s = 2.0;
   const CrowdAnimation looped = correct_crowd(crowd, params, nullptr, &report);
-  CHECK(report.preroll_frames == 2 * 60);  // two whole laps
+  CHECK(report.preroll_frames == 4 * 60);  // four whole laps
   CHECK(!report.loop_closure.empty());     // closed (all or some characters) without going deeper
   INFO("seam / median step: " << seam_ratio(plain) << " without, " << seam_ratio(looped)
                               << " with the pre-roll");
