@@ -144,7 +144,7 @@ struct CorrectorParams {
   /// above), enough for the dense fixture's initial interpenetration to be pushed out.
   int settle_steps = 30;
   /// Looping clips (issue 28): > 0 and the input loops (every root's last frame within kLoopRootM of its
-  /// first), the corrector settles on frame 0 and corrects two whole laps of the clip unrecorded before
+  /// first), the corrector settles on frame 0 and corrects four whole laps of the clip unrecorded before
   /// frame 0, so frame 0 continues from the state a lap ends in; the clip's last loop_preroll_s seconds of
   /// frames (at most N - 1) then blend into the last lap's (correct_crowd.hpp). 0: off (the online
   /// corrector and clips that play once).

@@ -53,7 +53,7 @@ struct AnimationRecipe {
   std::string key;                                   ///< crowd key, recorded in the crowd file
 };
 
-/// Loop closure window of looping clips (s): two whole laps of the clip are run before frame 0, and the
+/// Loop closure window of looping clips (s): four whole laps of the clip are run before frame 0, and the
 /// clip's last 2 s blend into the last lap's (correct_crowd.hpp). 2 s is about two dance steps at the
 /// concert's tempi, so most feet lift inside the window and can move to the pre-roll's spots while they swing
 /// (blend_keeping_planted_feet.hpp).
