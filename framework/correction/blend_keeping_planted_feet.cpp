@@ -1,5 +1,6 @@
 #include "framework/correction/blend_keeping_planted_feet.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -90,7 +91,92 @@ void blend_character(const CharacterAnimation& in, const std::vector<Pose>& targ
   }
 }
 
+/// The inverse of a rigid transform.
+RigidTransform inverse(const RigidTransform& t) {
+  const Quat r = t.rotation.conjugate();
+  return {r, -(r * t.translation)};
+}
+
+/// The ankle bone's world transform on frame f of a character.
+RigidTransform ankle_transform(const CharacterAnimation& a, int f, size_t ankle) {
+  return forward_kinematics(a.shape, a.frames[static_cast<size_t>(f)])[ankle];
+}
+
+/// planted[f - first + 1] for f in [first - 1, frames): the input plants the foot on frame f (its ankle or
+/// its ball, by the corrector's test on the step since f - 1; first >= 2).
+std::vector<bool> planted_frames(const CharacterAnimation& in, int first, size_t s, double max_step_m,
+                                 const CorrectorParams& p) {
+  const int frames = static_cast<int>(in.frames.size());
+  const auto lifted = lifted_frames(in, first - 1, frames - first + 1, max_step_m, p);
+  std::vector<bool> planted;
+  for (bool l : lifted[s]) planted.push_back(!l);
+  return planted;
+}
+
+/// One leg's foot goals (world ankle transforms) on frames [first, frames) of `clip` (first >= 2): on a frame
+/// where the input plants the foot, the clip's foot as it stood on the frame before the input set it down,
+/// moved since then exactly as the input's foot moved (so every point the input keeps still stays still);
+/// on a lifted frame, the clip's foot plus what it was last moved by, returning to the clip's foot over the
+/// lifted frames of that swing (raised cosine), or kept to the window's end when no swing follows.
+std::vector<RigidTransform> planted_foot_goals(const CharacterAnimation& in, const CharacterAnimation& clip,
+                                               int first, size_t s, double max_step_m,
+                                               const CorrectorParams& p) {
+  const int frames = static_cast<int>(clip.frames.size());
+  const auto ankle = static_cast<size_t>(leg_joints(kLegSides[s]).ankle);
+  const std::vector<bool> planted = planted_frames(in, first, s, max_step_m, p);
+  const auto is_planted = [&](int f) {
+    return static_cast<bool>(planted[static_cast<size_t>(f - first + 1)]);
+  };
+  std::vector<RigidTransform> goals;
+  RigidTransform input_to_clip;  // the clip's foot in the input foot's frame, on the frame before touch-down
+  RigidTransform moved_by;       // goal relative to the clip's foot on the last planted frame
+  bool standing = false;
+  for (int f = first; f < frames; ++f) {
+    const RigidTransform own = ankle_transform(clip, f, ankle);
+    if (!is_planted(f)) {
+      standing = false;
+      int swing = 0, done = 0;
+      for (int g = f; g < frames && !is_planted(g); ++g) ++swing;
+      for (int g = f - 1; g >= first && !is_planted(g); --g) ++done;
+      // Kept to the window's end when the swing does not finish in it: the loop's frame 0 follows.
+      const double keep = f + swing >= frames ? 1.0 : 1.0 - raised_cosine(done + 1, done + swing);
+      goals.push_back({Quat::Identity().slerp(keep, moved_by.rotation).normalized() * own.rotation,
+                       own.translation + keep * moved_by.translation});
+      continue;
+    }
+    if (!standing) {
+      const RigidTransform before = f - 1 < first ? ankle_transform(clip, f - 1, ankle) : goals.back();
+      input_to_clip = inverse(ankle_transform(in, f - 1, ankle)) * before;
+      standing = true;
+    }
+    const RigidTransform goal = ankle_transform(in, f, ankle) * input_to_clip;
+    moved_by = {goal.rotation * own.rotation.conjugate(), goal.translation - own.translation};
+    goals.push_back(goal);
+  }
+  return goals;
+}
+
 }  // namespace
+
+void keep_planted_feet_planted(const CrowdAnimation& input, int window, const CorrectorParams& params,
+                               CrowdAnimation& clip) {
+  if (window <= 0) return;
+  const double max_step_m = params.foot_plant_speed_mps / input.meta.fps;
+  for (size_t c = 0; c < clip.characters.size(); ++c) {
+    CharacterAnimation& ch = clip.characters[c];
+    const int frames = static_cast<int>(ch.frames.size()), first = std::max(2, frames - window);
+    std::array<std::vector<RigidTransform>, 2> goals;
+    for (size_t s = 0; s < 2; ++s)
+      goals[s] = planted_foot_goals(input.characters[c], ch, first, s, max_step_m, params);
+    for (int f = first; f < frames; ++f) {
+      Pose& pose = ch.frames[static_cast<size_t>(f)];
+      const size_t k = static_cast<size_t>(f - first);
+      lower_pelvis_to_reach(ch.shape, {goals[0][k].translation, goals[1][k].translation}, pose);
+      for (size_t s = 0; s < 2; ++s)
+        reach_ankle(ch.shape, pose, kLegSides[s], goals[s][k].translation, goals[s][k].rotation);
+    }
+  }
+}
 
 double raised_cosine(int k, int len) {
   if (k >= len) return 1.0;

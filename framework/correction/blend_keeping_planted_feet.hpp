@@ -34,4 +34,14 @@ double raised_cosine(int k, int len);
 void blend_keeping_planted_feet(const CrowdAnimation& input, const std::vector<std::vector<Pose>>& targets,
                                 int window, const CorrectorParams& params, CrowdAnimation& clip);
 
+/// Over the last `window` frames of `clip` (a correction run again inside the loop closure), every foot the
+/// INPUT plants stays where the clip's foot stood on the frame before the input set it down, moving only as
+/// the input's foot moves while it stands (its rigid motion since then, so a ball or heel the input keeps
+/// still stays still); after such a stance the foot returns to the clip's over the frames it swings. Why:
+/// the closure's second correction lagged a swinging foot by up to 23 mm and set it down 12 mm from where
+/// it stood the frame before (tests/data/pipeline/loop_seam.yaml, stance-foot drift p99 12.0 mm, session 13).
+/// A foot that stands to the clip's end stays there; the loop then closes everywhere but at that foot.
+void keep_planted_feet_planted(const CrowdAnimation& input, int window, const CorrectorParams& params,
+                               CrowdAnimation& clip);
+
 }  // namespace crowdlab

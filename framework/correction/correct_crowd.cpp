@@ -3,8 +3,11 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdlib>
 #include <optional>
+#include <string>
 
 #include "framework/core/crowd_penetration_depth.hpp"
 #include "framework/core/forward_kinematics.hpp"
@@ -26,30 +29,97 @@ bool input_loops(const CrowdAnimation& crowd) {
   return true;
 }
 
-/// Deepest inter-body penetration (m) over frames [first, last) of a crowd.
-double deepest(const CrowdAnimation& crowd, int first, int last) {
-  double depth = 0.0;
+/// Per character, its deepest penetration (m) with any other over frames [first, last) of a crowd.
+std::vector<double> deepest_per_character(const CrowdAnimation& crowd, int first, int last) {
+  std::vector<double> depth(crowd.characters.size(), 0.0);
   std::vector<WorldCapsules> bodies(crowd.characters.size());
   for (int f = first; f < last; ++f) {
     for (size_t c = 0; c < bodies.size(); ++c)
       bodies[c] =
           world_capsules(crowd.characters[c].shape, crowd.characters[c].frames[static_cast<size_t>(f)]);
-    depth = std::max(depth, deepest_crowd_penetration(bodies));
+    const std::vector<double> now = deepest_penetration_per_body(bodies);
+    for (size_t c = 0; c < bodies.size(); ++c) depth[c] = std::max(depth[c], now[c]);
   }
   return depth;
 }
 
+/// Deepest inter-body penetration (m) over frames [first, last) of a crowd.
+double deepest(const CrowdAnimation& crowd, int first, int last) {
+  const std::vector<double> per_character = deepest_per_character(crowd, first, last);
+  return per_character.empty() ? 0.0 : *std::max_element(per_character.begin(), per_character.end());
+}
+
+/// A closure of some characters only: every character starts on the first of `closures` (the closed
+/// candidates, best first) and each whose penetration over frames [first, N) goes deeper than `limit_m`
+/// moves to the next candidate, or back to its frames in `open` after the last (both sides of a too-deep
+/// contact move on), again until no character is too deep. Terminates, since `open` alone stays within the
+/// limit. Returns how many characters ended on each candidate.
+std::vector<int> close_some_characters(const std::vector<const CrowdAnimation*>& closures, int first,
+                                       double limit_m, CrowdAnimation& open) {
+  const int frames = open.frame_count();
+  const size_t rungs = closures.size();
+  CrowdAnimation mixed = *closures.front();
+  std::vector<size_t> rung(mixed.characters.size(), 0);
+  for (bool moved = true; moved;) {
+    moved = false;
+    const std::vector<double> depth = deepest_per_character(mixed, first, frames);
+    for (size_t c = 0; c < rung.size(); ++c) {
+      if (rung[c] == rungs || depth[c] <= limit_m) continue;
+      ++rung[c];
+      mixed.characters[c].frames = (rung[c] < rungs ? closures[rung[c]] : &open)->characters[c].frames;
+      moved = true;
+    }
+  }
+  open = std::move(mixed);
+  std::vector<int> on(rungs, 0);
+  for (size_t r : rung)
+    if (r < rungs) ++on[r];
+  return on;
+}
+
+/// Whole laps of the clip corrected (unrecorded) before the recorded one, for looping clips (issue 28):
+/// the recorded clip starts from the end of the last, so its seam is the distance between two laps' ends.
+/// A 2 s pre-roll from a freshly settled crowd left histories that resolved dense contacts on other sides
+/// than the clip (gomez2024 concert, 4 s, 6.66/m^2: seam 1.64x, every closure 82-84 mm deep). Measured
+/// there (V3, 320x180, load 11 on 2 cores) with the per-character closure below: one lead lap 1.76x
+/// (the laps' ends up to 91 mm apart for the worst character), two 1.41x; 4.44/m^2 1.13x / 1.21x;
+/// 2.22/m^2 0.90x / 0.89x. Session 13 (arms aimed at the input in the re-corrected closure, which left
+/// fewer characters closable): two laps 1.57x, three 1.31x but the unclosed clip 15.6 mm deep, four 1.48x
+/// and 9.8 mm (load 15-20; the laps are chaotic, so a seam varies by +-0.2 from crowd to crowd). Each lap
+/// costs one correction of the clip (6 s of 60 characters x 120 frames at load 11).
+constexpr int kLeadLaps = 4;
+
 /// Penetration a loop closure may add beyond the unclosed clip's deepest (m): below what shows.
 constexpr double kClosureDepthSlackM = 0.001;
 
-/// Loop closure of a corrected clip `out` whose last P = preroll_out[c].size() frames should end where the
-/// pre-roll ended: they blend into the pre-roll's output (weight rising to 1, raised cosine). Two ways, the
-/// one with the shallower penetration kept: (a) the blend corrected again, from `before_window` (the
-/// corrector before frame N - P), so contacts that the two corrected histories resolved on different sides
-/// are resolved in the blend too; (b) the plain blend. A plain blend alone re-opened contacts mid-way
-/// (issue 28: 17-66 mm on 1 s clips, 76 mm on a 4 s concert at 6.66/m^2, where the unclosed clip has 0 and
-/// 16 mm), and so, less often, does (a); when both go deeper than the unclosed clip, the clip stays
-/// unclosed: a seam rather than a collision.
+/// Joints whose aims in the re-corrected closure stay the input's: collars, shoulders, elbows, wrists, hands.
+/// Aimed at the input blended into the last lap's output, the second correction turned hands and wrists
+/// away from their input within a few frames (issue 27's flips: gomez2024 concert, 4 s, 6.66/m^2, 756
+/// flip joint-frames in the window against 72 unclosed); aimed at the input, as the clip's own correction
+/// is, it flips as that does, and the closing blend (c) brings the arms to the lap's over the window's
+/// second half.
+constexpr std::array<Joint, 10> kArmJoints = {kLeftCollar, kRightCollar, kLeftShoulder, kRightShoulder,
+                                              kLeftElbow,  kRightElbow,  kLeftWrist,    kRightWrist,
+                                              kLeftHand,   kRightHand};
+
+/// The arm joints' local rotations on frames [first, N) of `aims` set back to the input's.
+void arms_from_input(const CrowdAnimation& input, int first, CrowdAnimation& aims) {
+  for (size_t c = 0; c < aims.characters.size(); ++c)
+    for (size_t f = static_cast<size_t>(first); f < aims.characters[c].frames.size(); ++f)
+      for (Joint j : kArmJoints)
+        aims.characters[c].frames[f].local_rotations[static_cast<size_t>(j)] =
+            input.characters[c].frames[f].local_rotations[static_cast<size_t>(j)];
+}
+
+/// Loop closure of a corrected clip `out` whose last W = preroll_out[c].size() frames should end where the
+/// last lead lap ended (the state frame 0 continued from): they blend into that lap's output (weight rising
+/// to 1, raised cosine). (a) the blend corrected again, from `before_window` (the corrector before frame
+/// N - W), so contacts that the two laps resolved on different sides are resolved in the blend too, and
+/// what then remains blended out; (b) the plain blend. The shallower is kept when it is no deeper than the
+/// unclosed clip (+1 mm). A plain blend re-opened contacts mid-way (issue 28: 17-66 mm on 1 s clips, 76 mm
+/// on a 4 s concert at 6.66/m^2, where the unclosed clip has 0 and 16 mm), and so, less often, does (a);
+/// then (a) closes only the characters it keeps within that depth (close_some_characters), the others stay
+/// unclosed: a seam for some rather than a collision (all of them stayed unclosed before session 12).
 void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>>& preroll_out,
                 Corrector before_window, const CorrectorParams& params, CrowdAnimation& out,
                 CorrectionReport& r) {
@@ -66,6 +136,7 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
   // loop_seam.yaml).
   CrowdAnimation aims = input;
   blend_keeping_planted_feet(input, preroll_out, preroll, params, aims);
+  arms_from_input(input, first, aims);
   std::vector<Pose> targets(n);
   for (int k = 0; k < preroll; ++k) {
     const size_t f = static_cast<size_t>(first + k);
@@ -74,6 +145,9 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
     for (size_t c = 0; c < n; ++c) corrected.characters[c].frames[f] = stepped[c];
     if (before_window.last_stats().rejected) ++r.rejected_steps;
   }
+  // The second correction lags a swinging foot and can set it down away from where it stood the frame
+  // before (loop_seam.yaml: 12 mm, stance-foot drift p99 12.0 mm): planted feet follow the input instead.
+  keep_planted_feet_planted(input, preroll, params, corrected);
   // (c): the corrected blend, its remaining distance to the pre-roll's output blended out over the
   // window's second half (feet kept again), which closes the loop exactly.
   CrowdAnimation finished = corrected;
@@ -91,12 +165,29 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
   } else if (d_blended <= limit) {
     out = std::move(blended);
     r.loop_closure = "blend";
-  } else if (deepest(corrected, first, frames) <= limit) {
-    out = std::move(corrected);
-    r.loop_closure = "corrected, open";
   } else {
-    r.loop_closure = "none";
+    const std::vector<int> on = close_some_characters({&finished, &blended}, first, limit, out);
+    r.loop_closure = "corrected blend for " + std::to_string(on[0]) + ", blend for " + std::to_string(on[1]) +
+                     " of " + std::to_string(n) + " characters";
   }
+}
+
+/// The targets of frame f: every character's input pose.
+void frame_targets(const CrowdAnimation& crowd, int f, std::vector<Pose>& targets) {
+  for (size_t c = 0; c < targets.size(); ++c) targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
+}
+
+/// Largest mean joint distance (m) of any character between two crowds' poses on frame f.
+double lap_difference_m(const CrowdAnimation& a, const CrowdAnimation& b, int f) {
+  double worst = 0.0;
+  for (size_t c = 0; c < a.characters.size(); ++c) {
+    const auto pa = joint_positions(a.characters[c].shape, a.characters[c].frames[static_cast<size_t>(f)]);
+    const auto pb = joint_positions(b.characters[c].shape, b.characters[c].frames[static_cast<size_t>(f)]);
+    double sum = 0.0;
+    for (size_t j = 0; j < pa.size(); ++j) sum += (pa[j] - pb[j]).norm();
+    worst = std::max(worst, sum / static_cast<double>(pa.size()));
+  }
+  return worst;
 }
 
 }  // namespace
@@ -116,15 +207,13 @@ CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams&
   CorrectionReport r;
   r.frames = frames;
   double contacts = 0.0, iterations = 0.0;
-  const int preroll =
+  const int window =
       frames > 1 && params.loop_preroll_s > 0.0 && input_loops(crowd)
           ? std::min(frames - 1, static_cast<int>(std::lround(params.loop_preroll_s * crowd.meta.fps)))
           : 0;
-  r.preroll_frames = preroll;
+  r.preroll_frames = window > 0 ? kLeadLaps * frames : 0;
   if (frames > 0) {
-    for (size_t c = 0; c < n; ++c)
-      targets[c] =
-          crowd.characters[c].frames[static_cast<size_t>(frames - preroll) % static_cast<size_t>(frames)];
+    frame_targets(crowd, 0, targets);
     // Feet are free while the crowd settles (the first frame's overlaps are pushed out, feet included);
     // holds start on the first output frame.
     corrector.set_foot_holds(false);
@@ -135,21 +224,27 @@ CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams&
     r.settle_steps = params.settle_steps;
     corrector.set_foot_holds(true);
   }
-  // The pre-roll's output of frames N - P .. N - 1, per character: the clip's end blends into it.
-  std::vector<std::vector<Pose>> preroll_out(n);
-  for (int f = frames - preroll; f < frames && preroll > 0; ++f) {
-    for (size_t c = 0; c < n; ++c) targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
-    const std::vector<Pose> corrected = corrector.step(targets);
-    for (size_t c = 0; c < n; ++c) preroll_out[c].push_back(corrected[c]);
-    if (corrector.last_stats().rejected) ++r.rejected_steps;
+  // Lead laps (unrecorded), each from the previous one's end; the recorded clip starts from the last's end,
+  // whose final window frames its own end blends into.
+  std::vector<std::vector<Pose>> lead_end(n);
+  CrowdAnimation lap = crowd;
+  for (int l = 0; l < (window > 0 ? kLeadLaps : 0); ++l) {
+    for (int f = 0; f < frames; ++f) {
+      frame_targets(crowd, f, targets);
+      const std::vector<Pose> corrected = corrector.step(targets);
+      for (size_t c = 0; c < n; ++c) lap.characters[c].frames[static_cast<size_t>(f)] = corrected[c];
+      if (corrector.last_stats().rejected) ++r.rejected_steps;
+    }
   }
-  // The corrector as it stood before frame N - P (P <= N - 1): the loop closure below runs on from there.
+  for (size_t c = 0; c < n && window > 0; ++c)
+    lead_end[c].assign(lap.characters[c].frames.end() - window, lap.characters[c].frames.end());
+  // The corrector as it stood before frame N - W: the loop closure below runs on from there.
   std::optional<Corrector> before_window;
   for (int f = 0; f < frames; ++f) {
-    for (size_t c = 0; c < n; ++c) targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
+    frame_targets(crowd, f, targets);
     const std::vector<Pose> corrected = corrector.step(targets);
     for (size_t c = 0; c < n; ++c) out.characters[c].frames[static_cast<size_t>(f)] = corrected[c];
-    if (preroll > 0 && f == frames - preroll - 1) before_window = corrector;
+    if (window > 0 && f == frames - window - 1) before_window = corrector;
     const StepStats& st = corrector.last_stats();
     contacts += st.contacts();
     iterations += st.cg_iterations;
@@ -157,7 +252,11 @@ CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams&
     if (!st.converged) ++r.unconverged_steps;
     if (progress) progress->advance();
   }
-  if (before_window) close_loop(crowd, preroll_out, *before_window, params, out, r);
+  if (before_window) {
+    spdlog::debug("correct_crowd: the recorded lap ends {:.4f} m from the lead lap (worst character)",
+                  lap_difference_m(out, lap, frames - 1));
+    close_loop(crowd, lead_end, *before_window, params, out, r);
+  }
   r.contacts_mean = frames > 0 ? contacts / frames : 0.0;
   r.cg_iterations_mean = frames > 0 ? iterations / frames : 0.0;
   if (r.rejected_steps > 0)
@@ -165,8 +264,8 @@ CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams&
         "correct_crowd: {} of {} steps were rejected (solver did not converge); the last stable state was "
         "kept",
         r.rejected_steps, frames);
-  if (preroll > 0)
-    spdlog::debug("correct_crowd: loop pre-roll of {} frames, closure: {}", preroll, r.loop_closure);
+  if (window > 0)
+    spdlog::debug("correct_crowd: loop pre-roll of {} frames, closure: {}", r.preroll_frames, r.loop_closure);
   if (report) *report = r;
   return out;
 }

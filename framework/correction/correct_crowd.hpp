@@ -12,16 +12,20 @@
 // proceeds normally. The settling steps are not part of the output.
 //
 // Loop pre-roll (offline only; params.loop_preroll_s, for clips shown looping): when the input loops, the
-// settling runs on frame N - P's targets and frames N - P .. N - 1 are stepped first (the pre-roll), so
-// frame 0 continues from the pre-roll's state at N - 1. The clip's own frames N - P .. N - 1 differ from
-// the pre-roll's (dense contacts do not forget their history within seconds: measured, a 2 s pre-roll
-// alone left a 3.2x seam), so they blend into the pre-roll's output (weight rising 0 -> 1, raised
-// cosine, rotations slerped), the blend corrected again from the corrector's state before frame N - P, or
-// plainly blended, whichever penetrates less, and neither when both penetrate deeper than the unclosed
-// clip (correct_crowd.cpp, close_loop, says why). The clip so ends next to the pre-roll's end. Every
-// blend keeps planted feet where they stand and moves a foot only while the input lifts it
-// (blend_keeping_planted_feet.hpp): a plain blend slid standing feet, and `ours`' stance-foot drift failed
-// its check (issue 28, session 10).
+// settling runs on frame 0 and four whole laps of the clip are corrected first, unrecorded, each from the
+// previous one's end; the recorded clip starts from the last one's end. Its own end still differs (dense
+// contacts do not forget their history: measured, a 2 s pre-roll alone left a 3.2x seam, and laps' ends
+// stay up to 5-9 cm apart for some characters at 6.66/m^2), so its last W = loop_preroll_s x fps frames
+// blend into the last lap's (weight rising 0 -> 1, raised cosine, rotations slerped), the blend corrected
+// again from the corrector's state before frame N - W, or plainly blended, whichever penetrates less; when
+// both penetrate deeper than the unclosed clip, only the characters the corrected closure keeps within
+// that depth are closed (correct_crowd.cpp, close_loop, says why). The re-corrected blend's planted feet
+// stay where they stood before the input set them down (keep_planted_feet_planted: the second correction
+// set a lagging foot down 12 mm off, session 13), and its arms aim at the input's (aimed at the blend, the
+// hands flipped); characters the corrected closure leaves too deep try the plain blend, then stay open.
+// Every blend keeps planted feet where
+// they stand and moves a foot only while the input lifts it (blend_keeping_planted_feet.hpp): a plain
+// blend slid standing feet, and `ours`' stance-foot drift failed its check (issue 28, session 10).
 //
 // Throws InputError for an invalid crowd (validate_crowd: empty crowd, NaN/Inf poses,
 // missing/zero-length bones, unequal frame counts) or invalid params.
@@ -38,9 +42,10 @@ namespace crowdlab {
 struct CorrectionReport {
   int frames = 0;
   int settle_steps = 0;    ///< steps run on the first target frame before the output starts
-  int preroll_frames = 0;  ///< frames N - P .. N - 1 stepped before frame 0 (loop pre-roll)
-  /// How the loop pre-roll's clip was closed: "corrected blend", "blend", "none" (kept unclosed: every
-  /// closure went deeper than the unclosed clip), or empty without a pre-roll.
+  int preroll_frames = 0;  ///< frames stepped before frame 0 (loop pre-roll: four laps of the clip)
+  /// How the loop pre-roll's clip was closed: "corrected blend", "blend", "corrected blend for K, blend
+  /// for L of N characters" (both closures went deeper than the unclosed clip; the others stay unclosed),
+  /// or empty without a pre-roll.
   std::string loop_closure;
   int rejected_steps = 0;      ///< steps whose solve failed (state kept)
   int unconverged_steps = 0;   ///< steps where CG stopped above its tolerance (result still used)

@@ -144,10 +144,10 @@ struct CorrectorParams {
   /// above), enough for the dense fixture's initial interpenetration to be pushed out.
   int settle_steps = 30;
   /// Looping clips (issue 28): > 0 and the input loops (every root's last frame within kLoopRootM of its
-  /// first), the corrector settles on frame N - P instead and runs frames N - P .. N - 1 unrecorded
-  /// before frame 0, P = this many seconds of frames (at most N - 1). Frame 0 then continues from the
-  /// state the clip ends in, so the corrected clip loops without a jump from the corrected last frame
-  /// to a freshly settled first one. 0: off (the online corrector and clips that play once).
+  /// first), the corrector settles on frame 0 and corrects four whole laps of the clip unrecorded before
+  /// frame 0, so frame 0 continues from the state a lap ends in; the clip's last loop_preroll_s seconds of
+  /// frames (at most N - 1) then blend into the last lap's (correct_crowd.hpp). 0: off (the online
+  /// corrector and clips that play once).
   double loop_preroll_s = 0.0;
 
   // ---- Solver

@@ -53,9 +53,10 @@ struct AnimationRecipe {
   std::string key;                                   ///< crowd key, recorded in the crowd file
 };
 
-/// Loop pre-roll of looping clips (s): the clip's last 2 s are run before frame 0 and blended into
-/// (correct_crowd.hpp). 2 s is about two dance steps at the concert's tempi, so most feet lift inside
-/// the window and can move to the pre-roll's spots while they swing (blend_keeping_planted_feet.hpp).
+/// Loop closure window of looping clips (s): four whole laps of the clip are run before frame 0, and the
+/// clip's last 2 s blend into the last lap's (correct_crowd.hpp). 2 s is about two dance steps at the
+/// concert's tempi, so most feet lift inside the window and can move to the pre-roll's spots while they swing
+/// (blend_keeping_planted_feet.hpp).
 inline constexpr double kLoopPrerollS = 2.0;
 /// Shortest looping clip that gets the pre-roll (s): twice the pre-roll. On a shorter clip the closing
 /// blend spans half the clip or more and rewrites it toward a second correction of itself, which edits
@@ -70,8 +71,11 @@ struct CorrectionRecipe {
   /// returning their tilt (issue 27, session 10); 4: the loop pre-roll on for looping clips, its closure
   /// keeping planted feet (issue 28, session 11; clips of at least 4 s); 5: knees of held legs flex about
   /// their hinge when nearly straight and turn about the shank at most at the light-joint rate (issue 27,
-  /// session 11).
-  static constexpr std::string_view kCodeVersion = "5";
+  /// session 11); 6: the loop pre-roll is two whole laps of the clip, and a closure too deep for all
+  /// characters closes some (issue 28, session 12); 7: four laps; inside the re-corrected closure, feet the
+  /// input plants stay where they stood before it set them down and arms aim at the input; characters it
+  /// leaves too deep try the plain blend (issue 28, session 13).
+  static constexpr std::string_view kCodeVersion = "7";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
   /// (correct_crowd.hpp; issue 28): kLoopPrerollS when protocol.loop_video and the clip lasts at least

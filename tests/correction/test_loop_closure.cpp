@@ -1,5 +1,6 @@
 // The loop closure's blend (issue 28): planted feet stay where they stand while the clip's end blends
 // into the loop pre-roll's poses; lifted feet and the rest of the body reach the pre-roll's poses.
+// A correction run again inside the closure keeps the feet the input plants where they stood.
 #include <catch2/catch.hpp>
 
 #include "framework/core/blend_poses.hpp"
@@ -100,4 +101,37 @@ TEST_CASE("loop closure: the crowd's deepest penetration matches all pairs", "[c
     CHECK(all_pairs > 0.0);  // the fixture at 6.66/m² collides
     CHECK(deepest_crowd_penetration(bodies) == all_pairs);
   }
+}
+
+TEST_CASE("loop closure: a foot the second correction sets down off its spot stays where it stood",
+          "[correction][loop]") {
+  // The left foot lands on frame 45 (stepping_character). The clip's foot lags the swing by up to 2 cm and
+  // is set down 12 mm from where it stood on frame 44, as the closure's second correction did on
+  // loop_seam.yaml (session 13).
+  const CrowdAnimation input = stepping_character();
+  CrowdAnimation clip = input;
+  CharacterAnimation& c = clip.characters[0];
+  const auto left = static_cast<size_t>(leg_joints(LegSide::kLeft).ankle);
+  const auto right = static_cast<size_t>(leg_joints(LegSide::kRight).ankle);
+  for (size_t f = 41; f < c.frames.size(); ++f) {
+    const double lag_m = f < 45 ? 0.02 * (static_cast<double>(f) - 40.0) / 4.0 : 0.008;
+    const BoneTransforms bones = forward_kinematics(c.shape, c.frames[f]);
+    reach_ankle(c.shape, c.frames[f], LegSide::kLeft, bones[left].translation + Vec3(lag_m, 0.0, 0.0),
+                bones[left].rotation);
+  }
+  const FootContactQuality before = measure_foot_contact_quality(input, clip);
+  CrowdAnimation kept = clip;
+  keep_planted_feet_planted(input, 30, CorrectorParams{}, kept);
+  const FootContactQuality after = measure_foot_contact_quality(input, kept);
+  INFO("stance drift max: clip " << before.stance_drift_max_m << " m, kept " << after.stance_drift_max_m);
+  CHECK(before.stance_drift_max_m > 0.01);
+  CHECK(after.stance_drift_max_m < 0.001);
+  CHECK(after.foot_pops == 0);
+  // The left foot stands where the clip had it on frame 44; the right foot, planted all along, and the
+  // frames before the window are the clip's.
+  const auto end = joint_positions(c.shape, kept.characters[0].frames.back());
+  const auto landed = joint_positions(c.shape, c.frames[44]);
+  CHECK((end[left] - landed[left]).norm() < 1e-3);
+  CHECK((end[right] - joint_positions(c.shape, c.frames.back())[right]).norm() < 1e-6);
+  CHECK(kept.characters[0].frames[29].root_position_m == c.frames[29].root_position_m);
 }
