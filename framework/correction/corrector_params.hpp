@@ -235,13 +235,17 @@ struct CorrectorParams {
   /// never flip (stage_free_joints.cpp, rate_limited_joint). false: engaged joints follow the solve.
   bool rate_limit_light_joints = true;
 
-  // ---- Feet on the ground (stage_settle_feet.cpp, issue 27, session 12)
+  // ---- Feet on the ground (stage_depenetrate.cpp, stage_settle_feet.cpp, issue 27, sessions 12-13)
   /// Whether held feet are brought to the input's height: a held ball's goal height is its input's (not
-  /// where it landed, shifted with the ankle), and last in every step the root moves vertically (at most
-  /// foot_pop_budget_m) so that held feet stand at their goal heights. false = the session-11 solver.
-  /// Off by default: on 3 s corridor clips it lowered the planted-foot float (p99 30.8 -> 22.5 mm at 6.66
-  /// /m^2, 20.2 -> 16.4 at 4.44) but raised the p99 inter-body depth past issue 18's 10 mm (9.6 -> 12.3,
-  /// 6.8 -> 18.2 mm): the vertical moves undo some of the pass's separations (docs/correction.md).
+  /// where it landed, shifted with the ankle); the depenetration pass asks each held foot joint for its
+  /// goal height (low-priority rows beside the contacts, session 13), and the characters the pass did
+  /// not pose have their root moved vertically (at most foot_pop_budget_m) last in the step so that
+  /// held feet stand at their goal heights. false = the session-11 solver.
+  /// Off by default: on 3 s corridor clips (session 13) the planted-foot float fell (p99 30.8 -> 16.2 mm
+  /// at 6.66 /m^2, 20.2 -> 11.0 at 4.44) with the p99 inter-body depth within issue 18's 10 mm (9.6 -> 9.4,
+  /// 6.8 -> 9.2 mm), but issue 27's feet targets (10 mm) are not met and at 4.44 /m^2 the feet below the
+  /// ground went 25.5 -> 31.9 mm (docs/correction.md). Session 12's settle of every body after the pass
+  /// raised the depth past 10 mm (12.3, 18.2 mm).
   bool held_feet_at_input_height = false;
 };
 

@@ -66,6 +66,10 @@ void stage_settle_feet(const CorrectorModel& model, CorrectorState& state);
 /// above their goal heights: the one held foot's error, or both feet's smaller one when they agree in
 /// sign, 0 when one floats and the other sinks (stage_settle_feet.cpp).
 double held_feet_settle_m(const std::array<bool, 2>& held, const std::array<double, 2>& error_m);
+/// The height error (m) of side's held foot in `bones`: its held joint's height minus its goal's
+/// (foot_goal; the ankle when it is held, else the ball of a rolling foot).
+double held_height_error_m(const CorrectorModel& model, const CorrectorState& state, int c, int side,
+                           const BoneTransforms& bones);
 /// Moves character c's root vertically so that its held feet stand at their goal heights
 /// (held_feet_settle_m, at most foot_pop_budget_m, never lowering a swinging foot into the ground).
 /// Returns whether the pose changed.

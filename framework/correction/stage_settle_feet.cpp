@@ -1,5 +1,7 @@
 // Settle held feet on the input's ground (ours; issue 27: planted feet floating and sinking in the
-// corridor). Runs last in the step, after the depenetration pass and the release of free joints.
+// corridor). Runs last in the step, after the depenetration pass and the release of free joints, on the
+// characters the pass did not pose: those had their held feet's heights solved with their contacts
+// there (session 13; session 12 settled every body here and the vertical moves undid separations).
 //
 // A held foot's height is held only softly: the solve's planted-foot spring pulls it toward the input's
 // height (foot_goal), the leg IK of hold_feet keeps the solve's height (re-planting it held the legs too
@@ -40,8 +42,8 @@ double sole_height_m(const WorldCapsules& capsules, const LegJoints& lj) {
   return y;
 }
 
-/// The height error of side's held foot in `bones`: its held joint's height minus the goal's (the ankle
-/// when it is held, else the ball of a rolling foot).
+}  // namespace
+
 double held_height_error_m(const CorrectorModel& model, const CorrectorState& s, int c, int side,
                            const BoneTransforms& bones) {
   const FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
@@ -50,8 +52,6 @@ double held_height_error_m(const CorrectorModel& model, const CorrectorState& s,
   if (hold.ankle) return bones[static_cast<size_t>(lj.ankle)].translation.y() - goal.ankle_m.y();
   return bones[static_cast<size_t>(lj.foot)].translation.y() - goal.ball_m.y();
 }
-
-}  // namespace
 
 double held_feet_settle_m(const std::array<bool, 2>& held, const std::array<double, 2>& error_m) {
   if (held[0] && held[1]) {
@@ -91,8 +91,12 @@ bool settle_held_feet(const CorrectorModel& model, const CorrectorState& s, int 
 
 void stage_settle_feet(const CorrectorModel& model, CorrectorState& s) {
   if (!model.params.held_feet_at_input_height || s.stats.rejected || !s.foot_holds_enabled) return;
+  // The characters the depenetration pass posed this step had their held feet's heights among its rows
+  // (stage_depenetrate.cpp): settling them here would undo the separations the same rows traded for.
+  const std::vector<int>& in_pass = s.depenetration.characters;
   for (int c = 0; c < model.characters(); ++c) {  // serial: one forward kinematics per walking character
     const auto cc = static_cast<size_t>(c);
+    if (std::binary_search(in_pass.begin(), in_pass.end(), c)) continue;
     if (!settle_held_feet(model, s, c, s.output[cc])) continue;
     set_bones_from_pose(model, c, s.output[cc], s.com_m, s.rotation);
     for (size_t j = 0; j < kJointCount; ++j)  // the release's rate limit starts from what is output

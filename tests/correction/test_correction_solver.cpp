@@ -457,3 +457,27 @@ TEST_CASE("correction: a body lifted off its planted feet settles back onto the 
   CHECK(held_feet_settle_m({true, true}, {0.02, -0.005}) == 0.0);
   CHECK(held_feet_settle_m({false, false}, {0.02, 0.02}) == 0.0);
 }
+
+TEST_CASE("correction: the feet settle leaves the bodies the depenetration pass posed to the pass",
+          "[correction]") {
+  // Issue 27 (session 13): session 12's settle moved every body vertically after the pass, with no
+  // contact rows, and pushed bodies back into the neighbours the pass had separated (p99 inter-body
+  // depth 6.8 -> 18.2 mm, corridor 4.44 /m^2). The pass now solves the held feet's heights of the
+  // bodies it poses together with their contacts; the settle moves only the others.
+  const BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
+  CorrectorParams params;
+  params.held_feet_at_input_height = true;
+  const CorrectorModel model = make_corrector_model({shape}, params, {}, 30);
+  CorrectorState s = make_corrector_state(model);
+  const Pose stand = Pose::rest(shape);
+  corrector_step(model, s, {stand});
+  corrector_step(model, s, {stand});  // the feet are held from here on
+  s.output[0].root_position_m.y() += 0.015;
+  const double lifted_y = s.output[0].root_position_m.y();
+  s.depenetration.characters = {0};  // posed by this step's pass
+  stage_settle_feet(model, s);
+  CHECK(s.output[0].root_position_m.y() == lifted_y);
+  s.depenetration.characters.clear();  // not posed by the pass: settled onto its feet
+  stage_settle_feet(model, s);
+  CHECK(s.output[0].root_position_m.y() == Approx(lifted_y - 0.015).margin(0.002));
+}
