@@ -54,7 +54,10 @@ test: test-deps
 # hash (its stages run under the sanitizers in the pipeline tests), the whole-spec run-and-reuse test, the
 # simulated observers' statistics and the manifold model comparison. The Release run performs them; the code
 # they drive (volumes, the run pipeline, correction, figures, simulated studies, reports, surface crowds)
-# runs under the sanitizers in the other tests.
+# runs under the sanitizers in the other tests. A test that checks numbers on a large input but drives code
+# no other test reaches runs here on a smaller input instead (test::kSanitized in tests/support/test_paths.hpp:
+# e.g. the MPFB2-body corridor tests of tests/correction on a 3 m corridor instead of 6 m); the Release run
+# keeps the full size. ctest starts the slowest first by their sanitizer-build costs (tests/test_costs_sanitized.cmake).
 ASAN_SKIP  ?= capsule union is 65-80 litres|shards are disjoint|plan writes Slurm|real single-node Slurm|reproduce gomez2024 --quick|reproduce hoyet2016 --quick|pinned output hash|run makes every condition|simulated observers analysed|experiment manifold-compare
 test-asan: test-deps
 	@cmake -S . -B $(ASAN_BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \

@@ -22,7 +22,7 @@
 #include "framework/core/library_error.hpp"
 #include "framework/spec/work_limits.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_analyze {
 namespace {
 using namespace crowdlab::analysis;
 
@@ -464,4 +464,4 @@ void add_analyze_command(Command& root) {
   });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_analyze

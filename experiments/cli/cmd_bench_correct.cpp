@@ -9,7 +9,7 @@
 #include "experiments/cli/command_table.hpp"
 #include "experiments/cli/corrector_tuning_options.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_bench_correct {
 namespace {
 
 struct Options {
@@ -74,4 +74,4 @@ void add_bench_correct_command(Command& root) {
   cmd->callback([opts] { run(*opts); });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_bench_correct

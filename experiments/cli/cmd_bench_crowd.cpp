@@ -26,7 +26,7 @@
 #include "framework/crowd/crowd_simulation.hpp"
 #include "framework/crowd/make_navigation_model.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_bench_crowd {
 namespace {
 
 struct Args {
@@ -172,4 +172,4 @@ void add_bench_crowd_command(Command& root) {
   cmd->callback([args] { run(*args); });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_bench_crowd

@@ -15,7 +15,7 @@
 #include "framework/surface/surface_crowd.hpp"
 #include "framework/surface/surface_scenes.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_bench_manifold {
 namespace {
 
 struct Options {
@@ -109,4 +109,4 @@ void add_bench_manifold_command(Command& root) {
   cmd->callback([opts] { run(*opts); });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_bench_manifold

@@ -21,7 +21,7 @@
 #include "framework/core/seed.hpp"
 #include "framework/metrics/character_overlap.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_bench_overlap {
 namespace {
 
 struct BenchOverlapArgs {
@@ -162,4 +162,4 @@ void add_bench_overlap_command(Command& root) {
   cmd->callback([args] { run(*args); });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_bench_overlap

@@ -22,7 +22,7 @@
 #include "stimuli/render_quality.hpp"
 #include "stimuli/synthetic_crowd.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_bench_render {
 namespace {
 
 double median(std::vector<double> v) {
@@ -264,4 +264,4 @@ void add_bench_render_command(Command& root) {
   cmd->callback([args] { run(*args); });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_bench_render

@@ -9,7 +9,7 @@
 #include "framework/core/error.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_check_stimuli {
 namespace {
 
 struct Options {
@@ -51,4 +51,4 @@ void add_check_stimuli_command(Command& root) {
   });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_check_stimuli

@@ -14,7 +14,7 @@
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/io/write_crowd_glb.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_correct {
 namespace {
 
 struct CorrectOptions {
@@ -96,4 +96,4 @@ void add_correct_command(Command& root) {
   });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_correct

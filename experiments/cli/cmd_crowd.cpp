@@ -28,7 +28,7 @@
 #include "framework/spec/load_experiment_spec.hpp"
 #include "framework/surface/generate_manifold_scenario.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_crowd {
 namespace {
 
 struct Args {
@@ -139,4 +139,4 @@ void add_crowd_command(Command& root) {
   cmd->callback([args] { run(*args); });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_crowd

@@ -17,7 +17,7 @@
 #include "framework/spec/load_experiment_spec.hpp"
 #include "study_ui/simulate_study.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_demo {
 namespace {
 namespace fs = std::filesystem;
 
@@ -106,4 +106,4 @@ void add_demo_command(Command& root) {
   cmd->callback([o] { run_demo(*o); });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_demo

@@ -14,7 +14,7 @@
 #include "experiments/cli/figures/damping_figure.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_experiment_damping {
 namespace {
 
 struct DampingOptions {
@@ -46,4 +46,4 @@ void add_experiment_damping_command(Command& root) {
   });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_experiment_damping

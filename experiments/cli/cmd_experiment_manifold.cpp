@@ -28,7 +28,7 @@
 #include "framework/surface/surface_measures.hpp"
 #include "framework/surface/surface_scenes.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_experiment_manifold {
 namespace {
 
 struct Options {
@@ -128,4 +128,4 @@ void add_experiment_manifold_command(Command& root) {
   });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_experiment_manifold

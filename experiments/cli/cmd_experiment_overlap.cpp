@@ -38,7 +38,7 @@
 #include "framework/pipeline/provenance.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_experiment_overlap {
 namespace {
 namespace fs = std::filesystem;
 
@@ -258,4 +258,4 @@ void add_experiment_overlap_command(Command& root) {
   });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_experiment_overlap

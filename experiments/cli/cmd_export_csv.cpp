@@ -7,7 +7,7 @@
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/io/write_root_trajectories_csv.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_export_csv {
 namespace {
 
 struct ExportCsvOptions {
@@ -35,4 +35,4 @@ void add_export_csv_command(Command& root) {
   });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_export_csv

@@ -12,7 +12,7 @@
 #include "framework/spec/load_experiment_spec.hpp"
 #include "study_ui/web_export.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_export_web {
 namespace {
 
 struct ExportWebArgs {
@@ -85,4 +85,4 @@ void add_export_web_command(Command& root) {
   });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_export_web

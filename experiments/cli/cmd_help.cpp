@@ -10,7 +10,7 @@
 
 #include "experiments/cli/command_table.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_help {
 namespace {
 
 std::vector<const CLI::App*> sorted_subcommands(const CLI::App& app) {
@@ -66,4 +66,4 @@ void add_help_command(Command& root) {
   cmd->callback([root_ptr, markdown] { std::fputs(reference(*root_ptr, *markdown).c_str(), stdout); });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_help

@@ -11,7 +11,7 @@
 #include "framework/spec/load_experiment_spec.hpp"
 #include "study_ui/web_import.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_import_web {
 namespace {
 
 struct ImportWebArgs {
@@ -77,4 +77,4 @@ void add_import_web_command(Command& root) {
   });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_import_web

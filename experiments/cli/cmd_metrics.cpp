@@ -24,7 +24,7 @@
 #include "framework/metrics/measure_crowd.hpp"
 #include "framework/pipeline/metrics_json.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_metrics {
 namespace {
 
 struct MetricsArgs {
@@ -183,4 +183,4 @@ void add_metrics_command(Command& root) {
   cmd->callback([args] { run(*args); });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_metrics

@@ -14,7 +14,7 @@
 #include "framework/pipeline/provenance.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_plan {
 namespace {
 namespace fs = std::filesystem;
 
@@ -115,4 +115,4 @@ void add_plan_command(Command& root) {
   });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_plan

@@ -22,7 +22,7 @@
 #include "stimuli/render_clip.hpp"
 #include "stimuli/synthetic_crowd.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_render {
 namespace {
 
 /// Frames of the `--synthetic` crowd.
@@ -218,4 +218,4 @@ void add_render_command(Command& root) {
   cmd->callback([a] { run(*a); });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_render

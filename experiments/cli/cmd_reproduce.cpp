@@ -9,7 +9,7 @@
 #include "experiments/cli/reproduce/reproduce_gomez2024.hpp"
 #include "experiments/cli/reproduce/reproduce_hoyet2016.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_reproduce {
 namespace {
 
 Command* add_paper(Command* group, const std::string& name, const std::string& description,
@@ -59,4 +59,4 @@ void add_reproduce_command(Command& root) {
   });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_reproduce

@@ -10,7 +10,7 @@
 #include "experiments/cli/pipeline/render_stages.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_run {
 namespace {
 
 struct Options {
@@ -69,4 +69,4 @@ void add_run_command(Command& root) {
   });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_run

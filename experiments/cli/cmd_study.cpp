@@ -23,7 +23,7 @@
 #include "study_ui/simulated_presenter.hpp"
 #include "study_ui/window_presenter.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_study {
 namespace {
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -319,4 +319,4 @@ void add_power_command(Command& root) {
   });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_study

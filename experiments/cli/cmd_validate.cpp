@@ -14,7 +14,7 @@
 #include "framework/surface/spec_surface.hpp"
 #include "stimuli/gltf_character.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_validate {
 namespace {
 
 struct ValidateOptions {
@@ -175,4 +175,4 @@ void add_validate_command(Command& root) {
   cmd->callback([opt] { run_validate(*opt); });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_validate

@@ -5,7 +5,7 @@
 #include "crowdlab_version.hpp"
 #include "experiments/cli/command_table.hpp"
 
-namespace crowdlab::cli {
+namespace crowdlab::cli::cmd_version {
 
 void add_version_command(Command& root) {
   auto* cmd = root.add_subcommand("version", "Print the crowdlab version and its library versions");
@@ -15,4 +15,4 @@ void add_version_command(Command& root) {
   });
 }
 
-}  // namespace crowdlab::cli
+}  // namespace crowdlab::cli::cmd_version
