@@ -70,8 +70,8 @@ struct CorrectionRecipe {
   /// returning their tilt (issue 27, session 10); 4: the loop pre-roll on for looping clips, its closure
   /// keeping planted feet (issue 28, session 11; clips of at least 4 s); 5: knees of held legs flex about
   /// their hinge when nearly straight and turn about the shank at most at the light-joint rate (issue 27,
-  /// session 11).
-  static constexpr std::string_view kCodeVersion = "5";
+  /// session 11); 6: engaged elbows rate-limited as the light joints (issue 27, session 13).
+  static constexpr std::string_view kCodeVersion = "6";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
   /// (correct_crowd.hpp; issue 28): kLoopPrerollS when protocol.loop_video and the clip lasts at least
