@@ -6,10 +6,27 @@
 
 namespace crowdlab::cli {
 
+/// Adds --anticipated-joints, --anticipation-rate and --anticipation-runs (offline correction only:
+/// framework/correction/anticipate_contacts.hpp).
+inline void add_anticipation_options(Command* cmd, CorrectorParams& params) {
+  cmd->add_option("--anticipated-joints", params.anticipated_joints,
+                  "Joints whose contact deviations are ramped into the targets of another run, so they "
+                  "start before a contact instead of within a frame (offline only)")
+      ->check(check::is_member({"none", "arms", "upper", "legs", "all"}))
+      ->capture_default_str();
+  cmd->add_option("--anticipation-rate", params.anticipation_rate_radps, "Rate of those ramps (rad/s)")
+      ->check(check::positive_number())
+      ->capture_default_str();
+  cmd->add_option("--anticipation-runs", params.anticipation_runs,
+                  "Runs after the first, each ramping the previous run's deviations")
+      ->check(check::range(1, 10))
+      ->capture_default_str();
+}
+
 /// Adds --contact-stiffness, --cg-tolerance, --active-set-passes, --depenetration-passes,
 /// --depenetration-tolerance, --foot-pop-budget, --free-joints, --free-joint-margin, --free-joint-hold,
-/// --free-joint-return, --light-joint-rate-limit and --settle-feet to `cmd`, writing into `params` (which
-/// must outlive the parse).
+/// --free-joint-return, --light-joint-rate-limit, --elbow-rate-limit, --settle-feet and the anticipation
+/// options to `cmd`, writing into `params` (which must outlive the parse).
 inline void add_corrector_tuning_options(Command* cmd, CorrectorParams& params) {
   cmd->add_option("--contact-stiffness", params.contact_stiffness, "Collision penalty k_delta (N/m)")
       ->capture_default_str();
@@ -51,10 +68,14 @@ inline void add_corrector_tuning_options(Command* cmd, CorrectorParams& params) 
          "--light-joint-rate-limit", params.rate_limit_light_joints,
          "Wrists, hands, ankles and balls turn at most --free-joint-return while in contact (true/false)")
       ->capture_default_str();
+  cmd->add_option("--elbow-rate-limit", params.rate_limit_elbows,
+                  "Engaged elbows turn at most --free-joint-return, as wrists and hands (true/false)")
+      ->capture_default_str();
   cmd->add_option("--settle-feet", params.held_feet_at_input_height,
                   "Hold planted feet at the input's height: held balls at their own, bodies settled onto "
                   "held feet (true/false)")
       ->capture_default_str();
+  add_anticipation_options(cmd, params);
 }
 
 }  // namespace crowdlab::cli

@@ -192,8 +192,9 @@ double lap_difference_m(const CrowdAnimation& a, const CrowdAnimation& b, int f)
 
 }  // namespace
 
-CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams& params, Progress* progress,
-                             CorrectionReport* report) {
+// correct_crowd itself (one run, or several with anticipated contacts) is in anticipate_contacts.cpp.
+CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorParams& params,
+                                  Progress* progress, CorrectionReport* report) {
   validate_crowd(crowd, "correct_crowd");
   std::vector<BodyShape> shapes;
   shapes.reserve(crowd.characters.size());

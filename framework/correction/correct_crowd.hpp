@@ -53,8 +53,16 @@ struct CorrectionReport {
   double cg_iterations_mean = 0.0;
 };
 
-/// progress (optional) is advanced once per frame. report (optional) receives the summary.
+/// progress (optional) is advanced once per frame of the first run. report (optional) receives the
+/// summary of the last run. With params.anticipated_joints other than "none", the clip is corrected
+/// 1 + params.anticipation_runs times, each run's contact deviations ramped into the next run's targets
+/// (anticipate_contacts.hpp).
 CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams& params,
                              Progress* progress = nullptr, CorrectionReport* report = nullptr);
+
+/// One run of the corrector over the clip (settling, loop pre-roll and closure as above), whatever
+/// params.anticipated_joints says.
+CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorParams& params,
+                                  Progress* progress = nullptr, CorrectionReport* report = nullptr);
 
 }  // namespace crowdlab

@@ -9,6 +9,7 @@
 #include "framework/core/capsule_box_distance.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/correction/anticipate_contacts.hpp"
 
 namespace crowdlab {
 
@@ -49,6 +50,7 @@ void validate_corrector_params(const CorrectorParams& p) {
   if (p.settle_steps < 0) throw InputError("corrector parameter settle_steps must be >= 0");
   if (p.active_set_passes < 0) throw InputError("corrector parameter active_set_passes must be >= 0");
   if (p.cg_max_iterations < 1) throw InputError("corrector parameter cg_max_iterations must be >= 1");
+  validate_anticipation_params(p);
 }
 
 void capsule_mass_properties(const Capsule& capsule, double density, double& mass, Mat3& inertia) {

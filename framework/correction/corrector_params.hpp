@@ -23,6 +23,7 @@
 // (Session 1 scaled d by the effective inertia instead, which left d = 0.006 at zeta ~ 0.14, visibly
 // oscillating, and made d = 0.06 the best value, contradicting Fig. 4.)
 #include <cstdint>
+#include <string>
 
 namespace crowdlab {
 
@@ -234,6 +235,14 @@ struct CorrectorParams {
   /// free_joint_return_radps while engaged, in the step and in the depenetration pass, so that they
   /// never flip (stage_free_joints.cpp, rate_limited_joint). false: engaged joints follow the solve.
   bool rate_limit_light_joints = true;
+  /// Whether engaged elbows turn at most free_joint_return_radps from their last deviation, in the step
+  /// and in the depenetration pass (their column gets weight 0 once the turn is used, so the shoulder,
+  /// the trunk and the neighbour separate the contact), as the light joints do (stage_free_joints.cpp).
+  /// Session 13 (3 s gomez2024 clips): stationary flips 7 -> 0 at 4.44 /m^2 and 226 -> 10 at 6.66 /m^2
+  /// (the elbows' 214 -> 0), p99 depth 4.9 -> 5.0 and 9.4 -> 10.2 mm (docs/correction.md). Session 9
+  /// had rejected it at p99 depths of 11-17 mm, measured on other clips before sessions 10-11 changed
+  /// the pass and the holds. false = the session-12 correction.
+  bool rate_limit_elbows = true;
 
   // ---- Feet on the ground (stage_depenetrate.cpp, stage_settle_feet.cpp, issue 27, sessions 12-13)
   /// Whether held feet are brought to the input's height: a held ball's goal height is its input's (not
@@ -247,6 +256,24 @@ struct CorrectorParams {
   /// ground went 25.5 -> 31.9 mm (docs/correction.md). Session 12's settle of every body after the pass
   /// raised the depth past 10 mm (12.3, 18.2 mm).
   bool held_feet_at_input_height = false;
+
+  // ---- Anticipated contacts (correct_crowd only; anticipate_contacts.hpp, issue 27, session 13)
+  /// Which joints' contact deviations the offline correction anticipates: after a first run, each such
+  /// joint's deviation from the input is ramped up before every contact and down after it at
+  /// anticipation_rate_radps, and the ramped poses are the targets of another run. "none" (default: one
+  /// run), "arms" (collars, shoulders, elbows), "upper" (arms, spine, neck, head), "legs" (hips, knees)
+  /// or "all". Not the default (docs/correction.md, session 13): with "arms" the stationary flips at
+  /// 6.66 /m^2 fell 226 -> 46 but the corridor's rose (4.44 /m^2: 39 -> 52), and each run folds the
+  /// ramped elbows further; "all" let planted feet drift (p99 108-150 mm, 13-111 pops). The elbow rate
+  /// limit (rate_limit_elbows) removes more flips in one run.
+  std::string anticipated_joints = "none";
+  /// Rate (rad/s) of the ramps: at 30 fps 2.4 rad/s is 4.6 deg per frame, 13.8 deg within 3 frames, which
+  /// leaves the next run 6 deg under the flip measure's 20 deg for what it adds.
+  double anticipation_rate_radps = 2.4;
+  /// Runs after the first when anticipated_joints is not "none", each ramping the previous run's
+  /// deviations (each costs one more correction of the clip). Stationary 6.66 /m^2, "arms": flips 123
+  /// after one, 42 after two, 25 after four, while the ramped elbows fold further each run.
+  int anticipation_runs = 2;
 };
 
 /// Throws InputError naming the field when a parameter is out of range or not finite.

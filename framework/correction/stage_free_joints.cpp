@@ -49,7 +49,8 @@ void engage(const CorrectorModel& model, CorrectorState& s, int c) {
       s.engaged_until[static_cast<size_t>(c * kJointCount + j)] = until;
 }
 
-/// The joints whose engaged deviation is rate-limited: wrists, hands, ankles and balls of the feet.
+/// The joints whose engaged deviation is rate-limited: wrists, hands, ankles and balls of the feet, and
+/// the elbows when params.rate_limit_elbows (limited()).
 /// Measured on gomez2024 at 6.66 /m^2 (3 s) without a limit: of 11,467 flips in the corridor, 7,774
 /// were hands, 2,204 wrists, 1,177 balls, 218 ankles, 41 elbows; limiting every joint instead left p99
 /// inter-body depths of 20-21 mm (the trunk and the legs could no longer get out of the way), limiting
@@ -71,7 +72,9 @@ bool rate_limited_joint(int j) {
 }
 
 bool limited(const CorrectorModel& model, int j) {
-  return model.params.rate_limit_light_joints && rate_limited_joint(j);
+  const bool elbow = j == kLeftElbow || j == kRightElbow;
+  return (model.params.rate_limit_light_joints && rate_limited_joint(j)) ||
+         (model.params.rate_limit_elbows && elbow);
 }
 
 /// The knees, whose engaged twist (about the shank) is rate-limited. The twist of a shank moves no
