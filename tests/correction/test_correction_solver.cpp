@@ -416,17 +416,34 @@ TEST_CASE(
 }
 
 namespace {
+/// One standing body whose feet the corrector holds (two steps of a still input).
+struct HeldStand {
+  BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
+  CorrectorModel model;
+  CorrectorState state;
+  Pose stand;
+};
+
+HeldStand stand_with_held_feet(bool settle) {
+  HeldStand h;
+  CorrectorParams params;
+  params.held_feet_at_input_height = settle;
+  h.model = make_corrector_model({h.shape}, params, {}, 30);
+  h.state = make_corrector_state(h.model);
+  h.stand = Pose::rest(h.shape);
+  corrector_step(h.model, h.state, {h.stand});
+  corrector_step(h.model, h.state, {h.stand});  // the feet are held from here on
+  return h;
+}
+
 /// Height (m) above the input's of character 0's held ankles after one step from a state whose body was
 /// lifted by lift_m (both feet planted: the input stands still).
 std::array<double, 2> held_ankle_heights_after_lift(bool settle, double lift_m) {
-  const BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
-  CorrectorParams params;
-  params.held_feet_at_input_height = settle;
-  const CorrectorModel model = make_corrector_model({shape}, params, {}, 30);
-  CorrectorState s = make_corrector_state(model);
-  const Pose stand = Pose::rest(shape);
-  corrector_step(model, s, {stand});
-  corrector_step(model, s, {stand});  // the feet are held from here on
+  HeldStand h = stand_with_held_feet(settle);
+  const BodyShape& shape = h.shape;
+  const CorrectorModel& model = h.model;
+  CorrectorState& s = h.state;
+  const Pose& stand = h.stand;
   Pose lifted = s.output[0];
   lifted.root_position_m.y() += lift_m;
   set_bones_from_pose(model, 0, lifted, s.com_m, s.rotation);
@@ -464,14 +481,9 @@ TEST_CASE("correction: the feet settle leaves the bodies the depenetration pass 
   // contact rows, and pushed bodies back into the neighbours the pass had separated (p99 inter-body
   // depth 6.8 -> 18.2 mm, corridor 4.44 /m^2). The pass now solves the held feet's heights of the
   // bodies it poses together with their contacts; the settle moves only the others.
-  const BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
-  CorrectorParams params;
-  params.held_feet_at_input_height = true;
-  const CorrectorModel model = make_corrector_model({shape}, params, {}, 30);
-  CorrectorState s = make_corrector_state(model);
-  const Pose stand = Pose::rest(shape);
-  corrector_step(model, s, {stand});
-  corrector_step(model, s, {stand});  // the feet are held from here on
+  HeldStand h = stand_with_held_feet(true);
+  const CorrectorModel& model = h.model;
+  CorrectorState& s = h.state;
   s.output[0].root_position_m.y() += 0.015;
   const double lifted_y = s.output[0].root_position_m.y();
   s.depenetration.characters = {0};  // posed by this step's pass
