@@ -83,7 +83,7 @@ void add_correct_command(Command& root) {
     if (opt->fit_proxies) cover_meshes(in, SurfaceTolerances::per_surface(), true);
     check_environment_sampling(in.environment, opt->params.environment_sample_spacing_m,
                                opt->params.max_environment_points, opt->in_path);
-    Progress progress("correcting " + opt->in_path, static_cast<std::size_t>(in.frame_count()));
+    Progress progress("correcting " + opt->in_path, correction_steps(in, opt->params));
     CorrectionReport report;
     const CrowdAnimation out = correct_crowd(in, opt->params, &progress, &report);
     progress.finish();

@@ -86,8 +86,7 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
     CorrectorParams params = o.params;
     params.exact_prediction = !o.inertial_prediction;
     params.damping = spec.correction.damping;
-    Progress progress(scenario + " density " + density + ": correcting",
-                      static_cast<size_t>(baseline.frame_count()));
+    Progress progress(scenario + " density " + density + ": correcting", correction_steps(baseline, params));
     CorrectionReport report;
     const CrowdAnimation ours = correct_crowd(baseline, params, &progress, &report);
     progress.finish();

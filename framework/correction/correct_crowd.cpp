@@ -89,6 +89,15 @@ std::vector<int> close_some_characters(const std::vector<const CrowdAnimation*>&
 /// costs one correction of the clip (6 s of 60 characters x 120 frames at load 11).
 constexpr int kLeadLaps = 4;
 
+/// Frames of the loop closure's window (0: no pre-roll): params.loop_preroll_s of a looping input, at most
+/// all frames but one.
+int loop_window_frames(const CrowdAnimation& crowd, const CorrectorParams& params) {
+  const int frames = crowd.frame_count();
+  return frames > 1 && params.loop_preroll_s > 0.0 && input_loops(crowd)
+             ? std::min(frames - 1, static_cast<int>(std::lround(params.loop_preroll_s * crowd.meta.fps)))
+             : 0;
+}
+
 /// Penetration a loop closure may add beyond the unclosed clip's deepest (m): below what shows.
 constexpr double kClosureDepthSlackM = 0.001;
 
@@ -192,6 +201,11 @@ double lap_difference_m(const CrowdAnimation& a, const CrowdAnimation& b, int f)
 
 }  // namespace
 
+std::size_t correction_steps(const CrowdAnimation& crowd, const CorrectorParams& params) {
+  const auto frames = static_cast<size_t>(crowd.frame_count());
+  return loop_window_frames(crowd, params) > 0 ? (1 + kLeadLaps) * frames : frames;
+}
+
 // correct_crowd itself (one run, or several with anticipated contacts) is in anticipate_contacts.cpp.
 CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorParams& params,
                                   Progress* progress, CorrectionReport* report) {
@@ -208,10 +222,7 @@ CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorPa
   CorrectionReport r;
   r.frames = frames;
   double contacts = 0.0, iterations = 0.0;
-  const int window =
-      frames > 1 && params.loop_preroll_s > 0.0 && input_loops(crowd)
-          ? std::min(frames - 1, static_cast<int>(std::lround(params.loop_preroll_s * crowd.meta.fps)))
-          : 0;
+  const int window = loop_window_frames(crowd, params);
   r.preroll_frames = window > 0 ? kLeadLaps * frames : 0;
   if (frames > 0) {
     frame_targets(crowd, 0, targets);
@@ -235,6 +246,7 @@ CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorPa
       const std::vector<Pose> corrected = corrector.step(targets);
       for (size_t c = 0; c < n; ++c) lap.characters[c].frames[static_cast<size_t>(f)] = corrected[c];
       if (corrector.last_stats().rejected) ++r.rejected_steps;
+      if (progress) progress->advance();
     }
   }
   for (size_t c = 0; c < n && window > 0; ++c)

@@ -29,6 +29,7 @@
 //
 // Throws InputError for an invalid crowd (validate_crowd: empty crowd, NaN/Inf poses,
 // missing/zero-length bones, unequal frame counts) or invalid params.
+#include <cstddef>
 #include <string>
 
 #include "framework/core/crowd_animation.hpp"
@@ -53,10 +54,14 @@ struct CorrectionReport {
   double cg_iterations_mean = 0.0;
 };
 
-/// progress (optional) is advanced once per frame of the first run. report (optional) receives the
-/// summary of the last run. With params.anticipated_joints other than "none", the clip is corrected
-/// 1 + params.anticipation_runs times, each run's contact deviations ramped into the next run's targets
-/// (anticipate_contacts.hpp).
+/// The corrector steps of correct_crowd's first run, the total its progress counts: the frames, and for a
+/// looping clip with a pre-roll the lead laps before them (four laps of the clip, correct_crowd.cpp).
+std::size_t correction_steps(const CrowdAnimation& crowd, const CorrectorParams& params);
+
+/// progress (optional) is advanced once per step of the first run (correction_steps). report (optional)
+/// receives the summary of the last run. With params.anticipated_joints other than "none", the clip is
+/// corrected 1 + params.anticipation_runs times, each run's contact deviations ramped into the next run's
+/// targets (anticipate_contacts.hpp).
 CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams& params,
                              Progress* progress = nullptr, CorrectionReport* report = nullptr);
 

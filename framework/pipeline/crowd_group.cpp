@@ -109,11 +109,11 @@ Stage CrowdGroup::correction_stage() {
   s.inputs = {animation_path(CrowdMethod::baseline)};
   s.compute = [this, i] {
     const CrowdAnimation& input = animation(CrowdMethod::baseline);
-    Progress progress("correct " + key_, static_cast<size_t>(input.frame_count()));
+    const CorrectorParams params =
+        corrector_params(recipes_.correction.correction, recipes_.correction.loop_preroll_s);
+    Progress progress("correct " + key_, correction_steps(input, params));
     CorrectionReport report;
-    animation_[i] = correct_crowd(
-        input, corrector_params(recipes_.correction.correction, recipes_.correction.loop_preroll_s),
-        &progress, &report);
+    animation_[i] = correct_crowd(input, params, &progress, &report);
     if (report.rejected_steps > 0)
       spdlog::warn("{}: the corrector rejected {} of {} steps and kept the last stable state", key_,
                    report.rejected_steps, report.frames);

@@ -313,9 +313,12 @@ TEST_CASE("correction: a looping input gives a looping output with the loop pre-
   CorrectionReport report;
   const CrowdAnimation plain = correct_crowd(crowd, params, nullptr, &report);
   CHECK(report.preroll_frames == 0);
+  CHECK(correction_steps(crowd, params) == 60);
   params.loop_preroll_s = 2.0;
   const CrowdAnimation looped = correct_crowd(crowd, params, nullptr, &report);
   CHECK(report.preroll_frames == 4 * 60);  // four whole laps
+  // The progress counts the laps too (session 13: they ran silently, four fifths of the stage's time).
+  CHECK(correction_steps(crowd, params) == 5 * 60);
   CHECK(!report.loop_closure.empty());     // closed (all or some characters) without going deeper
   INFO("seam / median step: " << seam_ratio(plain) << " without, " << seam_ratio(looped)
                               << " with the pre-roll");
@@ -333,6 +336,7 @@ TEST_CASE("correction: a looping input gives a looping output with the loop pre-
     for (size_t f = 0; f < c.frames.size(); ++f) c.frames[f].root_position_m.x() += 1.0 * f / c.frames.size();
   correct_crowd(crowd, params, nullptr, &report);
   CHECK(report.preroll_frames == 0);
+  CHECK(correction_steps(crowd, params) == 60);
 }
 
 TEST_CASE("correction: a body pushed toward a wall by its neighbour stays out of the wall", "[correction]") {
