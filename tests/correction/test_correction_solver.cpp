@@ -319,7 +319,7 @@ TEST_CASE("correction: a looping input gives a looping output with the loop pre-
   CHECK(report.preroll_frames == 4 * 60);  // four whole laps
   // The progress counts the laps too (session 13: they ran silently, four fifths of the stage's time).
   CHECK(correction_steps(crowd, params) == 5 * 60);
-  CHECK(!report.loop_closure.empty());     // closed (all or some characters) without going deeper
+  CHECK(!report.loop_closure.empty());  // closed (all or some characters) without going deeper
   INFO("seam / median step: " << seam_ratio(plain) << " without, " << seam_ratio(looped)
                               << " with the pre-roll");
   CHECK(seam_ratio(plain) > 2.0);
