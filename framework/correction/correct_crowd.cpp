@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdlib>
 #include <optional>
 #include <string>
 
@@ -186,12 +185,12 @@ void frame_targets(const CrowdAnimation& crowd, int f, std::vector<Pose>& target
   for (size_t c = 0; c < targets.size(); ++c) targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
 }
 
-/// Largest mean joint distance (m) of any character between two crowds' poses on frame f.
-double lap_difference_m(const CrowdAnimation& a, const CrowdAnimation& b, int f) {
+/// Largest mean joint distance (m) of any character between the clip's last frame and the last lead lap's.
+double lap_difference_m(const CrowdAnimation& clip, const std::vector<std::vector<Pose>>& lead_end) {
   double worst = 0.0;
-  for (size_t c = 0; c < a.characters.size(); ++c) {
-    const auto pa = joint_positions(a.characters[c].shape, a.characters[c].frames[static_cast<size_t>(f)]);
-    const auto pb = joint_positions(b.characters[c].shape, b.characters[c].frames[static_cast<size_t>(f)]);
+  for (size_t c = 0; c < clip.characters.size(); ++c) {
+    const auto pa = joint_positions(clip.characters[c].shape, clip.characters[c].frames.back());
+    const auto pb = joint_positions(clip.characters[c].shape, lead_end[c].back());
     double sum = 0.0;
     for (size_t j = 0; j < pa.size(); ++j) sum += (pa[j] - pb[j]).norm();
     worst = std::max(worst, sum / static_cast<double>(pa.size()));
@@ -239,18 +238,16 @@ CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorPa
   // Lead laps (unrecorded), each from the previous one's end; the recorded clip starts from the last's end,
   // whose final window frames its own end blends into.
   std::vector<std::vector<Pose>> lead_end(n);
-  CrowdAnimation lap = crowd;
   for (int l = 0; l < (window > 0 ? kLeadLaps : 0); ++l) {
     for (int f = 0; f < frames; ++f) {
       frame_targets(crowd, f, targets);
       const std::vector<Pose> corrected = corrector.step(targets);
-      for (size_t c = 0; c < n; ++c) lap.characters[c].frames[static_cast<size_t>(f)] = corrected[c];
+      if (l == kLeadLaps - 1 && f >= frames - window)
+        for (size_t c = 0; c < n; ++c) lead_end[c].push_back(corrected[c]);
       if (corrector.last_stats().rejected) ++r.rejected_steps;
       if (progress) progress->advance();
     }
   }
-  for (size_t c = 0; c < n && window > 0; ++c)
-    lead_end[c].assign(lap.characters[c].frames.end() - window, lap.characters[c].frames.end());
   // The corrector as it stood before frame N - W: the loop closure below runs on from there.
   std::optional<Corrector> before_window;
   for (int f = 0; f < frames; ++f) {
@@ -266,8 +263,9 @@ CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorPa
     if (progress) progress->advance();
   }
   if (before_window) {
-    spdlog::debug("correct_crowd: the recorded lap ends {:.4f} m from the lead lap (worst character)",
-                  lap_difference_m(out, lap, frames - 1));
+    if (spdlog::should_log(spdlog::level::debug))
+      spdlog::debug("correct_crowd: the recorded lap ends {:.4f} m from the lead lap (worst character)",
+                    lap_difference_m(out, lead_end));
     close_loop(crowd, lead_end, *before_window, params, out, r);
   }
   r.contacts_mean = frames > 0 ? contacts / frames : 0.0;

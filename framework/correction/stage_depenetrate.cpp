@@ -125,8 +125,6 @@ constexpr double kEnvironmentMargin_m = 0.1;
 /// rest is left to the next passes and steps.
 constexpr double kMaxEnvironmentPush_m = 0.02;
 
-// EXPERIMENT (not to commit)
-
 constexpr int kVariables = kPoseChangeVariables;  // dr, then w_j per joint
 using Row = Eigen::Matrix<double, 1, kVariables>;
 using Weights = PoseChangeVector;
