@@ -33,6 +33,7 @@ struct MetricsArgs {
   bool json = false;
   bool per_frame = false;
   bool pair_volumes = true;
+  bool mesh_measures = true;  ///< with --input: the mesh-level overlap and proxy coverage
   int base_cells = OverlapOptions{}.base_cells;
   int depth = OverlapOptions{}.depth;
 };
@@ -143,7 +144,8 @@ void run(const MetricsArgs& args) {
   const CrowdMetrics m = measure_crowd(crowd, options);
   progress.finish();
   std::optional<CorrectionQuality> quality;
-  if (!args.input.empty()) quality = measure_correction_quality(read_crowd_glb(args.input), crowd);
+  if (!args.input.empty())
+    quality = measure_correction_quality(read_crowd_glb(args.input), crowd, 0, 1, args.mesh_measures);
   if (args.json) {
     nlohmann::json j = crowd_metrics_json(m, args.per_frame);
     if (quality) j["correction_quality"] = correction_quality_json(*quality);
@@ -176,6 +178,9 @@ void add_metrics_command(Command& root) {
   cmd->add_flag("--per-frame", args->per_frame, "Also print the per-frame series");
   cmd->add_flag("!--no-pair-volumes", args->pair_volumes,
                 "Skip the per-pair volumes (V per pair and V of the clip become 0; faster)");
+  cmd->add_flag("!--no-mesh-measures", args->mesh_measures,
+                "With --input: skip the mesh-level measures (about three quarters of the time on MPFB2 "
+                "bodies)");
   cmd->add_option("--base-cells", args->base_cells, "Overlap quadrature base grid cells")
       ->capture_default_str();
   cmd->add_option("--depth", args->depth, "Overlap quadrature subdivisions per base cell")

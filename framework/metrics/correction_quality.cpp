@@ -23,7 +23,7 @@ double rotation_angle_deg(const Quat& a, const Quat& b) {
 }
 
 CorrectionQuality measure_correction_quality(const CrowdAnimation& input, const CrowdAnimation& corrected,
-                                             int first_frame, int frame_stride) {
+                                             int first_frame, int frame_stride, bool mesh_measures) {
   if (input.characters.size() != corrected.characters.size() ||
       input.frame_count() != corrected.frame_count())
     throw InputError("correction quality: input and corrected animations differ in size");
@@ -81,8 +81,10 @@ CorrectionQuality measure_correction_quality(const CrowdAnimation& input, const 
   q.free_limbs = measure_free_limb_deviation(input, corrected, first_frame);
   q.flips = measure_joint_flips(input, corrected, first_frame);
   q.environment = measure_environment_penetration(corrected, first_frame);
-  q.mesh_overlap = measure_mesh_overlap(corrected, first_frame);
-  q.proxy_coverage = measure_proxy_coverage(corrected, first_frame);
+  if (mesh_measures) {
+    q.mesh_overlap = measure_mesh_overlap(corrected, first_frame);
+    q.proxy_coverage = measure_proxy_coverage(corrected, first_frame);
+  }
   q.foot_skate_max_m = q.feet.stance_drift_max_m;
   q.rotation_dev_mean_deg = deviations.empty() ? 0.0 : sum / static_cast<double>(deviations.size());
   q.rotation_dev_p99_deg = nearest_rank_quantile(deviations, 0.99);

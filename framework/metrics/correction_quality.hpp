@@ -21,7 +21,10 @@
 //                              corrected animation (issue 27; mesh_overlap.hpp; sampled every 0.5 s)
 //   proxy_coverage             rendered-mesh vertices outside the character's own capsules (issue 27;
 //                              proxy_coverage.hpp; sampled every 0.5 s)
-// Frames are taken from first_frame on (0 = all), every `frame_stride`-th for the depths.
+// Frames are taken from first_frame on (0 = all), every `frame_stride`-th for the depths. With
+// `mesh_measures` false the two mesh-level measures are left empty (frames 0): they cost about three
+// quarters of the whole on MPFB2 crowds (closest-point queries against every neighbour's posed mesh), and
+// a caller that reads none of them (`reproduce gomez2024 --quick`, issue 31) skips them.
 #include "framework/core/crowd_animation.hpp"
 #include "framework/metrics/environment_penetration.hpp"
 #include "framework/metrics/foot_contact_quality.hpp"
@@ -50,7 +53,8 @@ struct CorrectionQuality {
 
 /// Throws InputError when the two animations differ in characters or frames.
 CorrectionQuality measure_correction_quality(const CrowdAnimation& input, const CrowdAnimation& corrected,
-                                             int first_frame = 0, int frame_stride = 1);
+                                             int first_frame = 0, int frame_stride = 1,
+                                             bool mesh_measures = true);
 
 /// The q-quantile (0..1) of v by nearest rank (0 for an empty vector).
 double nearest_rank_quantile(std::vector<double> v, double q);

@@ -115,10 +115,11 @@ CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Conditio
   return r;
 }
 
-MetricsRecipe metrics_recipe(const CrowdRecipe& crowd, CrowdMethod method) {
+MetricsRecipe metrics_recipe(const CrowdRecipe& crowd, CrowdMethod method, bool mesh_measures) {
   MetricsRecipe m;
   m.method = method;
   m.surface_ground = crowd.params.scenario == ScenarioKind::manifold;
+  m.mesh_measures = mesh_measures;
   return m;
 }
 

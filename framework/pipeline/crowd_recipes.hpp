@@ -91,6 +91,7 @@ struct MetricsRecipe {
   static constexpr std::string_view kCodeVersion = "4";
   CrowdMethod method = CrowdMethod::baseline;  ///< the animation measured (against the baseline)
   bool surface_ground = false;  ///< manifold crowds: the feet's ground is the surface, not y = 0
+  bool mesh_measures = true;    ///< the mesh-level overlap and proxy coverage (RunOptions::mesh_measures)
 };
 
 /// Every recipe of one crowd group, and the files its stages read besides the crowd files.
@@ -100,14 +101,15 @@ struct CrowdGroupRecipes {
   CorrectionRecipe correction;
   std::vector<std::filesystem::path> crowd_files;      ///< the manifold mesh file, when it is one
   std::vector<std::filesystem::path> animation_files;  ///< walk and dance clips
-  std::string source_path;  ///< the spec file, named in error messages only (not hashed)
+  std::string source_path;    ///< the spec file, named in error messages only (not hashed)
+  bool mesh_measures = true;  ///< RunOptions::mesh_measures, for the metrics recipes
 };
 
 /// The recipes of the group whose first condition is `first` (crowd_condition() gives its seed).
 CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Condition& first);
 
 /// The metrics recipe of `method`'s crowd file in a group.
-MetricsRecipe metrics_recipe(const CrowdRecipe& crowd, CrowdMethod method);
+MetricsRecipe metrics_recipe(const CrowdRecipe& crowd, CrowdMethod method, bool mesh_measures = true);
 
 /// What the scenario generators see: a spec holding only the recipe's values (every other section at
 /// its defaults), so they cannot read anything the crowd stage's hash does not cover. `source_path`

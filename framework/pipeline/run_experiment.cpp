@@ -168,7 +168,9 @@ RunSummary run_experiment(const ExperimentSpec& spec, const RunOptions& options,
   Progress progress("run " + spec.name, groups.selected);
   for (const std::string& key : groups.order) {
     const std::vector<Condition>& conditions = groups.conditions[key];
-    CrowdGroup group(crowd_group_recipes(spec, conditions.front()), runner, options.out_dir / "crowds");
+    CrowdGroupRecipes recipes = crowd_group_recipes(spec, conditions.front());
+    recipes.mesh_measures = options.mesh_measures;
+    CrowdGroup group(std::move(recipes), runner, options.out_dir / "crowds");
     for (const Condition& c : conditions) {
       manifest.entries.push_back(run_condition(spec, options, runner, group, c, presentation));
       progress.advance();

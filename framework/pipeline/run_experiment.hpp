@@ -40,6 +40,10 @@ struct RunOptions {
   Shard shard;                                              ///< the slice of conditions to run
   std::string only;                                         ///< run just this condition id ("" = all)
   nlohmann::json libraries = framework_library_versions();  ///< recorded in every provenance sidecar
+  /// The metrics stage's mesh-level overlap and proxy coverage (issue 27), about three quarters of its
+  /// time on MPFB2 crowds; off only for a caller that reads neither (`reproduce gomez2024 --quick`).
+  /// Part of the metrics recipe, so switching it redoes that stage.
+  bool mesh_measures = true;
 };
 
 struct RunSummary {

@@ -228,6 +228,34 @@ TEST_CASE("proxy coverage: the share of vertices within 5 mm of the capsules and
   CHECK(grown.worst_character == -1);
 }
 
+TEST_CASE("correction quality leaves the mesh-level measures out when asked, and nothing else") {
+  // Two interpenetrating boxes carried by two still characters whose capsules overlap too.
+  const BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
+  const Vec3 pelvis(0.0, shape.pelvis_height_m(), 0.0);
+  std::vector<Vec3> v;
+  std::vector<Eigen::Vector3i> t;
+  add_box(pelvis, Vec3(0.3, 0.3, 0.3), 6, v, t);
+  const auto box = pelvis_mesh(v, t, pelvis);
+  CrowdAnimation crowd;
+  crowd.meta.fps = 30.0;
+  crowd.characters.push_back(still(shape, pelvis, box));
+  crowd.characters.push_back(still(shape, pelvis + Vec3(0.3, 0.0, 0.0), box));
+
+  const CorrectionQuality all = measure_correction_quality(crowd, crowd);
+  const CorrectionQuality cheap = measure_correction_quality(crowd, crowd, 0, 1, false);
+  REQUIRE(all.mesh_overlap.frames == 4);  // 2 s sampled every 0.5 s
+  CHECK(all.mesh_overlap.inside_samples > 0);
+  CHECK(all.proxy_coverage.frames == 4);
+  CHECK(cheap.mesh_overlap.frames == 0);
+  CHECK(cheap.mesh_overlap.inside_samples == 0);
+  CHECK(cheap.proxy_coverage.frames == 0);
+  // The capsule measures are the same either way.
+  CHECK(all.depth_samples > 0);
+  CHECK(cheap.depth_samples == all.depth_samples);
+  CHECK(cheap.depth_p99_m == all.depth_p99_m);
+  CHECK(cheap.rotation_dev_p99_deg == all.rotation_dev_p99_deg);
+}
+
 namespace {
 
 /// A dressed male MPFB2 body (skin, outfit, hair, shoes, eyes), built once.

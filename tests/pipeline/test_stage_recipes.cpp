@@ -126,6 +126,15 @@ TEST_CASE("stage recipes: every spec value changes exactly the recipes of the st
   }
 }
 
+TEST_CASE("stage recipes: leaving the mesh-level measures out changes the metrics recipe") {
+  // RunOptions::mesh_measures (`reproduce gomez2024 --quick`, issue 31) is read by the metrics stage
+  // only: a metrics.json with the measures and one without must not pass for each other.
+  const ExperimentSpec spec = load_experiment_spec(tiny_spec());
+  const CrowdGroupRecipes r = crowd_group_recipes(spec, enumerate_conditions(spec).front());
+  for (const CrowdMethod m : {CrowdMethod::baseline, CrowdMethod::corrected})
+    CHECK(canonical_bytes(metrics_recipe(r.crowd, m, false)) != canonical_bytes(metrics_recipe(r.crowd, m)));
+}
+
 TEST_CASE("stage recipes: the MPFB2 folder is part of the animation recipe only with MPFB2 bodies") {
   ExperimentSpec spec = load_experiment_spec(tiny_spec());
   const Condition first = enumerate_conditions(spec).front();
