@@ -13,7 +13,7 @@ namespace crowdlab::cli {
 namespace fs = std::filesystem;
 
 SpecRun run_spec_variant(const std::string& yaml_text, const fs::path& dir, const std::string& name,
-                         bool force, const std::function<void(YAML::Node& root)>& edit) {
+                         bool force, const std::function<void(YAML::Node& root)>& edit, bool mesh_measures) {
   SpecRun r;
   r.spec_path = dir / "specs" / (name + ".yaml");
   r.spec = write_spec_variant(yaml_text, r.spec_path, [&](YAML::Node& root) {
@@ -26,6 +26,7 @@ SpecRun run_spec_variant(const std::string& yaml_text, const fs::path& dir, cons
   RunOptions ro;
   ro.out_dir = r.run_dir;
   ro.force = force;
+  ro.mesh_measures = mesh_measures;
   const RunSummary summary = run_with_stimuli(r.spec, ro);
   r.manifest = read_manifest(summary.manifest.string());
   return r;

@@ -214,15 +214,20 @@ void reproduce_gomez2024(const ReproduceOptions& o) {
     root["duration_s"] = size.duration_s;
     root["fps"] = size.fps;
   };
-  const SpecRun stationary = run_spec_variant(kSpecGomez2024Stationary, dir, "stationary", o.force, resize);
-  const SpecRun corridor = run_spec_variant(kSpecGomez2024Nonstationary, dir, "corridor", o.force, resize);
+  // The mesh-level measures (rendered vertices inside another character, proxy coverage) are checked on
+  // the paper's 20 s clips only (correction_quality_section), and they are about three quarters of the
+  // metrics stage on these MPFB2 crowds: shorter runs leave them out (issue 31: the --quick test's time).
+  const bool full_length = size.duration_s >= 20.0;
+  const SpecRun stationary =
+      run_spec_variant(kSpecGomez2024Stationary, dir, "stationary", o.force, resize, full_length);
+  const SpecRun corridor =
+      run_spec_variant(kSpecGomez2024Nonstationary, dir, "corridor", o.force, resize, full_length);
   std::vector<OverlapRow> rows;
   add_overlap_rows(stationary, "stationary", rows);
   add_overlap_rows(corridor, "corridor", rows);
   write_overlap_vs_density(rows, dir / "fig3");
   check_overlap(rows, size.min_reduction, checks, md);
   std::string quality_csv;
-  const bool full_length = size.duration_s >= 20.0;
   correction_quality_section(stationary, "stationary", rows, full_length, true, checks, md, quality_csv);
   correction_quality_section(corridor, "corridor", rows, full_length, false, checks, md, quality_csv);
   write_file_atomic(dir / "correction_quality.csv", quality_csv);
