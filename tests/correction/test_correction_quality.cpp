@@ -82,6 +82,13 @@ double mpfb2_corridor_length_m() {
   return test::kSanitized ? 3.0 : 0.0;
 }
 
+/// The quality measures the MPFB2-corridor tests check, without the mesh-level ones (rendered vertices
+/// inside another character, proxy coverage; tests/metrics checks those): no check here reads them, and
+/// on these dressed bodies they were most of each test's time (issue 31).
+CorrectionQuality capsule_quality(const CrowdAnimation& in, const CrowdAnimation& out) {
+  return measure_correction_quality(in, out, 0, 1, false);
+}
+
 }  // namespace
 
 TEST_CASE("correction: dense stationary crowd: overlap -95 %, deviation <= 10 deg, skate <= 1 cm",
@@ -230,7 +237,7 @@ TEST_CASE("correction: planted feet stay at the input's height, so bodies do not
   const CrowdAnimation in =
       corridor_walkers(test::kSanitized ? 1.0 : 2.0, false, true, mpfb2_corridor_length_m());
   const CrowdAnimation out = correct_crowd(in, CorrectorParams{});
-  const CorrectionQuality q = measure_correction_quality(in, out);
+  const CorrectionQuality q = capsule_quality(in, out);
   std::vector<double> lift;  // pelvis height above the input's, every character and frame
   for (size_t c = 0; c < in.characters.size(); ++c)
     for (int f = 0; f < in.frame_count(); ++f)
@@ -258,7 +265,7 @@ TEST_CASE("correction: the foot motion budget stops feet jumping in the densest 
   const CrowdAnimation in =
       corridor_walkers(test::kSanitized ? 1.0 : 2.0, true, true, mpfb2_corridor_length_m());
   REQUIRE(in.characters.size() >= (test::kSanitized ? 50u : 100u));
-  const CorrectionQuality with = measure_correction_quality(in, correct_crowd(in, CorrectorParams{}));
+  const CorrectionQuality with = capsule_quality(in, correct_crowd(in, CorrectorParams{}));
   INFO("with the budget: foot pops " << with.feet.foot_pops << ", worst excess " << with.feet.pop_excess_max_m
                                      << " m, drift p99 " << with.feet.stance_drift_p99_m << " m, p99 depth "
                                      << with.depth_p99_m << " m, deviation " << with.rotation_dev_mean_deg
@@ -268,7 +275,7 @@ TEST_CASE("correction: the foot motion budget stops feet jumping in the densest 
   if (!test::kSanitized) {
     CorrectorParams off;
     off.foot_pop_budget_m = 0.0;
-    const CorrectionQuality without = measure_correction_quality(in, correct_crowd(in, off));
+    const CorrectionQuality without = capsule_quality(in, correct_crowd(in, off));
     INFO("without the budget: foot pops " << without.feet.foot_pops << ", worst excess "
                                           << without.feet.pop_excess_max_m << " m");
     CHECK(without.feet.foot_pops >= 8);
@@ -290,8 +297,8 @@ TEST_CASE("correction: joints that touch nobody keep their input, and no joint f
       corridor_walkers(test::kSanitized ? 1.0 : 2.0, false, true, mpfb2_corridor_length_m());
   CorrectorParams off;
   off.release_free_joints = false;
-  const CorrectionQuality without = measure_correction_quality(in, correct_crowd(in, off));
-  const CorrectionQuality with = measure_correction_quality(in, correct_crowd(in, CorrectorParams{}));
+  const CorrectionQuality without = capsule_quality(in, correct_crowd(in, off));
+  const CorrectionQuality with = capsule_quality(in, correct_crowd(in, CorrectorParams{}));
   INFO("free-limb deviation p99 / max "
        << without.free_limbs.p99_deg << " / " << without.free_limbs.max_deg << " -> "
        << with.free_limbs.p99_deg << " / " << with.free_limbs.max_deg << " deg over "

@@ -50,6 +50,10 @@ TEST_CASE("demo stimuli at 640x360: not blank, characters where predicted, less 
   ss << in.rdbuf();
   std::string spec = replaced(ss.str(), "resolution: [480, 270]", "resolution: [640, 360]");
   spec = replaced(spec, "duration_s: 2.0", "duration_s: 0.2");  // 3 frames per clip keep CI fast
+  // The checks read the clips and the crowd files only: the metrics stage (its mesh-level measures on
+  // these MPFB2 crowds) and the contact sheets were a fifth of this test's time, checked elsewhere
+  // (tests/pipeline, tests/determinism), and are left out here (issue 31).
+  spec = replaced(spec, "contact_sheet: true", "contact_sheet: false\n  metrics: false");
   const fs::path spec_path = out / "demo_640.yaml";
   std::ofstream(spec_path) << spec;
   const test::CliResult r = test::run_cli({"-q", "run", spec_path.string(), "--out", (out / "run").string()});
@@ -106,6 +110,9 @@ TEST_CASE("demo stimuli at 640x360: not blank, characters where predicted, less 
     }
     CHECK(heads >= static_cast<int>(crowd.characters.size()) / 2);
     CHECK(seen >= 0.9 * heads);
+    // The practice crowd (its own seed) is checked like every clip above, but has no method to compare:
+    // its red fraction would be measured for nothing.
+    if (e.practice) continue;
     // Overlap mode: mean red-pixel fraction over every other frame of the clip (overlap mode on rendered
     // surfaces runs the mesh inside test per frame: a few seconds for 40 MPFB2 characters on 2 cores).
     options.scene.characters = true;
@@ -118,8 +125,7 @@ TEST_CASE("demo stimuli at 640x360: not blank, characters where predicted, less 
                    &fraction);
       sum += fraction;
     }
-    // The practice crowd (its own seed) is checked like every clip, but compared with nothing.
-    if (!e.practice) red[e.factors.at("density") + "/" + viewpoint][e.factors.at("method")] = sum / sampled;
+    red[e.factors.at("density") + "/" + viewpoint][e.factors.at("method")] = sum / sampled;
   }
   for (const auto& [scene, by_method] : red) {
     INFO(scene << ": baseline " << by_method.at("baseline") << ", ours " << by_method.at("ours"));
