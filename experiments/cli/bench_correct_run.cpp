@@ -81,8 +81,6 @@ CorrectBenchResult run_correct_bench(const CorrectBenchOptions& o) {
     r.contacts_mean += st.contacts();
     r.inter_body_contacts_mean += st.inter_body_contacts;
     r.cg_iterations_mean += st.cg_iterations;
-    r.cg_groups_mean += st.cg_groups;
-    r.cg_characters_mean += st.cg_characters;
     r.body_pairs_mean += st.body_pairs;
     r.pulling_contacts_mean += st.pulling_contacts;
     r.active_set_passes_mean += st.active_set_passes;
@@ -102,8 +100,6 @@ CorrectBenchResult run_correct_bench(const CorrectBenchOptions& o) {
   r.contacts_mean /= n;
   r.inter_body_contacts_mean /= n;
   r.cg_iterations_mean /= n;
-  r.cg_groups_mean /= n;
-  r.cg_characters_mean /= n;
   r.body_pairs_mean /= n;
   r.peak_rss_mb = peak_rss_mb();
   if (o.quality) {
@@ -140,8 +136,6 @@ nlohmann::json correct_bench_json(const CorrectBenchResult& r) {
   j["deep_contacts_mean"] = r.deep_contacts_mean;
   j["depenetration_passes_mean"] = r.depenetration_passes_mean;
   j["active_set_passes_mean"] = r.active_set_passes_mean;
-  j["cg_groups_mean"] = r.cg_groups_mean;
-  j["cg_characters_mean"] = r.cg_characters_mean;
   if (r.options.quality) {
     const CorrectionQuality& q = r.quality;
     j["overlap_baseline_l"] = r.overlap_baseline_l;

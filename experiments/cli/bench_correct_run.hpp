@@ -26,7 +26,6 @@ struct CorrectBenchResult {
   double cpu_ms_median = 0;  ///< process CPU time per step, all threads (not counting waits for a core)
   double contacts_mean = 0, inter_body_contacts_mean = 0, body_pairs_mean = 0, cg_iterations_mean = 0;
   double pulling_contacts_mean = 0, active_set_passes_mean = 0;
-  double cg_groups_mean = 0, cg_characters_mean = 0;  ///< contact-coupled groups solved by CG, their size
   double deep_contacts_mean = 0, depenetration_passes_mean = 0;  ///< what the depenetration pass did
   int rejected_steps = 0, unconverged_steps = 0;
   double peak_rss_mb = 0;  ///< of the whole process so far (VmHWM), fixture animation included
@@ -42,8 +41,7 @@ CorrectBenchResult run_correct_bench(const CorrectBenchOptions& options);
 /// One JSON object: ms_per_step_median, ms_per_step_mean, characters, density_per_m2, steps,
 /// contacts_mean, inter_body_contacts_mean, body_pairs_mean, cg_iterations_mean, rejected_steps,
 /// unconverged_steps, peak_rss_mb, peak_rss_mb_per_character, threads, cpu_ms_per_step_median,
-/// pulling_contacts_mean, active_set_passes_mean, deep_contacts_mean, depenetration_passes_mean,
-/// cg_groups_mean, cg_characters_mean; with
+/// pulling_contacts_mean, active_set_passes_mean, deep_contacts_mean, depenetration_passes_mean; with
 /// options.quality also overlap_baseline_l,
 /// overlap_corrected_l, overlap_reduction, depth_p99_m, depth_max_m, rotation_dev_mean_deg,
 /// rotation_dev_p99_deg, foot_skate_max_m, joint_speed_max_mps.

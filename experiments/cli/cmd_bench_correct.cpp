@@ -29,10 +29,8 @@ void run(const Options& o) {
               r.ms_mean, r.cpu_ms_median);
   std::printf("  contacts  mean %.1f (inter-body %.1f), body pairs %.1f\n", r.contacts_mean,
               r.inter_body_contacts_mean, r.body_pairs_mean);
-  std::printf("  CG        mean %.2f iterations (largest group); %d unconverged, %d rejected steps\n",
-              r.cg_iterations_mean, r.unconverged_steps, r.rejected_steps);
-  std::printf("            mean %.1f groups of %.1f characters in all; the others solved exactly\n",
-              r.cg_groups_mean, r.cg_characters_mean);
+  std::printf("  CG        mean %.2f iterations; %d unconverged, %d rejected steps\n", r.cg_iterations_mean,
+              r.unconverged_steps, r.rejected_steps);
   std::printf("  active set: mean %.2f pulling contacts removed, %.2f extra passes per step\n",
               r.pulling_contacts_mean, r.active_set_passes_mean);
   std::printf("  depenetration: mean %.1f capsule pairs deeper than the tolerance, %.2f passes per step\n",

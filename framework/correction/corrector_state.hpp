@@ -48,24 +48,14 @@ struct JointCoupling {
   double rot_k = 0.0;              ///< 2 (k + d/h^2) of Eq. 4 (N m / rad)
 };
 
-/// One CG solve of a group of characters (stage_solve.cpp): squared norms of its residual and
-/// right-hand side.
-struct CgGroupResult {
-  int iterations = 0;
-  double r_norm2 = 0.0, b_norm2 = 0.0;
-  bool finite = true;
-};
-
 /// Per-step statistics (also what the benchmark prints).
 struct StepStats {
   int inter_body_contacts = 0;
   int intra_body_contacts = 0;
   int ground_contacts = 0;
   int environment_contacts = 0;
-  int body_pairs = 0;     ///< character pairs surviving the AABB cull
-  int cg_iterations = 0;  ///< the most any one group's CG took (summed over active-set passes)
-  int cg_groups = 0;      ///< groups of contact-coupled characters solved by CG (stage_solve.cpp)
-  int cg_characters = 0;  ///< characters in those groups; the others are solved exactly by the tree
+  int body_pairs = 0;  ///< character pairs surviving the AABB cull
+  int cg_iterations = 0;
   double cg_relative_residual = 0.0;
   bool converged = true;           ///< CG met its tolerance
   bool rejected = false;           ///< the step was discarded and the last stable state kept
@@ -206,15 +196,6 @@ struct CorrectorState {
   std::vector<char> factor_ok;      ///< per character: preconditioner blocks were SPD
   std::vector<char> has_contacts;   ///< per character: some contact touches it this step
   std::vector<char> bad_character;  ///< per character: the integrated step is non-finite/too fast
-
-  // ---- the solve's groups (stage_solve.cpp): characters joined by contacts between two bones (inter-
-  // or intra-body) need CG, each connected group on its own; every other character is solved exactly
-  std::vector<int> group_parent;  ///< per character: union-find parent, then its group (-1: exact)
-  std::vector<int> group_offset, group_members;           ///< CSR over groups: their characters, ascending
-  std::vector<int> group_contact_offset, group_contacts;  ///< CSR over groups: their contacts, ascending
-  std::vector<int> group_cursor;                          ///< scratch of the CSR fill
-  std::vector<int> exact_characters;                      ///< characters solved by the tree alone
-  std::vector<CgGroupResult> group_result;                ///< per group: its last CG solve
 
   // ---- the contact-free factorisation of stage_predict, per bone: S^-1 and the block its elimination
   // subtracts from its parent's (H[b,p]^T S^-1 H[b,p]); stage_solve reuses both for every bone whose

@@ -66,12 +66,6 @@ CorrectorState make_corrector_state(const CorrectorModel& model) {
   s.factor_ok.assign(n, 1);
   s.has_contacts.assign(n, 0);
   s.bad_character.assign(n, 0);
-  s.group_parent.assign(n, -1);
-  for (auto* v :
-       {&s.group_offset, &s.group_members, &s.group_contact_offset, &s.group_cursor, &s.exact_characters})
-    v->reserve(n + 1);
-  s.group_contacts.reserve(32 * n);
-  s.group_result.reserve(n);
   s.new_com_m.assign(bones, Vec3::Zero());
   s.new_rotation.assign(bones, Quat::Identity());
   s.touched.assign(n, 0);

@@ -1,11 +1,8 @@
 // The tree factorisation's reuse (tree_factor.hpp): refactor_character, which keeps stage_predict's
 // blocks for the bones whose subtree has no contact block, must give exactly factor_character's
-// preconditioner, bit for bit (the corrector's outputs are pinned, tests/determinism). And what the
-// solve does with it (stage_solve.cpp): a character in no contact between two bones is solved exactly
-// by its tree, each group of contact-coupled characters to the CG tolerance.
+// preconditioner, bit for bit (the corrector's outputs are pinned, tests/determinism).
 #include <bit>
 #include <catch2/catch.hpp>
-#include <cmath>
 #include <cstring>
 
 #include "framework/correction/corrector_step.hpp"
@@ -104,83 +101,4 @@ TEST_CASE("correction: refactorising without a bone's contact block changes the 
     ++checked;
   }
   CHECK(checked >= 1);
-}
-
-namespace {
-
-/// y = H x over the whole crowd, computed independently of stage_solve's structured products: dense
-/// coupling blocks (coupling_matrix) and every contact's k w w^T term.
-std::vector<Vec6> multiply_reference(const CorrectorState& s, const std::vector<Vec6>& x) {
-  std::vector<Vec6> y(x.size());
-  for (size_t g = 0; g < x.size(); ++g) y[g] = s.diag[g] * x[g];
-  for (size_t g = 0; g < x.size(); ++g) {
-    const auto j = static_cast<int>(g % kJointCount);
-    if (j == 0) continue;
-    const size_t gp = g - static_cast<size_t>(j) + static_cast<size_t>(kJointParent[static_cast<size_t>(j)]);
-    const Mat6 b = coupling_matrix(s.coupling[g]);
-    y[g] += b * x[gp];
-    y[gp] += b.transpose() * x[g];
-  }
-  for (const Contact& k : s.contacts) {
-    if (k.stiffness == 0.0) continue;
-    const auto a = static_cast<size_t>(k.bone_a);
-    double v = k.w_a.dot(x[a]);
-    if (k.bone_b >= 0) v += k.w_b.dot(x[static_cast<size_t>(k.bone_b)]);
-    y[a] += k.stiffness * v * k.w_a;
-    if (k.bone_b >= 0) y[static_cast<size_t>(k.bone_b)] += k.stiffness * v * k.w_b;
-  }
-  return y;
-}
-
-}  // namespace
-
-TEST_CASE(
-    "correction: a character in no contact between two bones is solved exactly by its tree, each "
-    "contact-coupled group to the CG tolerance",
-    "[correction]") {
-  SolveInput in = state_before_solve();
-  CorrectorState& s = in.state;
-  stage_solve(in.model, s);
-  const int n = in.model.characters();
-  const std::vector<Vec6> hx = multiply_reference(s, s.cg_x);
-  // Squared norms of b and of the residual b - H x per character.
-  std::vector<double> b2(static_cast<size_t>(n), 0.0), r2(static_cast<size_t>(n), 0.0);
-  for (size_t g = 0; g < hx.size(); ++g) {
-    b2[g / kJointCount] += s.rhs[g].squaredNorm();
-    r2[g / kJointCount] += (s.rhs[g] - hx[g]).squaredNorm();
-  }
-  // The groups are closed: no contact joins two of them or an exactly solved character to anything.
-  for (const Contact& k : s.contacts) {
-    if (k.stiffness == 0.0 || k.bone_b < 0) continue;
-    const int ga = s.group_parent[static_cast<size_t>(k.bone_a / kJointCount)],
-              gb = s.group_parent[static_cast<size_t>(k.bone_b / kJointCount)];
-    CHECK(ga >= 0);
-    CHECK(ga == gb);
-  }
-  int exact_with_contacts = 0;
-  const int groups = s.stats.cg_groups;
-  std::vector<double> group_b2(static_cast<size_t>(groups), 0.0), group_r2(static_cast<size_t>(groups), 0.0);
-  for (int c = 0; c < n; ++c) {
-    const auto cc = static_cast<size_t>(c);
-    const int g = s.group_parent[cc];
-    if (g >= 0) {
-      group_b2[static_cast<size_t>(g)] += b2[cc];
-      group_r2[static_cast<size_t>(g)] += r2[cc];
-      continue;
-    }
-    INFO("character " << c << " (exact), contacts " << (s.has_contacts[cc] ? "ground/environment" : "none"));
-    exact_with_contacts += s.has_contacts[cc] ? 1 : 0;
-    CHECK(std::sqrt(r2[cc] / b2[cc]) < 1e-10);  // round-off, not a CG tolerance
-  }
-  const double tol = in.model.params.cg_tolerance;
-  for (int g = 0; g < groups; ++g) {
-    INFO("group " << g);
-    CHECK(std::sqrt(group_r2[static_cast<size_t>(g)] / group_b2[static_cast<size_t>(g)]) <= tol * (1 + 1e-6));
-  }
-  CHECK(s.stats.converged);
-  // The crowd is dense enough for both kinds to mean something: characters solved exactly although
-  // they touch the ground or the environment, and groups solved by CG.
-  CHECK(exact_with_contacts >= 1);
-  CHECK(groups >= 1);
-  CHECK(s.stats.cg_characters + static_cast<int>(s.exact_characters.size()) == n);
 }
