@@ -108,8 +108,9 @@ struct CrowdGroupRecipes {
 /// The recipes of the group whose first condition is `first` (crowd_condition() gives its seed).
 CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Condition& first);
 
-/// The metrics recipe of `method`'s crowd file in a group.
-MetricsRecipe metrics_recipe(const CrowdRecipe& crowd, CrowdMethod method, bool mesh_measures = true);
+/// The metrics recipe of `method`'s crowd file in a group; `mesh_measures`: RunOptions::mesh_measures (no
+/// default, so no caller can build a recipe that differs from the stage's by forgetting it).
+MetricsRecipe metrics_recipe(const CrowdRecipe& crowd, CrowdMethod method, bool mesh_measures);
 
 /// What the scenario generators see: a spec holding only the recipe's values (every other section at
 /// its defaults), so they cannot read anything the crowd stage's hash does not cover. `source_path`

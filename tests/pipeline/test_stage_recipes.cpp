@@ -35,7 +35,7 @@ std::map<std::string, std::string> recipe_bytes(const ExperimentSpec& spec) {
       {"crowd", canonical_bytes(r.crowd) + files(r.crowd_files)},
       {"animation", canonical_bytes(r.animation) + files(r.animation_files)},
       {"correction", canonical_bytes(r.correction)},
-      {"metrics", canonical_bytes(metrics_recipe(r.crowd, CrowdMethod::corrected))},
+      {"metrics", canonical_bytes(metrics_recipe(r.crowd, CrowdMethod::corrected, true))},
       {"render", canonical_bytes(stimuli::render_recipe(spec, ViewpointId::V4))},
       {"contact_sheet", canonical_bytes(stimuli::ContactSheetRecipe{stimuli::stimulus_look(spec.render)})}};
 }
@@ -132,7 +132,8 @@ TEST_CASE("stage recipes: leaving the mesh-level measures out changes the metric
   const ExperimentSpec spec = load_experiment_spec(tiny_spec());
   const CrowdGroupRecipes r = crowd_group_recipes(spec, enumerate_conditions(spec).front());
   for (const CrowdMethod m : {CrowdMethod::baseline, CrowdMethod::corrected})
-    CHECK(canonical_bytes(metrics_recipe(r.crowd, m, false)) != canonical_bytes(metrics_recipe(r.crowd, m)));
+    CHECK(canonical_bytes(metrics_recipe(r.crowd, m, false)) !=
+          canonical_bytes(metrics_recipe(r.crowd, m, true)));
 }
 
 TEST_CASE("stage recipes: the MPFB2 folder is part of the animation recipe only with MPFB2 bodies") {
