@@ -47,7 +47,7 @@ inline constexpr BoneMask kLightJoints = joint_set(
 inline constexpr BoneMask kElbowJoints = joint_set({kLeftElbow, kRightElbow});
 /// "head": neck and head; "shoulders": collars and shoulders (upper arms). Limited since session 15: on
 /// 3 s gomez2024 clips the stationary crowd at 6.66 /m^2 had 21 head and shoulder flips, turned by the
-/// Newton step (docs/correction.md).
+/// Newton step; limited, 0, and p99 depth 12.5 -> 5.1 mm (docs/correction.md).
 inline constexpr BoneMask kHeadJoints = joint_set({kNeck, kHead});
 inline constexpr BoneMask kShoulderJoints =
     joint_set({kLeftCollar, kRightCollar, kLeftShoulder, kRightShoulder});
@@ -263,7 +263,10 @@ struct CorrectorParams {
   /// so that the joints that may still move, and the neighbour, separate the contact
   /// (stage_free_joints.cpp). At 30 fps the rate is 6.5 deg per frame, 19.5 deg within 3 frames: under
   /// the flip measure's 20 deg (metrics/joint_flips.hpp), so a limited joint never flips. A set over the
-  /// 24 joints (bit j = joint j; parse_joint_set names them). Default kDefaultRateLimitedJoints.
+  /// 24 joints (bit j = joint j; parse_joint_set names them). Default kDefaultRateLimitedJoints. Not the
+  /// knees and hips: held legs are posed by the leg IK after the limit, so their flips moved to the ankles
+  /// and the legs stopped separating contacts (session 15, corridor 6.66 /m^2: 121-221 flips left, p99
+  /// depth 9-10 -> 11-17 mm, 0 -> 9-24 foot pops, docs/correction.md).
   BoneMask rate_limited_joints = kDefaultRateLimitedJoints;
 
   // ---- Feet on the ground (stage_depenetrate.cpp, stage_settle_feet.cpp, issue 27, sessions 12-13)
