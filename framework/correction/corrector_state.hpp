@@ -139,13 +139,13 @@ struct DepenetrationScratch {
   std::vector<std::vector<const DeepContact*>> mine;  ///< per character, the deep contacts touching it
   /// per character, its capsules near a box or the ground (the pass's surface guards, stage_depenetrate)
   std::vector<std::vector<SurfaceGap>> gaps;
-  std::vector<std::vector<int>> pairs_of;             ///< per character, tested body pairs touching it
-  std::vector<char> in_list, moved, ever_moved;       ///< per character flags
-  std::vector<int> characters;  ///< characters with a near capsule pair or box this step
-  std::vector<int> posing;      ///< characters (re-)posed by the current pass
-  std::vector<int> tested;      ///< body pairs (re-)tested by the current pass
-  std::vector<int> solved;      ///< characters with a deep contact in the current pass
-  std::vector<int> changed;     ///< characters the pass moved this step
+  std::vector<std::vector<int>> pairs_of;        ///< per character, tested body pairs touching it
+  std::vector<char> in_list, moved, ever_moved;  ///< per character flags
+  std::vector<int> characters;                   ///< characters with a near capsule pair or box this step
+  std::vector<int> posing;                       ///< characters (re-)posed by the current pass
+  std::vector<int> tested;                       ///< body pairs (re-)tested by the current pass
+  std::vector<int> solved;                       ///< characters with a deep contact in the current pass
+  std::vector<int> changed;                      ///< characters the pass moved this step
 };
 
 struct CorrectorState {
