@@ -47,6 +47,13 @@
 //                 exp(w_j) R_parent local_j (R_parent: the parent's world rotation before the pass),
 //                 each w_j limited to kMaxRotation_rad; held feet are then re-planted exactly by
 //                 hold_feet.
+//   guards        (issue 27, session 15) before applying: where the change would take a capsule deeper
+//                 behind an environment box face than it is (or than the face, when outside), or a capsule
+//                 below the ground deeper than it is or than the tolerance, its row n . J_p dq = what it may
+//                 still move in is added (weighted kGuardRowWeight) and the character solved again (an
+//                 active set, kGuardRounds rounds); and a held foot whose shank or foot is deep in a box
+//                 gives way horizontally with that contact (its x and z rows ask for the push, its anchors
+//                 move with it), at most kHeldFootGiveWay_m per step.
 // Compliance of character c along n at p: sum over the chain of |(p - o_j) x n|^2 / k_j + 1 / k_root,
 // the displacement per unit force of the same energy (ignoring the held-foot rows).
 //
