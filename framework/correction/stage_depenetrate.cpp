@@ -109,15 +109,15 @@ constexpr double kFootBudgetRowWeight = 10.0;
 /// top (kMaxGuardRows).
 constexpr int kMaxRows = 40;
 /// Surface guards (issue 27, session 15): one-sided rows for the environment boxes and the ground.
-/// A capsule the pass's change would take deeper behind a box face or below y = 0 than it is (or than
-/// the surface, when it is outside) gets the row n . J_p [dr; w] = min(d, 0), d its depth now (< 0: a
-/// gap), and the character is solved again with it: an active set of the inequality n . J_p dq >= min(d, 0)
-/// (the rows are added only where the unconstrained change breaks them, so a capsule may still leave
-/// a surface). Without them the pass pushed bodies into the corridor's barriers and swinging feet into
-/// the ground while it separated neighbours: of the 28 capsule-frames deeper than 5 mm in a barrier at
-/// corridor 6.66 /m^2 (3 s), 16 were not after the Newton step but were after the pass (a pelvis 0 ->
-/// 20.8 mm); a swinging foot 19 mm above the ground in the input went 73 mm below it (docs/correction.md,
-/// session 15).
+/// A capsule the pass's change would take deeper than max(d, a), d its depth now (< 0: a gap) and a
+/// what the surface allows (0 behind a box face; the pass's tolerance below y = 0, so feet standing on
+/// the ground are left alone), gets the row n . J_p [dr; w] = d - max(d, a) and the character is solved
+/// again with it: an active set of the inequality n . J_p dq >= d - max(d, a) (the rows are added only
+/// where the unconstrained change breaks them, so a capsule may still leave a surface). Without them the pass
+/// pushed bodies into the corridor's barriers and swinging feet into the ground while it separated
+/// neighbours: of the 28 capsule-frames deeper than 5 mm in a barrier at corridor 6.66 /m^2 (3 s), 16 were
+/// not after the Newton step but were after the pass (a pelvis 0 -> 20.8 mm); a swinging foot 19 mm above the
+/// ground in the input went 73 mm below it (docs/correction.md, session 15).
 constexpr int kMaxGuardRows = 8;
 /// Weight of the guard rows (as kFootBudgetRowWeight): where they conflict with contacts, they win.
 constexpr double kGuardRowWeight = 10.0;
@@ -432,8 +432,9 @@ void surface_gaps(const CorrectorModel& model, const DepenetrationScratch& w, in
   }
 }
 
-/// Appends a guard row for every gap that the change dq would close past min(depth, 0) + kGuardSlack_m
-/// (linearised: the depth after is depth - n . J_p dq), while there is room. Returns how many it added.
+/// Appends a guard row for every gap that the change dq would take past max(depth, allowed) +
+/// kGuardSlack_m (linearised: the depth after is depth - n . J_p dq), while there is room. Returns how many
+/// it added.
 int add_guard_rows(const BoneTransforms& bones, const PoseChangeVector& dq, std::vector<SurfaceGap>& gaps,
                    RowBlock& J, SmallVector& r) {
   int added = 0;
