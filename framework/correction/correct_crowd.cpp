@@ -10,6 +10,7 @@
 
 #include "framework/core/crowd_penetration_depth.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/loop_seam_per_character.hpp"
 #include "framework/correction/blend_keeping_planted_feet.hpp"
 #include "framework/correction/corrector.hpp"
 
@@ -73,6 +74,12 @@ std::vector<int> close_some_characters(const std::vector<const CrowdAnimation*>&
   std::vector<int> on(rungs, 0);
   for (size_t r : rung)
     if (r < rungs) ++on[r];
+  if (spdlog::should_log(spdlog::level::debug)) {
+    std::string open_ones;
+    for (size_t c = 0; c < rung.size(); ++c)
+      if (rung[c] == rungs) open_ones += " " + open.characters[c].name;
+    spdlog::debug("correct_crowd: the loop stays open for{}", open_ones.empty() ? " none" : open_ones);
+  }
   return on;
 }
 
@@ -198,6 +205,24 @@ double lap_difference_m(const CrowdAnimation& clip, const std::vector<std::vecto
   return worst;
 }
 
+/// Debug log: the characters that add most to the closed clip's seam, and where on the body
+/// (loop_seam_per_character.hpp; issue 28, session 14: at 6.66/m^2 the seam was a few open characters'
+/// arms).
+void log_seam_carriers(const CrowdAnimation& clip) {
+  const std::vector<CharacterSeam> seams = loop_seam_per_character(clip);
+  std::vector<size_t> order(seams.size());
+  for (size_t c = 0; c < order.size(); ++c) order[c] = c;
+  std::sort(order.begin(), order.end(),
+            [&](size_t a, size_t b) { return seams[a].excess_m() > seams[b].excess_m(); });
+  std::string worst;
+  for (size_t i = 0; i < std::min<size_t>(5, order.size()); ++i) {
+    const CharacterSeam& s = seams[order[i]];
+    worst += fmt::format(" {} +{:.3f} m (arms {:.3f}, legs {:.3f}, trunk {:.3f});",
+                         clip.characters[order[i]].name, s.excess_m(), s.arms_m, s.legs_m, s.trunk_m);
+  }
+  spdlog::debug("correct_crowd: the seam's largest carriers:{}", worst);
+}
+
 }  // namespace
 
 std::size_t correction_steps(const CrowdAnimation& crowd, const CorrectorParams& params) {
@@ -267,6 +292,7 @@ CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorPa
       spdlog::debug("correct_crowd: the recorded lap ends {:.4f} m from the lead lap (worst character)",
                     lap_difference_m(out, lead_end));
     close_loop(crowd, lead_end, *before_window, params, out, r);
+    if (spdlog::should_log(spdlog::level::debug)) log_seam_carriers(out);
   }
   r.contacts_mean = frames > 0 ? contacts / frames : 0.0;
   r.cg_iterations_mean = frames > 0 ? iterations / frames : 0.0;
