@@ -75,8 +75,10 @@ struct CorrectionRecipe {
   /// characters closes some (issue 28, session 12); 7: four laps; inside the re-corrected closure, feet the
   /// input plants stay where they stood before it set them down and arms aim at the input; characters it
   /// leaves too deep try the plain blend (issue 28, session 13); 8: engaged elbows rate-limited as the
-  /// light joints (issue 27, session 13).
-  static constexpr std::string_view kCodeVersion = "8";
+  /// light joints (issue 27, session 13); 9: characters a too-deep closure leaves open may start from the
+  /// next lap, close their arms alone, or close together with their open neighbours, and a closure may
+  /// reach 10 mm (issue 28, session 15).
+  static constexpr std::string_view kCodeVersion = "9";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
   /// (correct_crowd.hpp; issue 28): kLoopPrerollS when protocol.loop_video and the clip lasts at least
