@@ -14,6 +14,7 @@
 #include "framework/correction/blend_keeping_planted_feet.hpp"
 #include "framework/correction/corrector.hpp"
 #include "framework/correction/loop_closure_choice.hpp"
+#include "framework/metrics/joint_flips.hpp"
 
 namespace crowdlab {
 namespace {
@@ -81,6 +82,31 @@ void arms_from_input(const CrowdAnimation& input, int first, CrowdAnimation& aim
       for (Joint j : kArmJoints)
         aims.characters[c].frames[f].local_rotations[static_cast<size_t>(j)] =
             input.characters[c].frames[f].local_rotations[static_cast<size_t>(j)];
+}
+
+/// Joint flips (metrics/joint_flips.hpp) of one character of `crowd` against its input.
+long flips_of(const CrowdAnimation& input, const CrowdAnimation& crowd, size_t c) {
+  CrowdAnimation one_in, one;
+  one_in.meta = input.meta;
+  one.meta = crowd.meta;
+  one_in.characters = {input.characters[c]};
+  one.characters = {crowd.characters[c]};
+  return measure_joint_flips(one_in, one).count;
+}
+
+/// allowed[r][c]: candidate r gives character c no more joint flips than the unclosed clip. Why (session
+/// 15): the start from the next lap and the arm closures brought the corrector's own hand flips of those
+/// frames into the clip (4 s concert at 6.66/m^2: flips 23 -> 35 and 25 -> 30, all hands).
+std::vector<std::vector<bool>> without_new_flips(const CrowdAnimation& input,
+                                                 const std::vector<const CrowdAnimation*>& closures,
+                                                 const CrowdAnimation& unclosed) {
+  const size_t n = unclosed.characters.size();
+  std::vector<long> own(n);
+  for (size_t c = 0; c < n; ++c) own[c] = flips_of(input, unclosed, c);
+  std::vector<std::vector<bool>> allowed(closures.size(), std::vector<bool>(n));
+  for (size_t r = 0; r < closures.size(); ++r)
+    for (size_t c = 0; c < n; ++c) allowed[r][c] = flips_of(input, *closures[r], c) <= own[c];
+  return allowed;
 }
 
 /// Debug log: the characters the loop closure leaves open (choice == open).
@@ -159,7 +185,8 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
     const CrowdAnimation left = close_joints(out, preroll_out, kLeftArmJoints);
     const CrowdAnimation right = close_joints(out, preroll_out, kRightArmJoints);
     const std::vector<const CrowdAnimation*> closures = {&finished, &blended, &started, &arms, &left, &right};
-    const std::vector<size_t> choice = choose_closures(closures, 3, out, first, preroll, limit);
+    const std::vector<size_t> choice =
+        choose_closures(closures, 3, out, first, preroll, limit, without_new_flips(input, closures, out));
     log_open_characters(out, choice, closures.size());
     std::array<int, 5> on{};  // corrected blend, blend, start, arms, one arm
     for (size_t k : choice)

@@ -23,11 +23,21 @@ std::vector<int> checked_frames(int frames, int first, int start_window) {
 /// `rungs`: unclosed, index closures.size()), all at once, until none is too deep. Terminates, since
 /// `unclosed` alone keeps every character within the limit.
 std::vector<size_t> descend(const std::vector<const CrowdAnimation*>& closures, size_t rungs,
-                            const CrowdAnimation& unclosed, int first, int start_window, double limit_m) {
+                            const CrowdAnimation& unclosed, int first, int start_window, double limit_m,
+                            const std::vector<std::vector<bool>>& allowed) {
   const int frames = unclosed.frame_count();
   const size_t open = closures.size();
-  CrowdAnimation mixed = *closures.front();
+  // The first candidate from r on, among the first `rungs`, that the character may take; else unclosed.
+  auto next_allowed = [&](size_t c, size_t r) {
+    while (r < rungs && !allowed[r][c]) ++r;
+    return r < rungs ? r : open;
+  };
+  CrowdAnimation mixed = unclosed;
   std::vector<size_t> rung(mixed.characters.size(), 0);
+  for (size_t c = 0; c < rung.size(); ++c) {
+    rung[c] = next_allowed(c, 0);
+    if (rung[c] < open) mixed.characters[c].frames = closures[rung[c]]->characters[c].frames;
+  }
   for (bool moved = true; moved;) {
     moved = false;
     std::vector<double> depth = deepest_per_character(mixed, first, frames);
@@ -38,7 +48,7 @@ std::vector<size_t> descend(const std::vector<const CrowdAnimation*>& closures, 
     }
     for (size_t c = 0; c < rung.size(); ++c) {
       if (rung[c] == open || depth[c] <= limit_m) continue;
-      rung[c] = rung[c] + 1 < rungs ? rung[c] + 1 : open;
+      rung[c] = next_allowed(c, rung[c] + 1);
       mixed.characters[c].frames = (rung[c] < open ? closures[rung[c]] : &unclosed)->characters[c].frames;
       moved = true;
     }
@@ -59,8 +69,8 @@ double seam_m(const CharacterAnimation& c) {
 class Join {
  public:
   Join(const std::vector<const CrowdAnimation*>& closures, const CrowdAnimation& unclosed, int first,
-       int start_window, double limit_m)
-      : open_(closures.size()), n_(unclosed.characters.size()), limit_m_(limit_m) {
+       int start_window, double limit_m, const std::vector<std::vector<bool>>& allowed)
+      : open_(closures.size()), n_(unclosed.characters.size()), limit_m_(limit_m), allowed_(allowed) {
     const std::vector<int> checked = checked_frames(unclosed.frame_count(), first, start_window);
     capsules_.assign(open_ + 1, std::vector<std::vector<WorldCapsules>>(n_));
     for (size_t r = 0; r <= open_; ++r) {
@@ -94,10 +104,11 @@ class Join {
   /// c on candidate r, with the unclosed characters it meets too deeply there; kept if all of them are
   /// then within the limit against everyone.
   void try_close(size_t c, size_t r, std::vector<size_t>& rung) const {
+    if (!allowed_[r][c]) return;
     std::vector<size_t> group = {c};
     for (size_t o = 0; o < n_; ++o) {
       if (o == c || depth_m(c, r, o, rung[o]) <= limit_m_) continue;
-      if (rung[o] != open_ || group.size() == kMaxJoinedCharacters) return;
+      if (rung[o] != open_ || !allowed_[r][o] || group.size() == kMaxJoinedCharacters) return;
       group.push_back(o);
     }
     for (size_t g : group) rung[g] = r;
@@ -111,6 +122,7 @@ class Join {
 
   size_t open_, n_;
   double limit_m_;
+  const std::vector<std::vector<bool>>& allowed_;
   std::vector<std::vector<std::vector<WorldCapsules>>> capsules_;  ///< [candidate][character][checked frame]
 };
 
@@ -137,10 +149,10 @@ std::vector<double> deepest_per_character(const CrowdAnimation& crowd, int first
 
 std::vector<size_t> choose_closures(const std::vector<const CrowdAnimation*>& closures, size_t descent_rungs,
                                     const CrowdAnimation& unclosed, int first, int start_window,
-                                    double limit_m) {
-  std::vector<size_t> rung =
-      descend(closures, std::min(descent_rungs, closures.size()), unclosed, first, start_window, limit_m);
-  Join(closures, unclosed, first, start_window, limit_m).run(unclosed, rung);
+                                    double limit_m, const std::vector<std::vector<bool>>& allowed) {
+  std::vector<size_t> rung = descend(closures, std::min(descent_rungs, closures.size()), unclosed, first,
+                                     start_window, limit_m, allowed);
+  Join(closures, unclosed, first, start_window, limit_m, allowed).run(unclosed, rung);
   return rung;
 }
 

@@ -39,9 +39,12 @@ inline constexpr std::size_t kMaxJoinedCharacters = 4;
 /// The descent uses the first `descent_rungs` candidates, the join all of them. Depths are checked over
 /// frames [first, N) and [0, min(start_window, first)). Needs every character within limit_m in `unclosed`
 /// against `unclosed` (then the result keeps every character within it).
+/// allowed[r][c]: whether character c may take candidate r at all (correct_crowd.cpp offers none that
+/// adds joint flips to it).
 std::vector<std::size_t> choose_closures(const std::vector<const CrowdAnimation*>& closures,
                                          std::size_t descent_rungs, const CrowdAnimation& unclosed, int first,
-                                         int start_window, double limit_m);
+                                         int start_window, double limit_m,
+                                         const std::vector<std::vector<bool>>& allowed);
 
 /// `unclosed` with each character's frames from its chosen candidate (choose_closures).
 CrowdAnimation mix_closures(const std::vector<const CrowdAnimation*>& closures,

@@ -52,7 +52,8 @@ TEST_CASE("loop closure choice: neighbours that can close only together close to
   move_window(closed, 2, first, 2.0);
   const double limit_m = 0.01;
   const std::vector<const CrowdAnimation*> closures = {&closed};
-  const std::vector<size_t> choice = choose_closures(closures, 1, unclosed, first, 0, limit_m);
+  const std::vector<std::vector<bool>> any = {{true, true, true}};
+  const std::vector<size_t> choice = choose_closures(closures, 1, unclosed, first, 0, limit_m, any);
   REQUIRE(choice.size() == 3);
   CHECK(choice[0] == 0);  // A closed
   CHECK(choice[1] == 0);  // B closed, with A
@@ -64,8 +65,13 @@ TEST_CASE("loop closure choice: neighbours that can close only together close to
   CHECK(mixed.characters[2].frames.back().root_position_m.x() == 6.0);
   // Where no character meets another, the first candidate is everyone's.
   move_window(closed, 2, first, 6.5);
-  const std::vector<size_t> all = choose_closures(closures, 1, unclosed, first, 0, limit_m);
+  const std::vector<size_t> all = choose_closures(closures, 1, unclosed, first, 0, limit_m, any);
   CHECK(all == std::vector<size_t>{0, 0, 0});
+  // A candidate not allowed to a character (one that would add joint flips to it) is never its: B stays
+  // unclosed, so A, which would meet B's unclosed body, cannot close either; C still can.
+  const std::vector<size_t> without_b =
+      choose_closures(closures, 1, unclosed, first, 0, limit_m, {{true, false, true}});
+  CHECK(without_b == std::vector<size_t>{1, 1, 0});
 }
 
 TEST_CASE("loop closure choice: a character whose arm is open at the seam starts from the next lap",
