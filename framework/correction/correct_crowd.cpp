@@ -10,8 +10,11 @@
 
 #include "framework/core/crowd_penetration_depth.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/loop_seam_per_character.hpp"
 #include "framework/correction/blend_keeping_planted_feet.hpp"
 #include "framework/correction/corrector.hpp"
+#include "framework/correction/loop_closure_choice.hpp"
+#include "framework/metrics/joint_flips.hpp"
 
 namespace crowdlab {
 namespace {
@@ -28,52 +31,10 @@ bool input_loops(const CrowdAnimation& crowd) {
   return true;
 }
 
-/// Per character, its deepest penetration (m) with any other over frames [first, last) of a crowd.
-std::vector<double> deepest_per_character(const CrowdAnimation& crowd, int first, int last) {
-  std::vector<double> depth(crowd.characters.size(), 0.0);
-  std::vector<WorldCapsules> bodies(crowd.characters.size());
-  for (int f = first; f < last; ++f) {
-    for (size_t c = 0; c < bodies.size(); ++c)
-      bodies[c] =
-          world_capsules(crowd.characters[c].shape, crowd.characters[c].frames[static_cast<size_t>(f)]);
-    const std::vector<double> now = deepest_penetration_per_body(bodies);
-    for (size_t c = 0; c < bodies.size(); ++c) depth[c] = std::max(depth[c], now[c]);
-  }
-  return depth;
-}
-
 /// Deepest inter-body penetration (m) over frames [first, last) of a crowd.
 double deepest(const CrowdAnimation& crowd, int first, int last) {
   const std::vector<double> per_character = deepest_per_character(crowd, first, last);
   return per_character.empty() ? 0.0 : *std::max_element(per_character.begin(), per_character.end());
-}
-
-/// A closure of some characters only: every character starts on the first of `closures` (the closed
-/// candidates, best first) and each whose penetration over frames [first, N) goes deeper than `limit_m`
-/// moves to the next candidate, or back to its frames in `open` after the last (both sides of a too-deep
-/// contact move on), again until no character is too deep. Terminates, since `open` alone stays within the
-/// limit. Returns how many characters ended on each candidate.
-std::vector<int> close_some_characters(const std::vector<const CrowdAnimation*>& closures, int first,
-                                       double limit_m, CrowdAnimation& open) {
-  const int frames = open.frame_count();
-  const size_t rungs = closures.size();
-  CrowdAnimation mixed = *closures.front();
-  std::vector<size_t> rung(mixed.characters.size(), 0);
-  for (bool moved = true; moved;) {
-    moved = false;
-    const std::vector<double> depth = deepest_per_character(mixed, first, frames);
-    for (size_t c = 0; c < rung.size(); ++c) {
-      if (rung[c] == rungs || depth[c] <= limit_m) continue;
-      ++rung[c];
-      mixed.characters[c].frames = (rung[c] < rungs ? closures[rung[c]] : &open)->characters[c].frames;
-      moved = true;
-    }
-  }
-  open = std::move(mixed);
-  std::vector<int> on(rungs, 0);
-  for (size_t r : rung)
-    if (r < rungs) ++on[r];
-  return on;
 }
 
 /// Whole laps of the clip corrected (unrecorded) before the recorded one, for looping clips (issue 28):
@@ -99,6 +60,10 @@ int loop_window_frames(const CrowdAnimation& crowd, const CorrectorParams& param
 
 /// Penetration a loop closure may add beyond the unclosed clip's deepest (m): below what shows.
 constexpr double kClosureDepthSlackM = 0.001;
+/// Depth a loop closure may always reach (m): issue 18's bound on the deepest contact. Session 15: on the
+/// 4 s concert at 6.66/m^2 (seed 2024000001) the unclosed clip is 6.7 mm deep, and closing up to 10 mm
+/// instead of 7.7 mm let 4 more characters close (V3 seam 1.521 -> 1.500, deepest 9.7 mm).
+constexpr double kClosureDepthFloorM = 0.010;
 
 /// Joints whose aims in the re-corrected closure stay the input's: collars, shoulders, elbows, wrists, hands.
 /// Aimed at the input blended into the last lap's output, the second correction turned hands and wrists
@@ -119,18 +84,56 @@ void arms_from_input(const CrowdAnimation& input, int first, CrowdAnimation& aim
             input.characters[c].frames[f].local_rotations[static_cast<size_t>(j)];
 }
 
+/// Joint flips (metrics/joint_flips.hpp) of one character of `crowd` against its input.
+long flips_of(const CrowdAnimation& input, const CrowdAnimation& crowd, size_t c) {
+  CrowdAnimation one_in, one;
+  one_in.meta = input.meta;
+  one.meta = crowd.meta;
+  one_in.characters = {input.characters[c]};
+  one.characters = {crowd.characters[c]};
+  return measure_joint_flips(one_in, one).count;
+}
+
+/// allowed[r][c]: candidate r gives character c no more joint flips than the unclosed clip. Why (session
+/// 15): the start from the next lap and the arm closures brought the corrector's own hand flips of those
+/// frames into the clip (4 s concert at 6.66/m^2: flips 23 -> 35 and 25 -> 30, all hands).
+std::vector<std::vector<bool>> without_new_flips(const CrowdAnimation& input,
+                                                 const std::vector<const CrowdAnimation*>& closures,
+                                                 const CrowdAnimation& unclosed) {
+  const size_t n = unclosed.characters.size();
+  std::vector<long> own(n);
+  for (size_t c = 0; c < n; ++c) own[c] = flips_of(input, unclosed, c);
+  std::vector<std::vector<bool>> allowed(closures.size(), std::vector<bool>(n));
+  for (size_t r = 0; r < closures.size(); ++r)
+    for (size_t c = 0; c < n; ++c) allowed[r][c] = flips_of(input, *closures[r], c) <= own[c];
+  return allowed;
+}
+
+/// Debug log: the characters the loop closure leaves open (choice == open).
+void log_open_characters(const CrowdAnimation& crowd, const std::vector<size_t>& choice, size_t open) {
+  if (!spdlog::should_log(spdlog::level::debug)) return;
+  std::string names;
+  for (size_t c = 0; c < choice.size(); ++c)
+    if (choice[c] == open) names += " " + crowd.characters[c].name;
+  spdlog::debug("correct_crowd: the loop stays open for{}", names.empty() ? " none" : names);
+}
+
 /// Loop closure of a corrected clip `out` whose last W = preroll_out[c].size() frames should end where the
 /// last lead lap ended (the state frame 0 continued from): they blend into that lap's output (weight rising
 /// to 1, raised cosine). (a) the blend corrected again, from `before_window` (the corrector before frame
 /// N - W), so contacts that the two laps resolved on different sides are resolved in the blend too, and
 /// what then remains blended out; (b) the plain blend. The shallower is kept when it is no deeper than the
-/// unclosed clip (+1 mm). A plain blend re-opened contacts mid-way (issue 28: 17-66 mm on 1 s clips, 76 mm
-/// on a 4 s concert at 6.66/m^2, where the unclosed clip has 0 and 16 mm), and so, less often, does (a);
-/// then (a) closes only the characters it keeps within that depth (close_some_characters), the others stay
-/// unclosed: a seam for some rather than a collision (all of them stayed unclosed before session 12).
+/// limit: the unclosed clip's deepest + 1 mm, or kClosureDepthFloorM if deeper. A plain blend re-opened
+/// contacts mid-way (issue 28: 17-66 mm on 1 s clips, 76 mm on a 4 s concert at 6.66/m^2, where the
+/// unclosed clip has 0 and 16 mm), and so, less often, does (a); then each character takes (a), (b),
+/// (c) the clip's START blended from `next_start` (the corrector's next frames after the clip's own end;
+/// loop_closure_choice.hpp, start_from_next_lap), or (d) its arms alone closed toward the lap's
+/// (close_joints: both, left, right), whichever keeps everyone within the limit (choose_closures: the
+/// descent over (a)-(c), then the join over all), or stays unclosed: a seam for some rather than a
+/// collision.
 void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>>& preroll_out,
-                Corrector before_window, const CorrectorParams& params, CrowdAnimation& out,
-                CorrectionReport& r) {
+                const std::vector<std::vector<Pose>>& next_start, Corrector before_window,
+                const CorrectorParams& params, CrowdAnimation& out, CorrectionReport& r) {
   const size_t n = out.characters.size();
   const int frames = out.frame_count(), preroll = static_cast<int>(preroll_out.front().size());
   const int first = frames - preroll;
@@ -162,11 +165,12 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
   blend_keeping_planted_feet(input, preroll_out, std::max(1, preroll / 2), params, finished);
   // Exact closures first (the shallower of the two), then the corrected blend alone (the clip ends near
   // the pre-roll's end), then none.
-  const double limit = deepest(out, 0, frames) + kClosureDepthSlackM;
+  const double unclosed_m = deepest(out, 0, frames);
+  const double limit = std::max(unclosed_m + kClosureDepthSlackM, kClosureDepthFloorM);
   const double d_finished = deepest(finished, first, frames), d_blended = deepest(blended, first, frames);
   spdlog::debug(
       "correct_crowd: loop closure depths (m): unclosed {:.4f}, corrected blend {:.4f}, blend {:.4f}",
-      limit - kClosureDepthSlackM, d_finished, d_blended);
+      unclosed_m, d_finished, d_blended);
   if (d_finished <= limit && d_finished <= d_blended) {
     out = std::move(finished);
     r.loop_closure = "corrected blend";
@@ -174,9 +178,24 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
     out = std::move(blended);
     r.loop_closure = "blend";
   } else {
-    const std::vector<int> on = close_some_characters({&finished, &blended}, first, limit, out);
-    r.loop_closure = "corrected blend for " + std::to_string(on[0]) + ", blend for " + std::to_string(on[1]) +
-                     " of " + std::to_string(n) + " characters";
+    const CrowdAnimation started = start_from_next_lap(input, next_start, params, out);
+    std::vector<Joint> both_arms(kLeftArmJoints.begin(), kLeftArmJoints.end());
+    both_arms.insert(both_arms.end(), kRightArmJoints.begin(), kRightArmJoints.end());
+    const CrowdAnimation arms = close_joints(out, preroll_out, both_arms);
+    const CrowdAnimation left = close_joints(out, preroll_out, kLeftArmJoints);
+    const CrowdAnimation right = close_joints(out, preroll_out, kRightArmJoints);
+    const std::vector<const CrowdAnimation*> closures = {&finished, &blended, &started, &arms, &left, &right};
+    const std::vector<size_t> choice =
+        choose_closures(closures, 3, out, first, preroll, limit, without_new_flips(input, closures, out));
+    log_open_characters(out, choice, closures.size());
+    std::array<int, 5> on{};  // corrected blend, blend, start, arms, one arm
+    for (size_t k : choice)
+      if (k < closures.size()) ++on[std::min<size_t>(k, 4)];
+    out = mix_closures(closures, out, choice);
+    r.loop_closure = fmt::format(
+        "corrected blend for {}, blend for {}, next lap's start for {}, arms for {}, one arm for {} of {} "
+        "characters",
+        on[0], on[1], on[2], on[3], on[4], n);
   }
 }
 
@@ -198,11 +217,30 @@ double lap_difference_m(const CrowdAnimation& clip, const std::vector<std::vecto
   return worst;
 }
 
+/// Debug log: the characters that add most to the closed clip's seam, and where on the body
+/// (loop_seam_per_character.hpp; issue 28, session 14: at 6.66/m^2 the seam was a few open characters'
+/// arms).
+void log_seam_carriers(const CrowdAnimation& clip) {
+  const std::vector<CharacterSeam> seams = loop_seam_per_character(clip);
+  std::vector<size_t> order(seams.size());
+  for (size_t c = 0; c < order.size(); ++c) order[c] = c;
+  std::sort(order.begin(), order.end(),
+            [&](size_t a, size_t b) { return seams[a].excess_m() > seams[b].excess_m(); });
+  std::string worst;
+  for (size_t i = 0; i < std::min<size_t>(5, order.size()); ++i) {
+    const CharacterSeam& s = seams[order[i]];
+    worst += fmt::format(" {} +{:.3f} m (arms {:.3f}, legs {:.3f}, trunk {:.3f});",
+                         clip.characters[order[i]].name, s.excess_m(), s.arms_m, s.legs_m, s.trunk_m);
+  }
+  spdlog::debug("correct_crowd: the seam's largest carriers:{}", worst);
+}
+
 }  // namespace
 
 std::size_t correction_steps(const CrowdAnimation& crowd, const CorrectorParams& params) {
   const auto frames = static_cast<size_t>(crowd.frame_count());
-  return loop_window_frames(crowd, params) > 0 ? (1 + kLeadLaps) * frames : frames;
+  const auto window = static_cast<size_t>(loop_window_frames(crowd, params));
+  return window > 0 ? (1 + kLeadLaps) * frames + window : frames;
 }
 
 // correct_crowd itself (one run, or several with anticipated contacts) is in anticipate_contacts.cpp.
@@ -263,10 +301,20 @@ CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorPa
     if (progress) progress->advance();
   }
   if (before_window) {
+    // The next lap's first W frames, continuing from the clip's end (start_from_next_lap).
+    std::vector<std::vector<Pose>> next_start(n);
+    for (int f = 0; f < window; ++f) {
+      frame_targets(crowd, f, targets);
+      const std::vector<Pose> corrected = corrector.step(targets);
+      for (size_t c = 0; c < n; ++c) next_start[c].push_back(corrected[c]);
+      if (corrector.last_stats().rejected) ++r.rejected_steps;
+      if (progress) progress->advance();
+    }
     if (spdlog::should_log(spdlog::level::debug))
       spdlog::debug("correct_crowd: the recorded lap ends {:.4f} m from the lead lap (worst character)",
                     lap_difference_m(out, lead_end));
-    close_loop(crowd, lead_end, *before_window, params, out, r);
+    close_loop(crowd, lead_end, next_start, *before_window, params, out, r);
+    if (spdlog::should_log(spdlog::level::debug)) log_seam_carriers(out);
   }
   r.contacts_mean = frames > 0 ? contacts / frames : 0.0;
   r.cg_iterations_mean = frames > 0 ? iterations / frames : 0.0;

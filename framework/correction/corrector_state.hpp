@@ -76,6 +76,9 @@ struct FootHold {
   Vec3 ankle_anchor_m = Vec3::Zero();
   Vec3 ball_anchor_m = Vec3::Zero();
   Quat rotation_offset = Quat::Identity();  ///< output foot rotation = offset * input foot rotation
+  /// How far (m) the anchors were moved this step because the leg was deep in an environment box
+  /// (stage_depenetrate.cpp, held feet giving way); reset every step by update_foot_holds.
+  double given_way_m = 0.0;
   bool held() const { return ankle || ball; }
 };
 
@@ -108,6 +111,17 @@ struct DeepContact {
   Vec3 point_a = Vec3::Zero(), point_b = Vec3::Zero();  ///< closest points on the two axes (m)
 };
 
+/// A surface (environment box face or the ground) that the depenetration pass may not push a capsule
+/// through (stage_depenetrate.cpp, surface guards): its depth now (m, < 0 a gap), the unit outward normal
+/// and the capsule axis point it is measured at, on bone `bone` (local index). World frame.
+struct SurfaceGap {
+  int bone = 0;
+  double depth_m = 0.0;
+  double allowed_m = 0.0;  ///< how deep (m) the pass may take it where it is not that deep already
+  Vec3 normal = Vec3::UnitY(), point = Vec3::Zero();
+  bool guarded = false;  ///< its row is among the character's rows in this pass
+};
+
 /// Variables of one character's pose change in the depenetration pass: root translation (m), then a
 /// world-frame rotation vector (rad) per joint.
 inline constexpr int kPoseChangeVariables = 3 + 3 * kJointCount;
@@ -123,13 +137,15 @@ struct DepenetrationScratch {
   std::vector<std::vector<DeepContact>> per_pair;     ///< per body pair, this pass's deep contacts
   std::vector<std::vector<DeepContact>> environment;  ///< per character, its deep box contacts (bone_b -1)
   std::vector<std::vector<const DeepContact*>> mine;  ///< per character, the deep contacts touching it
-  std::vector<std::vector<int>> pairs_of;             ///< per character, tested body pairs touching it
-  std::vector<char> in_list, moved, ever_moved;       ///< per character flags
-  std::vector<int> characters;  ///< characters with a near capsule pair or box this step
-  std::vector<int> posing;      ///< characters (re-)posed by the current pass
-  std::vector<int> tested;      ///< body pairs (re-)tested by the current pass
-  std::vector<int> solved;      ///< characters with a deep contact in the current pass
-  std::vector<int> changed;     ///< characters the pass moved this step
+  /// per character, its capsules near a box or the ground (the pass's surface guards, stage_depenetrate)
+  std::vector<std::vector<SurfaceGap>> gaps;
+  std::vector<std::vector<int>> pairs_of;        ///< per character, tested body pairs touching it
+  std::vector<char> in_list, moved, ever_moved;  ///< per character flags
+  std::vector<int> characters;                   ///< characters with a near capsule pair or box this step
+  std::vector<int> posing;                       ///< characters (re-)posed by the current pass
+  std::vector<int> tested;                       ///< body pairs (re-)tested by the current pass
+  std::vector<int> solved;                       ///< characters with a deep contact in the current pass
+  std::vector<int> changed;                      ///< characters the pass moved this step
 };
 
 struct CorrectorState {

@@ -47,6 +47,13 @@
 //                 exp(w_j) R_parent local_j (R_parent: the parent's world rotation before the pass),
 //                 each w_j limited to kMaxRotation_rad; held feet are then re-planted exactly by
 //                 hold_feet.
+//   guards        (issue 27, session 15) before applying: where the change would take a capsule deeper
+//                 behind an environment box face than it is (or than the face, when outside), or a capsule
+//                 below the ground deeper than it is or than the tolerance, its row n . J_p dq = what it may
+//                 still move in is added (weighted kGuardRowWeight) and the character solved again (an
+//                 active set, kGuardRounds rounds); and a held foot whose shank or foot is deep in a box
+//                 gives way horizontally with that contact (its x and z rows ask for the push, its anchors
+//                 move with it), at most kHeldFootGiveWay_m per step.
 // Compliance of character c along n at p: sum over the chain of |(p - o_j) x n|^2 / k_j + 1 / k_root,
 // the displacement per unit force of the same energy (ignoring the held-foot rows).
 //
@@ -98,8 +105,28 @@ constexpr double kRegularisation = 1e-3;
 /// row of the same foot conflict (docs/correction.md).
 constexpr double kFootBudgetRowWeight = 10.0;
 /// At most this many rows per character and pass (contacts, deepest kept, plus up to 12 held-foot
-/// and 4 foot-budget rows), so the dense system stays on the stack.
+/// and 4 foot-budget rows), so the dense system stays on the stack; the surface guards below come on
+/// top (kMaxGuardRows).
 constexpr int kMaxRows = 40;
+/// Surface guards (issue 27, session 15): one-sided rows for the environment boxes and the ground.
+/// A capsule the pass's change would take deeper than max(d, a), d its depth now (< 0: a gap) and a
+/// what the surface allows (0 behind a box face; the pass's tolerance below y = 0, so feet standing on
+/// the ground are left alone), gets the row n . J_p [dr; w] = d - max(d, a) and the character is solved
+/// again with it: an active set of the inequality n . J_p dq >= d - max(d, a) (the rows are added only
+/// where the unconstrained change breaks them, so a capsule may still leave a surface). Without them the pass
+/// pushed bodies into the corridor's barriers and swinging feet into the ground while it separated
+/// neighbours: of the 28 capsule-frames deeper than 5 mm in a barrier at corridor 6.66 /m^2 (3 s), 16 were
+/// not after the Newton step but were after the pass (a pelvis 0 -> 20.8 mm); a swinging foot 19 mm above the
+/// ground in the input went 73 mm below it (docs/correction.md, session 15).
+constexpr int kMaxGuardRows = 8;
+/// Weight of the guard rows (as kFootBudgetRowWeight): where they conflict with contacts, they win.
+constexpr double kGuardRowWeight = 10.0;
+/// Re-solves per character and pass with the guards found so far.
+constexpr int kGuardRounds = 2;
+/// Capsules within this of a surface (m) are checked: one pass moves a point by a few centimetres.
+constexpr double kGuardMargin_m = 0.08;
+/// A guard is added when the change would take a capsule more than this (m) past what it may reach.
+constexpr double kGuardSlack_m = 0.001;
 /// The directions in which a held foot joint may not move in the pass: x, z and (issue 27) y. With x
 /// and z only, a contact on the leg that the held foot's rows kept from moving it sideways was met by
 /// turning the leg about the hip, which lifts the foot; hold_feet then put it back horizontally at the
@@ -117,6 +144,14 @@ constexpr std::array<int, 3> kHeldFootAxes = {0, 2, 1};
 /// (9.4 mm) with the same float, but not on the standing crowd at 6.66 /m^2 (9.4 -> 14.0 mm): one reason
 /// held_feet_at_input_height stays off.
 constexpr double kHeldHeightRowWeight = 0.1;
+/// How far (m) a held foot may give way per step when the lower leg above it is deep in an environment
+/// box (issue 27, session 15). The held foot's x, y and z rows pin the bottom of the shank and the foot
+/// capsules: a foot that landed a few centimetres nearer a barrier than the input's (its swing pushed by
+/// neighbours) left the shank 11-14 mm inside it for the whole stance (corridor 6.66 /m^2, 3 s: every
+/// capsule-frame deeper than 5 mm after the surface guards was a thigh or shank of a leg whose foot was
+/// held). The foot's x and z rows then ask for the contact's horizontal push and its anchors move with
+/// it, at most this far per step: a slide the stance drift measure sees (docs/correction.md).
+constexpr double kHeldFootGiveWay_m = 0.01;
 /// Characters whose body box at the predicted state comes within this of an environment box are tested
 /// against the boxes (m): the pass moves a body by at most a few centimetres per pass.
 constexpr double kEnvironmentMargin_m = 0.1;
@@ -128,9 +163,10 @@ constexpr double kMaxEnvironmentPush_m = 0.02;
 constexpr int kVariables = kPoseChangeVariables;  // dr, then w_j per joint
 using Row = Eigen::Matrix<double, 1, kVariables>;
 using Weights = PoseChangeVector;
-using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, kVariables, Eigen::RowMajor, kMaxRows, kVariables>;
-using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxRows>;
-using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxRows, 1>;
+constexpr int kMaxAllRows = kMaxRows + kMaxGuardRows;
+using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, kVariables, Eigen::RowMajor, kMaxAllRows, kVariables>;
+using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxAllRows, kMaxAllRows>;
+using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxAllRows, 1>;
 
 /// The row n . J_p of a point p (world) moving with bone `bone` (local index), for a unit direction n.
 Row point_row(const BoneTransforms& bones, int bone, const Vec3& p, const Vec3& n) {
@@ -277,12 +313,44 @@ bool held_feet_off_height(const CorrectorModel& model, const CorrectorState& s, 
   return false;
 }
 
+/// Bones whose environment contacts let the held foot of their leg give way (kHeldFootGiveWay_m): the
+/// shank and the foot, whose capsules end at the held joints, so that no pose change with the foot held
+/// takes them out of a box.
+bool lower_leg_bone(int bone, const LegJoints& lj) {
+  return bone == lj.knee || bone == lj.ankle || bone == lj.foot;
+}
+
+/// The horizontal move (m, world) each held foot of character c makes in this pass: along the horizontal
+/// part of the normal of the deepest box contact on its lower leg, as deep as that contact (at most
+/// kMaxEnvironmentPush_m per pass), within what is left of kHeldFootGiveWay_m this step; 0 without one.
+std::array<Vec3, 2> held_feet_give_way(const CorrectorState& s, int c,
+                                       const std::vector<const DeepContact*>& contacts) {
+  std::array<Vec3, 2> move = {Vec3::Zero(), Vec3::Zero()};
+  for (int side = 0; side < 2; ++side) {
+    const FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
+    if (!hold.held()) continue;
+    const LegJoints lj = leg_joints(kLegSides[side]);
+    const DeepContact* deepest = nullptr;
+    for (const DeepContact* d : contacts)
+      if (d->bone_b < 0 && lower_leg_bone(d->bone_a % kJointCount, lj) &&
+          (deepest == nullptr || d->depth_m > deepest->depth_m))
+        deepest = d;
+    if (deepest == nullptr) continue;
+    const Vec3 horizontal(deepest->normal.x(), 0.0, deepest->normal.z());
+    const double length = horizontal.norm(), left = kHeldFootGiveWay_m - hold.given_way_m;
+    if (!(length > 1e-6) || !(left > 0.0)) continue;
+    move[static_cast<size_t>(side)] =
+        horizontal / length * std::min({deepest->depth_m, kMaxEnvironmentPush_m, left});
+  }
+  return move;
+}
+
 /// Rows of the constraint system of character c: its contacts (the deepest, if more than fit), then
 /// the x, y and z of its held foot joints (x and z stay, y goes to held_heights: the feet's height is
 /// traded against the contacts in the same solve, issue 27), then its foot joints over budget.
 void constraint_rows(const CorrectorModel& model, const CorrectorState& s, int c, const BoneTransforms& bones,
-                     std::vector<const DeepContact*>& contacts, const FootRows& feet, RowBlock& J,
-                     SmallVector& r) {
+                     std::vector<const DeepContact*>& contacts, const FootRows& feet,
+                     const std::array<Vec3, 2>& give_way, RowBlock& J, SmallVector& r) {
   int held_rows = 0;
   for (int f = 2 * c; f < 2 * c + 2; ++f)
     held_rows += kHeldFootRows * (int{s.foot_holds[static_cast<size_t>(f)].ankle} +
@@ -322,8 +390,8 @@ void constraint_rows(const CorrectorModel& model, const CorrectorState& s, int c
         if (axis == 1 && model.params.held_feet_at_input_height) {
           J.row(i) *= kHeldHeightRowWeight;
           r(i++) = kHeldHeightRowWeight * (y - q.y());
-        } else {
-          r(i++) = 0.0;  // x and z (and y without held_feet_at_input_height) stay where they are
+        } else {  // x and z (and y without held_feet_at_input_height) stay, or give way (x, z)
+          r(i++) = give_way[static_cast<size_t>(side)][axis];
         }
       }
     }
@@ -332,6 +400,60 @@ void constraint_rows(const CorrectorModel& model, const CorrectorState& s, int c
     J.row(i) = kFootBudgetRowWeight * feet.row[static_cast<size_t>(k)];
     r(i++) = kFootBudgetRowWeight * feet.r[static_cast<size_t>(k)];
   }
+}
+
+/// Character c's capsules within kGuardMargin_m of an environment box (not deeper than `tolerance`:
+/// those have contact rows) or of the ground plane, in the pose of the pass (w.bones, w.capsules).
+void surface_gaps(const CorrectorModel& model, const DepenetrationScratch& w, int c, double tolerance,
+                  std::vector<SurfaceGap>& out) {
+  out.clear();
+  const auto cc = static_cast<size_t>(c);
+  const Vec3& root = w.capsules[cc][0].a;
+  EnvironmentBoxContact e;
+  for (size_t k = 0; k < model.environment_boxes.size(); ++k) {
+    Aabb bounds = model.environment_box_bounds[k];
+    bounds.lo -= Vec3::Constant(kGuardMargin_m);
+    bounds.hi += Vec3::Constant(kGuardMargin_m);
+    for (int b = 0; b < kJointCount; ++b) {
+      if (!w.boxes[cc][static_cast<size_t>(b)].overlaps(bounds)) continue;
+      if (!environment_box_contact(w.capsules[cc][static_cast<size_t>(b)], model.environment_boxes[k], root,
+                                   -kGuardMargin_m, e) ||
+          e.penetration_m > tolerance)
+        continue;
+      out.push_back({b, e.penetration_m, 0.0, e.normal, e.axis_point});
+    }
+  }
+  if (!model.ground_plane) return;
+  for (int b = 0; b < kJointCount; ++b) {
+    const Capsule& cap = w.capsules[cc][static_cast<size_t>(b)];
+    const Vec3& low = cap.a.y() <= cap.b.y() ? cap.a : cap.b;
+    const double depth = cap.radius_m - low.y();
+    if (depth > -kGuardMargin_m) out.push_back({b, depth, tolerance, Vec3::UnitY(), low});
+  }
+}
+
+/// Appends a guard row for every gap that the change dq would take past max(depth, allowed) +
+/// kGuardSlack_m (linearised: the depth after is depth - n . J_p dq), while there is room. Returns how many
+/// it added.
+int add_guard_rows(const BoneTransforms& bones, const PoseChangeVector& dq, std::vector<SurfaceGap>& gaps,
+                   RowBlock& J, SmallVector& r) {
+  int added = 0;
+  for (size_t i = 0; i < gaps.size() && J.rows() < kMaxAllRows; ++i) {
+    SurfaceGap& g = gaps[i];
+    if (g.guarded) continue;
+    const Row row = point_row(bones, g.bone, g.point, g.normal);
+    const double after_m = g.depth_m - row.dot(dq);
+    const double allowed_m = std::max(g.depth_m, g.allowed_m);
+    if (!(after_m > allowed_m + kGuardSlack_m)) continue;
+    const Eigen::Index m = J.rows();
+    J.conservativeResize(m + 1, Eigen::NoChange);
+    r.conservativeResize(m + 1);
+    J.row(m) = kGuardRowWeight * row;
+    r(m) = kGuardRowWeight * (g.depth_m - allowed_m);
+    g.guarded = true;
+    ++added;
+  }
+  return added;
 }
 
 /// The least-energy pose change meeting the rows (weighted least norm, regularised), then limited: the
@@ -410,6 +532,7 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
     w.boxes.resize(nn);
     w.inverse_weights.resize(nn);
     w.environment.resize(nn);
+    w.gaps.resize(nn);
     for (size_t c = 0; c < nn; ++c) w.inverse_weights[c] = inverse_weights(model.bodies[c]);
     w.mine.resize(nn);
     w.pairs_of.resize(nn);
@@ -508,8 +631,9 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
       const auto cc = static_cast<size_t>(c);
       RowBlock J;
       SmallVector r;
+      const std::array<Vec3, 2> give_way = held_feet_give_way(s, c, w.mine[cc]);
       constraint_rows(model, s, c, w.bones[cc], w.mine[cc],
-                      foot_budget_rows(s, c, p.foot_pop_budget_m, w.bones[cc]), J, r);
+                      foot_budget_rows(s, c, p.foot_pop_budget_m, w.bones[cc]), give_way, J, r);
       Weights dq;
       w.moved[cc] = 0;
       // Rate-limited joints (stage_free_joints.cpp) that have used this step's turn take no part; the
@@ -519,12 +643,29 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
       Weights inv_w = w.inverse_weights[cc];
       for (int j = 0; j < kJointCount; ++j)
         if (left[static_cast<size_t>(j)] < 1e-3) inv_w.segment<3>(3 + 3 * j).setZero();
-      if (!least_energy_change(J, r, inv_w, dq)) return;
-      for (int j = 0; j < kJointCount; ++j) {
-        const double angle = dq.segment<3>(3 + 3 * j).norm(), most = left[static_cast<size_t>(j)];
-        if (angle > most) dq.segment<3>(3 + 3 * j) *= most / angle;
-      }
+      const auto solve = [&] {
+        if (!least_energy_change(J, r, inv_w, dq)) return false;
+        for (int j = 0; j < kJointCount; ++j) {
+          const double angle = dq.segment<3>(3 + 3 * j).norm(), most = left[static_cast<size_t>(j)];
+          if (angle > most) dq.segment<3>(3 + 3 * j) *= most / angle;
+        }
+        return true;
+      };
+      if (!solve()) return;
+      // Surface guards: solved again while the change would push a capsule through a box or the ground.
+      std::vector<SurfaceGap>& gaps = w.gaps[cc];
+      surface_gaps(model, w, c, p.depenetration_tolerance_m, gaps);
+      for (int round = 0; round < kGuardRounds; ++round)
+        if (add_guard_rows(w.bones[cc], dq, gaps, J, r) == 0 || !solve()) break;
+      if (!dq.allFinite()) return;
       apply_change(w.bones[cc], dq, s.output[cc]);
+      for (int side = 0; side < 2; ++side) {  // the anchors of feet that gave way move with them
+        const Vec3& move = give_way[static_cast<size_t>(side)];
+        FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
+        hold.ankle_anchor_m += move;
+        hold.ball_anchor_m += move;
+        hold.given_way_m += move.norm();
+      }
       hold_feet(model, s, c, s.output[cc]);
       w.moved[cc] = 1;
     });

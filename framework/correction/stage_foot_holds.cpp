@@ -108,6 +108,7 @@ void update_foot_holds(const CorrectorModel& model, CorrectorState& s, int c,
     if (ball_planted && !hold.ball) hold.ball_anchor_m = bone_origin(model, s, static_cast<int>(ball));
     hold.ankle = ankle_planted;
     hold.ball = ball_planted;
+    hold.given_way_m = 0.0;
   }
 }
 

@@ -1,0 +1,197 @@
+#include "framework/correction/loop_closure_choice.hpp"
+
+#include <algorithm>
+#include <utility>
+
+#include "framework/core/crowd_penetration_depth.hpp"
+#include "framework/core/forward_kinematics.hpp"
+#include "framework/core/penetration_depth.hpp"
+#include "framework/correction/blend_keeping_planted_feet.hpp"
+
+namespace crowdlab {
+namespace {
+
+/// The frames the candidates may change: [0, min(start_window, first)) and [first, N).
+std::vector<int> checked_frames(int frames, int first, int start_window) {
+  std::vector<int> f;
+  for (int k = 0; k < std::min(start_window, first); ++k) f.push_back(k);
+  for (int k = first; k < frames; ++k) f.push_back(k);
+  return f;
+}
+
+/// The descent: every character on candidate 0, each too deep moved on (after the last of the first
+/// `rungs`: unclosed, index closures.size()), all at once, until none is too deep. Terminates, since
+/// `unclosed` alone keeps every character within the limit.
+std::vector<size_t> descend(const std::vector<const CrowdAnimation*>& closures, size_t rungs,
+                            const CrowdAnimation& unclosed, int first, int start_window, double limit_m,
+                            const std::vector<std::vector<bool>>& allowed) {
+  const int frames = unclosed.frame_count();
+  const size_t open = closures.size();
+  // The first candidate from r on, among the first `rungs`, that the character may take; else unclosed.
+  auto next_allowed = [&](size_t c, size_t r) {
+    while (r < rungs && !allowed[r][c]) ++r;
+    return r < rungs ? r : open;
+  };
+  CrowdAnimation mixed = unclosed;
+  std::vector<size_t> rung(mixed.characters.size(), 0);
+  for (size_t c = 0; c < rung.size(); ++c) {
+    rung[c] = next_allowed(c, 0);
+    if (rung[c] < open) mixed.characters[c].frames = closures[rung[c]]->characters[c].frames;
+  }
+  for (bool moved = true; moved;) {
+    moved = false;
+    std::vector<double> depth = deepest_per_character(mixed, first, frames);
+    const int start = std::min(start_window, first);
+    if (start > 0) {
+      const std::vector<double> at_start = deepest_per_character(mixed, 0, start);
+      for (size_t c = 0; c < depth.size(); ++c) depth[c] = std::max(depth[c], at_start[c]);
+    }
+    for (size_t c = 0; c < rung.size(); ++c) {
+      if (rung[c] == open || depth[c] <= limit_m) continue;
+      rung[c] = next_allowed(c, rung[c] + 1);
+      mixed.characters[c].frames = (rung[c] < open ? closures[rung[c]] : &unclosed)->characters[c].frames;
+      moved = true;
+    }
+  }
+  return rung;
+}
+
+/// Mean joint distance (m) between a character's last and first frames: its share of the seam.
+double seam_m(const CharacterAnimation& c) {
+  const auto last = joint_positions(c.shape, c.frames.back()),
+             first = joint_positions(c.shape, c.frames.front());
+  double sum = 0.0;
+  for (size_t j = 0; j < last.size(); ++j) sum += (last[j] - first[j]).norm();
+  return sum / static_cast<double>(last.size());
+}
+
+/// The join (header, step 2), on every character with rung[c] == closures.size().
+class Join {
+ public:
+  Join(const std::vector<const CrowdAnimation*>& closures, const CrowdAnimation& unclosed, int first,
+       int start_window, double limit_m, const std::vector<std::vector<bool>>& allowed)
+      : open_(closures.size()), n_(unclosed.characters.size()), limit_m_(limit_m), allowed_(allowed) {
+    const std::vector<int> checked = checked_frames(unclosed.frame_count(), first, start_window);
+    capsules_.assign(open_ + 1, std::vector<std::vector<WorldCapsules>>(n_));
+    for (size_t r = 0; r <= open_; ++r) {
+      const CrowdAnimation& a = r < open_ ? *closures[r] : unclosed;
+      for (size_t c = 0; c < n_; ++c)
+        for (int f : checked)
+          capsules_[r][c].push_back(
+              world_capsules(a.characters[c].shape, a.characters[c].frames[static_cast<size_t>(f)]));
+    }
+  }
+
+  /// Closes what it can of the unclosed characters, largest seam first.
+  void run(const CrowdAnimation& unclosed, std::vector<size_t>& rung) const {
+    std::vector<std::pair<double, size_t>> order;
+    for (size_t c = 0; c < n_; ++c)
+      if (rung[c] == open_) order.emplace_back(-seam_m(unclosed.characters[c]), c);
+    std::sort(order.begin(), order.end());
+    for (const auto& entry : order)
+      for (size_t r = 0; r < open_ && rung[entry.second] == open_; ++r) try_close(entry.second, r, rung);
+  }
+
+ private:
+  /// Deepest penetration (m) of character c on candidate rc and o on ro over the checked frames.
+  double depth_m(size_t c, size_t rc, size_t o, size_t ro) const {
+    double d = 0.0;
+    for (size_t i = 0; i < capsules_[rc][c].size(); ++i)
+      d = std::max(d, max_penetration_depth(capsules_[rc][c][i], capsules_[ro][o][i]));
+    return d;
+  }
+
+  /// c on candidate r, with the unclosed characters it meets too deeply there; kept if all of them are
+  /// then within the limit against everyone.
+  void try_close(size_t c, size_t r, std::vector<size_t>& rung) const {
+    if (!allowed_[r][c]) return;
+    std::vector<size_t> group = {c};
+    for (size_t o = 0; o < n_; ++o) {
+      if (o == c || depth_m(c, r, o, rung[o]) <= limit_m_) continue;
+      if (rung[o] != open_ || !allowed_[r][o] || group.size() == kMaxJoinedCharacters) return;
+      group.push_back(o);
+    }
+    for (size_t g : group) rung[g] = r;
+    for (size_t g : group)
+      for (size_t o = 0; o < n_; ++o)
+        if (o != g && depth_m(g, r, o, rung[o]) > limit_m_) {
+          for (size_t h : group) rung[h] = open_;
+          return;
+        }
+  }
+
+  size_t open_, n_;
+  double limit_m_;
+  const std::vector<std::vector<bool>>& allowed_;
+  std::vector<std::vector<std::vector<WorldCapsules>>> capsules_;  ///< [candidate][character][checked frame]
+};
+
+/// The crowd with every character's frames in reverse order.
+CrowdAnimation reversed(CrowdAnimation crowd) {
+  for (CharacterAnimation& c : crowd.characters) std::reverse(c.frames.begin(), c.frames.end());
+  return crowd;
+}
+
+}  // namespace
+
+std::vector<double> deepest_per_character(const CrowdAnimation& crowd, int first, int last) {
+  std::vector<double> depth(crowd.characters.size(), 0.0);
+  std::vector<WorldCapsules> bodies(crowd.characters.size());
+  for (int f = first; f < last; ++f) {
+    for (size_t c = 0; c < bodies.size(); ++c)
+      bodies[c] =
+          world_capsules(crowd.characters[c].shape, crowd.characters[c].frames[static_cast<size_t>(f)]);
+    const std::vector<double> now = deepest_penetration_per_body(bodies);
+    for (size_t c = 0; c < bodies.size(); ++c) depth[c] = std::max(depth[c], now[c]);
+  }
+  return depth;
+}
+
+std::vector<size_t> choose_closures(const std::vector<const CrowdAnimation*>& closures, size_t descent_rungs,
+                                    const CrowdAnimation& unclosed, int first, int start_window,
+                                    double limit_m, const std::vector<std::vector<bool>>& allowed) {
+  std::vector<size_t> rung = descend(closures, std::min(descent_rungs, closures.size()), unclosed, first,
+                                     start_window, limit_m, allowed);
+  Join(closures, unclosed, first, start_window, limit_m, allowed).run(unclosed, rung);
+  return rung;
+}
+
+CrowdAnimation mix_closures(const std::vector<const CrowdAnimation*>& closures,
+                            const CrowdAnimation& unclosed, const std::vector<size_t>& choice) {
+  CrowdAnimation mixed = unclosed;
+  for (size_t c = 0; c < mixed.characters.size(); ++c)
+    if (choice[c] < closures.size()) mixed.characters[c].frames = closures[choice[c]]->characters[c].frames;
+  return mixed;
+}
+
+CrowdAnimation start_from_next_lap(const CrowdAnimation& input,
+                                   const std::vector<std::vector<Pose>>& next_start,
+                                   const CorrectorParams& params, const CrowdAnimation& clip) {
+  // Reversed in time, the clip's last W frames are its first W backwards, and next_start (reversed) is
+  // what they blend into, its first pose on the reversed clip's last frame.
+  std::vector<std::vector<Pose>> targets = next_start;
+  for (std::vector<Pose>& t : targets) std::reverse(t.begin(), t.end());
+  CrowdAnimation backwards = reversed(clip);
+  blend_keeping_planted_feet(reversed(input), targets, static_cast<int>(targets.front().size()), params,
+                             backwards);
+  return reversed(std::move(backwards));
+}
+
+CrowdAnimation close_joints(const CrowdAnimation& clip, const std::vector<std::vector<Pose>>& lap_end,
+                            std::span<const Joint> joints) {
+  CrowdAnimation closed = clip;
+  const int window = static_cast<int>(lap_end.front().size()), first = clip.frame_count() - window;
+  for (size_t c = 0; c < closed.characters.size(); ++c)
+    for (int k = 0; k < window; ++k) {
+      const double w = raised_cosine(k + 1, window);
+      auto& rotations = closed.characters[c].frames[static_cast<size_t>(first + k)].local_rotations;
+      const auto& lap = lap_end[c][static_cast<size_t>(k)].local_rotations;
+      for (Joint j : joints) {
+        const auto i = static_cast<size_t>(j);
+        rotations[i] = rotations[i].slerp(w, lap[i]).normalized();
+      }
+    }
+  return closed;
+}
+
+}  // namespace crowdlab

@@ -1,0 +1,77 @@
+#pragma once
+// Which loop closure each character of a looping clip takes (issue 28; used by correct_crowd.cpp's
+// close_loop, which computes the candidates: whole-crowd closures of the clip's window).
+//
+// A closure candidate is the whole crowd with the clip's last frames brought to where frame 0 continues
+// from (or, start_from_next_lap, its first frames brought from where its last frame continues). In a dense
+// crowd every candidate goes deeper than the unclosed clip somewhere, because two laps resolved a contact on
+// different sides and a blend passes a limb through the other's. So each character takes one candidate or
+// stays unclosed, such that no character penetrates another deeper than a limit over the frames the
+// candidates change (the window at the end, and the start window).
+//
+// choose_closures:
+//  1. Descent (session 12): every character starts on the first candidate; all those too deep move to the
+//     next candidate (after the last of the first `descent_rungs`: unclosed) at once, until none is.
+//  2. Join (session 15), over the characters the descent left unclosed, largest seam first: a character
+//     takes the first candidate (of all of them) that keeps it within the limit against everyone as they
+//     now are; failing that, the first candidate on which it and the unclosed characters it would meet too
+//     deeply (at most kMaxJoinedCharacters in all) close together within the limit. Why: the descent moves
+//     every too-deep character at once, so a character too deep only against a neighbour that the same
+//     step opens is opened too; and two neighbours can often close only together, each alone meeting the
+//     other's unclosed limbs. Measured on the 4 s concert at 6.66/m^2 (docs/stimuli.md, session 15).
+#include <array>
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "framework/core/crowd_animation.hpp"
+#include "framework/correction/corrector_params.hpp"
+
+namespace crowdlab {
+
+/// Per character, its deepest penetration (m) with any other over frames [first, last) of a crowd.
+std::vector<double> deepest_per_character(const CrowdAnimation& crowd, int first, int last);
+
+/// Most characters that join to close together (the one tried and those it would meet too deeply).
+inline constexpr std::size_t kMaxJoinedCharacters = 4;
+
+/// Per character, the index in `closures` of the candidate it takes, or closures.size() for `unclosed`.
+/// The descent uses the first `descent_rungs` candidates, the join all of them. Depths are checked over
+/// frames [first, N) and [0, min(start_window, first)). Needs every character within limit_m in `unclosed`
+/// against `unclosed` (then the result keeps every character within it).
+/// allowed[r][c]: whether character c may take candidate r at all (correct_crowd.cpp offers none that
+/// adds joint flips to it).
+std::vector<std::size_t> choose_closures(const std::vector<const CrowdAnimation*>& closures,
+                                         std::size_t descent_rungs, const CrowdAnimation& unclosed, int first,
+                                         int start_window, double limit_m,
+                                         const std::vector<std::vector<bool>>& allowed);
+
+/// `unclosed` with each character's frames from its chosen candidate (choose_closures).
+CrowdAnimation mix_closures(const std::vector<const CrowdAnimation*>& closures,
+                            const CrowdAnimation& unclosed, const std::vector<std::size_t>& choice);
+
+/// `clip` whose first W = next_start[c].size() frames blend from `next_start` (the corrector's poses that
+/// continue from the clip's own last frame, as a next lap would start) into the clip's own: frame 0 takes
+/// next_start's first pose, so it follows the clip's last frame as any frame follows the one before, and
+/// the weight falls to 0 over the window (raised cosine). Planted feet stay planted: this is
+/// blend_keeping_planted_feet on the time-reversed clip and input. Why (session 15): a character whose
+/// change of contact side no closure of the clip's END can pass without meeting a neighbour may pass it at
+/// the START, over other frames of its dance. W < the clip's frame count.
+CrowdAnimation start_from_next_lap(const CrowdAnimation& input,
+                                   const std::vector<std::vector<Pose>>& next_start,
+                                   const CorrectorParams& params, const CrowdAnimation& clip);
+
+/// The joints of each arm, collar to hand.
+inline constexpr std::array<Joint, 5> kLeftArmJoints = {kLeftCollar, kLeftShoulder, kLeftElbow, kLeftWrist,
+                                                        kLeftHand};
+inline constexpr std::array<Joint, 5> kRightArmJoints = {kRightCollar, kRightShoulder, kRightElbow,
+                                                         kRightWrist, kRightHand};
+
+/// `clip` with the local rotations of `joints` on its last W = lap_end[c].size() frames slerped toward
+/// lap_end's (weight raised_cosine(k + 1, W): the last frame takes lap_end's), the rest of each body the
+/// clip's. Why (session 14's trace): the characters no whole-body closure could close carried the dense
+/// concert's seam by their ARMS (arms 10-12 cm from the lap's, legs <= 3.2 cm).
+CrowdAnimation close_joints(const CrowdAnimation& clip, const std::vector<std::vector<Pose>>& lap_end,
+                            std::span<const Joint> joints);
+
+}  // namespace crowdlab

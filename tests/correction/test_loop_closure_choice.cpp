@@ -1,0 +1,154 @@
+// Which loop closure each character takes (framework/correction/loop_closure_choice.hpp; issue 28, session
+// 15): the descent alone left open neighbours that can close only together, and a start from the next lap.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+
+#include "framework/core/forward_kinematics.hpp"
+#include "framework/correction/blend_keeping_planted_feet.hpp"
+#include "framework/correction/loop_closure_choice.hpp"
+#include "framework/correction/swaying_crowd_fixture.hpp"
+
+using namespace crowdlab;
+
+namespace {
+
+/// Three swaying characters A, B, C standing far apart (x = 0, 2, 6 m) in the unclosed clip.
+CrowdAnimation three_far_apart() {
+  SwayingCrowdOptions o;
+  o.characters = 3;
+  o.frames = 40;
+  CrowdAnimation crowd = make_swaying_crowd_fixture(o);
+  const std::array<double, 3> x = {0.0, 2.0, 6.0};
+  for (size_t c = 0; c < 3; ++c)
+    for (Pose& p : crowd.characters[c].frames) {
+      p.root_position_m.x() = x[c];
+      p.root_position_m.z() = 0.0;
+    }
+  return crowd;
+}
+
+/// `crowd` with character c moved to x_m on frames [first, N): a closure of its window.
+void move_window(CrowdAnimation& crowd, size_t c, int first, double x_m) {
+  for (size_t f = static_cast<size_t>(first); f < crowd.characters[c].frames.size(); ++f)
+    crowd.characters[c].frames[f].root_position_m.x() = x_m;
+}
+
+}  // namespace
+
+TEST_CASE("loop closure choice: neighbours that can close only together close together",
+          "[correction][loop]") {
+  // The closure candidate moves A onto B's unclosed place (x = 2), B onto A's (x = 0) and C onto x = 2 too.
+  // Together A and B are apart on it; each alone meets the other's unclosed body; C meets A there. The
+  // descent (all on the candidate, every too-deep character moved on at once) opens A and C, then B (it
+  // now meets A's unclosed body): all three open, as before session 15. The join then closes A and B
+  // together; C cannot close (it would meet A, now closed) and stays open.
+  const CrowdAnimation unclosed = three_far_apart();
+  const int first = 20;
+  CrowdAnimation closed = unclosed;
+  move_window(closed, 0, first, 2.0);
+  move_window(closed, 1, first, 0.0);
+  move_window(closed, 2, first, 2.0);
+  const double limit_m = 0.01;
+  const std::vector<const CrowdAnimation*> closures = {&closed};
+  const std::vector<std::vector<bool>> any = {{true, true, true}};
+  const std::vector<size_t> choice = choose_closures(closures, 1, unclosed, first, 0, limit_m, any);
+  REQUIRE(choice.size() == 3);
+  CHECK(choice[0] == 0);  // A closed
+  CHECK(choice[1] == 0);  // B closed, with A
+  CHECK(choice[2] == 1);  // C unclosed
+  // Nobody deeper than the limit in the mixed crowd, on any frame.
+  const CrowdAnimation mixed = mix_closures(closures, unclosed, choice);
+  for (double d : deepest_per_character(mixed, 0, mixed.frame_count())) CHECK(d <= limit_m);
+  CHECK(mixed.characters[0].frames.back().root_position_m.x() == 2.0);
+  CHECK(mixed.characters[2].frames.back().root_position_m.x() == 6.0);
+  // Where no character meets another, the first candidate is everyone's.
+  move_window(closed, 2, first, 6.5);
+  const std::vector<size_t> all = choose_closures(closures, 1, unclosed, first, 0, limit_m, any);
+  CHECK(all == std::vector<size_t>{0, 0, 0});
+  // A candidate not allowed to a character (one that would add joint flips to it) is never its: B stays
+  // unclosed, so A, which would meet B's unclosed body, cannot close either; C still can.
+  const std::vector<size_t> without_b =
+      choose_closures(closures, 1, unclosed, first, 0, limit_m, {{true, false, true}});
+  CHECK(without_b == std::vector<size_t>{1, 1, 0});
+}
+
+TEST_CASE("loop closure choice: a character whose arm is open at the seam starts from the next lap",
+          "[correction][loop]") {
+  // One swaying character, played forward then back (it loops), whose clip ends with its left arm raised
+  // 40 degrees off its first frame's (an open arm at the seam); next_start is what follows that end: the
+  // clip's first frames with the arm still raised, as a next lap would begin from the raised arm.
+  SwayingCrowdOptions o;
+  o.characters = 1;
+  o.frames = 30;
+  CrowdAnimation clip = make_swaying_crowd_fixture(o);
+  std::vector<Pose>& frames = clip.characters[0].frames;  // forward then back: the input loops
+  const std::vector<Pose> forward = frames;
+  frames.insert(frames.end(), forward.rbegin(), forward.rend());
+  const CrowdAnimation input = clip;
+  const Quat raise(Eigen::AngleAxisd(40.0 * std::numbers::pi / 180.0, Vec3::UnitZ()));
+  const size_t shoulder = static_cast<size_t>(kLeftShoulder);
+  Pose& last = clip.characters[0].frames.back();
+  last.local_rotations[shoulder] = raise * last.local_rotations[shoulder];
+  const int window = 20;
+  std::vector<std::vector<Pose>> next_start(1);
+  for (int k = 0; k < window; ++k) {
+    Pose p = clip.characters[0].frames[static_cast<size_t>(k)];
+    p.local_rotations[shoulder] = raise * p.local_rotations[shoulder];
+    next_start[0].push_back(p);
+  }
+  auto seam_m = [](const CrowdAnimation& a) {
+    const CharacterAnimation& c = a.characters[0];
+    const auto p = joint_positions(c.shape, c.frames.back()), q = joint_positions(c.shape, c.frames.front());
+    return (p[static_cast<size_t>(kLeftHand)] - q[static_cast<size_t>(kLeftHand)]).norm();
+  };
+  const CrowdAnimation started = start_from_next_lap(input, next_start, CorrectorParams{}, clip);
+  INFO("left hand's seam step: " << seam_m(clip) << " m open, " << seam_m(started) << " m started");
+  CHECK(seam_m(clip) > 0.1);
+  // Frame 0 is now next_start's first pose, one ordinary step after the raised last frame.
+  const Pose& f0 = started.characters[0].frames.front();
+  CHECK(f0.local_rotations[shoulder].angularDistance(next_start[0][0].local_rotations[shoulder]) < 1e-9);
+  CHECK(seam_m(started) < 0.2 * seam_m(clip));
+  // The blend fades out over the window: from frame W on the clip is its own, its end untouched.
+  for (size_t f = window; f < clip.characters[0].frames.size(); ++f)
+    CHECK(started.characters[0].frames[f].local_rotations[shoulder].angularDistance(
+              clip.characters[0].frames[f].local_rotations[shoulder]) < 1e-12);
+  // Half-way through the window the arm is between the two (raised cosine).
+  const double mid = started.characters[0].frames[window / 2].local_rotations[shoulder].angularDistance(
+      clip.characters[0].frames[window / 2].local_rotations[shoulder]);
+  CHECK(mid > 0.2 * 40.0 * std::numbers::pi / 180.0);
+  CHECK(mid < 0.8 * 40.0 * std::numbers::pi / 180.0);
+}
+
+TEST_CASE("loop closure choice: close_joints brings only the named joints to the lap's end",
+          "[correction][loop]") {
+  SwayingCrowdOptions o;
+  o.characters = 2;
+  o.frames = 30;
+  const CrowdAnimation clip = make_swaying_crowd_fixture(o);
+  const int window = 10, first = 20;
+  std::vector<std::vector<Pose>> lap_end(2);
+  const Quat turn(Eigen::AngleAxisd(0.5, Vec3::UnitX()));
+  for (size_t c = 0; c < 2; ++c)
+    for (int k = 0; k < window; ++k) {
+      Pose p = clip.characters[c].frames[static_cast<size_t>(first + k)];
+      for (Quat& q : p.local_rotations) q = turn * q;
+      lap_end[c].push_back(p);
+    }
+  const CrowdAnimation closed = close_joints(clip, lap_end, kRightArmJoints);
+  for (size_t c = 0; c < 2; ++c) {
+    const Pose& end = closed.characters[c].frames.back();
+    for (int j = 0; j < kJointCount; ++j) {
+      const bool right_arm =
+          std::find(kRightArmJoints.begin(), kRightArmJoints.end(), j) != kRightArmJoints.end();
+      const Quat& want = (right_arm ? lap_end[c].back() : clip.characters[c].frames.back())
+                             .local_rotations[static_cast<size_t>(j)];
+      CHECK(end.local_rotations[static_cast<size_t>(j)].angularDistance(want) < 1e-9);
+    }
+    for (size_t f = 0; f < static_cast<size_t>(first); ++f)  // before the window, nothing changes
+      for (size_t j = 0; j < static_cast<size_t>(kJointCount); ++j)
+        CHECK(closed.characters[c].frames[f].local_rotations[j].coeffs() ==
+              clip.characters[c].frames[f].local_rotations[j].coeffs());
+  }
+}
