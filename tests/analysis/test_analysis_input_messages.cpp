@@ -10,6 +10,9 @@
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_analysis_input_messages {
+
 using namespace crowdlab;
 using crowdlab::test::analysis_data;
 using crowdlab::test::run_cli;
@@ -199,3 +202,5 @@ TEST_CASE("analysis: psychometric --p reads the whole text of each probability",
                Catch::Contains("--p: expected probabilities in (0, 1), comma-separated, got '" + p + "'"));
   }
 }
+
+}  // namespace test_analysis_input_messages

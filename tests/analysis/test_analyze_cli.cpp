@@ -10,6 +10,9 @@
 #include "tests/analysis/reference_table.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_analyze_cli {
+
 using namespace crowdlab;
 using crowdlab::test::analysis_data;
 using crowdlab::test::run_cli;
@@ -361,3 +364,5 @@ TEST_CASE("analysis: analyze refuses designs past --max-levels, --max-cells and 
   INFO(simple.err);
   CHECK(simple.exit_code == 0);
 }
+
+}  // namespace test_analyze_cli

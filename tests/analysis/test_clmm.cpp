@@ -17,6 +17,9 @@
 #include "tests/analysis/reference_table.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_clmm {
+
 using namespace crowdlab;
 using namespace crowdlab::analysis;
 using crowdlab::test::analysis_data;
@@ -147,3 +150,5 @@ TEST_CASE("analysis: analyze clmm --json and bad input (exit 2)", "[analysis][cl
   CHECK(nan.exit_code == 2);
   CHECK(nan.err.find("nan.csv:3") != std::string::npos);
 }
+
+}  // namespace test_clmm

@@ -8,6 +8,9 @@
 #include "framework/core/error.hpp"
 #include "tests/analysis/reference_table.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_kolmogorov_smirnov {
+
 using namespace crowdlab;
 using namespace crowdlab::analysis;
 using crowdlab::test::analysis_data;
@@ -73,3 +76,5 @@ TEST_CASE("analysis: normality check and pair reliability", "[analysis]") {
   CHECK(rel.cronbach_alpha < 1.0);
   CHECK_THROWS_AS(pair_reliability(a, {1, 2}), InputError);
 }
+
+}  // namespace test_kolmogorov_smirnov

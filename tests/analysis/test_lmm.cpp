@@ -14,6 +14,9 @@
 #include "tests/analysis/reference_table.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_lmm {
+
 using namespace crowdlab;
 using namespace crowdlab::analysis;
 using crowdlab::test::analysis_data;
@@ -156,3 +159,5 @@ TEST_CASE("analysis: lmm crossings and model matrices too large are refused from
   CHECK_THROWS_WITH(model_matrix({{"a"}, {"b"}, {"a", "b"}}, true, vars, 4),
                     Catch::Contains("10000 design-matrix columns") && Catch::Contains("limit of 2000"));
 }
+
+}  // namespace test_lmm

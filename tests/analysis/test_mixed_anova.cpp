@@ -12,6 +12,9 @@
 #include "tests/analysis/reference_table.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_mixed_anova {
+
 using namespace crowdlab;
 using namespace crowdlab::analysis;
 using crowdlab::test::analysis_data;
@@ -147,3 +150,5 @@ TEST_CASE("analysis: analyze anova --between: JSON keys, nulls and bad input (ex
   CHECK(same.exit_code == 2);
   CHECK(same.err.find("named twice") != std::string::npos);
 }
+
+}  // namespace test_mixed_anova

@@ -5,6 +5,9 @@
 #include "framework/core/error.hpp"
 #include "tests/analysis/reference_table.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_posthoc {
+
 using namespace crowdlab;
 using namespace crowdlab::analysis;
 using crowdlab::test::analysis_data;
@@ -71,3 +74,5 @@ TEST_CASE("analysis: simple comparisons and simple effects", "[analysis]") {
   CHECK(significance_stars(0.04) == "*");
   CHECK(significance_stars(0.2).empty());
 }
+
+}  // namespace test_posthoc

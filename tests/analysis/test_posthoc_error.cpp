@@ -9,6 +9,9 @@
 #include "tests/analysis/reference_table.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_posthoc_error {
+
 using namespace crowdlab;
 using namespace crowdlab::analysis;
 using crowdlab::test::analysis_data;
@@ -144,3 +147,5 @@ TEST_CASE("analysis: analyze posthoc --between labels cells between-first and re
   CHECK(unknown.exit_code == 2);
   CHECK(unknown.err.find("colour") != std::string::npos);
 }
+
+}  // namespace test_posthoc_error

@@ -10,6 +10,9 @@
 #include "framework/core/seed.hpp"
 #include "tests/analysis/reference_table.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_psychometric {
+
 using namespace crowdlab;
 using namespace crowdlab::analysis;
 using crowdlab::test::analysis_data;
@@ -155,3 +158,5 @@ TEST_CASE("analysis: psychometric table with cube-root volumes, groups and bad r
     CHECK(std::string(e.what()).find("neg.csv:2") != std::string::npos);
   }
 }
+
+}  // namespace test_psychometric

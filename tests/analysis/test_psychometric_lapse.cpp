@@ -14,6 +14,9 @@
 #include "tests/analysis/reference_table.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_psychometric_lapse {
+
 using namespace crowdlab;
 using namespace crowdlab::analysis;
 using crowdlab::test::analysis_data;
@@ -178,3 +181,5 @@ TEST_CASE("analysis: analyze psychometric --lapse symmetric|fixed|NUMBER", "[ana
   const auto clash = with({"--lapse", "symmetric", "--guess", "0.5"});
   CHECK(clash.exit_code == 2);
 }
+
+}  // namespace test_psychometric_lapse

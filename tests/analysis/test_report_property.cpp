@@ -31,6 +31,9 @@
 #include "study_ui/simulate_study.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_report_property {
+
 using namespace crowdlab;
 namespace fs = std::filesystem;
 
@@ -205,3 +208,5 @@ TEST_CASE("analyze report never writes through a link in its output folder", "[a
   CHECK(slurp_text(outside) == "keep me");
   CHECK(fs::is_symlink(dir / "report" / "report.md"));
 }
+
+}  // namespace test_report_property

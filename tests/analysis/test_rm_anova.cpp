@@ -8,6 +8,9 @@
 #include "framework/core/error.hpp"
 #include "tests/analysis/reference_table.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_rm_anova {
+
 using namespace crowdlab;
 using namespace crowdlab::analysis;
 using crowdlab::test::analysis_data;
@@ -141,3 +144,5 @@ TEST_CASE("analysis: unbalanced or malformed tables name the subject, cell, row 
     CHECK(msg.find("y") != std::string::npos);
   }
 }
+
+}  // namespace test_rm_anova

@@ -7,6 +7,9 @@
 #include "analysis/studentized_range.hpp"
 #include "tests/analysis/reference_table.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_studentized_range {
+
 using namespace crowdlab;
 using crowdlab::test::analysis_data;
 using crowdlab::test::ref_number;
@@ -95,3 +98,5 @@ TEST_CASE("analysis: ptukey analytic cases", "[analysis]") {
   CHECK(analysis::ptukey(0.0, 3, 10) == 0.0);
   CHECK_THROWS(analysis::qtukey(1.5, 3, 10));
 }
+
+}  // namespace test_studentized_range

@@ -16,6 +16,9 @@
 #include "framework/core/seed.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_bvh {
+
 using namespace crowdlab;
 
 namespace {
@@ -391,3 +394,5 @@ TEST_CASE("BVH: a UTF-8 byte-order mark is accepted, and raw bytes in a message 
   CHECK(message.find('\x01') == std::string::npos);
   CHECK(message.size() < 600);
 }
+
+}  // namespace test_bvh

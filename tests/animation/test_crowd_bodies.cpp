@@ -11,6 +11,9 @@
 #include "framework/core/forward_kinematics.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_crowd_bodies {
+
 using namespace crowdlab;
 
 TEST_CASE("sampled heights match the world distributions by sex (mean within 3 SE, SD within 10 %)") {
@@ -164,3 +167,5 @@ TEST_CASE("animate_crowd gives identical results with one thread and many, shoul
   const CrowdAnimation none = animate_crowd(t, Environment{}, spec, ctx);
   for (size_t i = 0; i < 2; ++i) CHECK(trunk_twist(none.characters[i].frames[60]) < 0.2);
 }
+
+}  // namespace test_crowd_bodies

@@ -10,6 +10,9 @@
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/seed.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_dance {
+
 using namespace crowdlab;
 
 namespace {
@@ -159,3 +162,5 @@ TEST_CASE("jumping leaves the ground with both feet, idle motions keep both feet
   const DanceResult i = animate_dancing(s, standing(0, 0, 0, 120), 30, DanceStyle{idle, 60, 0, 1, false});
   for (size_t f = 0; f < i.frames.size(); ++f) CHECK((i.contact[0][f] && i.contact[1][f]));
 }
+
+}  // namespace test_dance

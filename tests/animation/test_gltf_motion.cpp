@@ -12,6 +12,9 @@
 #include "framework/core/forward_kinematics.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_gltf_motion {
+
 using namespace crowdlab;
 
 namespace {
@@ -194,3 +197,5 @@ TEST_CASE("glTF animation import: a 100,000-node chain imports without recursing
                                                           Catch::Contains("animations[0]") &&
                                                           Catch::Contains("kMaxGltfClipValues"));
 }
+
+}  // namespace test_gltf_motion

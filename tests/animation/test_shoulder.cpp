@@ -5,6 +5,9 @@
 #include "framework/animation/shoulder_reactions.hpp"
 #include "framework/core/closest_approach.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_shoulder {
+
 using namespace crowdlab;
 
 namespace {
@@ -138,3 +141,5 @@ TEST_CASE(
     }
   }
 }
+
+}  // namespace test_shoulder

@@ -12,6 +12,9 @@
 #include "framework/core/leg_ik.hpp"
 #include "framework/core/seed.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_walk {
+
 using namespace crowdlab;
 
 namespace {
@@ -255,3 +258,5 @@ TEST_CASE("procedural walking and standing idle loop without a pop through make_
           played.front().root_position_m.z() + 2.5 * v * 2 * cycle_frames / 30.0 - 0.2);
   }
 }
+
+}  // namespace test_walk

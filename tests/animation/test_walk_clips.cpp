@@ -14,6 +14,9 @@
 #include "framework/core/forward_kinematics.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_walk_clips {
+
 using namespace crowdlab;
 
 namespace {
@@ -177,3 +180,5 @@ TEST_CASE("a walking crowd from the spec's walk clips - errors name the clip") {
   spec.walk_clips.clear();
   CHECK_THROWS_AS(animate_crowd(t, Environment{}, spec, ctx), InputError);
 }
+
+}  // namespace test_walk_clips

@@ -14,6 +14,9 @@
 #include "framework/core/mpfb2_asset_dir.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_mpfb2_assets {
+
 using namespace crowdlab;
 namespace fs = std::filesystem;
 
@@ -173,3 +176,5 @@ TEST_CASE("a numeric bone parent in the MPFB2 rig names the rig file and key, no
                                           Catch::Contains("got a number"));
   }
 }
+
+}  // namespace test_mpfb2_assets

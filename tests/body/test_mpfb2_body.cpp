@@ -19,6 +19,9 @@
 #include "framework/metrics/overlap_volume.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_mpfb2_body {
+
 using namespace crowdlab;
 
 namespace {
@@ -311,3 +314,5 @@ TEST_CASE("a gzip target that inflates past its vertex count's bound is refused 
   }
   CHECK_THROWS_WITH(read_target_gz(entries, 100), Catch::Contains("entries.target.gz:102"));
 }
+
+}  // namespace test_mpfb2_body

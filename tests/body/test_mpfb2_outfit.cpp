@@ -19,6 +19,9 @@
 #include "framework/core/error.hpp"
 #include "framework/core/mpfb2_asset_dir.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_mpfb2_outfit {
+
 using namespace crowdlab;
 
 namespace {
@@ -379,3 +382,5 @@ TEST_CASE("skin under a garment's hem lies a few millimetres behind it, for ever
     CHECK(shallow == 0);
   });
 }
+
+}  // namespace test_mpfb2_outfit

@@ -9,6 +9,9 @@
 #include "framework/core/mpfb2_asset_dir.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_sample_mpfb2_population {
+
 using namespace crowdlab;
 
 namespace {
@@ -102,3 +105,5 @@ TEST_CASE("sampled MPFB2 bodies record their sex and their measured stature in t
     CHECK(s.body.height_m == Approx(s.target_height_m).margin(0.001));
   }
 }
+
+}  // namespace test_sample_mpfb2_population

@@ -20,6 +20,9 @@
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_start_estimates {
+
 using namespace crowdlab;
 namespace fs = std::filesystem;
 
@@ -130,3 +133,5 @@ TEST_CASE("cli: bench correct prints its estimate before building the fixture", 
   check_estimate_before_work(r, "bench correct", "character-frames");
   CHECK_THAT(r.err, Catch::Contains("for 12 character-frames"));
 }
+
+}  // namespace test_start_estimates

@@ -5,6 +5,9 @@
 
 #include "framework/core/capsule_box.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_aabb {
+
 using namespace crowdlab;
 
 namespace {
@@ -58,3 +61,5 @@ TEST_CASE("Aabb overlap, intersection and squared distance") {
   grown.extend(c);
   CHECK(grown.contains({1.8, 0.2, 0.2}));
 }
+
+}  // namespace test_aabb

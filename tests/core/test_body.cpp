@@ -6,6 +6,9 @@
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/seed.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_body {
+
 using namespace crowdlab;
 
 namespace {
@@ -146,3 +149,5 @@ TEST_CASE("derived seeds are stable and independent of derivation order") {
   Rng r1(derive_seed(42, "x")), r2(derive_seed(42, "x"));
   for (int i = 0; i < 10; ++i) CHECK(uniform01(r1) == uniform01(r2));
 }
+
+}  // namespace test_body

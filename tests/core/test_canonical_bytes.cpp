@@ -11,6 +11,9 @@
 
 #include "framework/core/canonical_bytes.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_canonical_bytes {
+
 using namespace crowdlab;
 
 namespace {
@@ -80,3 +83,5 @@ TEST_CASE("canonical bytes: string boundaries and empty values are unambiguous")
   CHECK(canonical_bytes(std::string{}) != canonical_bytes(std::vector<std::string>{}));
   CHECK(canonical_bytes(0) != canonical_bytes(0.0));
 }
+
+}  // namespace test_canonical_bytes

@@ -8,6 +8,9 @@
 #include "framework/core/stimulus_manifest.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_csv {
+
 using namespace crowdlab;
 
 TEST_CASE("csv parses quotes, commas and newlines, and round-trips through csv_line") {
@@ -155,3 +158,5 @@ TEST_CASE("stimulus manifest carries the clip's stimulus-check columns") {
       << "c1,c1.mp4,1,30,64,48,x,,,,0\n";
   CHECK(read_manifest(path).entries.at(0).check.seam_step_ratio == -1.0);
 }
+
+}  // namespace test_csv

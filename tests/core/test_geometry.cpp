@@ -3,7 +3,11 @@
 #include <random>
 
 #include "framework/core/capsule.hpp"
+#include "framework/core/closest_approach.hpp"
 #include "framework/core/seed.hpp"
+
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_geometry {
 
 using namespace crowdlab;
 
@@ -82,8 +86,6 @@ TEST_CASE("capsule volume is cylinder plus sphere") {
   CHECK(c.volume_m3() == Approx(M_PI * 0.25 * 2 + 4.0 / 3.0 * M_PI * 0.125));
 }
 
-#include "framework/core/closest_approach.hpp"
-
 TEST_CASE("ttca/dtca on hand-built pairs (seed 001 Eqs. 2-3)") {
   // Head-on, 0.4 m lateral offset, closing at 2 m/s from 4 m apart: ttca 2 s, dtca 0.4 m.
   auto ca = closest_approach({0, 0}, {1, 0}, {4, 0.4}, {-1, 0});
@@ -97,3 +99,5 @@ TEST_CASE("ttca/dtca on hand-built pairs (seed 001 Eqs. 2-3)") {
   CHECK(std::isinf(ca.ttca_s));
   CHECK(ca.dtca_m == Approx(5.0));
 }
+
+}  // namespace test_geometry

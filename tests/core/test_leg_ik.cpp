@@ -7,6 +7,9 @@
 #include "framework/core/leg_ik.hpp"
 #include "framework/core/seed.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_leg_ik {
+
 using namespace crowdlab;
 
 namespace {
@@ -132,3 +135,5 @@ TEST_CASE("reach_ankle: a nearly straight knee flexes forward about its hinge, w
   const Quat b = knee_after_shortening(s, Quat(Eigen::AngleAxisd(-0.005, Vec3::UnitZ())));
   CHECK(a.angularDistance(b) < 0.02);
 }
+
+}  // namespace test_leg_ik

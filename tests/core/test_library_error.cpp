@@ -12,6 +12,9 @@
 #include "framework/core/error.hpp"
 #include "framework/core/library_error.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_library_error {
+
 using namespace crowdlab;
 
 namespace {
@@ -68,3 +71,5 @@ TEST_CASE("core: a JSON type error and a bare 'stod' name the input (issue 33)")
         "answers.csv: a number in it is not a number or out of range (std::stoi)");
   CHECK_THROWS_AS(at_input_boundary("a", [] { throw std::out_of_range("vector::at"); }), std::out_of_range);
 }
+
+}  // namespace test_library_error

@@ -8,6 +8,9 @@
 #include "framework/core/loop_seam_per_character.hpp"
 #include "framework/correction/swaying_crowd_fixture.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_loop_seam_per_character {
+
 using namespace crowdlab;
 
 TEST_CASE("loop seam per character finds the character whose arm jumps at the seam", "[core][loop]") {
@@ -43,3 +46,5 @@ TEST_CASE("loop seam per character finds the character whose arm jumps at the se
   CHECK(seams[2].arms_m > 0.03);
   CHECK(loop_seam_per_character(CrowdAnimation{}).empty());
 }
+
+}  // namespace test_loop_seam_per_character

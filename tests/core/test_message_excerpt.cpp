@@ -7,6 +7,9 @@
 #include "framework/core/error.hpp"
 #include "framework/core/printable_excerpt.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_message_excerpt {
+
 using namespace crowdlab;
 
 TEST_CASE("printable_excerpt escapes control and invalid UTF-8 bytes and cuts at a character boundary") {
@@ -46,3 +49,5 @@ TEST_CASE("a CSV number outside the range of a double is named as such, a subnor
   CHECK(t.number(1, 0) > 0.0);
   CHECK_THROWS_WITH(t.number(2, 0), Catch::Contains("r.csv:4:1:"));
 }
+
+}  // namespace test_message_excerpt

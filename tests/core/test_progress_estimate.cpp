@@ -12,6 +12,9 @@
 #include "framework/core/progress.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_progress_estimate {
+
 using namespace crowdlab;
 
 namespace {
@@ -38,7 +41,7 @@ std::string stderr_of(F&& body) {
 }  // namespace
 
 TEST_CASE("progress: a long job's estimated total and memory are printed once, lines show the time left") {
-  Progress::set_enabled(true);  // the default; --quiet turns it off
+  Progress::set_enabled(true);        // the default; --quiet turns it off
   Progress::set_estimate_after(0.0);  // at once: the threshold is a time, the test must not be
   const std::string out = stderr_of([] {
     Progress p("power n=20", 1000);
@@ -53,3 +56,5 @@ TEST_CASE("progress: a long job's estimated total and memory are printed once, l
     ++count;
   CHECK(count == 1);
 }
+
+}  // namespace test_progress_estimate

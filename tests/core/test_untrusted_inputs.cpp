@@ -18,6 +18,9 @@
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_untrusted_inputs {
+
 using namespace crowdlab;
 namespace fs = std::filesystem;
 
@@ -192,3 +195,5 @@ TEST_CASE("cli: a misspelt command is named, not 'A subcommand is required' (iss
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Catch::Contains("unknown command 'nosuchcommand'"));
 }
+
+}  // namespace test_untrusted_inputs

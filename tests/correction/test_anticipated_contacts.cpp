@@ -13,6 +13,9 @@
 #include "framework/correction/correct_crowd.hpp"
 #include "framework/metrics/joint_flips.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_anticipated_contacts {
+
 using namespace crowdlab;
 
 namespace {
@@ -146,3 +149,5 @@ TEST_CASE(
   CHECK(turn_deg(ramp_deviations(at_start, 5.0 * kDegToRad, false)[49]) == Approx(0.0).margin(1e-9));
   CHECK_THROWS_AS(anticipated_joint_set("hands"), InputError);
 }
+
+}  // namespace test_anticipated_contacts

@@ -12,6 +12,9 @@
 #include "tests/correction/correction_measures.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_correction_cli {
+
 using namespace crowdlab;
 
 TEST_CASE("correction cli: crowdlab correct IN.glb --out OUT.glb removes the overlap", "[correction][cli]") {
@@ -137,3 +140,5 @@ TEST_CASE("correction cli: running out of memory is named by the command, not by
   CHECK_THAT(err, Catch::Contains("out of memory in 'crowdlab -q bench correct --characters 3000"));
   CHECK_THAT(err, !Catch::Contains("std::bad_alloc"));
 }
+
+}  // namespace test_correction_cli

@@ -14,6 +14,9 @@
 #include "tests/correction/correction_measures.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_correction_quality {
+
 using namespace crowdlab;
 
 namespace {
@@ -316,3 +319,5 @@ TEST_CASE("correction: joints that touch nobody keep their input, and no joint f
   CHECK(with.flips.count * 20 <= without.flips.count);
   CHECK(with.depth_p99_m <= 0.01);
 }
+
+}  // namespace test_correction_quality

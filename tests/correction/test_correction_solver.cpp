@@ -19,6 +19,9 @@
 #include "tests/correction/correction_measures.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_correction_solver {
+
 using namespace crowdlab;
 
 TEST_CASE("correction: capsule mass properties match analytic solids", "[correction]") {
@@ -589,3 +592,5 @@ TEST_CASE("correction: the feet settle leaves the bodies the depenetration pass 
   stage_settle_feet(model, s);
   CHECK(s.output[0].root_position_m.y() == Approx(lifted_y - 0.015).margin(0.002));
 }
+
+}  // namespace test_correction_solver

@@ -12,6 +12,9 @@
 #include "framework/correction/swaying_crowd_fixture.hpp"
 #include "framework/metrics/foot_contact_quality.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_loop_closure {
+
 using namespace crowdlab;
 
 namespace {
@@ -135,3 +138,5 @@ TEST_CASE("loop closure: a foot the second correction sets down off its spot sta
   CHECK((end[right] - joint_positions(c.shape, c.frames.back())[right]).norm() < 1e-6);
   CHECK(kept.characters[0].frames[29].root_position_m == c.frames[29].root_position_m);
 }
+
+}  // namespace test_loop_closure

@@ -10,6 +10,9 @@
 #include "framework/correction/loop_closure_choice.hpp"
 #include "framework/correction/swaying_crowd_fixture.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_loop_closure_choice {
+
 using namespace crowdlab;
 
 namespace {
@@ -152,3 +155,5 @@ TEST_CASE("loop closure choice: close_joints brings only the named joints to the
               clip.characters[c].frames[f].local_rotations[j].coeffs());
   }
 }
+
+}  // namespace test_loop_closure_choice

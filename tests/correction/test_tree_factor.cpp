@@ -9,6 +9,9 @@
 #include "framework/correction/swaying_crowd_fixture.hpp"
 #include "framework/correction/tree_factor.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_tree_factor {
+
 using namespace crowdlab;
 
 namespace {
@@ -102,3 +105,5 @@ TEST_CASE("correction: refactorising without a bone's contact block changes the 
   }
   CHECK(checked >= 1);
 }
+
+}  // namespace test_tree_factor

@@ -9,6 +9,9 @@
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_cli_crowd {
+
 using namespace crowdlab;
 
 TEST_CASE("cli: crowd writes one condition's trajectories and measures", "[crowd][cli]") {
@@ -60,3 +63,5 @@ TEST_CASE("cli: bench crowd prints one JSON object", "[crowd][cli]") {
   CHECK(test::run_cli({"bench", "crowd", "--model", "rvo9"}).exit_code == 2);
   CHECK(test::run_cli({"bench", "crowd", "--agents", "1"}).exit_code == 2);
 }
+
+}  // namespace test_cli_crowd

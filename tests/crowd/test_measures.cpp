@@ -7,6 +7,9 @@
 #include "framework/crowd/interpersonal_distance_histogram.hpp"
 #include "framework/crowd/pair_closest_approaches.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_measures {
+
 using namespace crowdlab;
 
 namespace {
@@ -108,3 +111,5 @@ TEST_CASE("measures: collision table in the form of seed 001 Table 2", "[crowd][
   CHECK(md.find("| Scenario A | 50 \u00b1 4 | 4546 \u00b1 0 |") != std::string::npos);
   CHECK(collision_table_csv(cells).find("A,0.5,3,50,4,3\n") != std::string::npos);
 }
+
+}  // namespace test_measures

@@ -14,6 +14,9 @@
 #include "tests/crowd/crowd_test_helpers.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_models {
+
 using namespace crowdlab;
 
 namespace {
@@ -157,3 +160,5 @@ TEST_CASE("navigation: identical trajectories with 1 and 2 threads for every mod
     CHECK(run(1) == run(2));
   }
 }
+
+}  // namespace test_models

@@ -7,6 +7,9 @@
 #include "framework/core/seed.hpp"
 #include "framework/crowd/neighbor_grid.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_neighbor_grid {
+
 using namespace crowdlab;
 
 namespace {
@@ -60,3 +63,5 @@ TEST_CASE("neighbour grid: split rebuild (prepare_point in any order) equals reb
   b.finish_rebuild(x.data(), y.data(), x.size());
   for (std::size_t k = 0; k < x.size(); ++k) CHECK(a.order(k) == b.order(k));
 }
+
+}  // namespace test_neighbor_grid

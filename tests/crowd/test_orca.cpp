@@ -8,6 +8,9 @@
 #include "tests/crowd/crowd_test_helpers.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_orca {
+
 using namespace crowdlab;
 
 namespace {
@@ -162,3 +165,5 @@ TEST_CASE("orca: the overlap-free mode gives identical trajectories with 1 and 2
   CHECK(one.first == two.first);
   CHECK(one.second == two.second);
 }
+
+}  // namespace test_orca

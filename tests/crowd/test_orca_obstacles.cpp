@@ -9,6 +9,9 @@
 #include "tests/crowd/crowd_test_helpers.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_orca_obstacles {
+
 using namespace crowdlab;
 
 namespace {
@@ -184,3 +187,5 @@ TEST_CASE("orca obstacles: a dense corridor flow stays inside its walls", "[crow
   CHECK(worst_overlap <= 1e-3);
   for (std::size_t i = 0; i < sim.size(); ++i) CHECK(sim.position(i).y() > 5.0);
 }
+
+}  // namespace test_orca_obstacles

@@ -10,6 +10,9 @@
 #include "framework/spec/load_experiment_spec.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_overlap_free_spec {
+
 using namespace crowdlab;
 
 namespace {
@@ -90,3 +93,5 @@ TEST_CASE("crowd.overlap_free: a dense bidirectional flow from a spec keeps ever
   CHECK(worst[1] <= 1e-3);
   if (!test::kSanitized) CHECK(worst[0] > 1e-3);  // the jam the mode exists for (plain ORCA, Sec. 5.2)
 }
+
+}  // namespace test_overlap_free_spec

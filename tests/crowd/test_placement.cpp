@@ -5,6 +5,9 @@
 #include "framework/core/error.hpp"
 #include "framework/crowd/place_poisson_disk.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_placement {
+
 using namespace crowdlab;
 
 TEST_CASE("placement: the 9 m^2 concert holds 20..60 characters with regular spacing", "[crowd][placement]") {
@@ -100,3 +103,5 @@ TEST_CASE("placement: a personal space gives plain Poisson-disk spacing, neighbo
   const Placement dense = place_poisson_disk(area, 60, 9, personal);
   CHECK(dense.min_spacing_m == Approx(place_poisson_disk(area, 60, 9).min_spacing_m));
 }
+
+}  // namespace test_placement

@@ -11,6 +11,9 @@
 #include "tests/crowd/crowd_test_helpers.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_scenarios {
+
 using namespace crowdlab;
 
 namespace {
@@ -268,3 +271,5 @@ TEST_CASE("scenarios: Table 2 counts colliding pair-frames over all pairs, varyi
     CHECK((counts[0].collisions != counts[1].collisions || counts[1].collisions != counts[2].collisions));
   }
 }
+
+}  // namespace test_scenarios

@@ -21,6 +21,9 @@
 #include "tests/determinism/output_digests.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_pinned_output_hash {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -189,3 +192,5 @@ TEST_CASE("crowdlab --threads takes a positive thread count before the command")
   CHECK(zero.exit_code == 2);
   CHECK(zero.err.find("--threads") != std::string::npos);
 }
+
+}  // namespace test_pinned_output_hash

@@ -11,6 +11,9 @@
 #include "stimuli/presentation_stages.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_architecture_doc {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 
@@ -41,3 +44,5 @@ TEST_CASE("every test file docs/architecture.md names exists", "[docs]") {
   }
   CHECK(named > 0);
 }
+
+}  // namespace test_architecture_doc

@@ -6,6 +6,9 @@
 
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_docs {
+
 using namespace crowdlab::test;
 
 namespace {
@@ -54,3 +57,5 @@ TEST_CASE("the README links the references", "[docs]") {
     CHECK(std::filesystem::exists(source_dir() / link));
   }
 }
+
+}  // namespace test_docs

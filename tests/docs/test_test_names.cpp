@@ -7,6 +7,9 @@
 
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_test_names {
+
 namespace {
 
 /// The names of the TEST_CASEs in a source text: the adjacent string literals after a line that starts
@@ -85,3 +88,5 @@ TEST_CASE("every test that tests/test_costs*.cmake give a ctest COST is a test c
     CHECK(named >= at_least);  // the scan found the list
   }
 }
+
+}  // namespace test_test_names

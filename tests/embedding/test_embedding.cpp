@@ -8,6 +8,9 @@
 #include "tests/embedding/game_loop_example.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_embedding {
+
 namespace {
 
 using crowdlab::test::slurp;
@@ -48,3 +51,5 @@ TEST_CASE("docs/embedding.md shows the compiled example verbatim", "[embedding]"
   INFO("docs/embedding.md must contain tests/embedding/game_loop_example.hpp exactly, in a ```cpp block");
   CHECK(doc.find("```cpp\n" + code + "```") != std::string::npos);
 }
+
+}  // namespace test_embedding

@@ -37,6 +37,9 @@
 #include "tests/fuzz/mutator.hpp"
 #include "tests/support/glb_bytes.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_fuzz_inputs {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -561,3 +564,5 @@ TEST_CASE("the fuzz harness reports a signal, a hang, memory over the cap and a 
   CHECK_THAT(memory, Catch::Contains("memory cap") || Catch::Contains("exited with code 1") ||
                          Catch::Contains("signal"));
 }
+
+}  // namespace test_fuzz_inputs

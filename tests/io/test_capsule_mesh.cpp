@@ -6,6 +6,9 @@
 #include "framework/core/seed.hpp"
 #include "framework/io/capsule_mesh.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_capsule_mesh {
+
 using namespace crowdlab;
 
 namespace {
@@ -64,3 +67,5 @@ TEST_CASE("capsule meshes lie on the capsule, are closed 2-manifolds and face ou
   append_capsule_mesh(c, 256, 64, fine);
   CHECK(signed_volume(fine) == Approx(c.volume_m3()).epsilon(1e-3));
 }
+
+}  // namespace test_capsule_mesh

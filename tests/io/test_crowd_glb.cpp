@@ -16,6 +16,9 @@
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_crowd_glb {
+
 using namespace crowdlab;
 
 namespace {
@@ -472,3 +475,5 @@ TEST_CASE("an animation channel with no keys says so, not 'has 0 keys, expected 
     CHECK_THAT(m, !Catch::Contains("expected 0"));
   }
 }
+
+}  // namespace test_crowd_glb

@@ -14,6 +14,9 @@
 #include "tests/support/glb_bytes.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_glb_mutations {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -206,3 +209,5 @@ TEST_CASE("accessors viewing one buffer many times over, and a buffer uri that i
   write_bytes(dir / "uri_folder.glb", glb_with_json(slurp(good), json));
   check_refused(dir / "uri_folder.glb", {"cannot read glTF", "directory"});
 }
+
+}  // namespace test_glb_mutations

@@ -9,6 +9,9 @@
 #include "framework/io/load_gltf_model.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_gltf_nesting {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -63,3 +66,5 @@ TEST_CASE("a GLB whose JSON nests 100,000 arrays deep exits 2 with the file name
                                     nested_arrays(static_cast<int>(kMaxGltfJsonDepth) - 1) + "}");
   CHECK_NOTHROW(load_gltf_model(at_bound));
 }
+
+}  // namespace test_gltf_nesting

@@ -4,6 +4,9 @@
 
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_bench_overlap_cli {
+
 using namespace crowdlab;
 
 TEST_CASE("crowdlab bench overlap --json prints one object with its timings") {
@@ -18,3 +21,5 @@ TEST_CASE("crowdlab bench overlap --json prints one object with its timings") {
   CHECK(j.at("mean_error_bound_l").get<double>() >= 0.0);
   CHECK(test::run_cli({"bench", "overlap", "--pairs", "0"}).exit_code == 2);
 }
+
+}  // namespace test_bench_overlap_cli

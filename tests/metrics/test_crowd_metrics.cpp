@@ -13,6 +13,9 @@
 #include "framework/metrics/volume_index.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_crowd_metrics {
+
 using namespace crowdlab;
 
 namespace {
@@ -154,3 +157,5 @@ TEST_CASE("measure_crowd rejects an invalid crowd") {
   crowd.characters[1].frames.pop_back();
   CHECK_THROWS_AS(measure_crowd(crowd), InputError);
 }
+
+}  // namespace test_crowd_metrics

@@ -8,6 +8,9 @@
 #include "framework/metrics/correction_quality.hpp"
 #include "framework/metrics/foot_contact_quality.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_foot_contact_quality {
+
 using namespace crowdlab;
 
 namespace {
@@ -110,3 +113,5 @@ TEST_CASE("feet lowered into the ground and lifted during stance are measured") 
   CHECK(lifted.float_p99_m == Approx(0.03));
   CHECK(lifted.ground_penetration_max_m == Approx(std::max(0.0, -sole)));
 }
+
+}  // namespace test_foot_contact_quality

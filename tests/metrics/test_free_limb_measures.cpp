@@ -12,6 +12,9 @@
 #include "framework/metrics/free_limb_deviation.hpp"
 #include "framework/metrics/joint_flips.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_free_limb_measures {
+
 using namespace crowdlab;
 
 namespace {
@@ -149,3 +152,5 @@ TEST_CASE("capsule-box distance is exact, and environment penetration measures c
   crowd.environment.boxes[0].center_m.x() = 1.0;
   CHECK(measure_environment_penetration(crowd).max_m == 0.0);
 }
+
+}  // namespace test_free_limb_measures

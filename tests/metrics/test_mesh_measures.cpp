@@ -19,6 +19,9 @@
 #include "framework/metrics/mesh_overlap.hpp"
 #include "framework/metrics/proxy_coverage.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_mesh_measures {
+
 using namespace crowdlab;
 
 namespace {
@@ -377,3 +380,5 @@ TEST_CASE("capsules fitted per surface bound each surface to its tolerance, abov
   CHECK(report.shift_m[kHead] > 0.0);
   CHECK(fitted.capsules[kHead].a.z() > body.shape.capsules[kHead].a.z());
 }
+
+}  // namespace test_mesh_measures

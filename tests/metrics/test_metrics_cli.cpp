@@ -9,6 +9,9 @@
 #include "framework/metrics/measure_crowd.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_metrics_cli {
+
 using namespace crowdlab;
 
 namespace {
@@ -103,3 +106,5 @@ TEST_CASE("crowdlab metrics rejects a missing or corrupt file with exit code 2")
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("bad.glb") != std::string::npos);
 }
+
+}  // namespace test_metrics_cli

@@ -11,6 +11,9 @@
 #include "framework/metrics/overlap_volume.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_overlap_volume {
+
 using namespace crowdlab;
 
 namespace {
@@ -194,3 +197,5 @@ TEST_CASE("overlap_volume rejects bad capsules") {
   CHECK_THROWS_AS(overlap_volume(ok, nan), InputError);
   CHECK_THROWS_AS(overlap_volume(zero_r, ok), InputError);
 }
+
+}  // namespace test_overlap_volume

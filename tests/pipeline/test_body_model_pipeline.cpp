@@ -14,6 +14,9 @@
 #include "framework/io/read_crowd_glb.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_body_model_pipeline {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -77,9 +80,9 @@ TEST_CASE("run with the default MPFB2 assets: crowd files carry the shaped meshe
       // the condition's seed gives the same bodies, stature measured on their shaped meshes.
       const auto wardrobe =
           Mpfb2Wardrobe::load(default_makehuman_dir(), static_cast<int>(model->base().vertices.size()));
-      const std::vector<Mpfb2Sample> again = sample_mpfb2_bodies(*model, n, derive_seed(crowd.meta.seed, "bodies"),
-                                                                 0.5, kWorldFemaleHeight, kWorldMaleHeight,
-                                                                 wardrobe.get());
+      const std::vector<Mpfb2Sample> again =
+          sample_mpfb2_bodies(*model, n, derive_seed(crowd.meta.seed, "bodies"), 0.5, kWorldFemaleHeight,
+                              kWorldMaleHeight, wardrobe.get());
       for (int i = 0; i < n; ++i) {
         const CharacterAnimation& ch = crowd.characters[static_cast<size_t>(i)];
         const Mpfb2Sample& s = again[static_cast<size_t>(i)];
@@ -116,3 +119,5 @@ TEST_CASE("mpfb2 without a path takes CROWDLAB_MPFB2, else the shipped assets, a
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Catch::Contains("base.obj"));
 }
+
+}  // namespace test_body_model_pipeline

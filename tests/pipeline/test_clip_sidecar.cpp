@@ -10,6 +10,9 @@
 #include "framework/core/stimulus_manifest.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_clip_sidecar {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -120,3 +123,5 @@ TEST_CASE("run --strict and check-stimuli judge every clip by the spec's render.
   CHECK_THAT(r.out, Catch::Contains("4 clip(s): "));
   CHECK(r.exit_code == 0);
 }
+
+}  // namespace test_clip_sidecar

@@ -16,6 +16,9 @@
 #include "framework/core/sha256.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_disk_full {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -139,3 +142,5 @@ TEST_CASE("render on a full disk: exit 1, the file and the OS's reason named, no
     }
   }
 }
+
+}  // namespace test_disk_full

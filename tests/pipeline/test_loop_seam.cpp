@@ -7,6 +7,9 @@
 #include "framework/core/stimulus_manifest.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_loop_seam {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -30,3 +33,5 @@ TEST_CASE("ours loops without a seam and keeps its planted feet", "[pipeline][lo
   }
   CHECK(seen == 1);
 }
+
+}  // namespace test_loop_seam

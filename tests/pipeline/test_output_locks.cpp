@@ -11,6 +11,9 @@
 
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_output_locks {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -99,3 +102,5 @@ TEST_CASE("every other command that writes an output folder is refused while ano
   CHECK_THAT(r.err, Catch::Contains("--stimuli"));
   stop(holder);
 }
+
+}  // namespace test_output_locks

@@ -7,6 +7,9 @@
 
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_plan_injection {
+
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
 
@@ -131,3 +134,5 @@ TEST_CASE("plan: a newline in a path given to a job script is refused", "[pipeli
   }
   CHECK_FALSE(fs::exists(dir / "PWN"));
 }
+
+}  // namespace test_plan_injection

@@ -12,6 +12,9 @@
 #include "framework/core/stimulus_manifest.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_run_integrity {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -108,3 +111,5 @@ TEST_CASE("run: a second run on the same --out exits 2 naming the other process"
     CHECK(r.exit_code == 0);
   }
 }
+
+}  // namespace test_run_integrity

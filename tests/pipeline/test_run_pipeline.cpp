@@ -7,6 +7,9 @@
 #include "framework/core/stimulus_manifest.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_run_pipeline {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -145,3 +148,5 @@ TEST_CASE("bad run arguments exit with code 2") {
   CHECK(run_cli({"run", tiny_spec(), "--out", out.string(), "--condition", "nope"}).exit_code == 2);
   CHECK(run_cli({"run", "/no/such/spec.yaml", "--out", out.string()}).exit_code == 2);
 }
+
+}  // namespace test_run_pipeline

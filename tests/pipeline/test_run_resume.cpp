@@ -16,6 +16,9 @@
 
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_run_resume {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -114,3 +117,5 @@ TEST_CASE("run: a deleted crowd file is recomputed and everything downstream equ
     check_same_outputs(whole, partial);
   }
 }
+
+}  // namespace test_run_resume

@@ -8,6 +8,9 @@
 #include "framework/core/stimulus_manifest.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_slurm {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -79,3 +82,5 @@ TEST_CASE("plan --emit slurm: the script runs on a real single-node Slurm cluste
   REQUIRE(collect.exit_code == 0);
   CHECK(read_manifest((results / "manifest.csv").string()).entries.size() == 6);
 }
+
+}  // namespace test_slurm

@@ -15,6 +15,9 @@
 #include "stimuli/presentation_recipes.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_stage_recipes {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 
@@ -272,3 +275,5 @@ TEST_CASE(
   spec.protocol.loop_video = false;
   CHECK(preroll() == 0.0);
 }
+
+}  // namespace test_stage_recipes

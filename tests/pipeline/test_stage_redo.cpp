@@ -16,6 +16,9 @@
 
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_stage_redo {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -206,3 +209,5 @@ TEST_CASE("stage redo: a crowd, animation or correction change redoes its stage 
                      "area: {width_m: 1.5, depth_m: 1.5}\n  walk_speed_mps: 1.1\n  passing_side: right")
             .empty());
 }
+
+}  // namespace test_stage_redo

@@ -15,6 +15,9 @@
 #include "framework/spec/load_experiment_spec.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_stage_runner {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -238,3 +241,5 @@ TEST_CASE("run_experiment without presentation stages: crowd, animation, correct
   RunSummary third = run_experiment(spec, options);
   CHECK(third.stages_run == 1);
 }
+
+}  // namespace test_stage_runner

@@ -8,6 +8,9 @@
 
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_study_chain {
+
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
 
@@ -44,3 +47,5 @@ TEST_CASE("simulated observers analysed by the report: paired items agree and th
     }
   CHECK(found);
 }
+
+}  // namespace test_study_chain

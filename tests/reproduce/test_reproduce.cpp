@@ -10,6 +10,9 @@
 #include "framework/core/csv.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_reproduce {
+
 using namespace crowdlab;
 using namespace crowdlab::test;
 namespace fs = std::filesystem;
@@ -118,3 +121,5 @@ TEST_CASE("bad reproduce arguments exit with code 2", "[reproduce]") {
   CHECK(run_cli({"reproduce", "gomez2024"}).exit_code == 2);
   CHECK(run_cli({"reproduce", "hoyet2016", "--out", "x", "--observers", "1"}).exit_code == 2);
 }
+
+}  // namespace test_reproduce

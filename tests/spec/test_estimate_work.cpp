@@ -9,6 +9,9 @@
 #include "framework/spec/load_experiment_spec.hpp"
 #include "framework/spec/work_limits.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_estimate_work {
+
 using namespace crowdlab;
 
 namespace {
@@ -73,3 +76,5 @@ TEST_CASE("spec: the crowd generator refuses a density's character-frames as the
   CHECK_THROWS_WITH(scenario_character_count(spec, condition, 900),
                     Catch::Contains("4500 characters x 600 frames") && Catch::Contains("limit of 2000000"));
 }
+
+}  // namespace test_estimate_work

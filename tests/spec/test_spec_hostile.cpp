@@ -9,6 +9,9 @@
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_spec_hostile {
+
 using namespace crowdlab;
 
 namespace {
@@ -247,3 +250,5 @@ TEST_CASE("validate refuses a crowd without a size, naming scenario.agents, as r
   std::ofstream(sized) << body << "scenario: {type: stationary, agents: 12}\n";
   CHECK(test::run_cli({"validate", sized.string()}).exit_code == 0);
 }
+
+}  // namespace test_spec_hostile

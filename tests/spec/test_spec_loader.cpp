@@ -10,6 +10,9 @@
 #include "framework/spec/load_experiment_spec.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_spec_loader {
+
 using namespace crowdlab;
 
 namespace {
@@ -414,3 +417,5 @@ TEST_CASE("typed conditions: the scenario follows the scenario factor, with A/B 
   const ExperimentSpec plain = load_text(kHeader + "scenario: {type: corridor}\n");
   CHECK(enumerate_conditions(plain).at(0).params.scenario == ScenarioKind::corridor);
 }
+
+}  // namespace test_spec_loader

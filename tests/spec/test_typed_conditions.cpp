@@ -7,6 +7,9 @@
 #include "framework/spec/load_experiment_spec.hpp"
 #include "framework/spec/type_condition.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_typed_conditions {
+
 using namespace crowdlab;
 
 namespace {
@@ -101,3 +104,5 @@ TEST_CASE("the enums' spellings round-trip, and the loader refuses the others wi
     CHECK_THAT(e.what(), Catch::Contains("animation.motion") && Catch::Contains("mocap"));
   }
 }
+
+}  // namespace test_typed_conditions

@@ -9,6 +9,9 @@
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_validate_cli {
+
 using namespace crowdlab;
 using test::run_cli;
 
@@ -256,3 +259,5 @@ TEST_CASE("validate loads the MPFB2 asset folder a spec names, as run does") {
   CHECK_THAT(r.err, Catch::Contains("spec.yaml:14:15: animation.body_model: ") &&
                         Catch::Contains("base.obj: cannot open OBJ file"));
 }
+
+}  // namespace test_validate_cli

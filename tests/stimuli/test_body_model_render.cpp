@@ -16,6 +16,9 @@
 #include "stimuli/skinned_body_mesh.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_body_model_render {
+
 using namespace crowdlab;
 using namespace crowdlab::stimuli;
 
@@ -276,3 +279,5 @@ TEST_CASE("an appearance index packs clothing and skin tone, the tone replaces t
   CHECK(differing > 100);
   CHECK(sum_b < sum_a);
 }
+
+}  // namespace test_body_model_render

@@ -20,6 +20,9 @@
 #include "stimuli/skinned_body_mesh.hpp"
 #include "stimuli/synthetic_crowd.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_clean_scene {
+
 using namespace crowdlab;
 using namespace crowdlab::stimuli;
 
@@ -318,3 +321,5 @@ TEST_CASE("levels of detail hold the face to half their error bound", "[stimuli]
     CHECK(d <= 0.5 * levels[l].error_m);
   }
 }
+
+}  // namespace test_clean_scene

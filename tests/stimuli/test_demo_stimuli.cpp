@@ -13,6 +13,9 @@
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_demo_stimuli {
+
 using namespace crowdlab;
 using namespace crowdlab::stimuli;
 namespace fs = std::filesystem;
@@ -133,3 +136,5 @@ TEST_CASE("demo stimuli at 640x360: not blank, characters where predicted, less 
     CHECK(by_method.at("ours") < by_method.at("baseline"));
   }
 }
+
+}  // namespace test_demo_stimuli

@@ -15,6 +15,9 @@
 #include "stimuli/synthetic_crowd.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_fast_path {
+
 using namespace crowdlab;
 using namespace crowdlab::stimuli;
 
@@ -143,3 +146,5 @@ TEST_CASE("render quality: the measure sees what encoding costs", "[stimuli][fas
       measure_render_quality(renderer(), crowd, same, reference, {ViewpointId::V3}, 6, {6}, dir.string()),
       InputError);
 }
+
+}  // namespace test_fast_path

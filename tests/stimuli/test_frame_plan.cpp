@@ -9,6 +9,9 @@
 #include "stimuli/synthetic_crowd.hpp"
 #include "tests/support/two_sphere_crowd.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_frame_plan {
+
 using namespace crowdlab;
 using namespace crowdlab::stimuli;
 
@@ -185,3 +188,5 @@ TEST_CASE("prepare_frame: overlap mode flags the drawn vertices inside another c
   prepare_frame(apart, 0, front_camera(), options, t.scene, plan);
   for (const float f : plan.inside) CHECK(f == 0.0f);
 }
+
+}  // namespace test_frame_plan

@@ -18,6 +18,9 @@
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_gltf_character {
+
 using namespace crowdlab;
 using namespace crowdlab::stimuli;
 
@@ -290,3 +293,5 @@ TEST_CASE("render.characters in a spec and --character on the command line", "[s
     CHECK(std::string(e.what()).find("render.characters[0]") != std::string::npos);
   }
 }
+
+}  // namespace test_gltf_character

@@ -9,6 +9,9 @@
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_render_cli {
+
 using namespace crowdlab;
 
 TEST_CASE(
@@ -51,3 +54,5 @@ TEST_CASE(
   CHECK(preset.exit_code == 2);
   CHECK(preset.err.find("unknown x264 preset 'bogus'") != std::string::npos);
 }
+
+}  // namespace test_render_cli

@@ -10,6 +10,9 @@
 #include "stimuli/render_clip.hpp"
 #include "stimuli/synthetic_crowd.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_shared_camera {
+
 using namespace crowdlab;
 using namespace crowdlab::stimuli;
 
@@ -197,3 +200,5 @@ TEST_CASE("with the shared camera, frame 0 of a pair differs only where the bodi
   CHECK(far_pixels > 10000);  // much of the image is far from every character ...
   CHECK(far_differing == 0);  // ... and identical there
 }
+
+}  // namespace test_shared_camera

@@ -23,6 +23,9 @@ extern "C" {
 #include "tests/support/test_paths.hpp"
 #include "tests/support/two_sphere_crowd.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_stimuli {
+
 using namespace crowdlab;
 using namespace crowdlab::stimuli;
 
@@ -433,3 +436,5 @@ TEST_CASE("a wall between the camera and the crowd is cut away, walls elsewhere 
   // ... and the side wall is drawn.
   CHECK(is_environment(colour_at(side_wall.center_m + Vec3(-0.05, 0.2, 0.5))));
 }
+
+}  // namespace test_stimuli

@@ -7,6 +7,9 @@
 #include "stimuli/stimulus_check.hpp"
 #include "stimuli/synthetic_crowd.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_stimulus_check {
+
 using namespace crowdlab;
 using namespace crowdlab::stimuli;
 
@@ -102,3 +105,5 @@ TEST_CASE("stimulus check: overlap measures, thresholds and the sidecar form", "
   CHECK(back.overlap_pixel_fraction == Approx(0.002));
   CHECK(stimulus_check_from_json(stimulus_check_json(unknown)).seam_step_ratio == -1.0);
 }
+
+}  // namespace test_stimulus_check

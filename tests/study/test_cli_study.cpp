@@ -20,6 +20,9 @@
 #include "tests/study/study_fixture.hpp"
 #include "tests/support/run_cli.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_cli_study {
+
 using namespace crowdlab;
 namespace fs = std::filesystem;
 
@@ -433,3 +436,5 @@ TEST_CASE("full screen on an X server without a window manager covers the real s
                        (dir / "stimuli").string(), "--require-fullscreen", "--windowed", "800x600"})
             .exit_code == 2);
 }
+
+}  // namespace test_cli_study

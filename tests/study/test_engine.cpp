@@ -13,6 +13,9 @@
 #include "study_ui/study_question.hpp"
 #include "tests/study/study_fixture.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_engine {
+
 using namespace crowdlab;
 using namespace crowdlab::study;
 
@@ -326,3 +329,5 @@ TEST_CASE("simulated ratings: collision frequency rises and naturalness falls wi
   CHECK(collisions[1] > collisions[0] + 300 * 0.5);
   CHECK(natural[1] < natural[0] - 300 * 0.5);
 }
+
+}  // namespace test_engine

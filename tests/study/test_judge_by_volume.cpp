@@ -5,6 +5,9 @@
 #include "framework/core/error.hpp"
 #include "study_ui/simulated_observer.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_judge_by_volume {
+
 using namespace crowdlab;
 using namespace crowdlab::study;
 
@@ -28,3 +31,5 @@ TEST_CASE("simulated observers: judge_by_volume switches the collision answer to
   CHECK_FALSE(model.judge_by_volume);
   CHECK_THROWS_AS(model.set("judge_by_volume=0.5"), InputError);
 }
+
+}  // namespace test_judge_by_volume

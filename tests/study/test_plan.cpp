@@ -9,6 +9,9 @@
 #include "study_ui/web_export.hpp"
 #include "tests/study/study_fixture.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_plan {
+
 using namespace crowdlab;
 using namespace crowdlab::study;
 
@@ -82,3 +85,5 @@ TEST_CASE("session plan: screens with one hint each, trial headers, breaks, part
   CHECK(timeline["plans"]["P06"][1]["first_session_only"] == true);
   CHECK(timeline["inter_trial"]["min_ms"] == spec.protocol.inter_trial_min_ms);
 }
+
+}  // namespace test_plan

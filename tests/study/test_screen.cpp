@@ -14,6 +14,9 @@
 #include "study_ui/video_source.hpp"
 #include "tests/study/study_fixture.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_screen {
+
 using namespace crowdlab;
 using namespace crowdlab::study;
 
@@ -182,3 +185,5 @@ TEST_CASE("keyboard answers reach every point of 10- and 11-point scales", "[stu
     CHECK(type(keys)[0] == v);
   }
 }
+
+}  // namespace test_screen

@@ -16,6 +16,9 @@
 #include "tests/study/study_fixture.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_session {
+
 using namespace crowdlab;
 using namespace crowdlab::study;
 namespace fs = std::filesystem;
@@ -396,3 +399,5 @@ TEST_CASE("each trial names the next shown trial's clip, so the window prefetche
   for (const auto& c : all.clips) distinct.insert(c.first);
   CHECK(distinct.size() == 5);  // the chain is of different clips, not one clip named twice
 }
+
+}  // namespace test_session

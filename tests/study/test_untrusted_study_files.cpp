@@ -19,6 +19,9 @@
 #include "tests/study/web_fixture.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_untrusted_study_files {
+
 using namespace crowdlab;
 using namespace crowdlab::study;
 namespace fs = std::filesystem;
@@ -210,3 +213,5 @@ TEST_CASE("import-web refuses integers beyond int's range instead of truncating 
   }
   CHECK_FALSE(fs::exists(w.dir / "out" / "P01.csv"));
 }
+
+}  // namespace test_untrusted_study_files

@@ -22,6 +22,9 @@
 #include "tests/study/web_fixture.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_web_browser {
+
 using namespace crowdlab;
 using namespace crowdlab::study;
 namespace fs = std::filesystem;
@@ -602,3 +605,5 @@ TEST_CASE(
     CHECK(meta["consent"] == lines[0]["consent"]);
   }
 }
+
+}  // namespace test_web_browser

@@ -12,6 +12,9 @@
 #include "tests/study/web_fixture.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_web_csv {
+
 using namespace crowdlab;
 using namespace crowdlab::study;
 using namespace crowdlab::test::web;
@@ -89,3 +92,5 @@ TEST_CASE("import-web reads jsPsych CSV data, malformed CSVs are refused with fi
             .complete == 1);
   CHECK(slurp(dir / "out" / "P01.csv") == slurp(dir / "out-json" / "P01.csv"));
 }
+
+}  // namespace test_web_csv

@@ -28,6 +28,9 @@
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_web_export {
+
 using namespace crowdlab;
 using namespace crowdlab::study;
 namespace fs = std::filesystem;
@@ -482,3 +485,5 @@ TEST_CASE("the npm packages pinned for the page are exactly those export-web cop
   for (const auto& [name, version] : lock.at("packages").at("").at("dependencies").items()) root.insert(name);
   CHECK(root == shipped);
 }
+
+}  // namespace test_web_export

@@ -10,6 +10,9 @@
 #include "framework/surface/surface_scenes.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_gltf_surface {
+
 using namespace crowdlab;
 namespace fs = std::filesystem;
 
@@ -192,3 +195,5 @@ TEST_CASE("glTF surface: a 100,000-node parent->child chain loads without recurs
   std::ofstream(file) << json;
   check_square(load_gltf_surface(file.string()), Vec3(2, 0, 3), 1);
 }
+
+}  // namespace test_gltf_surface

@@ -12,6 +12,9 @@
 #include "tests/support/run_cli.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_manifold_cli {
+
 using namespace crowdlab;
 namespace fs = std::filesystem;
 
@@ -125,3 +128,5 @@ TEST_CASE("experiment manifold-compare measures every scene, model and Relevant 
   }
   CHECK(r.out.find("median collision rate, visibility_mesh Relevant") != std::string::npos);
 }
+
+}  // namespace test_manifold_cli

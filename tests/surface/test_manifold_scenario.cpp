@@ -11,6 +11,9 @@
 #include "framework/surface/generate_manifold_scenario.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_manifold_scenario {
+
 using namespace crowdlab;
 
 namespace {
@@ -178,3 +181,5 @@ TEST_CASE("a manifold scenario is deterministic and refuses crowd models it cann
       generate_manifold_scenario(manifold_spec("floor_ceiling", CrowdModel::orca, 0, 0.5), condition(1)),
       InputError);
 }
+
+}  // namespace test_manifold_scenario

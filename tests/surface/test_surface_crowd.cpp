@@ -12,6 +12,9 @@
 #include "framework/surface/triangle_bvh.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_surface_crowd {
+
 using namespace crowdlab;
 
 namespace {
@@ -282,3 +285,5 @@ TEST_CASE("the mesh-near-feet visibility sees over a thin slab's edge where the 
   }
   CHECK(hidden > 0);
 }
+
+}  // namespace test_surface_crowd

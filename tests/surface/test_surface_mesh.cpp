@@ -8,6 +8,9 @@
 #include "framework/surface/surface_scenes.hpp"
 #include "tests/support/test_paths.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_surface_mesh {
+
 using namespace crowdlab;
 
 namespace {
@@ -111,3 +114,5 @@ TEST_CASE("geodesic distance on a flat floor matches Euclidean distance") {
   const int on_wall = nearest_vertex(floor, Vec3(0, 3, 5));
   CHECK(d[static_cast<size_t>(on_wall)] == Approx(8.0).epsilon(0.02));
 }
+
+}  // namespace test_surface_mesh

@@ -10,6 +10,9 @@
 #include "framework/surface/surface_scenes.hpp"
 #include "framework/surface/tangent_orca.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_tangent_orca {
+
 using namespace crowdlab;
 
 namespace {
@@ -106,3 +109,5 @@ TEST_CASE("ORCA agents crossing on a floor reach their antipodes without overlap
   // Everybody got across (the crowd did not freeze): each came within a metre of its antipode.
   for (int i = 0; i < n; ++i) CHECK(closest_to_goal[size_t(i)] < 1.0);
 }
+
+}  // namespace test_tangent_orca
