@@ -12,6 +12,9 @@
 #include "framework/core/error.hpp"
 #include "framework/correction/corrector_step.hpp"
 
+// This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
+namespace test_rate_limited_joints {
+
 using namespace crowdlab;
 
 namespace {
@@ -83,3 +86,5 @@ TEST_CASE("correction: joint sets are read from group and joint names, and writt
   CHECK_THROWS_AS(parse_joint_set("light,elbow"), InputError);
   CHECK_THROWS_WITH(parse_joint_set("knees,,hips"), Catch::Contains("''"));
 }
+
+}  // namespace test_rate_limited_joints
