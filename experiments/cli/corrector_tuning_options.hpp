@@ -1,6 +1,9 @@
 #pragma once
 // The corrector's tuning options shared by `crowdlab correct`, `crowdlab bench correct` and `crowdlab
 // experiment overlap-vs-density` (defaults = CorrectorParams; units and sources in corrector_params.hpp).
+#include <memory>
+#include <string>
+
 #include "experiments/cli/command.hpp"
 #include "framework/correction/corrector_params.hpp"
 
@@ -25,7 +28,7 @@ inline void add_anticipation_options(Command* cmd, CorrectorParams& params) {
 
 /// Adds --contact-stiffness, --cg-tolerance, --active-set-passes, --depenetration-passes,
 /// --depenetration-tolerance, --foot-pop-budget, --free-joints, --free-joint-margin, --free-joint-hold,
-/// --free-joint-return, --light-joint-rate-limit, --elbow-rate-limit, --settle-feet and the anticipation
+/// --free-joint-return, --rate-limited-joints, --settle-feet and the anticipation
 /// options to `cmd`, writing into `params` (which must outlive the parse).
 inline void add_corrector_tuning_options(Command* cmd, CorrectorParams& params) {
   cmd->add_option("--contact-stiffness", params.contact_stiffness, "Collision penalty k_delta (N/m)")
@@ -64,13 +67,15 @@ inline void add_corrector_tuning_options(Command* cmd, CorrectorParams& params) 
                   "Rate (rad/s) at which a released joint returns to its input")
       ->check(check::range(0.0, 1000.0))
       ->capture_default_str();
-  cmd->add_option(
-         "--light-joint-rate-limit", params.rate_limit_light_joints,
-         "Wrists, hands, ankles and balls turn at most --free-joint-return while in contact (true/false)")
-      ->capture_default_str();
-  cmd->add_option("--elbow-rate-limit", params.rate_limit_elbows,
-                  "Engaged elbows turn at most --free-joint-return, as wrists and hands (true/false)")
-      ->capture_default_str();
+  // The list is bound to a string the option's callback keeps alive, and parsed into the set.
+  auto joints = std::make_shared<std::string>(joint_set_name(params.rate_limited_joints));
+  cmd->add_option("--rate-limited-joints", *joints,
+                  "Joints that turn at most --free-joint-return while in contact: none, or groups (light: "
+                  "wrists, hands, ankles, balls; elbows; head: neck, head; shoulders: collars, shoulders; "
+                  "spine; hips; knees) and SMPL joint names, comma-separated")
+      ->capture_default_str()
+      ->each(
+          [joints, &params](const std::string& list) { params.rate_limited_joints = parse_joint_set(list); });
   cmd->add_option("--settle-feet", params.held_feet_at_input_height,
                   "Hold planted feet at the input's height: held balls at their own, bodies settled onto "
                   "held feet (true/false)")

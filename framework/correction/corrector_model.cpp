@@ -1,6 +1,7 @@
 #include "framework/correction/corrector_model.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -12,6 +13,59 @@
 #include "framework/correction/anticipate_contacts.hpp"
 
 namespace crowdlab {
+
+namespace {
+
+struct JointGroup {
+  std::string_view name;
+  BoneMask joints;
+};
+
+/// The named groups of parse_joint_set, in the order joint_set_name writes them.
+constexpr std::array<JointGroup, 7> kJointGroups = {{
+    {"light", kLightJoints},
+    {"elbows", kElbowJoints},
+    {"head", kHeadJoints},
+    {"shoulders", kShoulderJoints},
+    {"spine", joint_set({kSpine1, kSpine2, kSpine3})},
+    {"hips", joint_set({kLeftHip, kRightHip})},
+    {"knees", joint_set({kLeftKnee, kRightKnee})},
+}};
+
+BoneMask joint_set_item(std::string_view item) {
+  if (item == "none") return 0;
+  for (const JointGroup& g : kJointGroups)
+    if (item == g.name) return g.joints;
+  if (const auto j = joint_from_name(item)) return BoneMask{1} << *j;
+  throw InputError("joint set: unknown joint or group '" + std::string(item) +
+                   "' (none, light, elbows, head, shoulders, spine, hips, knees or an SMPL joint name)");
+}
+
+}  // namespace
+
+BoneMask parse_joint_set(std::string_view list) {
+  BoneMask set = 0;
+  size_t start = 0;
+  while (start <= list.size()) {
+    const size_t comma = std::min(list.find(',', start), list.size());
+    set |= joint_set_item(list.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return set;
+}
+
+std::string joint_set_name(BoneMask set) {
+  std::string out;
+  auto add = [&out](std::string_view name) { out += (out.empty() ? "" : ",") + std::string(name); };
+  for (const JointGroup& g : kJointGroups)
+    if ((set & g.joints) == g.joints) {
+      add(g.name);
+      set &= ~g.joints;
+    }
+  for (int j = 0; j < kJointCount; ++j)
+    if (set & (BoneMask{1} << j)) add(joint_name(j));
+  return out.empty() ? "none" : out;
+}
 
 void validate_corrector_params(const CorrectorParams& p) {
   auto check = [](double v, const char* name, double lo) {

@@ -23,9 +23,36 @@
 // (Session 1 scaled d by the effective inertia instead, which left d = 0.006 at zeta ~ 0.14, visibly
 // oscillating, and made d = 0.06 the best value, contradicting Fig. 4.)
 #include <cstdint>
+#include <initializer_list>
 #include <string>
+#include <string_view>
+
+#include "framework/core/joint_scope.hpp"
 
 namespace crowdlab {
+
+/// The set of the given joints (bit j = joint j).
+constexpr BoneMask joint_set(std::initializer_list<int> joints) {
+  BoneMask m = 0;
+  for (int j : joints) m |= BoneMask{1} << j;
+  return m;
+}
+
+/// Groups of joints for CorrectorParams::rate_limited_joints, by the names parse_joint_set takes.
+/// "light": the distal joints, limited since session 9 (of 11,467 flips of a 3 s corridor at 6.66 /m^2
+/// without a limit, 7,774 were hands, 2,204 wrists, 1,177 balls, 218 ankles).
+inline constexpr BoneMask kLightJoints = joint_set(
+    {kLeftWrist, kRightWrist, kLeftHand, kRightHand, kLeftAnkle, kRightAnkle, kLeftFoot, kRightFoot});
+/// "elbows": limited since session 13 (stationary 6.66 /m^2: 214 elbow flips -> 0, docs/correction.md).
+inline constexpr BoneMask kElbowJoints = joint_set({kLeftElbow, kRightElbow});
+/// "head": neck and head; "shoulders": collars and shoulders (upper arms). Limited since session 15: on
+/// 3 s gomez2024 clips the stationary crowd at 6.66 /m^2 had 21 head and shoulder flips, turned by the
+/// Newton step; limited, 0, and p99 depth 12.5 -> 5.1 mm (docs/correction.md).
+inline constexpr BoneMask kHeadJoints = joint_set({kNeck, kHead});
+inline constexpr BoneMask kShoulderJoints =
+    joint_set({kLeftCollar, kRightCollar, kLeftShoulder, kRightShoulder});
+inline constexpr BoneMask kDefaultRateLimitedJoints =
+    kLightJoints | kElbowJoints | kHeadJoints | kShoulderJoints;
 
 struct CorrectorParams {
   // ---- Control, Eq. 4 (spring 1/2 k ||R - R_hat||_F^2, damper 1/2 d/h^2 ||R - R_old - R_hat +
@@ -231,18 +258,16 @@ struct CorrectorParams {
   /// 5.7 deg per frame at 30 fps: 17 deg within 3 frames, under the flip measure's 20 deg
   /// (metrics/joint_flips.hpp), and a 45 deg deviation is gone in a quarter of a second.
   double free_joint_return_radps = 3.4;
-  /// Whether the light distal joints (wrists, hands, ankles, balls of the feet) also turn at most
-  /// free_joint_return_radps while engaged, in the step and in the depenetration pass, so that they
-  /// never flip (stage_free_joints.cpp, rate_limited_joint). false: engaged joints follow the solve.
-  bool rate_limit_light_joints = true;
-  /// Whether engaged elbows turn at most free_joint_return_radps from their last deviation, in the step
-  /// and in the depenetration pass (their column gets weight 0 once the turn is used, so the shoulder,
-  /// the trunk and the neighbour separate the contact), as the light joints do (stage_free_joints.cpp).
-  /// Session 13 (3 s gomez2024 clips): stationary flips 7 -> 0 at 4.44 /m^2 and 226 -> 10 at 6.66 /m^2
-  /// (the elbows' 214 -> 0), p99 depth 4.9 -> 5.0 and 9.4 -> 10.2 mm (docs/correction.md). Session 9
-  /// had rejected it at p99 depths of 11-17 mm, measured on other clips before sessions 10-11 changed
-  /// the pass and the holds. false = the session-12 correction.
-  bool rate_limit_elbows = true;
+  /// The joints that, while engaged, turn at most free_joint_return_radps from their last deviation, in
+  /// the step and in the depenetration pass, where a joint's column gets weight 0 once its turn is used
+  /// so that the joints that may still move, and the neighbour, separate the contact
+  /// (stage_free_joints.cpp). At 30 fps the rate is 6.5 deg per frame, 19.5 deg within 3 frames: under
+  /// the flip measure's 20 deg (metrics/joint_flips.hpp), so a limited joint never flips. A set over the
+  /// 24 joints (bit j = joint j; parse_joint_set names them). Default kDefaultRateLimitedJoints. Not the
+  /// knees and hips: held legs are posed by the leg IK after the limit, so their flips moved to the ankles
+  /// and the legs stopped separating contacts (session 15, corridor 6.66 /m^2: 121-221 flips left, p99
+  /// depth 9-10 -> 11-17 mm, 0 -> 9-24 foot pops, docs/correction.md).
+  BoneMask rate_limited_joints = kDefaultRateLimitedJoints;
 
   // ---- Feet on the ground (stage_depenetrate.cpp, stage_settle_feet.cpp, issue 27, sessions 12-13)
   /// Whether held feet are brought to the input's height: a held ball's goal height is its input's (not
@@ -265,7 +290,7 @@ struct CorrectorParams {
   /// or "all". Not the default (docs/correction.md, session 13): with "arms" the stationary flips at
   /// 6.66 /m^2 fell 226 -> 46 but the corridor's rose (4.44 /m^2: 39 -> 52), and each run folds the
   /// ramped elbows further; "all" let planted feet drift (p99 108-150 mm, 13-111 pops). The elbow rate
-  /// limit (rate_limit_elbows) removes more flips in one run.
+  /// limit (rate_limited_joints) removes more flips in one run.
   std::string anticipated_joints = "none";
   /// Rate (rad/s) of the ramps: at 30 fps 2.4 rad/s is 4.6 deg per frame, 13.8 deg within 3 frames, which
   /// leaves the next run 6 deg under the flip measure's 20 deg for what it adds.
@@ -278,5 +303,12 @@ struct CorrectorParams {
 
 /// Throws InputError naming the field when a parameter is out of range or not finite.
 void validate_corrector_params(const CorrectorParams& params);
+
+/// A joint set from a comma-separated list of group names ("none", "light", "elbows", "head": neck and
+/// head, "shoulders": collars and shoulders, "spine", "hips", "knees") and SMPL joint names
+/// ("right_knee"), e.g. "light,elbows,knees". Throws InputError naming the unknown item.
+BoneMask parse_joint_set(std::string_view list);
+/// The list parse_joint_set reads back into `set`: whole groups by their names, the rest by joint name.
+std::string joint_set_name(BoneMask set);
 
 }  // namespace crowdlab

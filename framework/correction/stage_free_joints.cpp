@@ -49,35 +49,18 @@ void engage(const CorrectorModel& model, CorrectorState& s, int c) {
       s.engaged_until[static_cast<size_t>(c * kJointCount + j)] = until;
 }
 
-/// The joints whose engaged deviation is rate-limited: wrists, hands, ankles and balls of the feet, and
-/// the elbows when params.rate_limit_elbows (limited()).
+/// Whether joint j's engaged deviation is rate-limited (params.rate_limited_joints).
 /// Measured on gomez2024 at 6.66 /m^2 (3 s) without a limit: of 11,467 flips in the corridor, 7,774
 /// were hands, 2,204 wrists, 1,177 balls, 218 ankles, 41 elbows; limiting every joint instead left p99
 /// inter-body depths of 20-21 mm (the trunk and the legs could no longer get out of the way), limiting
-/// the elbows too 11-17 mm in the stationary crowd (docs/correction.md).
-bool rate_limited_joint(int j) {
-  switch (j) {
-    case kLeftWrist:
-    case kRightWrist:
-    case kLeftHand:
-    case kRightHand:
-    case kLeftAnkle:
-    case kRightAnkle:
-    case kLeftFoot:
-    case kRightFoot:
-      return true;
-    default:
-      return false;
-  }
-}
-
+/// the elbows too 11-17 mm in the stationary crowd (session 9; since session 13 the elbows are limited at
+/// no cost in depth, docs/correction.md).
 bool limited(const CorrectorModel& model, int j) {
-  const bool elbow = j == kLeftElbow || j == kRightElbow;
-  return (model.params.rate_limit_light_joints && rate_limited_joint(j)) ||
-         (model.params.rate_limit_elbows && elbow);
+  return (model.params.rate_limited_joints & (BoneMask{1} << j)) != 0;
 }
 
-/// The knees, whose engaged twist (about the shank) is rate-limited. The twist of a shank moves no
+/// The knees, whose engaged twist (about the shank) is rate-limited when their ankles are
+/// (params.rate_limited_joints) and they are not. The twist of a shank moves no
 /// capsule of the leg (a capsule is symmetric about its axis; the held foot keeps its own rotation), so
 /// limiting it costs no separation; without the limit the solve and the pass turned knees of held legs
 /// by 10-16 deg per frame about the shank, and their ankles the other way (issue 27: the corridor's
@@ -159,11 +142,11 @@ bool release_free_joints(const CorrectorModel& model, const CorrectorState& s, i
                           ? (target.local_rotations[jj].conjugate() * pose.local_rotations[jj]).normalized()
                           : Quat::Identity();
     const double angle = 2.0 * std::acos(std::min(1.0, std::abs(d_old.dot(want))));
-    // Engaged trunk, shoulder and leg joints follow the solve at any rate (they carry the pushes);
-    // the light distal ones are rate-limited (rate_limited_joint).
+    // Engaged joints outside params.rate_limited_joints follow the solve at any rate (they carry the
+    // pushes); the limited ones turn at most the rate.
     if (engaged && !limited(model, j)) {
       const int child = twist_limited_child(j);
-      if (child < 0 || !model.params.rate_limit_light_joints) continue;
+      if (child < 0 || !limited(model, child)) continue;
       const Vec3 axis =
           model.bodies[static_cast<size_t>(c)].shape.joint_offsets_m[static_cast<size_t>(child)].normalized();
       const Quat d = limit_twist(d_old, want, axis, step);

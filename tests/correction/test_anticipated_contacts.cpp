@@ -89,12 +89,12 @@ TEST_CASE(
     "[correction][anticipation]") {
   // Sessions 11-12: the step stopped such a forearm within a frame of the contact, so its deviation grew
   // by the input's 25 deg per frame (stationary crowds at 6.66 /m^2: ~210 elbow flips in 3 s). With the
-  // elbow limit off (rate_limit_elbows = false, as on main) this clip flips; on, the elbow turns at most
-  // 6.5 deg per frame and the shoulder, the trunk and the neighbour give way instead.
+  // elbow limit off (elbows out of rate_limited_joints, as in session 12) this clip flips; on, the elbow
+  // turns at most 6.5 deg per frame and the shoulder, the trunk and the neighbour give way instead.
   const CrowdAnimation input = forearm_swung_into_a_neighbour_at_25_deg_per_frame();
   REQUIRE(deepest_over_clip(input) > 0.05);  // the input goes deep into the neighbour
   CorrectorParams params;
-  params.rate_limit_elbows = false;
+  params.rate_limited_joints &= ~kElbowJoints;
   const SwingResult unlimited = correct_the_swing(input, params);
   INFO("elbows unlimited: " << unlimited.flips.count << " flips, largest change "
                             << unlimited.flips.max_change_deg << " deg, deepest " << unlimited.deepest_m
@@ -114,7 +114,7 @@ TEST_CASE("correction: a forearm swung into a neighbour is anticipated by a seco
   // elbow limit off, the second run's target already turns the forearm away before the contact.
   const CrowdAnimation input = forearm_swung_into_a_neighbour_at_25_deg_per_frame();
   CorrectorParams params;
-  params.rate_limit_elbows = false;
+  params.rate_limited_joints &= ~kElbowJoints;
   const SwingResult causal = correct_the_swing(input, params);
   params.anticipated_joints = "arms";
   const SwingResult anticipated = correct_the_swing(input, params);

@@ -43,6 +43,9 @@ TEST_CASE("correction cli: bad input files and options exit with code 2", "[corr
   CHECK(test::run_cli({"correct", (dir / "missing.glb").string(), "--out", (dir / "o.glb").string()})
             .exit_code == 2);
   CHECK(test::run_cli({"bench", "correct", "--characters", "0"}).exit_code == 2);
+  const auto joints = test::run_cli({"bench", "correct", "--rate-limited-joints", "light,elbow"});
+  CHECK(joints.exit_code == 2);
+  CHECK(joints.err.find("'elbow'") != std::string::npos);
 }
 
 TEST_CASE("correction cli: bench correct --json prints the documented fields", "[correction][cli]") {
