@@ -77,8 +77,8 @@ struct CorrectionRecipe {
   /// leaves too deep try the plain blend (issue 28, session 13); 8: engaged elbows rate-limited as the
   /// light joints (issue 27, session 13); 9: the depenetration pass never pushes a capsule into an
   /// environment box or a foot below the ground (surface guards), and held feet give way when their lower leg
-  /// is deep in a box (issue 27, session 15); 10: characters a too-deep closure leaves open may start from the
-  /// next lap, close their arms alone, or close together with their open neighbours, and a closure may
+  /// is deep in a box (issue 27, session 15); 10: characters a too-deep closure leaves open may start from
+  /// the next lap, close their arms alone, or close together with their open neighbours, and a closure may
   /// reach 10 mm (issue 28, session 15); 11: engaged necks, heads, collars and shoulders rate-limited too
   /// (issue 27, session 15).
   static constexpr std::string_view kCodeVersion = "11";
