@@ -6,9 +6,9 @@
 // or a sanitizer report.
 //
 // Reproducing a failure: the message gives the seed, the case number, the mutations, the command and
-// the input file, which is kept under build/test-scratch/fuzz_<kind>/. Run that command on that file,
-// or rerun the test with CROWDLAB_FUZZ_SEED=<seed>. CROWDLAB_FUZZ_CASES=<n> changes the number of
-// cases per input kind (for a longer run by hand).
+// the input file, which is kept under build/test-scratch/fuzz_<kind>/<test tag>/. Run that command on that
+// file, or rerun the test with CROWDLAB_FUZZ_SEED=<seed>. CROWDLAB_FUZZ_CASES=<n> changes the number of cases
+// per input kind (for a longer run by hand).
 //
 // The hostile families of issue 32 (deep JSON in web results, GLB accessors viewing one buffer many
 // times, gzip bombs, duplicate factor levels, special files as inputs, outputs that are links) are

@@ -4,6 +4,7 @@
 // small translation unit (test_paths.cpp), so the test sources compile to the same objects in every
 // checkout and a compiler cache can share them between worktrees.
 #include <catch2/catch.hpp>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -28,9 +29,21 @@ inline std::filesystem::path shared_data(const std::string& sub) {
   return std::filesystem::exists(p) ? p : std::filesystem::path{};
 }
 
-/// A fresh, empty scratch directory under the build tree for one test.
+/// A short, stable name for the running test case (FNV-1a of its name, in hex).
+inline std::string current_test_tag() {
+  std::uint64_t h = 1469598103934665603ull;
+  for (const unsigned char c : Catch::getResultCapture().getCurrentTestName()) h = (h ^ c) * 1099511628211ull;
+  std::ostringstream tag;
+  tag << std::hex << h;
+  return tag.str();
+}
+
+/// A fresh, empty scratch directory under the build tree for one test case. ctest runs the test cases
+/// of one executable as parallel processes, and two cases may ask for the same name (a helper shared by
+/// a file's cases): each case gets its own folder under the name, so one case's remove_all never empties
+/// a folder another case is writing (the CI failure of stop 40).
 inline std::filesystem::path scratch_dir(const std::string& name) {
-  const auto p = binary_dir() / "test-scratch" / name;
+  const auto p = binary_dir() / "test-scratch" / name / current_test_tag();
   std::filesystem::remove_all(p);
   std::filesystem::create_directories(p);
   return p;
