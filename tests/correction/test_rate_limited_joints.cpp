@@ -25,18 +25,16 @@ using namespace crowdlab;
 
 namespace {
 
-/// The deviation (rad) joint j keeps after the step's release when the solve turned it by turn_rad, and
-/// what the depenetration pass may still turn it (rad).
-struct Kept {
-  double deviation_rad = 0.0, left_rad = 0.0;
+/// After the step's release, for one standing body with every joint engaged (in contact) and no
+/// deviation so far, whose joint j the solve turned by `turn` (local, in its parent frame): the joint's
+/// local rotation, what the depenetration pass may still turn it (rad), and what it may still turn the
+/// left knee off its hinge (rad; -1 where not so limited).
+struct Released {
+  Quat local = Quat::Identity();
+  double left_rad = 0.0, knee_off_hinge_left_rad = 0.0;
 };
-
-/// One standing body with every joint engaged (in contact) and no deviation so far, whose joint j the
-/// solve turned by turn_rad about its x axis.
-Kept after_a_fast_turn(BoneMask limited, int j, double turn_rad) {
+Released after_the_release(const CorrectorParams& params, int j, const Quat& turn) {
   const BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
-  CorrectorParams params;
-  params.rate_limited_joints = limited;
   const CorrectorModel model = make_corrector_model({shape}, params, {}, 30);
   CorrectorState s;
   s.step_index = 5;
@@ -44,12 +42,24 @@ Kept after_a_fast_turn(BoneMask limited, int j, double turn_rad) {
   s.output_deviation.assign(kJointCount, Quat::Identity());
   s.engaged_until.assign(kJointCount, 100);
   Pose pose = Pose::rest(shape);
-  pose.local_rotations[static_cast<size_t>(j)] = Quat(Eigen::AngleAxisd(turn_rad, Vec3::UnitX()));
+  pose.local_rotations[static_cast<size_t>(j)] = turn;
   std::array<double, kJointCount> left{};
   rotation_left(model, s, 0, pose, left);
   release_free_joints(model, s, 0, pose);
-  return {pose.local_rotations[static_cast<size_t>(j)].angularDistance(Quat::Identity()),
-          left[static_cast<size_t>(j)]};
+  return {pose.local_rotations[static_cast<size_t>(j)], left[static_cast<size_t>(j)],
+          knee_off_hinge_left(model, s, 0, pose, kLeftKnee)};
+}
+
+/// The deviation (rad) joint j keeps after the step's release when the solve turned it by turn_rad about
+/// its x axis, and what the depenetration pass may still turn it (rad).
+struct Kept {
+  double deviation_rad = 0.0, left_rad = 0.0;
+};
+Kept after_a_fast_turn(BoneMask limited, int j, double turn_rad) {
+  CorrectorParams params;
+  params.rate_limited_joints = limited;
+  const Released r = after_the_release(params, j, Quat(Eigen::AngleAxisd(turn_rad, Vec3::UnitX())));
+  return {r.local.angularDistance(Quat::Identity()), r.left_rad};
 }
 
 }  // namespace
@@ -82,26 +92,11 @@ TEST_CASE(
 }
 
 namespace {
-/// The left knee's local rotation after the step's release when the solve turned it by `turn` (in its
-/// parent frame) from no deviation, every joint engaged; and what the pass may still turn it off its hinge.
-struct KneeKept {
-  Quat local = Quat::Identity();
-  double off_hinge_left_rad = 0.0;
-};
-KneeKept knee_after(bool hinge, const Quat& turn) {
-  const BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
+/// The left knee after the release (after_the_release) with or without the hinge.
+Released knee_after(bool hinge, const Quat& turn) {
   CorrectorParams params;
   params.knee_hinge = hinge;
-  const CorrectorModel model = make_corrector_model({shape}, params, {}, 30);
-  CorrectorState s;
-  s.step_index = 5;
-  s.target = {Pose::rest(shape)};
-  s.output_deviation.assign(kJointCount, Quat::Identity());
-  s.engaged_until.assign(kJointCount, 100);
-  Pose pose = Pose::rest(shape);
-  pose.local_rotations[kLeftKnee] = turn;
-  release_free_joints(model, s, 0, pose);
-  return {pose.local_rotations[kLeftKnee], knee_off_hinge_left(model, s, 0, pose, kLeftKnee)};
+  return after_the_release(params, kLeftKnee, turn);
 }
 double angle_about_x_rad(const Quat& q) {
   return 2.0 * std::atan2(q.x(), q.w());
@@ -118,17 +113,17 @@ TEST_CASE("correction: an engaged knee keeps its flexion and turns off its hinge
   const double step = CorrectorParams{}.free_joint_return_radps / 30.0;
   const Quat flex(Eigen::AngleAxisd(0.5, Vec3::UnitX()));
   const Quat sideways(Eigen::AngleAxisd(0.5, Vec3::UnitZ()));
-  const KneeKept hinged = knee_after(true, sideways * flex);
+  const Released hinged = knee_after(true, sideways * flex);
   CHECK(off_hinge_part(hinged.local).angularDistance(Quat::Identity()) == Approx(step).margin(1e-9));
   CHECK(angle_about_x_rad((off_hinge_part(hinged.local).conjugate() * hinged.local).normalized()) ==
         Approx(0.5).margin(1e-9));
-  CHECK(hinged.off_hinge_left_rad == Approx(0.0).margin(1e-9));  // the pass may not turn it further off
-  const KneeKept flexed = knee_after(true, flex);                // flexion alone: nothing to limit
+  CHECK(hinged.knee_off_hinge_left_rad == Approx(0.0).margin(1e-9));  // the pass may not turn it further off
+  const Released flexed = knee_after(true, flex);                     // flexion alone: nothing to limit
   CHECK(flexed.local.angularDistance(flex) < 1e-9);
-  CHECK(flexed.off_hinge_left_rad == Approx(step).margin(1e-9));
-  const KneeKept old = knee_after(false, sideways * flex);
+  CHECK(flexed.knee_off_hinge_left_rad == Approx(step).margin(1e-9));
+  const Released old = knee_after(false, sideways * flex);
   CHECK(off_hinge_part(old.local).angularDistance(Quat::Identity()) > 0.45);
-  CHECK(old.off_hinge_left_rad < 0.0);  // not limited in the pass
+  CHECK(old.knee_off_hinge_left_rad < 0.0);  // not limited in the pass
 }
 
 TEST_CASE(
