@@ -82,7 +82,8 @@ int twist_limited_child(int j) {
 }  // namespace
 
 Quat off_hinge_part(const Quat& change) {
-  // Swing-twist decomposition about x: the twist keeps w and the x component.
+  // Swing-twist decomposition about x (e.g. Dobrowolski 2015, "Swing-twist decomposition in Clifford
+  // algebra", arXiv:1506.05481): the twist keeps w and the x component.
   const double norm = std::hypot(change.w(), change.x());
   if (norm < 1e-12) return change;  // a half turn off the hinge: all of it is off
   const Quat hinge(change.w() / norm, change.x() / norm, 0.0, 0.0);
