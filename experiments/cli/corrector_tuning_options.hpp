@@ -76,6 +76,10 @@ inline void add_corrector_tuning_options(Command* cmd, CorrectorParams& params) 
       ->capture_default_str()
       ->each(
           [joints, &params](const std::string& list) { params.rate_limited_joints = parse_joint_set(list); });
+  cmd->add_option("--knee-hinge", params.knee_hinge,
+                  "Engaged knees keep their flexion and turn off their hinge at most --free-joint-return "
+                  "(true/false; false = only their twist limited, the session-15 solver)")
+      ->capture_default_str();
   cmd->add_option("--settle-feet", params.held_feet_at_input_height,
                   "Hold planted feet at the input's height: held balls at their own, bodies settled onto "
                   "held feet (true/false)")

@@ -268,6 +268,15 @@ struct CorrectorParams {
   /// and the legs stopped separating contacts (session 15, corridor 6.66 /m^2: 121-221 flips left, p99
   /// depth 9-10 -> 11-17 mm, 0 -> 9-24 foot pops, docs/correction.md).
   BoneMask rate_limited_joints = kDefaultRateLimitedJoints;
+  /// Engaged knees whose ankles are rate-limited (and that are not in rate_limited_joints) are hinges for
+  /// the rate limit: they keep the flexion about their hinge that the solve and the pass give them, and
+  /// turn off it (abduction, twist about the shank) at most free_joint_return_radps from their last
+  /// deviation, after the Newton step and in the depenetration pass (stage_free_joints.cpp). false = the
+  /// session-15 solver (only the twist about the shank limited, after the step and the pass). Measured on
+  /// 3 s corridor clips (session 16, docs/correction.md): held knees' flips changed 12-15 deg per flip
+  /// window off the hinge on main; with the hinge, flips 21-34 -> 11-15 at 4.44 /m^2 and 192-273 ->
+  /// 188-218 at 6.66 /m^2 over three runs each, p99 depth 5.0-6.2 -> 5.3-6.0 and 9.5-10.5 -> 7.0-9.5 mm.
+  bool knee_hinge = true;
 
   // ---- Feet on the ground (stage_depenetrate.cpp, stage_settle_feet.cpp, issue 27, sessions 12-13)
   /// Whether held feet are brought to the input's height: a held ball's goal height is its input's (not

@@ -83,6 +83,16 @@ bool release_free_joints(const CorrectorModel& model, const CorrectorState& stat
 /// The rotation `to` with its twist about `axis` (unit, in the frame the rotations act on from the right)
 /// relative to `from` limited to max_turn_rad: from * swing * twist, twist turned back toward none.
 Quat limit_twist(const Quat& from, const Quat& to, const Vec3& axis, double max_turn_rad);
+/// The part of a rotation change (acting from the left, in a knee's parent frame) that is not about the
+/// knee's hinge, the x axis: change = off_hinge_part(change) * (a turn about x).
+Quat off_hinge_part(const Quat& change);
+/// The rotation `to` with its turn off the hinge relative to `from` (off_hinge_part of to from^-1) limited
+/// to max_turn_rad; its turn about the hinge kept whole.
+Quat limit_off_hinge(const Quat& from, const Quat& to, double max_turn_rad);
+/// What is left (rad) of the rate limit's turn off the hinge for knee `knee` of character c in `pose`
+/// (params.knee_hinge, an engaged knee whose ankle is rate-limited); -1 where the knee is not so limited.
+double knee_off_hinge_left(const CorrectorModel& model, const CorrectorState& state, int c, const Pose& pose,
+                           int knee);
 /// How much more (rad) each joint of character c may turn this step: what the rate limit of
 /// stage_free_joints.cpp leaves of it from the last output's deviation to `pose`'s (infinite for the joints
 /// it does not limit, 0 for free joints).

@@ -512,6 +512,58 @@ void for_each_item(const std::vector<int>& items, size_t serial_below, F&& f) {
   tbb::parallel_for(size_t{0}, items.size(), [&](size_t k) { f(items[k]); });
 }
 
+/// An engaged knee in the pass (params.knee_hinge): its rotation vector in the basis (hinge, two axes
+/// off it), the off-hinge part limited to what the rate leaves (knee_off_hinge_left).
+struct KneeHinge {
+  int joint = 0;
+  Mat3 basis = Mat3::Identity();  ///< world axes: the hinge (the thigh's x), then two normal to it
+  double left_rad = 0.0;
+};
+
+/// Character c's knees limited off their hinge in the pass (at most 2, written to out); returns how many.
+int knee_hinges(const CorrectorModel& model, const CorrectorState& s, int c, const BoneTransforms& bones,
+                const Pose& pose, std::array<KneeHinge, 2>& out) {
+  int n = 0;
+  for (const int knee : {kLeftKnee, kRightKnee}) {
+    const double left = knee_off_hinge_left(model, s, c, pose, knee);
+    if (left < 0.0) continue;
+    KneeHinge& k = out[static_cast<size_t>(n++)];
+    k.joint = knee;
+    k.left_rad = left;
+    const Vec3 hinge =
+        bones[static_cast<size_t>(kJointParent[static_cast<size_t>(knee)])].rotation * Vec3::UnitX();
+    k.basis.col(0) = hinge;
+    k.basis.col(1) = hinge.unitOrthogonal();
+    k.basis.col(2) = hinge.cross(k.basis.col(1));
+  }
+  return n;
+}
+
+/// least_energy_change with the knees' off-hinge turns weighted 0 once their turn is used and limited to
+/// what is left otherwise (the knees' columns solved in their hinge bases; the weight is isotropic, so
+/// a change of basis leaves the other columns' solution alone).
+bool hinged_least_energy_change(const RowBlock& J, const SmallVector& r, const Weights& inv_w,
+                                const std::array<KneeHinge, 2>& knees, int count, Weights& dq) {
+  RowBlock Jt = J;
+  Weights inv_t = inv_w;
+  for (int k = 0; k < count; ++k) {
+    const KneeHinge& knee = knees[static_cast<size_t>(k)];
+    const int col = 3 + 3 * knee.joint;
+    Jt.middleCols<3>(col) = J.middleCols<3>(col) * knee.basis;
+    if (knee.left_rad < 1e-3) inv_t.segment<2>(col + 1).setZero();
+  }
+  if (!least_energy_change(Jt, r, inv_t, dq)) return false;
+  for (int k = 0; k < count; ++k) {
+    const KneeHinge& knee = knees[static_cast<size_t>(k)];
+    const int col = 3 + 3 * knee.joint;
+    Vec3 w = dq.segment<3>(col);
+    const double off = w.tail<2>().norm();
+    if (off > knee.left_rad) w.tail<2>() *= knee.left_rad / off;
+    dq.segment<3>(col) = knee.basis * w;
+  }
+  return true;
+}
+
 }  // namespace
 
 void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
@@ -643,8 +695,14 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
       Weights inv_w = w.inverse_weights[cc];
       for (int j = 0; j < kJointCount; ++j)
         if (left[static_cast<size_t>(j)] < 1e-3) inv_w.segment<3>(3 + 3 * j).setZero();
+      // Engaged knees turn about their hinge freely, off it at most what the rate leaves (issue 27,
+      // session 16: the pass had turned held knees sideways, 14-42 deg per flip window).
+      std::array<KneeHinge, 2> knees;
+      const int hinged = knee_hinges(model, s, c, w.bones[cc], s.output[cc], knees);
       const auto solve = [&] {
-        if (!least_energy_change(J, r, inv_w, dq)) return false;
+        if (!(hinged > 0 ? hinged_least_energy_change(J, r, inv_w, knees, hinged, dq)
+                         : least_energy_change(J, r, inv_w, dq)))
+          return false;
         for (int j = 0; j < kJointCount; ++j) {
           const double angle = dq.segment<3>(3 + 3 * j).norm(), most = left[static_cast<size_t>(j)];
           if (angle > most) dq.segment<3>(3 + 3 * j) *= most / angle;

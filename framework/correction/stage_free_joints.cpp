@@ -20,8 +20,11 @@
 //                      D_j(t) = slerp(D_j(t-1), I, min(1, ω h / ∠D_j(t-1))),   R_j(t) = R̂_j(t) D_j(t),
 //                  i.e. the deviation of the last output turned back toward none at ω =
 //                  free_joint_return_radps, whatever the solve gave the joint this step.
-//   knee twist     an engaged knee keeps the swing the solve gave it, its twist about the shank is
-//                  limited to the same rate (limit_twist; issue 27, session 11).
+//   knee hinge     an engaged knee keeps the flexion about its hinge (x) the solve gave it; what it
+//                  turns off the hinge (abduction, and twist about the shank) is limited to the same rate
+//                  (limit_off_hinge; issue 27, session 16; with knee_hinge false only the twist about the
+//                  shank, limit_twist, session 11). The depenetration pass turns engaged knees off their
+//                  hinge at most by what the rate leaves (knee_off_hinge_left).
 // It runs after the projection and before the foot holds (stage_integrate), so held feet are still
 // re-planted; the bones are rebuilt from the released pose, so the next step starts from it and its
 // velocities are those of the released motion (a stronger PD pull in the limit: the free joint follows
@@ -77,6 +80,24 @@ int twist_limited_child(int j) {
 }
 
 }  // namespace
+
+Quat off_hinge_part(const Quat& change) {
+  // Swing-twist decomposition about x (e.g. Dobrowolski 2015, "Swing-twist decomposition in Clifford
+  // algebra", arXiv:1506.05481): the twist keeps w and the x component.
+  const double norm = std::hypot(change.w(), change.x());
+  if (norm < 1e-12) return change;  // a half turn off the hinge: all of it is off
+  const Quat hinge(change.w() / norm, change.x() / norm, 0.0, 0.0);
+  return (change * hinge.conjugate()).normalized();
+}
+
+Quat limit_off_hinge(const Quat& from, const Quat& to, double max_turn_rad) {
+  const Quat change = (to * from.conjugate()).normalized();
+  const Quat off = off_hinge_part(change);
+  const double angle = off.angularDistance(Quat::Identity());
+  if (!(angle > max_turn_rad)) return to;
+  const Quat hinge = (off.conjugate() * change).normalized();
+  return (Quat::Identity().slerp(max_turn_rad / angle, off) * hinge * from).normalized();
+}
 
 Quat limit_twist(const Quat& from, const Quat& to, const Vec3& axis, double max_turn_rad) {
   const Quat change = (from.conjugate() * to).normalized();
@@ -147,6 +168,14 @@ bool release_free_joints(const CorrectorModel& model, const CorrectorState& s, i
     if (engaged && !limited(model, j)) {
       const int child = twist_limited_child(j);
       if (child < 0 || !limited(model, child)) continue;
+      if (model.params.knee_hinge) {  // issue 27, session 16: all but the flexion limited
+        const Quat from = (target.local_rotations[jj] * d_old).normalized();
+        const Quat next = limit_off_hinge(from, pose.local_rotations[jj], step);
+        if (std::abs(next.dot(pose.local_rotations[jj])) >= 1.0 - 1e-12) continue;
+        pose.local_rotations[jj] = next;
+        changed = true;
+        continue;
+      }
       const Vec3 axis =
           model.bodies[static_cast<size_t>(c)].shape.joint_offsets_m[static_cast<size_t>(child)].normalized();
       const Quat d = limit_twist(d_old, want, axis, step);
@@ -183,6 +212,21 @@ void rotation_left(const CorrectorModel& model, const CorrectorState& s, int c, 
     const double used = 2.0 * std::acos(std::min(1.0, std::abs(s.output_deviation[g].dot(d))));
     left[jj] = std::max(0.0, step - used);
   }
+}
+
+double knee_off_hinge_left(const CorrectorModel& model, const CorrectorState& s, int c, const Pose& pose,
+                           int knee) {
+  const int ankle = twist_limited_child(knee);
+  const auto g = static_cast<size_t>(c * kJointCount + knee);
+  const auto kj = static_cast<size_t>(knee);
+  if (!model.params.release_free_joints || !model.params.knee_hinge || ankle < 0 || limited(model, knee) ||
+      !limited(model, ankle) || s.step_index > s.engaged_until[g])
+    return -1.0;
+  const Quat from =
+      (s.target[static_cast<size_t>(c)].local_rotations[kj] * s.output_deviation[g]).normalized();
+  const double used = off_hinge_part((pose.local_rotations[kj] * from.conjugate()).normalized())
+                          .angularDistance(Quat::Identity());
+  return std::max(0.0, model.params.free_joint_return_radps * model.h - used);
 }
 
 void stage_record_deviation(const CorrectorModel& model, CorrectorState& s) {

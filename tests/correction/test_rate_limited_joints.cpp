@@ -3,13 +3,19 @@
 // free_joint_return_radps from its last deviation after the Newton step, and in the depenetration pass it
 // takes no part once that turn is used, so it never flips (at 30 fps at most 19.5 deg within 3 frames,
 // under the flip measure's 20). Session 15 added the head and shoulders (neck, head, collars, upper arms):
-// the stationary crowd's last flips, turned by the Newton step (docs/correction.md).
+// the stationary crowd's last flips, turned by the Newton step (docs/correction.md). Session 16: engaged
+// knees are hinges for the limit (CorrectorParams::knee_hinge): their flexion is free, what they turn off
+// the hinge is limited, after the step and in the pass.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 
 #include "framework/core/body_shape.hpp"
+#include "framework/core/capsule_box_distance.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/forward_kinematics.hpp"
+#include "framework/correction/corrector.hpp"
 #include "framework/correction/corrector_step.hpp"
 
 // This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
@@ -19,18 +25,16 @@ using namespace crowdlab;
 
 namespace {
 
-/// The deviation (rad) joint j keeps after the step's release when the solve turned it by turn_rad, and
-/// what the depenetration pass may still turn it (rad).
-struct Kept {
-  double deviation_rad = 0.0, left_rad = 0.0;
+/// After the step's release, for one standing body with every joint engaged (in contact) and no
+/// deviation so far, whose joint j the solve turned by `turn` (local, in its parent frame): the joint's
+/// local rotation, what the depenetration pass may still turn it (rad), and what it may still turn the
+/// left knee off its hinge (rad; -1 where not so limited).
+struct Released {
+  Quat local = Quat::Identity();
+  double left_rad = 0.0, knee_off_hinge_left_rad = 0.0;
 };
-
-/// One standing body with every joint engaged (in contact) and no deviation so far, whose joint j the
-/// solve turned by turn_rad about its x axis.
-Kept after_a_fast_turn(BoneMask limited, int j, double turn_rad) {
+Released after_the_release(const CorrectorParams& params, int j, const Quat& turn) {
   const BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
-  CorrectorParams params;
-  params.rate_limited_joints = limited;
   const CorrectorModel model = make_corrector_model({shape}, params, {}, 30);
   CorrectorState s;
   s.step_index = 5;
@@ -38,12 +42,24 @@ Kept after_a_fast_turn(BoneMask limited, int j, double turn_rad) {
   s.output_deviation.assign(kJointCount, Quat::Identity());
   s.engaged_until.assign(kJointCount, 100);
   Pose pose = Pose::rest(shape);
-  pose.local_rotations[static_cast<size_t>(j)] = Quat(Eigen::AngleAxisd(turn_rad, Vec3::UnitX()));
+  pose.local_rotations[static_cast<size_t>(j)] = turn;
   std::array<double, kJointCount> left{};
   rotation_left(model, s, 0, pose, left);
   release_free_joints(model, s, 0, pose);
-  return {pose.local_rotations[static_cast<size_t>(j)].angularDistance(Quat::Identity()),
-          left[static_cast<size_t>(j)]};
+  return {pose.local_rotations[static_cast<size_t>(j)], left[static_cast<size_t>(j)],
+          knee_off_hinge_left(model, s, 0, pose, kLeftKnee)};
+}
+
+/// The deviation (rad) joint j keeps after the step's release when the solve turned it by turn_rad about
+/// its x axis, and what the depenetration pass may still turn it (rad).
+struct Kept {
+  double deviation_rad = 0.0, left_rad = 0.0;
+};
+Kept after_a_fast_turn(BoneMask limited, int j, double turn_rad) {
+  CorrectorParams params;
+  params.rate_limited_joints = limited;
+  const Released r = after_the_release(params, j, Quat(Eigen::AngleAxisd(turn_rad, Vec3::UnitX())));
+  return {r.local.angularDistance(Quat::Identity()), r.left_rad};
 }
 
 }  // namespace
@@ -73,6 +89,87 @@ TEST_CASE(
     INFO(joint_name(j));
     CHECK(after_a_fast_turn(kDefaultRateLimitedJoints, j, turn).deviation_rad == Approx(turn).margin(1e-9));
   }
+}
+
+namespace {
+/// The left knee after the release (after_the_release) with or without the hinge.
+Released knee_after(bool hinge, const Quat& turn) {
+  CorrectorParams params;
+  params.knee_hinge = hinge;
+  return after_the_release(params, kLeftKnee, turn);
+}
+double angle_about_x_rad(const Quat& q) {
+  return 2.0 * std::atan2(q.x(), q.w());
+}
+}  // namespace
+
+TEST_CASE("correction: an engaged knee keeps its flexion and turns off its hinge at most the rate per step",
+          "[correction][rate_limit]") {
+  // Session 16: the corridor's held knees flipped by turns off their hinge (abduction 12-16 deg per flip
+  // window on 3 s clips at 6.66 /m^2, beside the flexion); session 11's limit acted on the twist about the
+  // shank only. A solve that flexes the knee by 0.5 rad and turns it 0.5 rad sideways (about z) keeps the
+  // flexion whole and 6.5 deg (one step's rate at 30 fps) of the sideways turn; without the hinge the
+  // sideways turn stays whole.
+  const double step = CorrectorParams{}.free_joint_return_radps / 30.0;
+  const Quat flex(Eigen::AngleAxisd(0.5, Vec3::UnitX()));
+  const Quat sideways(Eigen::AngleAxisd(0.5, Vec3::UnitZ()));
+  const Released hinged = knee_after(true, sideways * flex);
+  CHECK(off_hinge_part(hinged.local).angularDistance(Quat::Identity()) == Approx(step).margin(1e-9));
+  CHECK(angle_about_x_rad((off_hinge_part(hinged.local).conjugate() * hinged.local).normalized()) ==
+        Approx(0.5).margin(1e-9));
+  CHECK(hinged.knee_off_hinge_left_rad == Approx(0.0).margin(1e-9));  // the pass may not turn it further off
+  const Released flexed = knee_after(true, flex);                     // flexion alone: nothing to limit
+  CHECK(flexed.local.angularDistance(flex) < 1e-9);
+  CHECK(flexed.knee_off_hinge_left_rad == Approx(step).margin(1e-9));
+  const Released old = knee_after(false, sideways * flex);
+  CHECK(off_hinge_part(old.local).angularDistance(Quat::Identity()) > 0.45);
+  CHECK(old.knee_off_hinge_left_rad < 0.0);  // not limited in the pass
+}
+
+TEST_CASE(
+    "correction: a held leg pressed sideways at the shank turns its knee off the hinge at most the rate",
+    "[correction][rate_limit]") {
+  // Session 16: the depenetration pass separated contacts on held legs by turning the knee sideways (the
+  // held foot pins the shank's lower end; session 14's trace: 14-42 deg per flip window). A body stands
+  // still (feet planted and held from the second step) with a post pressing 2 cm into its left shank from
+  // the side. The knee's deviation off its hinge changes by at most the rate (6.5 deg) per step with
+  // the hinge, and the pass takes the shank out all the same (to its tolerance, with the hip, the
+  // pelvis and the foot giving way).
+  const BodyShape body = make_procedural_body({});
+  const Pose pose = Pose::rest(body);
+  const Capsule shank = world_capsules(body, pose)[kLeftKnee];  // from the knee to the ankle
+  const Vec3 mid = 0.5 * (shank.a + shank.b);
+  Environment env;
+  Box post;
+  post.half_extents_m = Vec3(0.05, 0.05, 0.05);
+  post.center_m = Vec3(mid.x() + shank.radius_m - 0.04 + post.half_extents_m.x(), mid.y(), mid.z());
+  env.boxes.push_back(post);
+  REQUIRE(-capsule_box_distance(shank, post).distance_m == Approx(0.04).margin(1e-3));
+  const auto run = [&](bool hinge, double& depth_m) {
+    CorrectorParams params;
+    params.knee_hinge = hinge;
+    Corrector corrector({body}, params, env, 30);
+    Quat last = Quat::Identity();
+    double worst = 0.0;
+    for (int f = 0; f < 15; ++f) {
+      const auto out = corrector.step({pose});
+      const Quat knee = out[0].local_rotations[kLeftKnee];  // the input's is the identity
+      worst = std::max(
+          worst, off_hinge_part((knee * last.conjugate()).normalized()).angularDistance(Quat::Identity()));
+      last = knee;
+      depth_m = -capsule_box_distance(world_capsules(body, out[0])[kLeftKnee], post).distance_m;
+    }
+    return worst;
+  };
+  const double step = CorrectorParams{}.free_joint_return_radps / 30.0;
+  double depth_hinged = 0.0, depth_free = 0.0;
+  const double hinged = run(true, depth_hinged), free = run(false, depth_free);
+  INFO("largest off-hinge knee turn per step: hinge "
+       << hinged << " rad, without " << free << " rad; shank depth after 15 steps " << depth_hinged << " / "
+       << depth_free << " m");
+  CHECK(hinged <= step + 1e-6);
+  CHECK(free > step);
+  CHECK(depth_hinged <= 0.0055);
 }
 
 TEST_CASE("correction: joint sets are read from group and joint names, and written back",
