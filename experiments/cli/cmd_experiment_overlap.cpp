@@ -7,7 +7,8 @@
 // (scenario,characters,density,overlap_reduction,depth_p99_m,depth_max_m,rotation_dev_mean_deg,
 // rotation_dev_p99_deg,foot_skate_max_m,joint_speed_max_mps,cg_iterations_mean,rejected_steps,
 // stance_foot_drift_p99_m,stance_foot_drift_max_m,foot_pops,foot_pop_excess_max_m,
-// foot_ground_penetration_max_m,foot_float_p99_m,free_limb_dev_p99_deg,free_limb_dev_max_deg,joint_flips,
+// foot_ground_penetration_max_m,foot_ground_penetration_added_max_m,foot_float_p99_m,free_limb_dev_p99_deg,
+// free_limb_dev_max_deg,joint_flips,
 // env_penetration_p99_m,env_penetration_max_m,mesh_overlap_fraction,baseline_mesh_overlap_fraction,
 // mesh_overlap_depth_p99_m,proxy_coverage,proxy_outside_p99_m; the foot measures are defined in
 // framework/metrics/foot_contact_quality.hpp, the next five (issue 27) in free_limb_deviation.hpp,
@@ -119,10 +120,12 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
         report.cg_iterations_mean, report.rejected_steps);
     std::printf(
         "%-10s %3d characters: free-limb deviation p99 %.2f deg (max %.2f), joint flips %ld, environment "
-        "penetration p99 %.1f mm (max %.1f), floating p99 %.1f mm, feet below ground max %.1f mm\n",
+        "penetration p99 %.1f mm (max %.1f), floating p99 %.1f mm, feet below ground max %.1f mm (added by "
+        "the correction %.1f)\n",
         scenario.c_str(), n, qr.quality.free_limbs.p99_deg, qr.quality.free_limbs.max_deg,
         qr.quality.flips.count, 1000 * qr.quality.environment.p99_m, 1000 * qr.quality.environment.max_m,
-        1000 * qr.quality.feet.float_p99_m, 1000 * qr.quality.feet.ground_penetration_max_m);
+        1000 * qr.quality.feet.float_p99_m, 1000 * qr.quality.feet.ground_penetration_max_m,
+        1000 * qr.quality.feet.ground_penetration_added_max_m);
     if (qr.quality.mesh_overlap.frames > 0)
       std::printf(
           "%-10s %3d characters: rendered vertices inside another character %.4f %% (baseline %.4f %%), "
@@ -158,6 +161,7 @@ void run(const Options& o) {
                                "foot_pops",
                                "foot_pop_excess_max_m",
                                "foot_ground_penetration_max_m",
+                               "foot_ground_penetration_added_max_m",
                                "foot_float_p99_m",
                                "free_limb_dev_p99_deg",
                                "free_limb_dev_max_deg",
@@ -189,6 +193,7 @@ void run(const Options& o) {
                       std::to_string(r.quality.feet.foot_pops),
                       csv_number(r.quality.feet.pop_excess_max_m),
                       csv_number(r.quality.feet.ground_penetration_max_m),
+                      csv_number(r.quality.feet.ground_penetration_added_max_m),
                       csv_number(r.quality.feet.float_p99_m),
                       csv_number(r.quality.free_limbs.p99_deg),
                       csv_number(r.quality.free_limbs.max_deg),

@@ -77,9 +77,12 @@ void print_quality(const CorrectionQuality& q) {
       "excess %.1f cm)\n",
       1000 * f.stance_drift_p99_m, 1000 * f.stance_drift_max_m, f.contact_frames, f.foot_pops,
       100 * f.pop_excess_max_m);
-  std::printf("  feet below the ground: max %.1f mm (p99 %.1f); floating in stance: p99 %.1f mm (max %.1f)\n",
-              1000 * f.ground_penetration_max_m, 1000 * f.ground_penetration_p99_m, 1000 * f.float_p99_m,
-              1000 * f.float_max_m);
+  std::printf(
+      "  feet below the ground (y = 0): max %.1f mm (p99 %.1f); below min(0, the input's foot), added by the "
+      "correction: max %.1f mm (p99 %.1f)\n",
+      1000 * f.ground_penetration_max_m, 1000 * f.ground_penetration_p99_m,
+      1000 * f.ground_penetration_added_max_m, 1000 * f.ground_penetration_added_p99_m);
+  std::printf("  floating in stance: p99 %.1f mm (max %.1f)\n", 1000 * f.float_p99_m, 1000 * f.float_max_m);
   const FreeLimbDeviation& fl = q.free_limbs;
   std::printf(
       "  free-limb deviation (joints 10 cm from everyone for +-0.5 s): p99 / max %.2f / %.2f deg over %ld "

@@ -19,13 +19,14 @@ struct QualityColumn {
   double ClipQuality::*value;  ///< null for the counts
   int ClipQuality::*count;     ///< the count, where value is null
 };
-constexpr std::array<QualityColumn, 16> kQuality = {
+constexpr std::array<QualityColumn, 17> kQuality = {
     {{"depth_p99_m", &ClipQuality::depth_p99_m, nullptr},
      {"depth_max_m", &ClipQuality::depth_max_m, nullptr},
      {"stance_foot_drift_p99_m", &ClipQuality::stance_foot_drift_p99_m, nullptr},
      {"stance_foot_drift_max_m", &ClipQuality::stance_foot_drift_max_m, nullptr},
      {"foot_pops", nullptr, &ClipQuality::foot_pops},
      {"foot_ground_penetration_max_m", &ClipQuality::foot_ground_penetration_max_m, nullptr},
+     {"foot_ground_penetration_added_max_m", &ClipQuality::foot_ground_penetration_added_max_m, nullptr},
      {"foot_float_p99_m", &ClipQuality::foot_float_p99_m, nullptr},
      {"free_limb_dev_p99_deg", &ClipQuality::free_limb_dev_p99_deg, nullptr},
      {"free_limb_dev_max_deg", &ClipQuality::free_limb_dev_max_deg, nullptr},

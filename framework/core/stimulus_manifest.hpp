@@ -3,12 +3,14 @@
 // Stored as DIR/manifest.csv with columns:
 //   id,<factor columns...>,file,duration_s,frames,width,height,sha256,overlap_l,v_i_m,collisions,practice,
 //   depth_p99_m,depth_max_m,stance_foot_drift_p99_m,stance_foot_drift_max_m,foot_pops,
-//   foot_ground_penetration_max_m,foot_float_p99_m,free_limb_dev_p99_deg,free_limb_dev_max_deg,
+//   foot_ground_penetration_max_m,foot_ground_penetration_added_max_m,foot_float_p99_m,free_limb_dev_p99_deg,
+//   free_limb_dev_max_deg,
 //   joint_flips,env_penetration_p99_m,env_penetration_max_m,mesh_overlap_fraction,
 //   mesh_overlap_depth_p99_m,proxy_coverage,proxy_outside_p99_m,crowd_in_frame_min,character_height_px,
 //   overlap_frame_share,overlap_pixel_fraction,seam_step_ratio
-// (factor columns in spec order; metric columns empty when not computed). Seven of them are the
-// correction-quality measures of the clip's crowd against its input (issue 18; definitions in
+// (factor columns in spec order; metric columns empty when not computed). Eight of them are the
+// correction-quality measures of the clip's crowd against its input (issue 18, and issue 27's ground
+// penetration added by the correction; definitions in
 // framework/metrics/correction_quality.hpp and foot_contact_quality.hpp, names as in
 // correction_quality.csv): for `baseline` the input is the crowd itself, for `ours` the baseline of the
 // same condition; the next five (issue 27) are defined in framework/metrics/free_limb_deviation.hpp,
@@ -41,6 +43,8 @@ struct ClipQuality {
   double mesh_overlap_depth_p99_m = -1.0;       ///< their depth, p99
   double proxy_coverage = -1.0;                 ///< rendered vertices within 5 mm of their own capsules
   double proxy_outside_p99_m = -1.0;            ///< distance outside the capsules, p99
+  /// Deepest a foot goes below min(0, its input's height): what the correction adds (empty on surfaces).
+  double foot_ground_penetration_added_max_m = -1.0;
 };
 
 /// The stimulus check of one rendered clip (stimuli/stimulus_check.hpp defines the measures); -1 = unknown.

@@ -29,8 +29,14 @@ double horizontal(const Vec3& v) {
 
 /// Samples of one character, appended to the crowd-wide lists.
 struct Samples {
-  std::vector<double> drift, penetration, floating;
+  std::vector<double> drift, penetration, below_input, floating;
 };
+
+/// How far the corrected sole is below the input's ground level for that foot: min(0, input sole), so a
+/// foot the input itself puts below y = 0 counts only for what the correction adds (m, >= 0).
+double depth_below_input(double sole_out_m, double sole_in_m) {
+  return std::max(0.0, std::min(0.0, sole_in_m) - sole_out_m);
+}
 
 void measure_character(const CharacterAnimation& in, const CharacterAnimation& out, int first, double dt,
                        FootContactQuality& q, Samples& s) {
@@ -44,11 +50,15 @@ void measure_character(const CharacterAnimation& in, const CharacterAnimation& o
     const auto pin = joint_positions(in.shape, pin_pose);
     const auto pout = joint_positions(out.shape, pout_pose);
     const WorldCapsules caps_out = world_capsules(out.shape, pout_pose);
+    const WorldCapsules caps_in = world_capsules(in.shape, pin_pose);
     std::array<bool, 2> side_contact{};
     for (int side = 0; side < 2; ++side) {
       const double depth = -sole_height(caps_out, side);
       if (depth > 0.0) s.penetration.push_back(depth);
       q.ground_penetration_max_m = std::max(q.ground_penetration_max_m, depth);
+      const double added = depth_below_input(sole_height(caps_out, side), sole_height(caps_in, side));
+      if (added > 0.0) s.below_input.push_back(added);
+      q.ground_penetration_added_max_m = std::max(q.ground_penetration_added_max_m, added);
     }
     if (f > first) {
       for (size_t k = 0; k < kFootJoints.size(); ++k) {
@@ -70,8 +80,7 @@ void measure_character(const CharacterAnimation& in, const CharacterAnimation& o
       }
       for (int side = 0; side < 2; ++side) {
         if (!side_contact[static_cast<size_t>(side)]) continue;
-        const double lift =
-            sole_height(caps_out, side) - sole_height(world_capsules(in.shape, pin_pose), side);
+        const double lift = sole_height(caps_out, side) - sole_height(caps_in, side);
         s.floating.push_back(std::max(0.0, lift));
       }
     }
@@ -98,6 +107,7 @@ FootContactQuality measure_foot_contact_quality(const CrowdAnimation& input, con
   q.stance_drift_p99_m = nearest_rank_quantile(s.drift, 0.99);
   q.stance_drift_max_m = max_of(s.drift);
   q.ground_penetration_p99_m = nearest_rank_quantile(s.penetration, 0.99);
+  q.ground_penetration_added_p99_m = nearest_rank_quantile(s.below_input, 0.99);
   q.float_p99_m = nearest_rank_quantile(s.floating, 0.99);
   q.float_max_m = max_of(s.floating);
   return q;

@@ -21,8 +21,16 @@
 //                                more than kPopExcess_m = 5 cm (a foot jumping in one frame)
 //   pop_excess_max_m             the largest such excess (any frame, also below the threshold)
 //   pop_frames                   the frames on which some foot joint popped
-//   ground_penetration_max_m     deepest any foot capsule (ankle and ball bones) goes below y = 0
+//   ground_penetration_max_m     ABSOLUTE: deepest any foot capsule (ankle and ball bones) goes below
+//                                y = 0, per foot and frame (the input's own depth included)
 //   ground_penetration_p99_m     99th percentile of the positive per-foot per-frame depths
+//   ground_penetration_added_max_m   ADDED by the correction: per foot and frame, how far the
+//                                corrected sole is below min(0, the input's sole at that frame), the
+//                                depth below the ground that the input does not have itself; maximum
+//                                over all feet and frames (issue 27, session 16: the corridor clips'
+//                                input feet are 13.5-14.1 mm below y = 0, and a free foot returns to
+//                                its input, so the absolute measure cannot reach 0 there)
+//   ground_penetration_added_p99_m   99th percentile of the positive per-foot per-frame added depths
 //   float_p99_m, float_max_m     per contact frame of a foot (either of its joints in contact), how much
 //                                higher the corrected sole (lowest point of the foot capsules) is than
 //                                the input's; 99th percentile and maximum
@@ -45,6 +53,8 @@ struct FootContactQuality {
   double pop_excess_max_m = 0.0;
   double ground_penetration_max_m = 0.0;
   double ground_penetration_p99_m = 0.0;
+  double ground_penetration_added_max_m = 0.0;
+  double ground_penetration_added_p99_m = 0.0;
   double float_p99_m = 0.0;
   double float_max_m = 0.0;
 };

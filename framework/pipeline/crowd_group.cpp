@@ -141,6 +141,8 @@ Stage CrowdGroup::metrics_stage(CrowdMethod method) {
     if (recipe.surface_ground) {  // the feet's ground is the surface there, not y = 0
       q.erase("foot_ground_penetration_max_m");
       q.erase("foot_ground_penetration_p99_m");
+      q.erase("foot_ground_penetration_added_max_m");
+      q.erase("foot_ground_penetration_added_p99_m");
     }
     m["correction_quality"] = std::move(q);
     metrics_[i] = std::move(m);

@@ -93,8 +93,9 @@ struct CorrectionRecipe {
 /// The metrics stage of one method's crowd file (<method>.metrics.json).
 struct MetricsRecipe {
   static constexpr std::string_view kStage = "metrics";
-  /// 2: free limbs, flips, environment; 3: mesh-level overlap and proxy coverage (issue 27)
-  static constexpr std::string_view kCodeVersion = "4";
+  /// 2: free limbs, flips, environment; 3: mesh-level overlap and proxy coverage (issue 27); 5: the feet's
+  /// ground penetration added by the correction, below min(0, the input's foot) (issue 27, session 16)
+  static constexpr std::string_view kCodeVersion = "5";
   CrowdMethod method = CrowdMethod::baseline;  ///< the animation measured (against the baseline)
   bool surface_ground = false;  ///< manifold crowds: the feet's ground is the surface, not y = 0
   bool mesh_measures = true;    ///< the mesh-level overlap and proxy coverage (RunOptions::mesh_measures)

@@ -120,6 +120,8 @@ nlohmann::json correction_quality_json(const CorrectionQuality& q) {
       {"foot_pop_frames", f.pop_frames},
       {"foot_ground_penetration_max_m", f.ground_penetration_max_m},
       {"foot_ground_penetration_p99_m", f.ground_penetration_p99_m},
+      {"foot_ground_penetration_added_max_m", f.ground_penetration_added_max_m},
+      {"foot_ground_penetration_added_p99_m", f.ground_penetration_added_p99_m},
       {"foot_float_p99_m", f.float_p99_m},
       {"foot_float_max_m", f.float_max_m},
       {"free_limb_dev_p99_deg", q.free_limbs.p99_deg},

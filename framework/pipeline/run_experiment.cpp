@@ -76,6 +76,7 @@ ClipQuality clip_quality(const nlohmann::json& metrics) {
   q.stance_foot_drift_max_m = j.value("stance_foot_drift_max_m", -1.0);
   q.foot_pops = j.value("foot_pops", -1);
   q.foot_ground_penetration_max_m = j.value("foot_ground_penetration_max_m", -1.0);
+  q.foot_ground_penetration_added_max_m = j.value("foot_ground_penetration_added_max_m", -1.0);
   q.foot_float_p99_m = j.value("foot_float_p99_m", -1.0);
   q.free_limb_dev_p99_deg = j.value("free_limb_dev_p99_deg", -1.0);
   q.free_limb_dev_max_deg = j.value("free_limb_dev_max_deg", -1.0);

@@ -81,6 +81,7 @@ TEST_CASE("stimulus manifest carries the clip's correction-quality columns") {
   e.quality.stance_foot_drift_max_m = 0.0012;
   e.quality.foot_pops = 3;
   e.quality.foot_ground_penetration_max_m = 0.0;
+  e.quality.foot_ground_penetration_added_max_m = 0.0035;
   e.quality.foot_float_p99_m = 0.005;
   e.quality.free_limb_dev_p99_deg = 0.4;
   e.quality.free_limb_dev_max_deg = 2.5;
@@ -96,13 +97,13 @@ TEST_CASE("stimulus manifest carries the clip's correction-quality columns") {
   const std::string path = (dir / "manifest.csv").string();
   write_manifest(m, path);
   const std::string header = test::slurp(path).substr(0, test::slurp(path).find('\n'));
-  CHECK(
-      header.ends_with(",practice,depth_p99_m,depth_max_m,stance_foot_drift_p99_m,stance_foot_drift_max_m,"
-                       "foot_pops,foot_ground_penetration_max_m,foot_float_p99_m,free_limb_dev_p99_deg,"
-                       "free_limb_dev_max_deg,joint_flips,env_penetration_p99_m,env_penetration_max_m,"
-                       "mesh_overlap_fraction,mesh_overlap_depth_p99_m,proxy_coverage,proxy_outside_p99_m,"
-                       "crowd_in_frame_min,character_height_px,overlap_frame_share,overlap_pixel_fraction,"
-                       "seam_step_ratio"));
+  CHECK(header.ends_with(
+      ",practice,depth_p99_m,depth_max_m,stance_foot_drift_p99_m,stance_foot_drift_max_m,"
+      "foot_pops,foot_ground_penetration_max_m,foot_ground_penetration_added_max_m,foot_float_p99_m,"
+      "free_limb_dev_p99_deg,free_limb_dev_max_deg,joint_flips,env_penetration_p99_m,env_penetration_max_m,"
+      "mesh_overlap_fraction,mesh_overlap_depth_p99_m,proxy_coverage,proxy_outside_p99_m,"
+      "crowd_in_frame_min,character_height_px,overlap_frame_share,overlap_pixel_fraction,"
+      "seam_step_ratio"));
   const ClipQuality q = read_manifest(path).entries.at(0).quality;
   CHECK(q.depth_p99_m == 0.0042);
   CHECK(q.depth_max_m == 0.02);
@@ -110,6 +111,7 @@ TEST_CASE("stimulus manifest carries the clip's correction-quality columns") {
   CHECK(q.stance_foot_drift_max_m == 0.0012);
   CHECK(q.foot_pops == 3);
   CHECK(q.foot_ground_penetration_max_m == 0.0);
+  CHECK(q.foot_ground_penetration_added_max_m == 0.0035);
   CHECK(q.foot_float_p99_m == 0.005);
   CHECK(q.free_limb_dev_p99_deg == 0.4);
   CHECK(q.free_limb_dev_max_deg == 2.5);

@@ -60,6 +60,7 @@ TEST_CASE("a copy of the input has no drift, pops, floating or extra ground pene
   CHECK(q.pop_excess_max_m == Approx(0.0).margin(1e-12));
   CHECK(q.float_max_m == 0.0);
   CHECK(q.ground_penetration_max_m == Approx(std::max(0.0, -rest_sole(in.characters[0]))));
+  CHECK(q.ground_penetration_added_max_m == 0.0);
 }
 
 TEST_CASE("a planted foot sliding 2 mm per frame drifts by the slide, a slow slide is no pop") {
@@ -112,6 +113,30 @@ TEST_CASE("feet lowered into the ground and lifted during stance are measured") 
   CHECK(lifted.float_max_m == Approx(0.03));
   CHECK(lifted.float_p99_m == Approx(0.03));
   CHECK(lifted.ground_penetration_max_m == Approx(std::max(0.0, -sole)));
+}
+
+TEST_CASE("feet the input itself puts below the ground count only for what the correction adds") {
+  // The input's soles 14 mm below y = 0 on every frame (the corridor clips' input feet, issue 27).
+  const double sole = rest_sole(standing(zero, zero).characters[0]);
+  const auto at = [sole](double sole_m) { return [sole, sole_m](int) { return sole_m - sole; }; };
+  const CrowdAnimation in = standing(zero, at(-0.014));
+  const FootContactQuality same = measure_foot_contact_quality(in, in);
+  CHECK(same.ground_penetration_max_m == Approx(0.014));
+  CHECK(same.ground_penetration_added_max_m == 0.0);
+  CHECK(same.ground_penetration_added_p99_m == 0.0);
+  // 6 mm deeper than the input: the absolute measure reads 20 mm, the added one 6 mm.
+  const FootContactQuality deeper = measure_foot_contact_quality(in, standing(zero, at(-0.020)));
+  CHECK(deeper.ground_penetration_max_m == Approx(0.020));
+  CHECK(deeper.ground_penetration_added_max_m == Approx(0.006));
+  CHECK(deeper.ground_penetration_added_p99_m == Approx(0.006));
+  // Lifted 10 mm (still 4 mm below y = 0): nothing added.
+  CHECK(measure_foot_contact_quality(in, standing(zero, at(-0.004))).ground_penetration_added_max_m == 0.0);
+  // An input foot above the ground counts from y = 0, not from the input's height: 5 mm up in the input,
+  // 3 mm below in the output adds 3 mm.
+  const FootContactQuality from_ground =
+      measure_foot_contact_quality(standing(zero, at(0.005)), standing(zero, at(-0.003)));
+  CHECK(from_ground.ground_penetration_added_max_m == Approx(0.003));
+  CHECK(from_ground.ground_penetration_max_m == Approx(0.003));
 }
 
 }  // namespace test_foot_contact_quality

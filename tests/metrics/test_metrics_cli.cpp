@@ -69,6 +69,9 @@ TEST_CASE("crowdlab metrics --input adds the correction-quality measures against
   CrowdAnimation out = in;
   for (size_t f = 3; f < out.characters[0].frames.size(); ++f)
     out.characters[0].frames[f].root_position_m.z() += 0.08;
+  // The other character sunk 3 cm from frame 3 on (less than a pop): feet below the input's ground.
+  for (size_t f = 3; f < out.characters[1].frames.size(); ++f)
+    out.characters[1].frames[f].root_position_m.y() -= 0.03;
   write_crowd_glb(in, in_path);
   write_crowd_glb(out, out_path);
   const CorrectionQuality expected =
@@ -84,9 +87,15 @@ TEST_CASE("crowdlab metrics --input adds the correction-quality measures against
   CHECK(q.at("depth_p99_m").get<double>() == Approx(expected.depth_p99_m));
   CHECK(q.at("foot_ground_penetration_max_m").get<double>() ==
         Approx(expected.feet.ground_penetration_max_m));
+  REQUIRE(expected.feet.ground_penetration_added_max_m > 0.02);
+  CHECK(q.at("foot_ground_penetration_added_max_m").get<double>() ==
+        Approx(expected.feet.ground_penetration_added_max_m));
+  CHECK(q.at("foot_ground_penetration_added_p99_m").get<double>() ==
+        Approx(expected.feet.ground_penetration_added_p99_m));
   const test::CliResult text = test::run_cli({"-q", "metrics", out_path, "--input", in_path});
   CHECK(text.exit_code == 0);
   CHECK(text.out.find("foot pops 4") != std::string::npos);
+  CHECK(text.out.find("added by the correction") != std::string::npos);
   // An input that does not match the crowd is bad input (exit code 2).
   CrowdAnimation shorter = in;
   for (auto& c : shorter.characters) c.frames.pop_back();

@@ -14,16 +14,25 @@ namespace crowdlab::cli {
 namespace {
 using nlohmann::json;
 
+/// A number of the quality object, or NaN (an empty csv cell, a failed check) when it is absent: the
+/// mesh-level measures exist only for bodies with a rendered mesh, the added ground penetration only in
+/// metrics written since issue 27's session 16.
+double number_or_nan(const json& q, const char* key) {
+  return q.contains(key) ? q.at(key).get<double>() : std::numeric_limits<double>::quiet_NaN();
+}
+
 /// One table row from a condition's metrics.json "correction_quality" object (the metrics stage of
 /// `crowdlab run` measures every crowd against its baseline: framework/pipeline/crowd_group.hpp).
 std::string row(const std::string& scenario, double density, const char* method, double reduction,
                 const json& q) {
   return fmt::format(
-      "| {} | {} | {} | {:.1f} % | {:.1f} | {:.1f} | {} | {:.2f} | {:.1f} | {:.1f} | {:.2f} / {:.2f} | {} | "
+      "| {} | {} | {} | {:.1f} % | {:.1f} | {:.1f} | {} | {:.2f} | {:.1f} / {:.1f} | {:.1f} | {:.2f} / "
+      "{:.2f} | {} | "
       "{:.1f} | {} | {} |\n",
       scenario, density, method, 100 * reduction, 1000 * q.at("depth_p99_m").get<double>(),
       1000 * q.at("stance_foot_drift_p99_m").get<double>(), q.at("foot_pops").get<int>(),
       q.at("rotation_dev_mean_deg").get<double>(), 1000 * q.at("foot_ground_penetration_max_m").get<double>(),
+      1000 * number_or_nan(q, "foot_ground_penetration_added_max_m"),
       1000 * q.at("foot_float_p99_m").get<double>(), q.at("free_limb_dev_p99_deg").get<double>(),
       q.at("free_limb_dev_max_deg").get<double>(), q.at("joint_flips").get<long>(),
       1000 * q.at("env_penetration_p99_m").get<double>(),
@@ -32,12 +41,6 @@ std::string row(const std::string& scenario, double density, const char* method,
           : "-",
       q.contains("proxy_coverage") ? fmt::format("{:.2f} %", 100 * q.at("proxy_coverage").get<double>())
                                    : "-");
-}
-
-/// A number of the quality object, or NaN (an empty csv cell, a failed check) when it is absent: the
-/// mesh-level measures exist only for bodies with a rendered mesh.
-double number_or_nan(const json& q, const char* key) {
-  return q.contains(key) ? q.at(key).get<double>() : std::numeric_limits<double>::quiet_NaN();
 }
 
 std::string cell(double v) {
@@ -63,14 +66,16 @@ void correction_quality_section(const SpecRun& run, const std::string& scenario,
     md +=
         "## Correction quality (issue 18): baseline and ours against the baseline\n\n"
         "| scenario | density (/m²) | method | overlap reduction | p99 depth (mm) | stance-foot drift p99 "
-        "(mm) | foot pops | mean joint deviation (deg) | feet below ground, max (mm) | planted feet above "
+        "(mm) | foot pops | mean joint deviation (deg) | feet below ground, max: below y = 0 / added by the "
+        "correction (mm) | planted feet above "
         "the input's, p99 (mm) | free-limb deviation p99 / max (deg) | joint flips | environment "
         "penetration p99 (mm) | rendered vertices inside another character | rendered vertices within 5 mm "
         "of their capsules |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     csv =
         "scenario,density,method,overlap_reduction,depth_p99_m,depth_max_m,stance_foot_drift_p99_m,"
         "stance_foot_drift_max_m,foot_pops,rotation_dev_mean_deg,foot_ground_penetration_max_m,"
-        "foot_float_p99_m,free_limb_dev_p99_deg,free_limb_dev_max_deg,joint_flips,env_penetration_p99_m,"
+        "foot_ground_penetration_added_max_m,foot_float_p99_m,free_limb_dev_p99_deg,free_limb_dev_max_deg,"
+        "joint_flips,env_penetration_p99_m,"
         "env_penetration_max_m,mesh_overlap_fraction,mesh_overlap_depth_p99_m,proxy_coverage,"
         "proxy_outside_p99_m\n";
   }
@@ -90,16 +95,17 @@ void correction_quality_section(const SpecRun& run, const std::string& scenario,
     md += row(scenario, density, "baseline", 0.0, qb) + row(scenario, density, "ours", reduction, qo);
     for (const auto& [method, q, red] : {std::tuple{"baseline", qb, 0.0}, std::tuple{"ours", qo, reduction}})
       csv += fmt::format(
-          "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", scenario, density, method, red,
-          q.at("depth_p99_m").get<double>(), q.at("depth_max_m").get<double>(),
+          "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", scenario, density, method,
+          red, q.at("depth_p99_m").get<double>(), q.at("depth_max_m").get<double>(),
           q.at("stance_foot_drift_p99_m").get<double>(), q.at("stance_foot_drift_max_m").get<double>(),
           q.at("foot_pops").get<int>(), q.at("rotation_dev_mean_deg").get<double>(),
-          q.at("foot_ground_penetration_max_m").get<double>(), q.at("foot_float_p99_m").get<double>(),
-          q.at("free_limb_dev_p99_deg").get<double>(), q.at("free_limb_dev_max_deg").get<double>(),
-          q.at("joint_flips").get<long>(), q.at("env_penetration_p99_m").get<double>(),
-          q.at("env_penetration_max_m").get<double>(), cell(number_or_nan(q, "mesh_overlap_fraction")),
-          cell(number_or_nan(q, "mesh_overlap_depth_p99_m")), cell(number_or_nan(q, "proxy_coverage")),
-          cell(number_or_nan(q, "proxy_outside_p99_m")));
+          q.at("foot_ground_penetration_max_m").get<double>(),
+          cell(number_or_nan(q, "foot_ground_penetration_added_max_m")),
+          q.at("foot_float_p99_m").get<double>(), q.at("free_limb_dev_p99_deg").get<double>(),
+          q.at("free_limb_dev_max_deg").get<double>(), q.at("joint_flips").get<long>(),
+          q.at("env_penetration_p99_m").get<double>(), q.at("env_penetration_max_m").get<double>(),
+          cell(number_or_nan(q, "mesh_overlap_fraction")), cell(number_or_nan(q, "mesh_overlap_depth_p99_m")),
+          cell(number_or_nan(q, "proxy_coverage")), cell(number_or_nan(q, "proxy_outside_p99_m")));
     const std::string at = fmt::format("{}@{}", scenario, density);
     const std::string ref = "issue 18 target for ours";
     checks.within("quality." + at + ".stance_drift_p99_m", at + ": stance-foot drift p99 of ours (m)",
@@ -124,6 +130,10 @@ void correction_quality_section(const SpecRun& run, const std::string& scenario,
                   qo.at("foot_float_p99_m").get<double>(), 0.0, 0.010, ref27 + ": <= 10 mm");
     checks.within("quality." + at + ".foot_ground_penetration_max_m", at + ": feet below the ground, max (m)",
                   qo.at("foot_ground_penetration_max_m").get<double>(), 0.0, 0.010, ref27 + ": <= 10 mm");
+    checks.within("quality." + at + ".foot_ground_penetration_added_max_m",
+                  at + ": feet below min(0, the input's foot), added by ours, max (m)",
+                  number_or_nan(qo, "foot_ground_penetration_added_max_m"), 0.0, 0.010,
+                  ref27 + ": <= 10 mm (what the input's own feet leave)");
     const double mesh_ours = number_or_nan(qo, "mesh_overlap_fraction");
     const double mesh_base = number_or_nan(qb, "mesh_overlap_fraction");
     checks.within("quality." + at + ".mesh_overlap_ratio",
