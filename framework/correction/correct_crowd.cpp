@@ -10,11 +10,11 @@
 
 #include "framework/core/crowd_penetration_depth.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/joint_flips.hpp"
 #include "framework/core/loop_seam_per_character.hpp"
 #include "framework/correction/blend_keeping_planted_feet.hpp"
 #include "framework/correction/corrector.hpp"
 #include "framework/correction/loop_closure_choice.hpp"
-#include "framework/metrics/joint_flips.hpp"
 
 namespace crowdlab {
 namespace {
@@ -84,7 +84,7 @@ void arms_from_input(const CrowdAnimation& input, int first, CrowdAnimation& aim
             input.characters[c].frames[f].local_rotations[static_cast<size_t>(j)];
 }
 
-/// Joint flips (metrics/joint_flips.hpp) of one character of `crowd` against its input.
+/// Joint flips (core/joint_flips.hpp) of one character of `crowd` against its input.
 long flips_of(const CrowdAnimation& input, const CrowdAnimation& crowd, size_t c) {
   CrowdAnimation one_in, one;
   one_in.meta = input.meta;
