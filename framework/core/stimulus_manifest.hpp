@@ -14,10 +14,11 @@
 // framework/metrics/correction_quality.hpp and foot_contact_quality.hpp, names as in
 // correction_quality.csv): for `baseline` the input is the crowd itself, for `ours` the baseline of the
 // same condition; the next five (issue 27) are defined in framework/metrics/free_limb_deviation.hpp,
-// joint_flips.hpp and environment_penetration.hpp; the four after them (issue 27, the rendered meshes:
-// empty for bodies without one) in framework/metrics/mesh_overlap.hpp and proxy_coverage.hpp. The last five
-// are the stimulus check of the rendered clip (issue 28; definitions in stimuli/stimulus_check.hpp), also in
-// the clip's sidecar JSON. Manifests written before any group lack its columns and read as unknown.
+// framework/core/joint_flips.hpp and framework/metrics/environment_penetration.hpp; the four after them
+// (issue 27, the rendered meshes: empty for bodies without one) in framework/metrics/mesh_overlap.hpp and
+// proxy_coverage.hpp. The last five are the stimulus check of the rendered clip (issue 28; definitions in
+// stimuli/stimulus_check.hpp), also in the clip's sidecar JSON. Manifests written before any group lack its
+// columns and read as unknown.
 #include <map>
 #include <string>
 #include <vector>

@@ -2,7 +2,7 @@
 // Anticipated contacts (issue 27, session 13; ours, beside seed 000 §3, which corrects each frame
 // causally). The corrector runs frame after frame: a forearm that the input swings at 15-25 deg per frame
 // into a neighbour is stopped within a frame of the contact, so its deviation from the input
-// D = R̂^-1 R grows by 15-25 deg per frame, a "flip" (metrics/joint_flips.hpp: more than 20 deg within 3
+// D = R̂^-1 R grows by 15-25 deg per frame, a "flip" (core/joint_flips.hpp: more than 20 deg within 3
 // frames). The offline correction knows the whole clip, so the deviation a contact needs can be started
 // before the contact and undone after it, slowly enough not to flip, and the solve then only holds it.
 //

@@ -10,11 +10,11 @@
 
 #include "framework/core/crowd_penetration_depth.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/joint_flips.hpp"
 #include "framework/core/loop_seam_per_character.hpp"
 #include "framework/correction/blend_keeping_planted_feet.hpp"
 #include "framework/correction/corrector.hpp"
 #include "framework/correction/loop_closure_choice.hpp"
-#include "framework/metrics/joint_flips.hpp"
 
 namespace crowdlab {
 namespace {
@@ -84,7 +84,7 @@ void arms_from_input(const CrowdAnimation& input, int first, CrowdAnimation& aim
             input.characters[c].frames[f].local_rotations[static_cast<size_t>(j)];
 }
 
-/// Joint flips (metrics/joint_flips.hpp) of one character of `crowd` against its input.
+/// Joint flips (core/joint_flips.hpp) of one character of `crowd` against its input.
 long flips_of(const CrowdAnimation& input, const CrowdAnimation& crowd, size_t c) {
   CrowdAnimation one_in, one;
   one_in.meta = input.meta;
@@ -109,6 +109,35 @@ std::vector<std::vector<bool>> without_new_flips(const CrowdAnimation& input,
   return allowed;
 }
 
+/// Closing window of the candidates that take joints from the next lap up to a cut inside the clip
+/// (cut_joints_from_next_lap), in fifths of the closure's window W: 2/5 (24 frames, 0.8 s, at W = 60 and
+/// 30 fps), with a cut every half such window from frame 0 to the clip's last window (9 cuts on a 4 s
+/// clip). Measured (session 16, 4 s concert at 6.66/m^2, seeds 2024000001 / 2024000002, V3 seam): windows
+/// of 60 frames 1.447 / 1.615, 40: 1.411 / 1.614, 24: 1.402 / 1.523, 18: 1.402 / 1.536, 12: 1.340 / 1.536
+/// (without these candidates 1.460 / 1.619); shorter windows turn the limb back faster inside the clip.
+constexpr int kCutWindowFifths = 2;
+
+/// The arm sets a closure may move alone: both arms, the left, the right (collar to hand).
+std::array<std::vector<Joint>, 3> arm_sets() {
+  std::vector<Joint> both(kLeftArmJoints.begin(), kLeftArmJoints.end());
+  both.insert(both.end(), kRightArmJoints.begin(), kRightArmJoints.end());
+  return {both, std::vector<Joint>(kLeftArmJoints.begin(), kLeftArmJoints.end()),
+          std::vector<Joint>(kRightArmJoints.begin(), kRightArmJoints.end())};
+}
+
+/// The joint sets the next lap's cut candidates move, in the order they are tried: the upper body (spine,
+/// neck, head and both arms), then the arm sets. Why the trunk too (session 16): with the arms alone the
+/// hands still differed by the trunk's turn between the laps (4 s concert at 6.66/m^2: c049's arms 7.8 ->
+/// 6.7 cm apart at the seam, trunk 1.6 cm).
+std::vector<std::vector<Joint>> cut_joint_sets() {
+  std::vector<Joint> upper = {kSpine1, kSpine2, kSpine3, kNeck, kHead};
+  upper.insert(upper.end(), kLeftArmJoints.begin(), kLeftArmJoints.end());
+  upper.insert(upper.end(), kRightArmJoints.begin(), kRightArmJoints.end());
+  std::vector<std::vector<Joint>> sets = {upper};
+  for (const std::vector<Joint>& arm : arm_sets()) sets.push_back(arm);
+  return sets;
+}
+
 /// Debug log: the characters the loop closure leaves open (choice == open).
 void log_open_characters(const CrowdAnimation& crowd, const std::vector<size_t>& choice, size_t open) {
   if (!spdlog::should_log(spdlog::level::debug)) return;
@@ -126,13 +155,14 @@ void log_open_characters(const CrowdAnimation& crowd, const std::vector<size_t>&
 /// limit: the unclosed clip's deepest + 1 mm, or kClosureDepthFloorM if deeper. A plain blend re-opened
 /// contacts mid-way (issue 28: 17-66 mm on 1 s clips, 76 mm on a 4 s concert at 6.66/m^2, where the
 /// unclosed clip has 0 and 16 mm), and so, less often, does (a); then each character takes (a), (b),
-/// (c) the clip's START blended from `next_start` (the corrector's next frames after the clip's own end;
-/// loop_closure_choice.hpp, start_from_next_lap), or (d) its arms alone closed toward the lap's
-/// (close_joints: both, left, right), whichever keeps everyone within the limit (choose_closures: the
-/// descent over (a)-(c), then the join over all), or stays unclosed: a seam for some rather than a
-/// collision.
+/// (c) the clip's START blended from `next_lap` (the corrector's next lap after the clip's own end;
+/// loop_closure_choice.hpp, start_from_next_lap), (d) its arms alone closed toward the lap's
+/// (close_joints: both, left, right), or (e) its upper body or arms from the next lap up to a cut inside
+/// the clip (cut_joints_from_next_lap; session 16), whichever keeps everyone within the limit
+/// (choose_closures: the descent over (a)-(c), then the join over all), or stays unclosed: a seam for some
+/// rather than a collision.
 void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>>& preroll_out,
-                const std::vector<std::vector<Pose>>& next_start, Corrector before_window,
+                const std::vector<std::vector<Pose>>& next_lap, Corrector before_window,
                 const CorrectorParams& params, CrowdAnimation& out, CorrectionReport& r) {
   const size_t n = out.characters.size();
   const int frames = out.frame_count(), preroll = static_cast<int>(preroll_out.front().size());
@@ -178,24 +208,45 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
     out = std::move(blended);
     r.loop_closure = "blend";
   } else {
+    std::vector<std::vector<Pose>> next_start = next_lap;
+    for (std::vector<Pose>& poses : next_start) poses.resize(static_cast<size_t>(preroll));
     const CrowdAnimation started = start_from_next_lap(input, next_start, params, out);
-    std::vector<Joint> both_arms(kLeftArmJoints.begin(), kLeftArmJoints.end());
-    both_arms.insert(both_arms.end(), kRightArmJoints.begin(), kRightArmJoints.end());
-    const CrowdAnimation arms = close_joints(out, preroll_out, both_arms);
-    const CrowdAnimation left = close_joints(out, preroll_out, kLeftArmJoints);
-    const CrowdAnimation right = close_joints(out, preroll_out, kRightArmJoints);
-    const std::vector<const CrowdAnimation*> closures = {&finished, &blended, &started, &arms, &left, &right};
-    const std::vector<size_t> choice =
-        choose_closures(closures, 3, out, first, preroll, limit, without_new_flips(input, closures, out));
+    // Whole closures before partial ones (the upper body and both arms cut from the next lap before one
+    // arm alone): the join gives each character the first that fits. Session 16, seed 2024000001: with
+    // the cuts after the one-arm closures, 2 characters took a cut (V3 seam 1.450); before them, 6 (1.411).
+    std::vector<CrowdAnimation> candidates;
+    std::vector<FrameSpan> spans = {{first, frames}, {first, frames}, {0, preroll}};
+    std::vector<int> kinds = {0, 1, 2};  // corrected blend, blend, start, arms, one arm, cut from next lap
+    const auto add = [&](CrowdAnimation candidate, FrameSpan span, int kind) {
+      candidates.push_back(std::move(candidate));
+      spans.push_back(span);
+      kinds.push_back(kind);
+    };
+    const int cut_window = std::max(1, preroll * kCutWindowFifths / 5);
+    const auto add_cuts = [&](const std::vector<Joint>& joints) {
+      for (int cut = 0; cut + cut_window <= frames; cut += std::max(1, cut_window / 2))
+        add(cut_joints_from_next_lap(out, next_lap, joints, cut, cut_window), {0, cut + cut_window}, 5);
+    };
+    const auto arms = arm_sets();
+    const auto cut_sets = cut_joint_sets();
+    add(close_joints(out, preroll_out, arms[0]), {first, frames}, 3);
+    add_cuts(cut_sets[0]);
+    add_cuts(cut_sets[1]);
+    for (size_t a = 1; a < arms.size(); ++a) add(close_joints(out, preroll_out, arms[a]), {first, frames}, 4);
+    for (size_t s = 2; s < cut_sets.size(); ++s) add_cuts(cut_sets[s]);
+    std::vector<const CrowdAnimation*> closures = {&finished, &blended, &started};
+    for (const CrowdAnimation& c : candidates) closures.push_back(&c);
+    const std::vector<size_t> choice = choose_closures(closures, 3, out, first, preroll, limit,
+                                                       without_new_flips(input, closures, out), spans);
     log_open_characters(out, choice, closures.size());
-    std::array<int, 5> on{};  // corrected blend, blend, start, arms, one arm
+    std::array<int, 6> on{};
     for (size_t k : choice)
-      if (k < closures.size()) ++on[std::min<size_t>(k, 4)];
+      if (k < closures.size()) ++on[static_cast<size_t>(kinds[k])];
     out = mix_closures(closures, out, choice);
     r.loop_closure = fmt::format(
-        "corrected blend for {}, blend for {}, next lap's start for {}, arms for {}, one arm for {} of {} "
-        "characters",
-        on[0], on[1], on[2], on[3], on[4], n);
+        "corrected blend for {}, blend for {}, next lap's start for {}, arms for {}, one arm for {}, arms "
+        "from the next lap for {} of {} characters",
+        on[0], on[1], on[2], on[3], on[4], on[5], n);
   }
 }
 
@@ -240,7 +291,7 @@ void log_seam_carriers(const CrowdAnimation& clip) {
 std::size_t correction_steps(const CrowdAnimation& crowd, const CorrectorParams& params) {
   const auto frames = static_cast<size_t>(crowd.frame_count());
   const auto window = static_cast<size_t>(loop_window_frames(crowd, params));
-  return window > 0 ? (1 + kLeadLaps) * frames + window : frames;
+  return window > 0 ? (2 + kLeadLaps) * frames : frames;
 }
 
 // correct_crowd itself (one run, or several with anticipated contacts) is in anticipate_contacts.cpp.
@@ -301,19 +352,19 @@ CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorPa
     if (progress) progress->advance();
   }
   if (before_window) {
-    // The next lap's first W frames, continuing from the clip's end (start_from_next_lap).
-    std::vector<std::vector<Pose>> next_start(n);
-    for (int f = 0; f < window; ++f) {
+    // The next lap, continuing from the clip's end (start_from_next_lap, cut_joints_from_next_lap).
+    std::vector<std::vector<Pose>> next_lap(n);
+    for (int f = 0; f < frames; ++f) {
       frame_targets(crowd, f, targets);
       const std::vector<Pose> corrected = corrector.step(targets);
-      for (size_t c = 0; c < n; ++c) next_start[c].push_back(corrected[c]);
+      for (size_t c = 0; c < n; ++c) next_lap[c].push_back(corrected[c]);
       if (corrector.last_stats().rejected) ++r.rejected_steps;
       if (progress) progress->advance();
     }
     if (spdlog::should_log(spdlog::level::debug))
       spdlog::debug("correct_crowd: the recorded lap ends {:.4f} m from the lead lap (worst character)",
                     lap_difference_m(out, lead_end));
-    close_loop(crowd, lead_end, next_start, *before_window, params, out, r);
+    close_loop(crowd, lead_end, next_lap, *before_window, params, out, r);
     if (spdlog::should_log(spdlog::level::debug)) log_seam_carriers(out);
   }
   r.contacts_mean = frames > 0 ? contacts / frames : 0.0;

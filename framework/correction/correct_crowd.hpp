@@ -23,9 +23,10 @@
 // stay where they stood before the input set them down (keep_planted_feet_planted: the second correction
 // set a lagging foot down 12 mm off, session 13), and its arms aim at the input's (aimed at the blend, the
 // hands flipped); characters the corrected closure leaves too deep try the plain blend, then a start from
-// the next lap (the corrector runs W frames past the clip's end, and the clip's first frames blend from
-// those), then their arms alone, alone or together with the open neighbours they meet
-// (loop_closure_choice.hpp; session 15), and otherwise stay open. A closure may always reach 10 mm.
+// the next lap (the corrector runs a whole lap past the clip's end, and the clip's first frames blend from
+// its first W), then their arms alone, or (session 16) their upper body or arms taken from that next lap up
+// to a cut inside the clip, alone or together with the open neighbours they meet (loop_closure_choice.hpp;
+// session 15), and otherwise stay open. A closure may always reach 10 mm.
 // Every blend keeps planted feet where
 // they stand and moves a foot only while the input lifts it (blend_keeping_planted_feet.hpp): a plain
 // blend slid standing feet, and `ours`' stance-foot drift failed its check (issue 28, session 10).
@@ -48,8 +49,9 @@ struct CorrectionReport {
   int settle_steps = 0;    ///< steps run on the first target frame before the output starts
   int preroll_frames = 0;  ///< frames stepped before frame 0 (loop pre-roll: four laps of the clip)
   /// How the loop pre-roll's clip was closed: "corrected blend", "blend", "corrected blend for K, blend
-  /// for L, next lap's start for S, arms for A, one arm for B of N characters" (both closures went deeper
-  /// than the limit; the others stay unclosed), or empty without a pre-roll.
+  /// for L, next lap's start for S, arms for A, one arm for B, arms from the next lap for C of N
+  /// characters" (both closures went deeper than the limit; the others stay unclosed; C counts the upper
+  /// body and arm cuts of cut_joints_from_next_lap), or empty without a pre-roll.
   std::string loop_closure;
   int rejected_steps = 0;      ///< steps whose solve failed (state kept)
   int unconverged_steps = 0;   ///< steps where CG stopped above its tolerance (result still used)
@@ -59,7 +61,7 @@ struct CorrectionReport {
 
 /// The corrector steps of correct_crowd's first run, the total its progress counts: the frames, and for a
 /// looping clip with a pre-roll the lead laps before them (four laps of the clip, correct_crowd.cpp) and
-/// the closure window's frames after them (the next lap's start).
+/// the next lap after them (its start, and the joints cut from it).
 std::size_t correction_steps(const CrowdAnimation& crowd, const CorrectorParams& params);
 
 /// progress (optional) is advanced once per step of the first run (correction_steps). report (optional)

@@ -256,13 +256,13 @@ struct CorrectorParams {
   double free_joint_hold_s = 0.2;
   /// Rate (rad/s) at which a released joint's deviation from its input returns to zero. 3 rad/s is
   /// 5.7 deg per frame at 30 fps: 17 deg within 3 frames, under the flip measure's 20 deg
-  /// (metrics/joint_flips.hpp), and a 45 deg deviation is gone in a quarter of a second.
+  /// (core/joint_flips.hpp), and a 45 deg deviation is gone in a quarter of a second.
   double free_joint_return_radps = 3.4;
   /// The joints that, while engaged, turn at most free_joint_return_radps from their last deviation, in
   /// the step and in the depenetration pass, where a joint's column gets weight 0 once its turn is used
   /// so that the joints that may still move, and the neighbour, separate the contact
   /// (stage_free_joints.cpp). At 30 fps the rate is 6.5 deg per frame, 19.5 deg within 3 frames: under
-  /// the flip measure's 20 deg (metrics/joint_flips.hpp), so a limited joint never flips. A set over the
+  /// the flip measure's 20 deg (core/joint_flips.hpp), so a limited joint never flips. A set over the
   /// 24 joints (bit j = joint j; parse_joint_set names them). Default kDefaultRateLimitedJoints. Not the
   /// knees and hips: held legs are posed by the leg IK after the limit, so their flips moved to the ankles
   /// and the legs stopped separating contacts (session 15, corridor 6.66 /m^2: 121-221 flips left, p99

@@ -11,12 +11,10 @@
 namespace crowdlab {
 namespace {
 
-/// The frames the candidates may change: [0, min(start_window, first)) and [first, N).
-std::vector<int> checked_frames(int frames, int first, int start_window) {
-  std::vector<int> f;
-  for (int k = 0; k < std::min(start_window, first); ++k) f.push_back(k);
-  for (int k = first; k < frames; ++k) f.push_back(k);
-  return f;
+/// The frames the descent's candidates may change, [0, min(start_window, first)) and [first, N), as one
+/// span per candidate (the frames between, if any, are the unclosed clip's on every candidate).
+std::vector<FrameSpan> descent_spans(size_t candidates, int frames, int first, int start_window) {
+  return std::vector<FrameSpan>(candidates, {std::min(start_window, first) > 0 ? 0 : first, frames});
 }
 
 /// The descent: every character on candidate 0, each too deep moved on (after the last of the first
@@ -68,15 +66,23 @@ double seam_m(const CharacterAnimation& c) {
 /// The join (header, step 2), on every character with rung[c] == closures.size().
 class Join {
  public:
-  Join(const std::vector<const CrowdAnimation*>& closures, const CrowdAnimation& unclosed, int first,
-       int start_window, double limit_m, const std::vector<std::vector<bool>>& allowed)
-      : open_(closures.size()), n_(unclosed.characters.size()), limit_m_(limit_m), allowed_(allowed) {
-    const std::vector<int> checked = checked_frames(unclosed.frame_count(), first, start_window);
+  /// spans[r]: the frames candidate r changes (the unclosed clip is kept whole). Capsules only of the
+  /// characters that may be on a candidate: those the descent left open, or put on it.
+  Join(const std::vector<const CrowdAnimation*>& closures, const CrowdAnimation& unclosed,
+       std::vector<FrameSpan> spans, double limit_m, const std::vector<std::vector<bool>>& allowed,
+       const std::vector<size_t>& rung)
+      : open_(closures.size()),
+        n_(unclosed.characters.size()),
+        limit_m_(limit_m),
+        allowed_(allowed),
+        spans_(std::move(spans)) {
+    spans_.push_back({0, unclosed.frame_count()});
     capsules_.assign(open_ + 1, std::vector<std::vector<WorldCapsules>>(n_));
     for (size_t r = 0; r <= open_; ++r) {
       const CrowdAnimation& a = r < open_ ? *closures[r] : unclosed;
       for (size_t c = 0; c < n_; ++c)
-        for (int f : checked)
+        for (int f = spans_[r].begin; f < spans_[r].end && (r == open_ || rung[c] == open_ || rung[c] == r);
+             ++f)
           capsules_[r][c].push_back(
               world_capsules(a.characters[c].shape, a.characters[c].frames[static_cast<size_t>(f)]));
     }
@@ -93,11 +99,20 @@ class Join {
   }
 
  private:
-  /// Deepest penetration (m) of character c on candidate rc and o on ro over the checked frames.
+  /// Character c's capsules on candidate r at frame f (the unclosed clip's outside r's span).
+  const WorldCapsules& at(size_t c, size_t r, int f) const {
+    const FrameSpan& s = spans_[r];
+    return f >= s.begin && f < s.end ? capsules_[r][c][static_cast<size_t>(f - s.begin)]
+                                     : capsules_[open_][c][static_cast<size_t>(f)];
+  }
+
+  /// Deepest penetration (m) of character c on candidate rc and o on ro over the frames either changes
+  /// (c is on a candidate, rc < open_; elsewhere both are the unclosed clip, within the limit).
   double depth_m(size_t c, size_t rc, size_t o, size_t ro) const {
+    int begin = spans_[rc].begin, end = spans_[rc].end;
+    if (ro < open_) begin = std::min(begin, spans_[ro].begin), end = std::max(end, spans_[ro].end);
     double d = 0.0;
-    for (size_t i = 0; i < capsules_[rc][c].size(); ++i)
-      d = std::max(d, max_penetration_depth(capsules_[rc][c][i], capsules_[ro][o][i]));
+    for (int f = begin; f < end; ++f) d = std::max(d, max_penetration_depth(at(c, rc, f), at(o, ro, f)));
     return d;
   }
 
@@ -123,7 +138,8 @@ class Join {
   size_t open_, n_;
   double limit_m_;
   const std::vector<std::vector<bool>>& allowed_;
-  std::vector<std::vector<std::vector<WorldCapsules>>> capsules_;  ///< [candidate][character][checked frame]
+  std::vector<FrameSpan> spans_;  ///< per candidate, then the unclosed clip's (every frame)
+  std::vector<std::vector<std::vector<WorldCapsules>>> capsules_;  ///< [candidate][character][span frame]
 };
 
 /// The crowd with every character's frames in reverse order.
@@ -149,10 +165,14 @@ std::vector<double> deepest_per_character(const CrowdAnimation& crowd, int first
 
 std::vector<size_t> choose_closures(const std::vector<const CrowdAnimation*>& closures, size_t descent_rungs,
                                     const CrowdAnimation& unclosed, int first, int start_window,
-                                    double limit_m, const std::vector<std::vector<bool>>& allowed) {
+                                    double limit_m, const std::vector<std::vector<bool>>& allowed,
+                                    const std::vector<FrameSpan>& spans) {
   std::vector<size_t> rung = descend(closures, std::min(descent_rungs, closures.size()), unclosed, first,
                                      start_window, limit_m, allowed);
-  Join(closures, unclosed, first, start_window, limit_m, allowed).run(unclosed, rung);
+  Join(closures, unclosed,
+       spans.empty() ? descent_spans(closures.size(), unclosed.frame_count(), first, start_window) : spans,
+       limit_m, allowed, rung)
+      .run(unclosed, rung);
   return rung;
 }
 
@@ -192,6 +212,24 @@ CrowdAnimation close_joints(const CrowdAnimation& clip, const std::vector<std::v
       }
     }
   return closed;
+}
+
+CrowdAnimation cut_joints_from_next_lap(const CrowdAnimation& clip,
+                                        const std::vector<std::vector<Pose>>& next_lap,
+                                        std::span<const Joint> joints, int cut, int window) {
+  CrowdAnimation mixed = clip;
+  for (size_t c = 0; c < mixed.characters.size(); ++c)
+    for (int f = 0; f < cut + window; ++f) {
+      // The clip's weight: 0 before the cut, rising over the window (1 only after it).
+      const double w = f < cut ? 0.0 : raised_cosine(f - cut + 1, window + 1);
+      auto& rotations = mixed.characters[c].frames[static_cast<size_t>(f)].local_rotations;
+      const auto& next = next_lap[c][static_cast<size_t>(f)].local_rotations;
+      for (Joint j : joints) {
+        const auto i = static_cast<size_t>(j);
+        rotations[i] = next[i].slerp(w, rotations[i]).normalized();
+      }
+    }
+  return mixed;
 }
 
 }  // namespace crowdlab

@@ -19,6 +19,8 @@
 //     every too-deep character at once, so a character too deep only against a neighbour that the same
 //     step opens is opened too; and two neighbours can often close only together, each alone meeting the
 //     other's unclosed limbs. Measured on the 4 s concert at 6.66/m^2 (docs/stimuli.md, session 15).
+//     The join checks each candidate over the frames it changes (spans; session 16: candidates whose
+//     window lies inside the clip, cut_joints_from_next_lap).
 #include <array>
 #include <cstddef>
 #include <span>
@@ -28,6 +30,11 @@
 #include "framework/correction/corrector_params.hpp"
 
 namespace crowdlab {
+
+/// Frames [begin, end) of the clip that a closure candidate changes: the join checks its depths there.
+struct FrameSpan {
+  int begin = 0, end = 0;
+};
 
 /// Per character, its deepest penetration (m) with any other over frames [first, last) of a crowd.
 std::vector<double> deepest_per_character(const CrowdAnimation& crowd, int first, int last);
@@ -40,11 +47,13 @@ inline constexpr std::size_t kMaxJoinedCharacters = 4;
 /// frames [first, N) and [0, min(start_window, first)). Needs every character within limit_m in `unclosed`
 /// against `unclosed` (then the result keeps every character within it).
 /// allowed[r][c]: whether character c may take candidate r at all (correct_crowd.cpp offers none that
-/// adds joint flips to it).
+/// adds joint flips to it). spans[r]: the frames candidate r changes, where the join checks it (empty:
+/// every candidate over the frames the descent checks).
 std::vector<std::size_t> choose_closures(const std::vector<const CrowdAnimation*>& closures,
                                          std::size_t descent_rungs, const CrowdAnimation& unclosed, int first,
                                          int start_window, double limit_m,
-                                         const std::vector<std::vector<bool>>& allowed);
+                                         const std::vector<std::vector<bool>>& allowed,
+                                         const std::vector<FrameSpan>& spans = {});
 
 /// `unclosed` with each character's frames from its chosen candidate (choose_closures).
 CrowdAnimation mix_closures(const std::vector<const CrowdAnimation*>& closures,
@@ -73,5 +82,18 @@ inline constexpr std::array<Joint, 5> kRightArmJoints = {kRightCollar, kRightSho
 /// concert's seam by their ARMS (arms 10-12 cm from the lap's, legs <= 3.2 cm).
 CrowdAnimation close_joints(const CrowdAnimation& clip, const std::vector<std::vector<Pose>>& lap_end,
                             std::span<const Joint> joints);
+
+/// `clip` with the local rotations of `joints` taken from `next_lap` (the corrector's poses that continue
+/// from the clip's last frame, a whole lap: next_lap[c][f] is frame f of the lap after the clip) on frames
+/// [0, cut), slerped back to the clip's own over [cut, cut + window) (the clip's weight rising as a raised
+/// cosine), and the clip's own from cut + window on. Those joints then continue from the clip's last frame
+/// into frame 0, and their seam moves to the window inside the clip. Why (session 16): on the dense concert
+/// the last open characters went 83-108 mm into a neighbour on every closure at the clip's end or start,
+/// the two laps holding an arm on opposite sides of the neighbour there; elsewhere in the dance both laps
+/// may hold it on the same side, and a window there passes no limb through another. The root, legs and
+/// trunk stay the clip's, so planted feet stay planted. Needs 0 <= cut, window >= 1, cut + window <= N.
+CrowdAnimation cut_joints_from_next_lap(const CrowdAnimation& clip,
+                                        const std::vector<std::vector<Pose>>& next_lap,
+                                        std::span<const Joint> joints, int cut, int window);
 
 }  // namespace crowdlab

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
@@ -15,11 +14,6 @@ double nearest_rank_quantile(std::vector<double> v, double q) {
   std::sort(v.begin(), v.end());
   const auto k = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5));
   return v[k];
-}
-
-double rotation_angle_deg(const Quat& a, const Quat& b) {
-  const double d = std::min(1.0, std::abs(a.normalized().dot(b.normalized())));
-  return 2.0 * std::acos(d) * 180.0 / std::numbers::pi;
 }
 
 CorrectionQuality measure_correction_quality(const CrowdAnimation& input, const CrowdAnimation& corrected,

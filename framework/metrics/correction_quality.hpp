@@ -14,8 +14,9 @@
 //   joint_speed_max_mps        largest joint speed of the corrected animation (m/s, finite differences)
 //   free_limbs                 deviation of joints whose limbs touch nobody (issue 27;
 //                              free_limb_deviation.hpp)
-//   flips                      joint-frames whose deviation from the input jumps (issue 27; joint_flips.hpp)
-//   environment                capsule depth behind walls, barriers and the stage, of the corrected
+//   flips                      joint-frames whose deviation from the input jumps (issue 27;
+//   core/joint_flips.hpp) environment                capsule depth behind walls, barriers and the stage, of
+//   the corrected
 //                              animation (issue 27; environment_penetration.hpp)
 //   mesh_overlap               rendered-mesh vertices inside another character's rendered mesh, of the
 //                              corrected animation (issue 27; mesh_overlap.hpp; sampled every 0.5 s)
@@ -26,10 +27,11 @@
 // quarters of the whole on MPFB2 crowds (closest-point queries against every neighbour's posed mesh), and
 // a caller that reads none of them (`reproduce gomez2024 --quick`, issue 31) skips them.
 #include "framework/core/crowd_animation.hpp"
+#include "framework/core/joint_flips.hpp"
+#include "framework/core/rotation_angle.hpp"
 #include "framework/metrics/environment_penetration.hpp"
 #include "framework/metrics/foot_contact_quality.hpp"
 #include "framework/metrics/free_limb_deviation.hpp"
-#include "framework/metrics/joint_flips.hpp"
 #include "framework/metrics/mesh_overlap.hpp"
 #include "framework/metrics/proxy_coverage.hpp"
 
@@ -58,8 +60,5 @@ CorrectionQuality measure_correction_quality(const CrowdAnimation& input, const 
 
 /// The q-quantile (0..1) of v by nearest rank (0 for an empty vector).
 double nearest_rank_quantile(std::vector<double> v, double q);
-
-/// Angle (degrees) between two unit quaternions as rotations.
-double rotation_angle_deg(const Quat& a, const Quat& b);
 
 }  // namespace crowdlab

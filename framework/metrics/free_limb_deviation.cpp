@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "framework/core/rotation_angle.hpp"
 #include "framework/metrics/bone_proximity.hpp"
 #include "framework/metrics/correction_quality.hpp"
 

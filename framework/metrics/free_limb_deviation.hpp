@@ -10,7 +10,7 @@
 // (the joint and its descendants), and the whole body for the root and the legs (a leg of a pushed
 // body is part of its response: the foot holds bend it to keep planted feet where they are).
 // On every free joint-frame, the deviation is the angle between the input's and the corrected local
-// rotations (degrees; rotation_angle_deg). Reported: p99 (nearest rank) and max over all of them, how
+// rotations (degrees; core/rotation_angle.hpp). Reported: p99 (nearest rank) and max over all of them, how
 // many there were, and where the max is.
 #include "framework/core/crowd_animation.hpp"
 

@@ -9,9 +9,9 @@
 #include "framework/core/crowd_penetration_depth.hpp"
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/joint_flips.hpp"
 #include "framework/correction/anticipate_contacts.hpp"
 #include "framework/correction/correct_crowd.hpp"
-#include "framework/metrics/joint_flips.hpp"
 
 // This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
 namespace test_anticipated_contacts {

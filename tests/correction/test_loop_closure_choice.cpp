@@ -1,5 +1,6 @@
 // Which loop closure each character takes (framework/correction/loop_closure_choice.hpp; issue 28, session
-// 15): the descent alone left open neighbours that can close only together, and a start from the next lap.
+// 15): the descent alone left open neighbours that can close only together, and a start from the next lap;
+// session 16: the join checks each candidate over the frames it changes, and joints cut from the next lap.
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -36,6 +37,20 @@ CrowdAnimation three_far_apart() {
 void move_window(CrowdAnimation& crowd, size_t c, int first, double x_m) {
   for (size_t f = static_cast<size_t>(first); f < crowd.characters[c].frames.size(); ++f)
     crowd.characters[c].frames[f].root_position_m.x() = x_m;
+}
+
+/// Another lap's poses: the clip's frames [first, first + count) of every character with every joint
+/// turned by 0.5 rad about x.
+std::vector<std::vector<Pose>> turned_lap(const CrowdAnimation& clip, int first, int count) {
+  std::vector<std::vector<Pose>> lap(clip.characters.size());
+  const Quat turn(Eigen::AngleAxisd(0.5, Vec3::UnitX()));
+  for (size_t c = 0; c < lap.size(); ++c)
+    for (int k = 0; k < count; ++k) {
+      Pose p = clip.characters[c].frames[static_cast<size_t>(first + k)];
+      for (Quat& q : p.local_rotations) q = turn * q;
+      lap[c].push_back(p);
+    }
+  return lap;
 }
 
 }  // namespace
@@ -131,14 +146,7 @@ TEST_CASE("loop closure choice: close_joints brings only the named joints to the
   o.frames = 30;
   const CrowdAnimation clip = make_swaying_crowd_fixture(o);
   const int window = 10, first = 20;
-  std::vector<std::vector<Pose>> lap_end(2);
-  const Quat turn(Eigen::AngleAxisd(0.5, Vec3::UnitX()));
-  for (size_t c = 0; c < 2; ++c)
-    for (int k = 0; k < window; ++k) {
-      Pose p = clip.characters[c].frames[static_cast<size_t>(first + k)];
-      for (Quat& q : p.local_rotations) q = turn * q;
-      lap_end[c].push_back(p);
-    }
+  const std::vector<std::vector<Pose>> lap_end = turned_lap(clip, first, window);
   const CrowdAnimation closed = close_joints(clip, lap_end, kRightArmJoints);
   for (size_t c = 0; c < 2; ++c) {
     const Pose& end = closed.characters[c].frames.back();
@@ -153,6 +161,59 @@ TEST_CASE("loop closure choice: close_joints brings only the named joints to the
       for (size_t j = 0; j < static_cast<size_t>(kJointCount); ++j)
         CHECK(closed.characters[c].frames[f].local_rotations[j].coeffs() ==
               clip.characters[c].frames[f].local_rotations[j].coeffs());
+  }
+}
+
+TEST_CASE("loop closure choice: the join checks a candidate over the frames it changes",
+          "[correction][loop]") {
+  // Candidate 0 moves A onto B (x = 2) on frames [5, 15), inside the clip, far from the closure's window
+  // [30, 40); candidate 1 moves A 0.5 m aside on [30, 40), where it meets nobody. Checked over the frames
+  // each changes, A takes candidate 1; checked over the window alone (the spans before session 16), it
+  // took candidate 0 and went through B mid-clip.
+  CrowdAnimation unclosed = three_far_apart();
+  const int first = 30;
+  CrowdAnimation inside = unclosed, aside = unclosed;
+  for (size_t f = 5; f < 15; ++f) inside.characters[0].frames[f].root_position_m.x() = 2.0;
+  move_window(aside, 0, first, -0.5);
+  const std::vector<const CrowdAnimation*> closures = {&inside, &aside};
+  const std::vector<std::vector<bool>> any = {{true, true, true}, {true, true, true}};
+  const std::vector<FrameSpan> spans = {{0, 15}, {first, 40}};
+  const std::vector<size_t> choice = choose_closures(closures, 0, unclosed, first, 0, 0.01, any, spans);
+  REQUIRE(choice.size() == 3);
+  CHECK(choice[0] == 1);
+  const std::vector<size_t> window_only = choose_closures(closures, 0, unclosed, first, 0, 0.01, any);
+  CHECK(window_only[0] == 0);
+}
+
+TEST_CASE("loop closure choice: cut_joints_from_next_lap moves the arm's seam inside the clip",
+          "[correction][loop]") {
+  SwayingCrowdOptions o;
+  o.characters = 2;
+  o.frames = 30;
+  const CrowdAnimation clip = make_swaying_crowd_fixture(o);
+  const int cut = 8, window = 10;
+  const std::vector<std::vector<Pose>> next_lap = turned_lap(clip, 0, o.frames);  // every joint turned
+  const CrowdAnimation mixed = cut_joints_from_next_lap(clip, next_lap, kLeftArmJoints, cut, window);
+  const auto elbow = static_cast<size_t>(kLeftElbow), knee = static_cast<size_t>(kLeftKnee);
+  for (size_t c = 0; c < 2; ++c) {
+    const auto& got = mixed.characters[c].frames;
+    const auto& own = clip.characters[c].frames;
+    for (size_t f = 0; f < own.size(); ++f) {
+      INFO("frame " << f);
+      CHECK(got[f].local_rotations[knee].coeffs() == own[f].local_rotations[knee].coeffs());  // not an arm
+      CHECK(got[f].root_position_m == own[f].root_position_m);
+      const double to_own = got[f].local_rotations[elbow].angularDistance(own[f].local_rotations[elbow]);
+      const double to_next =
+          got[f].local_rotations[elbow].angularDistance(next_lap[c][f].local_rotations[elbow]);
+      if (f < static_cast<size_t>(cut)) CHECK(to_next < 1e-9);  // the next lap's: frame 0 follows frame N-1
+      if (f >= static_cast<size_t>(cut + window)) CHECK(to_own < 1e-9);
+    }
+    // Inside the window the arm turns back gradually: no step larger than the whole turn's third.
+    for (int f = cut; f < cut + window; ++f) {
+      const auto ff = static_cast<size_t>(f);
+      CHECK(got[ff].local_rotations[elbow].angularDistance(got[ff - 1].local_rotations[elbow]) <
+            own[ff].local_rotations[elbow].angularDistance(own[ff - 1].local_rotations[elbow]) + 0.5 / 3.0);
+    }
   }
 }
 

@@ -1,16 +1,16 @@
 // Free-limb deviation, joint flips and environment penetration (issue 27;
-// framework/metrics/free_limb_deviation.hpp, joint_flips.hpp, environment_penetration.hpp) on hand-made
-// animations whose answers are known.
+// framework/metrics/free_limb_deviation.hpp, core/joint_flips.hpp, metrics/environment_penetration.hpp) on
+// hand-made animations whose answers are known.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
 
 #include "framework/core/capsule_box_distance.hpp"
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/joint_flips.hpp"
 #include "framework/metrics/correction_quality.hpp"
 #include "framework/metrics/environment_penetration.hpp"
 #include "framework/metrics/free_limb_deviation.hpp"
-#include "framework/metrics/joint_flips.hpp"
 
 // This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
 namespace test_free_limb_measures {

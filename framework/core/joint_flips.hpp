@@ -9,6 +9,11 @@
 // Comparing deviations (not rotations) cancels the input's own motion, and the angle of a unit
 // quaternion difference is sign-free (rotation_angle_deg), so q and -q are the same rotation.
 // 20 degrees within 3 frames is 200 deg/s of deviation alone at 30 fps (issue 27's threshold).
+//   inputs:  the input and the corrected animation (same characters and frames), the first frame counted
+//   outputs: flip joint-frames (count, per joint, the first kListedFlips) and the largest deviation
+//            change within kFlipFrames (degrees)
+// In core, not metrics: the correction stage's loop closure uses it too (correct_crowd.cpp, no closure
+// that adds flips to a character), and correction comes before metrics in the stage order.
 #include <array>
 #include <vector>
 

@@ -1,8 +1,8 @@
-#include "framework/metrics/joint_flips.hpp"
+#include "framework/core/joint_flips.hpp"
 
 #include <algorithm>
 
-#include "framework/metrics/correction_quality.hpp"
+#include "framework/core/rotation_angle.hpp"
 
 namespace crowdlab {
 
