@@ -116,6 +116,8 @@ std::vector<std::vector<bool>> without_new_flips(const CrowdAnimation& input,
 /// of 60 frames 1.447 / 1.615, 40: 1.411 / 1.614, 24: 1.402 / 1.523, 18: 1.402 / 1.536, 12: 1.340 / 1.536
 /// (without these candidates 1.460 / 1.619); shorter windows turn the limb back faster inside the clip.
 constexpr int kCutWindowFifths = 2;
+/// How far into the clip a cut may end, in closing windows W (see close_loop).
+constexpr int kCutSpanWindows = 2;
 
 /// The arm sets a closure may move alone: both arms, the left, the right (collar to hand).
 std::array<std::vector<Joint>, 3> arm_sets() {
@@ -223,8 +225,12 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
       kinds.push_back(kind);
     };
     const int cut_window = std::max(1, preroll * kCutWindowFifths / 5);
+    // Cuts only within the clip's first two windows (a 4 s clip's whole length at W = 60): each candidate
+    // is a copy of the whole crowd, and cuts over a 20 s clip would make ~200 copies (60 characters x 600
+    // frames: ~5.7 GB) where the 4 s clips measured have 36.
+    const int last_cut_end = std::min(frames, kCutSpanWindows * preroll);
     const auto add_cuts = [&](const std::vector<Joint>& joints) {
-      for (int cut = 0; cut + cut_window <= frames; cut += std::max(1, cut_window / 2))
+      for (int cut = 0; cut + cut_window <= last_cut_end; cut += std::max(1, cut_window / 2))
         add(cut_joints_from_next_lap(out, next_lap, joints, cut, cut_window), {0, cut + cut_window}, 5);
     };
     const auto arms = arm_sets();
