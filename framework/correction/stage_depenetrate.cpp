@@ -42,7 +42,7 @@
 //                 translation spring. The point Jacobian of p on bone b is I for dr and (p - o_j) x n
 //                 for every joint j from b up to the root (o_j: joint j's world position). The weighted
 //                 least-norm solution is dq = K^-1 J^T (J K^-1 J^T + eps)^-1 r, a dense solve of one
-//                 row per constraint (a handful);
+//                 row per constraint (a handful; depenetration_solve.hpp);
 //   4. apply      root += dr (at most the deepest separation asked for); local_j <- R_parent^T
 //                 exp(w_j) R_parent local_j (R_parent: the parent's world rotation before the pass),
 //                 each w_j limited to kMaxRotation_rad; held feet are then re-planted exactly by
@@ -72,28 +72,20 @@
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/leg_ik.hpp"
 #include "framework/correction/corrector_step.hpp"
+#include "framework/correction/depenetration_solve.hpp"
 #include "framework/correction/environment_box_contact.hpp"
 
 namespace crowdlab {
 namespace {
 
-/// Largest rotation one pass may give a joint (rad). The pass linearises every point as w x (p - o),
-/// whose error grows as |p - o| |w|^2 / 2; 0.2 rad keeps it below 10 % of the move. Measured in an
-/// earlier variant (every pair re-tested, corridor at 6.66 /m^2, 4 s, 6 passes): 0.1 rad left more
-/// depth, 0.4 rad the same as 0.2 (p99 13.2 vs 13.4 mm).
-constexpr double kMaxRotation_rad = 0.2;
+using namespace depenetration;
+
 /// Floor on each joint's rotation weight: k_j >= k_root (kMinLever_m)^2, so a rotation never moves a
 /// point more cheaply than translating the root would at 20 cm from the joint. Without it the least-
 /// energy change turned light leaves (toes, hands: tiny effective inertia) by 1-2 rad to move a contact
 /// point a few centimetres, which the trust region then cut back: measured on the corridor at 6.66 /m^2,
 /// 18 % of the per-character solves were throttled and deep contacts took more passes to clear.
 constexpr double kMinLever_m = 0.2;
-/// Relative Tikhonov term on the constraint system (times its largest diagonal entry): rows that
-/// conflict (a limb pressed from two sides, a contact against a held foot) get a least-squares
-/// compromise instead of an exploding solve. At 1e-6 nearly dependent rows threw a pelvis 40 cm in one
-/// step; 1e-4 left p99 56 mm where 1e-2 left 16 mm (stationary 5.55 /m^2, 3 passes of 0.1 rad); 1e-3
-/// with 6 passes of 0.2 rad left 7.4 mm there and 7.5 mm in the corridor at 3.33 /m^2.
-constexpr double kRegularisation = 1e-3;
 /// Weight of the foot-budget rows in the regularised solve (rows and right-hand sides scaled by it).
 /// Scaling a row leaves the exact solution alone but, where rows conflict and the regularisation
 /// compromises, makes its residual cost w^2 times more: the budget is kept and the contact is
@@ -104,21 +96,6 @@ constexpr double kRegularisation = 1e-3;
 /// remaining pops had been legs pressed between two neighbours, where the contact rows and the budget
 /// row of the same foot conflict (docs/correction.md).
 constexpr double kFootBudgetRowWeight = 10.0;
-/// At most this many rows per character and pass (contacts, deepest kept, plus up to 12 held-foot
-/// and 4 foot-budget rows), so the dense system stays on the stack; the surface guards below come on
-/// top (kMaxGuardRows).
-constexpr int kMaxRows = 40;
-/// Surface guards (issue 27, session 15): one-sided rows for the environment boxes and the ground.
-/// A capsule the pass's change would take deeper than max(d, a), d its depth now (< 0: a gap) and a
-/// what the surface allows (0 behind a box face; the pass's tolerance below y = 0, so feet standing on
-/// the ground are left alone), gets the row n . J_p [dr; w] = d - max(d, a) and the character is solved
-/// again with it: an active set of the inequality n . J_p dq >= d - max(d, a) (the rows are added only
-/// where the unconstrained change breaks them, so a capsule may still leave a surface). Without them the pass
-/// pushed bodies into the corridor's barriers and swinging feet into the ground while it separated
-/// neighbours: of the 28 capsule-frames deeper than 5 mm in a barrier at corridor 6.66 /m^2 (3 s), 16 were
-/// not after the Newton step but were after the pass (a pelvis 0 -> 20.8 mm); a swinging foot 19 mm above the
-/// ground in the input went 73 mm below it (docs/correction.md, session 15).
-constexpr int kMaxGuardRows = 8;
 /// Weight of the guard rows (as kFootBudgetRowWeight): where they conflict with contacts, they win.
 constexpr double kGuardRowWeight = 10.0;
 /// Re-solves per character and pass with the guards found so far.
@@ -159,14 +136,6 @@ constexpr double kEnvironmentMargin_m = 0.1;
 /// in one pass took its foot along past the foot motion budget (foot pops; docs/correction.md). The
 /// rest is left to the next passes and steps.
 constexpr double kMaxEnvironmentPush_m = 0.02;
-
-constexpr int kVariables = kPoseChangeVariables;  // dr, then w_j per joint
-using Row = Eigen::Matrix<double, 1, kVariables>;
-using Weights = PoseChangeVector;
-constexpr int kMaxAllRows = kMaxRows + kMaxGuardRows;
-using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, kVariables, Eigen::RowMajor, kMaxAllRows, kVariables>;
-using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxAllRows, kMaxAllRows>;
-using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxAllRows, 1>;
 
 /// The row n . J_p of a point p (world) moving with bone `bone` (local index), for a unit direction n.
 Row point_row(const BoneTransforms& bones, int bone, const Vec3& p, const Vec3& n) {
@@ -456,34 +425,6 @@ int add_guard_rows(const BoneTransforms& bones, const PoseChangeVector& dq, std:
   return added;
 }
 
-/// The least-energy pose change meeting the rows (weighted least norm, regularised), then limited: the
-/// root moves no farther than the deepest separation asked for, and no joint turns by more than
-/// kMaxRotation_rad. Returns false when the solve is not finite.
-bool least_energy_change(const RowBlock& J, const SmallVector& r, const Weights& inv_w, Weights& dq) {
-  const Eigen::Index m = J.rows();
-  const RowBlock JW = J * inv_w.asDiagonal();
-  // Coefficient-wise products: for a few rows Eigen's blocked GEMM path costs more than the arithmetic.
-  SmallMatrix A = JW.lazyProduct(J.transpose());
-  double largest = 0.0, wanted = 0.0;  // largest diagonal entry, deepest separation asked for
-  for (Eigen::Index i = 0; i < m; ++i) {
-    largest = std::max(largest, A(i, i));
-    wanted = std::max(wanted, std::abs(r(i)));
-  }
-  A.diagonal().array() += kRegularisation * largest;
-  const SmallVector y = A.ldlt().solve(r);
-  dq = JW.transpose().lazyProduct(y);
-  if (!dq.allFinite()) return false;
-  // Trust region: the root moves no farther than the deepest separation asked for, and each joint
-  // turns by at most kMaxRotation_rad (the rest is left to the next pass, re-linearised).
-  const double root_move = dq.head<3>().norm();
-  if (root_move > wanted) dq.head<3>() *= wanted / root_move;
-  for (int j = 0; j < kJointCount; ++j) {
-    const double angle = dq.segment<3>(3 + 3 * j).norm();
-    if (angle > kMaxRotation_rad) dq.segment<3>(3 + 3 * j) *= kMaxRotation_rad / angle;
-  }
-  return true;
-}
-
 /// root += dr; local_j <- R_parent^T exp(w_j) R_parent local_j, R_parent from `bones` (before the change).
 void apply_change(const BoneTransforms& bones, const Weights& dq, Pose& pose) {
   pose.root_position_m += dq.head<3>();
@@ -510,58 +451,6 @@ void for_each_item(const std::vector<int>& items, size_t serial_below, F&& f) {
     return;
   }
   tbb::parallel_for(size_t{0}, items.size(), [&](size_t k) { f(items[k]); });
-}
-
-/// An engaged knee in the pass (params.knee_hinge): its rotation vector in the basis (hinge, two axes
-/// off it), the off-hinge part limited to what the rate leaves (knee_off_hinge_left).
-struct KneeHinge {
-  int joint = 0;
-  Mat3 basis = Mat3::Identity();  ///< world axes: the hinge (the thigh's x), then two normal to it
-  double left_rad = 0.0;
-};
-
-/// Character c's knees limited off their hinge in the pass (at most 2, written to out); returns how many.
-int knee_hinges(const CorrectorModel& model, const CorrectorState& s, int c, const BoneTransforms& bones,
-                const Pose& pose, std::array<KneeHinge, 2>& out) {
-  int n = 0;
-  for (const int knee : {kLeftKnee, kRightKnee}) {
-    const double left = knee_off_hinge_left(model, s, c, pose, knee);
-    if (left < 0.0) continue;
-    KneeHinge& k = out[static_cast<size_t>(n++)];
-    k.joint = knee;
-    k.left_rad = left;
-    const Vec3 hinge =
-        bones[static_cast<size_t>(kJointParent[static_cast<size_t>(knee)])].rotation * Vec3::UnitX();
-    k.basis.col(0) = hinge;
-    k.basis.col(1) = hinge.unitOrthogonal();
-    k.basis.col(2) = hinge.cross(k.basis.col(1));
-  }
-  return n;
-}
-
-/// least_energy_change with the knees' off-hinge turns weighted 0 once their turn is used and limited to
-/// what is left otherwise (the knees' columns solved in their hinge bases; the weight is isotropic, so
-/// a change of basis leaves the other columns' solution alone).
-bool hinged_least_energy_change(const RowBlock& J, const SmallVector& r, const Weights& inv_w,
-                                const std::array<KneeHinge, 2>& knees, int count, Weights& dq) {
-  RowBlock Jt = J;
-  Weights inv_t = inv_w;
-  for (int k = 0; k < count; ++k) {
-    const KneeHinge& knee = knees[static_cast<size_t>(k)];
-    const int col = 3 + 3 * knee.joint;
-    Jt.middleCols<3>(col) = J.middleCols<3>(col) * knee.basis;
-    if (knee.left_rad < 1e-3) inv_t.segment<2>(col + 1).setZero();
-  }
-  if (!least_energy_change(Jt, r, inv_t, dq)) return false;
-  for (int k = 0; k < count; ++k) {
-    const KneeHinge& knee = knees[static_cast<size_t>(k)];
-    const int col = 3 + 3 * knee.joint;
-    Vec3 w = dq.segment<3>(col);
-    const double off = w.tail<2>().norm();
-    if (off > knee.left_rad) w.tail<2>() *= knee.left_rad / off;
-    dq.segment<3>(col) = knee.basis * w;
-  }
-  return true;
 }
 
 }  // namespace
