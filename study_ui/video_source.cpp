@@ -1,10 +1,11 @@
 #include "study_ui/video_source.hpp"
 
 #include <cmath>
+#include <memory>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include "framework/core/error.hpp"
+#include "framework/media/video_reader.hpp"
 #include "study_ui/trial_screen.hpp"
 
 namespace crowdlab::study {
@@ -39,23 +40,28 @@ constexpr size_t kRawAhead = 2;  // raw frames waiting for the scaler (6.9 MB ea
 }  // namespace
 
 void VideoSource::decode() {
-  cv::VideoCapture cap;
+  std::unique_ptr<VideoReader> reader;
   auto fail = [&](const std::string& what) {
     std::lock_guard lock(mutex_);
     error_ = path_ + ": " + what;
     open_ = raw_ended_ = true;
     changed_.notify_all();
   };
+  // libavcodec's own threads (0: as many as it likes) keep 1080p playback ahead of the window.
+  const auto open = [&] { reader = std::make_unique<VideoReader>(path_, 0); };
   try {
-    if (!cap.open(path_, cv::CAP_FFMPEG)) return fail("cannot open the video");
-    const cv::Size native(static_cast<int>(cap.get(cv::CAP_PROP_FRAME_WIDTH)),
-                          static_cast<int>(cap.get(cv::CAP_PROP_FRAME_HEIGHT)));
-    const double fps = cap.get(cv::CAP_PROP_FPS);
+    try {
+      open();
+    } catch (const RuntimeError&) {
+      return fail("cannot open the video");
+    }
+    const cv::Size native(reader->width(), reader->height());
+    const double fps = reader->fps();
     {
       std::lock_guard lock(mutex_);
       display_ = fit_rect(native, area_).size();
       fps_ = (std::isfinite(fps) && fps > 1.0 && fps < 1000.0) ? fps : fallback_fps_;
-      count_ = static_cast<long>(std::max(0.0, cap.get(cv::CAP_PROP_FRAME_COUNT)));
+      count_ = std::max(0L, reader->frame_count_estimate());
       open_ = true;
     }
     changed_.notify_all();
@@ -66,15 +72,19 @@ void VideoSource::decode() {
         changed_.wait(lock, [&] { return stop_ || raw_.size() < kRawAhead; });
         if (stop_) return;
       }
-      cv::Mat raw;
       bool late = false;
       {
         std::lock_guard lock(mutex_);
         late = index < wanted_;
       }
+      bool got = false;
+      try {
+        got = reader->next();
+      } catch (const RuntimeError&) {
+        got = false;
+      }
       // A frame the window has already passed is decoded (the next ones depend on it) but neither
       // converted nor scaled: when the clip falls behind, it catches up at the decoder's pace.
-      const bool got = late ? cap.grab() : cap.read(raw);
       if (got && late) {
         ++index, ++in_pass;
         continue;
@@ -91,11 +101,17 @@ void VideoSource::decode() {
           }
         }
         // Open the file again rather than seek: a seek lands on a key frame, not necessarily frame 0.
-        cap.release();
-        if (!cap.open(path_, cv::CAP_FFMPEG)) return fail("cannot reopen the video to loop it");
+        reader.reset();
+        try {
+          open();
+        } catch (const RuntimeError&) {
+          return fail("cannot reopen the video to loop it");
+        }
         in_pass = 0;
         continue;
       }
+      cv::Mat raw(reader->height(), reader->width(), CV_8UC3);
+      reader->copy_bgr(raw.data, raw.step);
       {
         std::lock_guard lock(mutex_);
         raw_.emplace_back(index++, std::move(raw));

@@ -8,10 +8,11 @@
 #include <deque>
 #include <filesystem>
 #include <opencv2/highgui.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <optional>
 
 #include "framework/core/error.hpp"
+#include "framework/core/write_file.hpp"
+#include "framework/media/png_image.hpp"
 #include "study_ui/frame_interval_stats.hpp"
 #include "study_ui/scale_keys.hpp"
 #include "study_ui/text_renderer.hpp"
@@ -138,7 +139,14 @@ struct WindowPresenter::Impl {
   void snapshot(const cv::Mat& canvas, const std::string& name) const {
     if (options.snapshot_dir.empty()) return;
     std::filesystem::create_directories(options.snapshot_dir);
-    cv::imwrite((std::filesystem::path(options.snapshot_dir) / (name + ".png")).string(), canvas);
+    const std::string path = (std::filesystem::path(options.snapshot_dir) / (name + ".png")).string();
+    try {  // a snapshot is a record for the experimenter: a full disk must not end the session
+      const std::vector<std::uint8_t> png =
+          encode_png(canvas.data, canvas.cols, canvas.rows, canvas.channels(), canvas.step);
+      write_text_file(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+    } catch (const std::exception& e) {
+      spdlog::warn("snapshot not written: {}", e.what());
+    }
   }
 };
 
