@@ -15,6 +15,7 @@
 #include "framework/correction/blend_keeping_planted_feet.hpp"
 #include "framework/correction/corrector.hpp"
 #include "framework/correction/loop_closure_choice.hpp"
+#include "framework/correction/loop_closure_excerpt.hpp"
 
 namespace crowdlab {
 namespace {
@@ -149,6 +150,151 @@ void log_open_characters(const CrowdAnimation& crowd, const std::vector<size_t>&
   spdlog::debug("correct_crowd: the loop stays open for{}", names.empty() ? " none" : names);
 }
 
+/// The targets of frame f: every character's input pose.
+void frame_targets(const CrowdAnimation& crowd, int f, std::vector<Pose>& targets) {
+  for (size_t c = 0; c < targets.size(); ++c) targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
+}
+
+/// The corrector's next lap after the clip's own end, stepped only as far as the loop closure reads it
+/// (session 17). Why: session 16 ran a whole lap after every looping clip (+9 % corrector steps at 4 s,
+/// +18 % at 20 s), where only the per-character choice reads it, and at most its first 2W frames (the
+/// start: W; the cuts: up to kCutSpanWindows W).
+class NextLap {
+ public:
+  NextLap(Corrector after_clip, const CrowdAnimation& input, Progress* progress, CorrectionReport& r)
+      : corrector_(std::move(after_clip)),
+        input_(input),
+        progress_(progress),
+        r_(r),
+        poses_(input.characters.size()) {}
+
+  /// The lap's first `frames` poses per character (poses[c][f]: frame f of the lap after the clip).
+  std::vector<std::vector<Pose>> first(int frames) {
+    std::vector<Pose> targets(poses_.size());
+    for (int f = stepped(); f < frames; ++f) {
+      frame_targets(input_, f, targets);
+      const std::vector<Pose> corrected = corrector_.step(targets);
+      for (size_t c = 0; c < poses_.size(); ++c) poses_[c].push_back(corrected[c]);
+      if (corrector_.last_stats().rejected) ++r_.rejected_steps;
+      if (progress_) progress_->advance();
+    }
+    std::vector<std::vector<Pose>> lap = poses_;
+    for (std::vector<Pose>& p : lap) p.resize(static_cast<size_t>(frames));
+    return lap;
+  }
+  /// Frames stepped so far.
+  int stepped() const { return static_cast<int>(poses_.front().size()); }
+
+ private:
+  Corrector corrector_;
+  const CrowdAnimation& input_;
+  Progress* progress_;
+  CorrectionReport& r_;
+  std::vector<std::vector<Pose>> poses_;
+};
+
+/// Frames of the next lap the loop closure may read: the start's W, and the cuts' kCutSpanWindows W.
+int next_lap_bound(int frames, int window) {
+  return std::min(frames, kCutSpanWindows * window);
+}
+
+/// allowed[r][c] as without_new_flips, for candidates r >= from and the characters in `open` only (false
+/// for the others: the join moves only the characters the descent left unclosed).
+std::vector<std::vector<bool>> without_new_flips_for(const CrowdAnimation& input,
+                                                     const std::vector<const CrowdAnimation*>& closures,
+                                                     size_t from, const CrowdAnimation& unclosed,
+                                                     const std::vector<size_t>& open) {
+  std::vector<std::vector<bool>> allowed(closures.size(), std::vector<bool>(unclosed.characters.size()));
+  for (size_t c : open) {
+    const long own = flips_of(input, unclosed, c);
+    for (size_t r = from; r < closures.size(); ++r) allowed[r][c] = flips_of(input, *closures[r], c) <= own;
+  }
+  return allowed;
+}
+
+/// The per-character closure (close_loop's (a)-(e), choose_closures): the descent over the exact closures
+/// and the next lap's start; only if it leaves a character unclosed, the join over every candidate, the
+/// arm closures and the cuts built on an excerpt of the clip (loop_closure_excerpt.hpp) from the next
+/// lap's first 2W frames. Why (session 17): the candidates are whole-crowd copies (36 cuts on a 4 s
+/// clip, ~1.2 GB on a 20 s one) and most crowds need none of them; the result is the whole choice's.
+void close_per_character(const CrowdAnimation& input, const std::vector<std::vector<Pose>>& preroll_out,
+                         NextLap& next_lap, const CorrectorParams& params, const CrowdAnimation& finished,
+                         const CrowdAnimation& blended, double limit, CrowdAnimation& out,
+                         CorrectionReport& r) {
+  const size_t n = out.characters.size();
+  const int frames = out.frame_count(), preroll = static_cast<int>(preroll_out.front().size());
+  const int first = frames - preroll;
+  const CrowdAnimation started = start_from_next_lap(input, next_lap.first(preroll), params, out);
+  const std::vector<const CrowdAnimation*> exact = {&finished, &blended, &started};
+  const std::vector<std::vector<bool>> allowed_exact = without_new_flips(input, exact, out);
+  std::vector<size_t> choice =
+      descend_closures(exact, exact.size(), out, first, preroll, limit, allowed_exact);
+  std::vector<size_t> open;
+  for (size_t c = 0; c < n; ++c)
+    if (choice[c] == exact.size()) open.push_back(c);
+  std::array<int, 6> on{};  // corrected blend, blend, start, arms, one arm, cut from next lap
+  if (!open.empty()) {
+    // The join's candidates, on the excerpt. Whole closures before partial ones (the upper body and both
+    // arms cut from the next lap before one arm alone): the join gives each character the first that fits.
+    // Session 16, seed 2024000001: with the cuts after the one-arm closures, 2 characters took a cut (V3
+    // seam 1.450); before them, 6 (1.411).
+    const int last_cut_end = next_lap_bound(frames, preroll);
+    const ClosureExcerpt ex = ClosureExcerpt::of(frames, last_cut_end, preroll, kFlipFrames);
+    const std::vector<std::vector<Pose>> lap = next_lap.first(last_cut_end);
+    const CrowdAnimation out_ex = ex.cut(out), input_ex = ex.cut(input);
+    // The join reads the new candidates' unclosed characters only (join_closures): they alone keep frames.
+    CrowdAnimation open_ex = out_ex;
+    for (size_t c = 0; c < n; ++c)
+      if (choice[c] != exact.size()) std::vector<Pose>().swap(open_ex.characters[c].frames);
+    std::vector<CrowdAnimation> candidates = {ex.cut(finished), ex.cut(blended), ex.cut(started)};
+    std::vector<FrameSpan> spans = {ex.map({first, frames}), ex.map({first, frames}), ex.map({0, preroll})};
+    std::vector<int> kinds = {0, 1, 2};
+    const auto add = [&](CrowdAnimation candidate, FrameSpan span, int kind) {
+      candidates.push_back(std::move(candidate));
+      spans.push_back(ex.map(span));
+      kinds.push_back(kind);
+    };
+    const int cut_window = std::max(1, preroll * kCutWindowFifths / 5);
+    const auto add_cuts = [&](const std::vector<Joint>& joints) {
+      for (int cut = 0; cut + cut_window <= last_cut_end; cut += std::max(1, cut_window / 2))
+        add(cut_joints_from_next_lap(open_ex, lap, joints, cut, cut_window), {0, cut + cut_window}, 5);
+    };
+    const auto arms = arm_sets();
+    const auto cut_sets = cut_joint_sets();
+    add(close_joints(open_ex, preroll_out, arms[0]), {first, frames}, 3);
+    add_cuts(cut_sets[0]);
+    add_cuts(cut_sets[1]);
+    for (size_t a = 1; a < arms.size(); ++a)
+      add(close_joints(open_ex, preroll_out, arms[a]), {first, frames}, 4);
+    for (size_t s = 2; s < cut_sets.size(); ++s) add_cuts(cut_sets[s]);
+    std::vector<const CrowdAnimation*> closures;
+    for (const CrowdAnimation& c : candidates) closures.push_back(&c);
+    std::vector<std::vector<bool>> allowed =
+        without_new_flips_for(input_ex, closures, exact.size(), out_ex, open);
+    for (size_t k = 0; k < exact.size(); ++k) allowed[k] = allowed_exact[k];  // counted on the whole clip
+    for (size_t& k : choice)
+      if (k == exact.size()) k = closures.size();
+    join_closures(closures, out_ex, limit, allowed, spans, choice);
+    log_open_characters(out, choice, closures.size());
+    for (size_t c = 0; c < n; ++c) {
+      if (choice[c] >= closures.size()) continue;
+      ++on[static_cast<size_t>(kinds[choice[c]])];
+      if (choice[c] < exact.size())
+        out.characters[c].frames = exact[choice[c]]->characters[c].frames;
+      else
+        ex.put_back(closures[choice[c]]->characters[c], out.characters[c]);
+    }
+  } else {
+    log_open_characters(out, choice, exact.size());
+    for (size_t c = 0; c < n; ++c) ++on[static_cast<size_t>(choice[c])];
+    out = mix_closures(exact, out, choice);
+  }
+  r.loop_closure = fmt::format(
+      "corrected blend for {}, blend for {}, next lap's start for {}, arms for {}, one arm for {}, arms "
+      "from the next lap for {} of {} characters",
+      on[0], on[1], on[2], on[3], on[4], on[5], n);
+}
+
 /// Loop closure of a corrected clip `out` whose last W = preroll_out[c].size() frames should end where the
 /// last lead lap ended (the state frame 0 continued from): they blend into that lap's output (weight rising
 /// to 1, raised cosine). (a) the blend corrected again, from `before_window` (the corrector before frame
@@ -161,11 +307,11 @@ void log_open_characters(const CrowdAnimation& crowd, const std::vector<size_t>&
 /// loop_closure_choice.hpp, start_from_next_lap), (d) its arms alone closed toward the lap's
 /// (close_joints: both, left, right), or (e) its upper body or arms from the next lap up to a cut inside
 /// the clip (cut_joints_from_next_lap; session 16), whichever keeps everyone within the limit
-/// (choose_closures: the descent over (a)-(c), then the join over all), or stays unclosed: a seam for some
-/// rather than a collision.
+/// (close_per_character: the descent over (a)-(c), then the join over all), or stays unclosed: a seam for
+/// some rather than a collision. The next lap is stepped only for that choice.
 void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>>& preroll_out,
-                const std::vector<std::vector<Pose>>& next_lap, Corrector before_window,
-                const CorrectorParams& params, CrowdAnimation& out, CorrectionReport& r) {
+                NextLap& next_lap, Corrector before_window, const CorrectorParams& params,
+                CrowdAnimation& out, CorrectionReport& r) {
   const size_t n = out.characters.size();
   const int frames = out.frame_count(), preroll = static_cast<int>(preroll_out.front().size());
   const int first = frames - preroll;
@@ -210,55 +356,8 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
     out = std::move(blended);
     r.loop_closure = "blend";
   } else {
-    std::vector<std::vector<Pose>> next_start = next_lap;
-    for (std::vector<Pose>& poses : next_start) poses.resize(static_cast<size_t>(preroll));
-    const CrowdAnimation started = start_from_next_lap(input, next_start, params, out);
-    // Whole closures before partial ones (the upper body and both arms cut from the next lap before one
-    // arm alone): the join gives each character the first that fits. Session 16, seed 2024000001: with
-    // the cuts after the one-arm closures, 2 characters took a cut (V3 seam 1.450); before them, 6 (1.411).
-    std::vector<CrowdAnimation> candidates;
-    std::vector<FrameSpan> spans = {{first, frames}, {first, frames}, {0, preroll}};
-    std::vector<int> kinds = {0, 1, 2};  // corrected blend, blend, start, arms, one arm, cut from next lap
-    const auto add = [&](CrowdAnimation candidate, FrameSpan span, int kind) {
-      candidates.push_back(std::move(candidate));
-      spans.push_back(span);
-      kinds.push_back(kind);
-    };
-    const int cut_window = std::max(1, preroll * kCutWindowFifths / 5);
-    // Cuts only within the clip's first two windows (a 4 s clip's whole length at W = 60): each candidate
-    // is a copy of the whole crowd, and cuts over a 20 s clip would make ~200 copies (60 characters x 600
-    // frames: ~5.7 GB) where the 4 s clips measured have 36.
-    const int last_cut_end = std::min(frames, kCutSpanWindows * preroll);
-    const auto add_cuts = [&](const std::vector<Joint>& joints) {
-      for (int cut = 0; cut + cut_window <= last_cut_end; cut += std::max(1, cut_window / 2))
-        add(cut_joints_from_next_lap(out, next_lap, joints, cut, cut_window), {0, cut + cut_window}, 5);
-    };
-    const auto arms = arm_sets();
-    const auto cut_sets = cut_joint_sets();
-    add(close_joints(out, preroll_out, arms[0]), {first, frames}, 3);
-    add_cuts(cut_sets[0]);
-    add_cuts(cut_sets[1]);
-    for (size_t a = 1; a < arms.size(); ++a) add(close_joints(out, preroll_out, arms[a]), {first, frames}, 4);
-    for (size_t s = 2; s < cut_sets.size(); ++s) add_cuts(cut_sets[s]);
-    std::vector<const CrowdAnimation*> closures = {&finished, &blended, &started};
-    for (const CrowdAnimation& c : candidates) closures.push_back(&c);
-    const std::vector<size_t> choice = choose_closures(closures, 3, out, first, preroll, limit,
-                                                       without_new_flips(input, closures, out), spans);
-    log_open_characters(out, choice, closures.size());
-    std::array<int, 6> on{};
-    for (size_t k : choice)
-      if (k < closures.size()) ++on[static_cast<size_t>(kinds[k])];
-    out = mix_closures(closures, out, choice);
-    r.loop_closure = fmt::format(
-        "corrected blend for {}, blend for {}, next lap's start for {}, arms for {}, one arm for {}, arms "
-        "from the next lap for {} of {} characters",
-        on[0], on[1], on[2], on[3], on[4], on[5], n);
+    close_per_character(input, preroll_out, next_lap, params, finished, blended, limit, out, r);
   }
-}
-
-/// The targets of frame f: every character's input pose.
-void frame_targets(const CrowdAnimation& crowd, int f, std::vector<Pose>& targets) {
-  for (size_t c = 0; c < targets.size(); ++c) targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
 }
 
 /// Largest mean joint distance (m) of any character between the clip's last frame and the last lead lap's.
@@ -297,7 +396,10 @@ void log_seam_carriers(const CrowdAnimation& clip) {
 std::size_t correction_steps(const CrowdAnimation& crowd, const CorrectorParams& params) {
   const auto frames = static_cast<size_t>(crowd.frame_count());
   const auto window = static_cast<size_t>(loop_window_frames(crowd, params));
-  return window > 0 ? (2 + kLeadLaps) * frames : frames;
+  return window > 0
+             ? (1 + kLeadLaps) * frames +
+                   static_cast<size_t>(next_lap_bound(static_cast<int>(frames), static_cast<int>(window)))
+             : frames;
 }
 
 // correct_crowd itself (one run, or several with anticipated contacts) is in anticipate_contacts.cpp.
@@ -358,19 +460,15 @@ CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorPa
     if (progress) progress->advance();
   }
   if (before_window) {
-    // The next lap, continuing from the clip's end (start_from_next_lap, cut_joints_from_next_lap).
-    std::vector<std::vector<Pose>> next_lap(n);
-    for (int f = 0; f < frames; ++f) {
-      frame_targets(crowd, f, targets);
-      const std::vector<Pose> corrected = corrector.step(targets);
-      for (size_t c = 0; c < n; ++c) next_lap[c].push_back(corrected[c]);
-      if (corrector.last_stats().rejected) ++r.rejected_steps;
-      if (progress) progress->advance();
-    }
+    // The next lap, continuing from the clip's end (start_from_next_lap, cut_joints_from_next_lap), stepped
+    // only as far as the closure reads it; the progress counts the frames it may read.
+    NextLap next_lap(std::move(corrector), crowd, progress, r);
     if (spdlog::should_log(spdlog::level::debug))
       spdlog::debug("correct_crowd: the recorded lap ends {:.4f} m from the lead lap (worst character)",
                     lap_difference_m(out, lead_end));
     close_loop(crowd, lead_end, next_lap, *before_window, params, out, r);
+    r.next_lap_frames = next_lap.stepped();
+    if (progress) progress->advance(static_cast<size_t>(next_lap_bound(frames, window) - next_lap.stepped()));
     if (spdlog::should_log(spdlog::level::debug)) log_seam_carriers(out);
   }
   r.contacts_mean = frames > 0 ? contacts / frames : 0.0;

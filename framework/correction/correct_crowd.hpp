@@ -53,6 +53,9 @@ struct CorrectionReport {
   /// characters" (both closures went deeper than the limit; the others stay unclosed; C counts the upper
   /// body and arm cuts of cut_joints_from_next_lap), or empty without a pre-roll.
   std::string loop_closure;
+  /// Frames of the next lap after the clip that the loop closure stepped: 0 where an exact closure closes
+  /// the whole crowd, W for the next lap's start, up to 2W for its cuts (correct_crowd.cpp, NextLap).
+  int next_lap_frames = 0;
   int rejected_steps = 0;      ///< steps whose solve failed (state kept)
   int unconverged_steps = 0;   ///< steps where CG stopped above its tolerance (result still used)
   double contacts_mean = 0.0;  ///< mean contacts per step
@@ -61,7 +64,8 @@ struct CorrectionReport {
 
 /// The corrector steps of correct_crowd's first run, the total its progress counts: the frames, and for a
 /// looping clip with a pre-roll the lead laps before them (four laps of the clip, correct_crowd.cpp) and
-/// the next lap after them (its start, and the joints cut from it).
+/// the frames of the next lap after them that the closure may read (its start, and the joints cut from it:
+/// at most 2W; stepped only where the per-character closure needs them, the rest counted as done).
 std::size_t correction_steps(const CrowdAnimation& crowd, const CorrectorParams& params);
 
 /// progress (optional) is advanced once per step of the first run (correction_steps). report (optional)

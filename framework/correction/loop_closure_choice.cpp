@@ -163,16 +163,29 @@ std::vector<double> deepest_per_character(const CrowdAnimation& crowd, int first
   return depth;
 }
 
+std::vector<size_t> descend_closures(const std::vector<const CrowdAnimation*>& closures, size_t descent_rungs,
+                                     const CrowdAnimation& unclosed, int first, int start_window,
+                                     double limit_m, const std::vector<std::vector<bool>>& allowed) {
+  return descend(closures, std::min(descent_rungs, closures.size()), unclosed, first, start_window, limit_m,
+                 allowed);
+}
+
+void join_closures(const std::vector<const CrowdAnimation*>& closures, const CrowdAnimation& unclosed,
+                   double limit_m, const std::vector<std::vector<bool>>& allowed,
+                   const std::vector<FrameSpan>& spans, std::vector<size_t>& rung) {
+  Join(closures, unclosed, spans, limit_m, allowed, rung).run(unclosed, rung);
+}
+
 std::vector<size_t> choose_closures(const std::vector<const CrowdAnimation*>& closures, size_t descent_rungs,
                                     const CrowdAnimation& unclosed, int first, int start_window,
                                     double limit_m, const std::vector<std::vector<bool>>& allowed,
                                     const std::vector<FrameSpan>& spans) {
-  std::vector<size_t> rung = descend(closures, std::min(descent_rungs, closures.size()), unclosed, first,
-                                     start_window, limit_m, allowed);
-  Join(closures, unclosed,
-       spans.empty() ? descent_spans(closures.size(), unclosed.frame_count(), first, start_window) : spans,
-       limit_m, allowed, rung)
-      .run(unclosed, rung);
+  std::vector<size_t> rung =
+      descend_closures(closures, descent_rungs, unclosed, first, start_window, limit_m, allowed);
+  join_closures(
+      closures, unclosed, limit_m, allowed,
+      spans.empty() ? descent_spans(closures.size(), unclosed.frame_count(), first, start_window) : spans,
+      rung);
   return rung;
 }
 
@@ -200,9 +213,10 @@ CrowdAnimation start_from_next_lap(const CrowdAnimation& input,
 CrowdAnimation close_joints(const CrowdAnimation& clip, const std::vector<std::vector<Pose>>& lap_end,
                             std::span<const Joint> joints) {
   CrowdAnimation closed = clip;
-  const int window = static_cast<int>(lap_end.front().size()), first = clip.frame_count() - window;
+  const int window = static_cast<int>(lap_end.front().size());
   for (size_t c = 0; c < closed.characters.size(); ++c)
-    for (int k = 0; k < window; ++k) {
+    for (int k = 0, first = static_cast<int>(closed.characters[c].frames.size()) - window;
+         first >= 0 && k < window; ++k) {
       const double w = raised_cosine(k + 1, window);
       auto& rotations = closed.characters[c].frames[static_cast<size_t>(first + k)].local_rotations;
       const auto& lap = lap_end[c][static_cast<size_t>(k)].local_rotations;
@@ -219,7 +233,7 @@ CrowdAnimation cut_joints_from_next_lap(const CrowdAnimation& clip,
                                         std::span<const Joint> joints, int cut, int window) {
   CrowdAnimation mixed = clip;
   for (size_t c = 0; c < mixed.characters.size(); ++c)
-    for (int f = 0; f < cut + window; ++f) {
+    for (int f = 0; !mixed.characters[c].frames.empty() && f < cut + window; ++f) {
       // The clip's weight: 0 before the cut, rising over the window (1 only after it).
       const double w = f < cut ? 0.0 : raised_cosine(f - cut + 1, window + 1);
       auto& rotations = mixed.characters[c].frames[static_cast<size_t>(f)].local_rotations;

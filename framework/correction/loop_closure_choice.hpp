@@ -55,6 +55,21 @@ std::vector<std::size_t> choose_closures(const std::vector<const CrowdAnimation*
                                          const std::vector<std::vector<bool>>& allowed,
                                          const std::vector<FrameSpan>& spans = {});
 
+/// choose_closures' two steps apart (header, steps 1 and 2), for a caller that builds the join's
+/// candidates only when the descent leaves a character unclosed (correct_crowd.cpp: the next lap's cuts,
+/// session 17). descend_closures returns what choose_closures' descent does; join_closures then runs the
+/// join on `rung` (closures.size() = unclosed) over every candidate, each checked over spans[r] (not
+/// empty: one per candidate). The join reads candidate r's character c only where rung[c] is r or
+/// unclosed, so a candidate that no character takes in the descent may hold the frames of the unclosed
+/// characters only (correct_crowd.cpp: the others' frames empty).
+std::vector<std::size_t> descend_closures(const std::vector<const CrowdAnimation*>& closures,
+                                          std::size_t descent_rungs, const CrowdAnimation& unclosed,
+                                          int first, int start_window, double limit_m,
+                                          const std::vector<std::vector<bool>>& allowed);
+void join_closures(const std::vector<const CrowdAnimation*>& closures, const CrowdAnimation& unclosed,
+                   double limit_m, const std::vector<std::vector<bool>>& allowed,
+                   const std::vector<FrameSpan>& spans, std::vector<std::size_t>& rung);
+
 /// `unclosed` with each character's frames from its chosen candidate (choose_closures).
 CrowdAnimation mix_closures(const std::vector<const CrowdAnimation*>& closures,
                             const CrowdAnimation& unclosed, const std::vector<std::size_t>& choice);
@@ -79,7 +94,8 @@ inline constexpr std::array<Joint, 5> kRightArmJoints = {kRightCollar, kRightSho
 /// `clip` with the local rotations of `joints` on its last W = lap_end[c].size() frames slerped toward
 /// lap_end's (weight raised_cosine(k + 1, W): the last frame takes lap_end's), the rest of each body the
 /// clip's. Why (session 14's trace): the characters no whole-body closure could close carried the dense
-/// concert's seam by their ARMS (arms 10-12 cm from the lap's, legs <= 3.2 cm).
+/// concert's seam by their ARMS (arms 10-12 cm from the lap's, legs <= 3.2 cm). Characters without frames
+/// stay so (join candidates hold only the characters the join may move; join_closures).
 CrowdAnimation close_joints(const CrowdAnimation& clip, const std::vector<std::vector<Pose>>& lap_end,
                             std::span<const Joint> joints);
 
@@ -92,6 +108,7 @@ CrowdAnimation close_joints(const CrowdAnimation& clip, const std::vector<std::v
 /// the two laps holding an arm on opposite sides of the neighbour there; elsewhere in the dance both laps
 /// may hold it on the same side, and a window there passes no limb through another. The root, legs and
 /// trunk stay the clip's, so planted feet stay planted. Needs 0 <= cut, window >= 1, cut + window <= N.
+/// Characters without frames stay so (as close_joints).
 CrowdAnimation cut_joints_from_next_lap(const CrowdAnimation& clip,
                                         const std::vector<std::vector<Pose>>& next_lap,
                                         std::span<const Joint> joints, int cut, int window);

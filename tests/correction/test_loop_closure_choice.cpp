@@ -1,14 +1,17 @@
 // Which loop closure each character takes (framework/correction/loop_closure_choice.hpp; issue 28, session
 // 15): the descent alone left open neighbours that can close only together, and a start from the next lap;
-// session 16: the join checks each candidate over the frames it changes, and joints cut from the next lap.
+// session 16: the join checks each candidate over the frames it changes, and joints cut from the next lap;
+// session 17: the join on an excerpt of the clip (loop_closure_excerpt.hpp).
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
 
 #include "framework/core/forward_kinematics.hpp"
+#include "framework/core/joint_flips.hpp"
 #include "framework/correction/blend_keeping_planted_feet.hpp"
 #include "framework/correction/loop_closure_choice.hpp"
+#include "framework/correction/loop_closure_excerpt.hpp"
 #include "framework/correction/swaying_crowd_fixture.hpp"
 
 // This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
@@ -19,10 +22,10 @@ using namespace crowdlab;
 namespace {
 
 /// Three swaying characters A, B, C standing far apart (x = 0, 2, 6 m) in the unclosed clip.
-CrowdAnimation three_far_apart() {
+CrowdAnimation three_far_apart(int frames = 40) {
   SwayingCrowdOptions o;
   o.characters = 3;
-  o.frames = 40;
+  o.frames = frames;
   CrowdAnimation crowd = make_swaying_crowd_fixture(o);
   const std::array<double, 3> x = {0.0, 2.0, 6.0};
   for (size_t c = 0; c < 3; ++c)
@@ -215,6 +218,100 @@ TEST_CASE("loop closure choice: cut_joints_from_next_lap moves the arm's seam in
             own[ff].local_rotations[elbow].angularDistance(own[ff - 1].local_rotations[elbow]) + 0.5 / 3.0);
     }
   }
+  // Session 17: the join's candidates hold only the characters it may move; a character without frames
+  // stays so, here and in close_joints, and the others are changed as before.
+  CrowdAnimation sparse = clip;
+  sparse.characters[0].frames.clear();
+  const CrowdAnimation sparse_cut = cut_joints_from_next_lap(sparse, next_lap, kLeftArmJoints, cut, window);
+  CHECK(sparse_cut.characters[0].frames.empty());
+  CHECK(sparse_cut.characters[1].frames[0].local_rotations[elbow].coeffs() ==
+        mixed.characters[1].frames[0].local_rotations[elbow].coeffs());
+  const std::vector<std::vector<Pose>> lap_end = turned_lap(clip, o.frames - window, window);
+  const CrowdAnimation sparse_closed = close_joints(sparse, lap_end, kLeftArmJoints);
+  CHECK(sparse_closed.characters[0].frames.empty());
+  CHECK(sparse_closed.characters[1].frames.back().local_rotations[elbow].coeffs() ==
+        close_joints(clip, lap_end, kLeftArmJoints)
+            .characters[1]
+            .frames.back()
+            .local_rotations[elbow]
+            .coeffs());
+}
+
+namespace {
+
+/// `crowd` with character c moved to x_m on frames [begin, end).
+void move(CrowdAnimation& crowd, size_t c, int begin, int end, double x_m) {
+  for (int f = begin; f < end; ++f)
+    crowd.characters[c].frames[static_cast<size_t>(f)].root_position_m.x() = x_m;
+}
+
+}  // namespace
+
+TEST_CASE("loop closure excerpt: keeps the first and last frames, or the whole clip where they meet",
+          "[correction][loop]") {
+  const ClosureExcerpt ex = ClosureExcerpt::of(100, 40, 20, kFlipFrames);
+  CHECK(ex.head == 40 + kFlipFrames);
+  CHECK(ex.tail_begin == 80 - kFlipFrames);
+  CHECK(ex.size() == 60 + 2 * kFlipFrames);
+  CHECK(ex.index(0) == 0);
+  CHECK(ex.index(99) == ex.size() - 1);
+  CHECK(ex.map({80, 100}).begin == ex.size() - 20);
+  CHECK(ex.map({80, 100}).end == ex.size());
+  CHECK(ex.map({0, 30}).end == 30);
+  // A 4 s clip at W = 60 (head 2W, tail W): nothing to drop, the whole clip.
+  const ClosureExcerpt whole = ClosureExcerpt::of(120, 120, 60, kFlipFrames);
+  CHECK(whole.size() == 120);
+  CHECK(whole.index(100) == 100);
+  // cut and put_back: the kept frames go back where they were, the others stay.
+  const CrowdAnimation clip = three_far_apart(100);
+  CrowdAnimation cut = ex.cut(clip);
+  REQUIRE(cut.frame_count() == ex.size());
+  CHECK(cut.characters[1].frames[static_cast<size_t>(ex.index(85))].root_position_m ==
+        clip.characters[1].frames[85].root_position_m);
+  for (Pose& p : cut.characters[1].frames) p.root_position_m.y() += 1.0;
+  CharacterAnimation back = clip.characters[1];
+  ex.put_back(cut.characters[1], back);
+  CHECK(back.frames[10].root_position_m.y() == clip.characters[1].frames[10].root_position_m.y() + 1.0);
+  CHECK(back.frames[60].root_position_m.y() == clip.characters[1].frames[60].root_position_m.y());
+  CHECK(back.frames[99].root_position_m.y() == clip.characters[1].frames[99].root_position_m.y() + 1.0);
+}
+
+TEST_CASE("loop closure excerpt: the join on the excerpt chooses as on the whole clip",
+          "[correction][loop]") {
+  // A and B close only together at the end (they swap places on [80, 100)); C meets A there, but a
+  // candidate that changes only the clip's first 30 frames (C away from everyone) closes it. The whole
+  // choice gives A and B the end closure and C the start one; so must the descent on the whole clip and
+  // the join on the excerpt (frames [0, 30 + margin) and [80 - margin, 100): the middle dropped).
+  const CrowdAnimation unclosed = three_far_apart(100);
+  const int first = 80;
+  CrowdAnimation end_closure = unclosed, start_closure = unclosed;
+  move(end_closure, 0, first, 100, 2.0);
+  move(end_closure, 1, first, 100, 0.0);
+  move(end_closure, 2, first, 100, 2.0);
+  move(start_closure, 2, 0, 30, 6.5);
+  const std::vector<const CrowdAnimation*> closures = {&end_closure, &start_closure};
+  const std::vector<FrameSpan> spans = {{first, 100}, {0, 30}};
+  const std::vector<std::vector<bool>> any(2, {true, true, true});
+  const double limit_m = 0.01;
+  const std::vector<size_t> whole = choose_closures(closures, 1, unclosed, first, 0, limit_m, any, spans);
+  REQUIRE(whole == std::vector<size_t>{0, 0, 1});
+
+  std::vector<size_t> rung = descend_closures(closures, 1, unclosed, first, 0, limit_m, any);
+  const ClosureExcerpt ex = ClosureExcerpt::of(100, 30, 20, kFlipFrames);
+  REQUIRE(ex.size() < 100);
+  const std::vector<CrowdAnimation> cut = {ex.cut(end_closure), ex.cut(start_closure)};
+  const std::vector<const CrowdAnimation*> cut_closures = {&cut[0], &cut[1]};
+  join_closures(cut_closures, ex.cut(unclosed), limit_m, any, {ex.map(spans[0]), ex.map(spans[1])}, rung);
+  CHECK(rung == whole);
+  // Written back, the chosen excerpt frames give the whole choice's crowd.
+  const CrowdAnimation mixed = mix_closures(closures, unclosed, whole);
+  CrowdAnimation from_excerpt = unclosed;
+  for (size_t c = 0; c < 3; ++c)
+    ex.put_back(cut_closures[rung[c]]->characters[c], from_excerpt.characters[c]);
+  for (size_t c = 0; c < 3; ++c)
+    for (size_t f = 0; f < 100; ++f)
+      CHECK(from_excerpt.characters[c].frames[f].root_position_m ==
+            mixed.characters[c].frames[f].root_position_m);
 }
 
 }  // namespace test_loop_closure_choice
