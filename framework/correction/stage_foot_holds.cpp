@@ -51,7 +51,8 @@ constexpr double kTiltReturn_radps = 1.0;
 /// knee flips at 6.66 /m^2. Let go, the knee returns at the rate (limited_now, stage_free_joints.cpp).
 /// Measured on the 3 s corridor clip at 6.66 /m^2 (docs/correction.md): 2 turns (13 deg) left 110 flips
 /// but a stance drift p99 of 19 mm; 3 turns 140-175 flips with 2 foot pops in one of three runs; 4 turns
-/// 148-188 flips, no pops, drift p99 <= 7.3 mm.
+/// 144-188 flips (main 188-218), no pops. Off by default: a ball the input still plants, let go, slides
+/// (the 2 s walking corridor's foot skate max 2.8 -> 17.2 cm).
 constexpr double kLiftOffKneeTurns = 4.0;
 
 bool planted(const CorrectorParams& p, double h, const Vec3& before, const Vec3& now) {

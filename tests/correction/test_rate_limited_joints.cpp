@@ -36,13 +36,15 @@ struct Released {
   Quat local = Quat::Identity();
   double left_rad = 0.0, knee_off_hinge_left_rad = 0.0;
 };
-Released after_the_release(const CorrectorParams& params, int j, const Quat& turn, bool feet_held = true) {
+Released after_the_release(const CorrectorParams& params, int j, const Quat& turn, bool feet_held = true,
+                           const Quat& deviation = Quat::Identity()) {
   const BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
   const CorrectorModel model = make_corrector_model({shape}, params, {}, 30);
   CorrectorState s;
   s.step_index = 5;
   s.target = {Pose::rest(shape)};
   s.output_deviation.assign(kJointCount, Quat::Identity());
+  s.output_deviation[static_cast<size_t>(j)] = deviation;  // the last output's, from the input
   s.engaged_until.assign(kJointCount, 100);
   FootHold hold;
   hold.ankle = hold.ball = feet_held;
@@ -183,20 +185,27 @@ TEST_CASE(
     "[correction][rate_limit]") {
   // Session 17: a held leg that the stance kept 15-37 deg straighter than the input's was turned back by
   // the Newton step within 1-3 frames of its lift-off (half of the corridor's knee flips at 6.66 /m^2, 3 s).
-  // Once the foot is not held, no leg IK sets the knee's flexion: the whole knee turns at most the rate
-  // (6.5 deg at 30 fps), and the pass may turn it only what is left. A held leg's knee keeps its flexion.
-  const double step = CorrectorParams{}.free_joint_return_radps / 30.0;
-  const Quat flex(Eigen::AngleAxisd(0.5, Vec3::UnitX()));
+  // Once the foot is not held, no leg IK sets the knee's flexion: a knee whose last output is off the
+  // input's flexion by more than 3 rate turns (19.5 deg) turns at most the rate (6.5 deg at 30 fps), all
+  // of it, and the pass may turn it only what is left. Here the knee is 25 deg straighter than the input's
+  // and the solve turns it back by 25 deg at once. Nearer its input (10 deg), or held, or without
+  // lift_off_knees, the knee keeps what the solve gave it.
+  const double step = CorrectorParams{}.free_joint_return_radps / 30.0, deg = std::numbers::pi / 180.0;
+  const Quat straighter(Eigen::AngleAxisd(-25.0 * deg, Vec3::UnitX()));
   CorrectorParams params;
-  const Released swinging = after_the_release(params, kLeftKnee, flex, false);
-  CHECK(swinging.local.angularDistance(Quat::Identity()) == Approx(step).margin(1e-9));
+  params.lift_off_knees = true;  // opt-in: the feet let go skate (docs/correction.md, session 17)
+  const Released swinging = after_the_release(params, kLeftKnee, Quat::Identity(), false, straighter);
+  CHECK(swinging.local.angularDistance(straighter) == Approx(step).margin(1e-9));
   CHECK(swinging.left_rad == 0.0);
   CHECK(swinging.knee_off_hinge_left_rad < 0.0);  // limited whole, not as a hinge
-  const Released held = after_the_release(params, kLeftKnee, flex, true);
-  CHECK(held.local.angularDistance(flex) < 1e-9);
+  const Quat near(Eigen::AngleAxisd(-10.0 * deg, Vec3::UnitX()));
+  CHECK(after_the_release(params, kLeftKnee, Quat::Identity(), false, near)
+            .local.angularDistance(Quat::Identity()) < 1e-9);
+  const Released held = after_the_release(params, kLeftKnee, Quat::Identity(), true, straighter);
+  CHECK(held.local.angularDistance(Quat::Identity()) < 1e-9);
   params.lift_off_knees = false;
-  const Released session16 = after_the_release(params, kLeftKnee, flex, false);
-  CHECK(session16.local.angularDistance(flex) < 1e-9);
+  const Released session16 = after_the_release(params, kLeftKnee, Quat::Identity(), false, straighter);
+  CHECK(session16.local.angularDistance(Quat::Identity()) < 1e-9);
   CHECK(session16.left_rad == std::numeric_limits<double>::infinity());
 }
 
