@@ -181,7 +181,8 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "correction: an engaged knee of a leg whose foot is not held turns at most the rate, flexion included",
+    "correction: an engaged knee of a leg whose foot is not held returns from a large deviation at most the "
+    "rate",
     "[correction][rate_limit]") {
   // Session 17: a held leg that the stance kept 15-37 deg straighter than the input's was turned back by
   // the Newton step within 1-3 frames of its lift-off (half of the corridor's knee flips at 6.66 /m^2, 3 s).
