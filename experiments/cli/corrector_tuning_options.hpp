@@ -80,6 +80,11 @@ inline void add_corrector_tuning_options(Command* cmd, CorrectorParams& params) 
                   "Engaged knees keep their flexion and turn off their hinge at most --free-joint-return "
                   "(true/false; false = only their twist limited, the session-15 solver)")
       ->capture_default_str();
+  cmd->add_option("--lift-off-knees", params.lift_off_knees,
+                  "Engaged knees of legs whose foot is not held return from more than 3 --free-joint-return "
+                  "turns off the input at that rate, and a foot held at its ball only is let go at 4 "
+                  "(true/false; experimental: the feet let go skate)")
+      ->capture_default_str();
   cmd->add_option("--settle-feet", params.held_feet_at_input_height,
                   "Hold planted feet at the input's height: held balls at their own, bodies settled onto "
                   "held feet (true/false)")

@@ -13,7 +13,9 @@
 //       as the input's (return_foot_tilt). Holding the whole offset kept the tilt a contact had given
 //       the swinging foot for the whole stance: feet landing 10-20 deg toe-up stood on their heels with
 //       the toes 3-6 cm up (issue 27, the corridor's planted-foot float); dropping the tilt at once
-//       turned feet by up to 20 deg in one frame (foot pops).
+//       turned feet by up to 20 deg in one frame (foot pops). With lift_off_knees a foot held at its
+//       ball only is let go once its knee's flexion is off the input's by more than kLiftOffKneeTurns
+//       rate turns (issue 27, session 17).
 //   hold_feet (stage_integrate)  after the projection to a pose, a held foot more than
 //       foot_hold_tolerance_m from its anchor is put back by the least-change two-bone leg IK
 //       (core/leg_ik.hpp, reach_ankle: the knee flexes about its own bend axis, about its hinge when
@@ -42,6 +44,16 @@ namespace crowdlab {
 namespace {
 constexpr bool kKeepSolvedHeight = true;
 constexpr double kTiltReturn_radps = 1.0;
+/// A foot held at its ball only whose knee deviates from the input's flexion by more than this many turns
+/// of free_joint_return_radps x h is let go (lift_off_knees; issue 27, session 17). The stance can keep
+/// a held leg 15-37 deg straighter than the input's (its pelvis pushed off the planted foot); at the end
+/// of the hold the Newton step's pull turned it back within 1-3 frames (a flip), half of the corridor's
+/// knee flips at 6.66 /m^2. Let go, the knee returns at the rate (limited_now, stage_free_joints.cpp).
+/// Measured on the 3 s corridor clip at 6.66 /m^2 (docs/correction.md): 2 turns (13 deg) left 110 flips
+/// but a stance drift p99 of 19 mm; 3 turns 140-175 flips with 2 foot pops in one of three runs; 4 turns
+/// 144-188 flips (main 188-218), no pops. Off by default: a ball the input still plants, let go, slides
+/// (the 2 s walking corridor's foot skate max 2.8 -> 17.2 cm).
+constexpr double kLiftOffKneeTurns = 4.0;
 
 bool planted(const CorrectorParams& p, double h, const Vec3& before, const Vec3& now) {
   return (now - before).norm() < p.foot_plant_speed_mps * h && now.y() < p.foot_plant_height_m;
@@ -73,6 +85,16 @@ bool lower_pelvis_to_reach(const BodyShape& shape, const std::array<FootGoal, 2>
   }
   return pose.root_position_m != root_before;
 }
+
+/// Whether character c's knee deviates from the input's flexion (its last output's turn about the hinge)
+/// by more than kLiftOffKneeTurns rate turns (params.lift_off_knees, issue 27, session 17).
+bool knee_bent_off_input(const CorrectorModel& model, const CorrectorState& s, int c, int knee) {
+  const auto g = static_cast<size_t>(c * kJointCount + knee);
+  if (g >= s.output_deviation.size()) return false;  // no output yet
+  const Quat& d = s.output_deviation[g];
+  const double flexion_rad = 2.0 * std::atan2(d.x(), d.w());  // the twist about the hinge x
+  return std::abs(flexion_rad) > kLiftOffKneeTurns * model.params.free_joint_return_radps * model.h;
+}
 }  // namespace
 
 Quat return_foot_tilt(const Quat& offset, double max_turn_rad) {
@@ -98,7 +120,9 @@ void update_foot_holds(const CorrectorModel& model, CorrectorState& s, int c,
     const LegJoints lj = leg_joints(kLegSides[side]);
     const size_t ankle = base + static_cast<size_t>(lj.ankle), ball = base + static_cast<size_t>(lj.foot);
     const bool ankle_planted = planted(p, model.h, s.target_origin_old_m[ankle], s.target_origin_m[ankle]);
-    const bool ball_planted = planted(p, model.h, s.target_origin_old_m[ball], s.target_origin_m[ball]);
+    const bool ball_planted =
+        planted(p, model.h, s.target_origin_old_m[ball], s.target_origin_m[ball]) &&
+        !(p.lift_off_knees && !ankle_planted && knee_bent_off_input(model, s, c, lj.knee));
     if ((ankle_planted || ball_planted) && !hold.held())
       hold.rotation_offset =
           (s.rotation[ankle] * old_target_foot_rotation[static_cast<size_t>(side)].conjugate()).normalized();

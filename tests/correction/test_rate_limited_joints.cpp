@@ -5,11 +5,14 @@
 // under the flip measure's 20). Session 15 added the head and shoulders (neck, head, collars, upper arms):
 // the stationary crowd's last flips, turned by the Newton step (docs/correction.md). Session 16: engaged
 // knees are hinges for the limit (CorrectorParams::knee_hinge): their flexion is free, what they turn off
-// the hinge is limited, after the step and in the pass.
+// the hinge is limited, after the step and in the pass. Session 17 (CorrectorParams::lift_off_knees): the
+// knee of a leg whose foot is not held is limited whole, and a foot held at its ball only is let go once
+// its knee's flexion is far off the input's.
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "framework/core/body_shape.hpp"
 #include "framework/core/capsule_box_distance.hpp"
@@ -33,14 +36,19 @@ struct Released {
   Quat local = Quat::Identity();
   double left_rad = 0.0, knee_off_hinge_left_rad = 0.0;
 };
-Released after_the_release(const CorrectorParams& params, int j, const Quat& turn) {
+Released after_the_release(const CorrectorParams& params, int j, const Quat& turn, bool feet_held = true,
+                           const Quat& deviation = Quat::Identity()) {
   const BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
   const CorrectorModel model = make_corrector_model({shape}, params, {}, 30);
   CorrectorState s;
   s.step_index = 5;
   s.target = {Pose::rest(shape)};
   s.output_deviation.assign(kJointCount, Quat::Identity());
+  s.output_deviation[static_cast<size_t>(j)] = deviation;  // the last output's, from the input
   s.engaged_until.assign(kJointCount, 100);
+  FootHold hold;
+  hold.ankle = hold.ball = feet_held;
+  s.foot_holds.assign(2, hold);
   Pose pose = Pose::rest(shape);
   pose.local_rotations[static_cast<size_t>(j)] = turn;
   std::array<double, kJointCount> left{};
@@ -170,6 +178,63 @@ TEST_CASE(
   CHECK(hinged <= step + 1e-6);
   CHECK(free > step);
   CHECK(depth_hinged <= 0.0055);
+}
+
+TEST_CASE(
+    "correction: an engaged knee of a leg whose foot is not held returns from a large deviation at most the "
+    "rate",
+    "[correction][rate_limit]") {
+  // Session 17: a held leg that the stance kept 15-37 deg straighter than the input's was turned back by
+  // the Newton step within 1-3 frames of its lift-off (half of the corridor's knee flips at 6.66 /m^2, 3 s).
+  // Once the foot is not held, no leg IK sets the knee's flexion: a knee whose last output is off the
+  // input's flexion by more than 3 rate turns (19.5 deg) turns at most the rate (6.5 deg at 30 fps), all
+  // of it, and the pass may turn it only what is left. Here the knee is 25 deg straighter than the input's
+  // and the solve turns it back by 25 deg at once. Nearer its input (10 deg), or held, or without
+  // lift_off_knees, the knee keeps what the solve gave it.
+  const double step = CorrectorParams{}.free_joint_return_radps / 30.0, deg = std::numbers::pi / 180.0;
+  const Quat straighter(Eigen::AngleAxisd(-25.0 * deg, Vec3::UnitX()));
+  CorrectorParams params;
+  params.lift_off_knees = true;  // opt-in: the feet let go skate (docs/correction.md, session 17)
+  const Released swinging = after_the_release(params, kLeftKnee, Quat::Identity(), false, straighter);
+  CHECK(swinging.local.angularDistance(straighter) == Approx(step).margin(1e-9));
+  CHECK(swinging.left_rad == 0.0);
+  CHECK(swinging.knee_off_hinge_left_rad < 0.0);  // limited whole, not as a hinge
+  const Quat near(Eigen::AngleAxisd(-10.0 * deg, Vec3::UnitX()));
+  CHECK(after_the_release(params, kLeftKnee, Quat::Identity(), false, near)
+            .local.angularDistance(Quat::Identity()) < 1e-9);
+  const Released held = after_the_release(params, kLeftKnee, Quat::Identity(), true, straighter);
+  CHECK(held.local.angularDistance(Quat::Identity()) < 1e-9);
+  params.lift_off_knees = false;
+  const Released session16 = after_the_release(params, kLeftKnee, Quat::Identity(), false, straighter);
+  CHECK(session16.local.angularDistance(Quat::Identity()) < 1e-9);
+  CHECK(session16.left_rad == std::numeric_limits<double>::infinity());
+}
+
+TEST_CASE("correction: a foot held at its ball only is let go once its knee's flexion is far off the input's",
+          "[correction][rate_limit]") {
+  // Session 17: the ball of a rolling foot (the input's heel rising) stays planted; with its knee 30 deg
+  // straighter than the input's, the hold ends (the knee then returns at the rate), at 20 deg it stays
+  // (the limit is 4 rate turns, 26 deg at 30 fps), and without lift_off_knees it stays at any deviation.
+  const BodyShape shape = make_procedural_body({});
+  const auto ball_held = [&](bool lift_off, double knee_deviation_rad) {
+    CorrectorParams params;
+    params.lift_off_knees = lift_off;
+    const CorrectorModel model = make_corrector_model({shape}, params, {}, 30);
+    CorrectorState s = make_corrector_state(model);
+    s.foot_holds[0].ball = true;  // the left foot rolls on its ball
+    s.foot_holds[0].ball_anchor_m = Vec3(0.1, 0.02, 0.3);
+    s.target_origin_old_m[kLeftFoot] = s.target_origin_m[kLeftFoot] = Vec3(0.1, 0.02, 0.3);
+    s.target_origin_old_m[kLeftAnkle] = Vec3(0.1, 0.08, 0.2);
+    s.target_origin_m[kLeftAnkle] = Vec3(0.1, 0.11, 0.21);  // the heel rises 3 cm in the frame
+    s.output_deviation[kLeftKnee] = Quat(Eigen::AngleAxisd(-knee_deviation_rad, Vec3::UnitX()));
+    update_foot_holds(model, s, 0, {Quat::Identity(), Quat::Identity()});
+    CHECK(!s.foot_holds[0].ankle);
+    return s.foot_holds[0].ball;
+  };
+  const double deg = std::numbers::pi / 180.0;
+  CHECK(!ball_held(true, 30.0 * deg));
+  CHECK(ball_held(true, 20.0 * deg));
+  CHECK(ball_held(false, 30.0 * deg));
 }
 
 TEST_CASE("correction: joint sets are read from group and joint names, and written back",
