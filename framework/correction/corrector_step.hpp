@@ -118,9 +118,9 @@ void hold_feet(const CorrectorModel& model, CorrectorState& state, int c, Pose& 
 /// Lowest point (m) of one foot's capsules (its ankle and ball bones).
 double foot_sole_height_m(const WorldCapsules& capsules, const LegJoints& leg);
 /// With params.feet_above_input_ground, lifts each foot of character c whose sole in `pose` lies more
-/// than foot_hold_tolerance_m below min(0, its sole in the input's pose) onto that height by the
-/// least-change leg IK, the foot's world rotation kept (run by hold_feet). Returns how many feet it
-/// lifted.
+/// than 5 mm (and foot_hold_tolerance_m) below min(0, its sole in the input's pose) back to 5 mm below it
+/// by the least-change leg IK, the foot's world rotation kept (run by hold_feet). Returns how many feet
+/// it lifted.
 int keep_feet_above_ground(const CorrectorModel& model, const CorrectorState& state, int c, Pose& pose);
 /// Where a held foot of character c (side 0 left, 1 right) must be: ankle and ball joints (world, m)
 /// and the ankle bone's world rotation. Also the goal of the feet's world springs in the solve.
