@@ -89,6 +89,10 @@ inline void add_corrector_tuning_options(Command* cmd, CorrectorParams& params) 
                   "Hold planted feet at the input's height: held balls at their own, bodies settled onto "
                   "held feet (true/false)")
       ->capture_default_str();
+  cmd->add_option("--feet-above-ground", params.feet_above_input_ground,
+                  "Lift feet the correction put over 5 mm below the input's ground (min(0, the input's "
+                  "sole)) back to 5 mm below it by the leg IK (true/false)")
+      ->capture_default_str();
   add_anticipation_options(cmd, params);
 }
 

@@ -300,6 +300,17 @@ struct CorrectorParams {
   /// ground went 25.5 -> 31.9 mm (docs/correction.md). Session 12's settle of every body after the pass
   /// raised the depth past 10 mm (12.3, 18.2 mm).
   bool held_feet_at_input_height = false;
+  /// Whether hold_feet lifts a foot (held or swinging) that lies more than 5 mm below the input's ground,
+  /// min(0, the input's sole), back to 5 mm below it by the least-change leg IK (issue 27, session 17,
+  /// stage_foot_holds.cpp: keep_feet_above_ground). false = the session-16 solver.
+  /// Off by default: on the 3 s corridor clips (docs/correction.md, session 17, 3 runs each) the depth it
+  /// adds below the ground falls from 17.5-21.0 to 5.9-6.0 mm at 4.44 /m^2 and 28.0-40.9 to 6.0 mm at
+  /// 6.66 /m^2, but alone it flips more at 6.66 /m^2 (188-218 -> 200-267) and leaves the float. With
+  /// held_feet_at_input_height too, the corridor's flips (8-12, 92-163), p99 depth (<= 9.3 mm) and the
+  /// feet below the ground (<= 6 mm) meet their targets and the float falls (4.44 /m^2: 19.4-19.6 ->
+  /// 11.0-11.2 mm; 6.66: 28.8-30.3 -> 16.0-19.4) with the stationary p99 depth at 7.3-9.3 mm: the
+  /// candidate default, not yet run on the longer clips.
+  bool feet_above_input_ground = false;
 
   // ---- Anticipated contacts (correct_crowd only; anticipate_contacts.hpp, issue 27, session 13)
   /// Which joints' contact deviations the offline correction anticipates: after a first run, each such

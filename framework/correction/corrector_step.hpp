@@ -38,6 +38,8 @@
 #include <array>
 #include <vector>
 
+#include "framework/core/forward_kinematics.hpp"
+#include "framework/core/leg_ik.hpp"
 #include "framework/core/pose.hpp"
 #include "framework/correction/corrector_model.hpp"
 #include "framework/correction/corrector_state.hpp"
@@ -108,10 +110,18 @@ void assemble_character_contacts(CorrectorState& state, int c);
 
 /// Foot holds (stage_foot_holds.cpp). update_foot_holds runs in stage_targets once character c's
 /// target joints are updated (old_target_foot_rotation: the input's left/right ankle-bone rotations
-/// at the previous step); hold_feet re-plants c's held feet in its projected pose (stage_integrate).
+/// at the previous step); hold_feet re-plants c's held feet in its projected pose (stage_integrate and
+/// the depenetration pass), then lifts feet below the input's ground (keep_feet_above_ground).
 void update_foot_holds(const CorrectorModel& model, CorrectorState& state, int c,
                        const std::array<Quat, 2>& old_target_foot_rotation);
 void hold_feet(const CorrectorModel& model, CorrectorState& state, int c, Pose& pose);
+/// Lowest point (m) of one foot's capsules (its ankle and ball bones).
+double foot_sole_height_m(const WorldCapsules& capsules, const LegJoints& leg);
+/// With params.feet_above_input_ground, lifts each foot of character c whose sole in `pose` lies more
+/// than 5 mm (and foot_hold_tolerance_m) below min(0, its sole in the input's pose) back to 5 mm below it
+/// by the least-change leg IK, the foot's world rotation kept (run by hold_feet). Returns how many feet
+/// it lifted.
+int keep_feet_above_ground(const CorrectorModel& model, const CorrectorState& state, int c, Pose& pose);
 /// Where a held foot of character c (side 0 left, 1 right) must be: ankle and ball joints (world, m)
 /// and the ankle bone's world rotation. Also the goal of the feet's world springs in the solve.
 struct FootGoal {

@@ -25,6 +25,14 @@
 //       ball only, the ankle goes where the ball anchor and the foot rotation put it. If the leg cannot
 //       reach, the pelvis is lowered first; if it moved, both held feet are re-planted. The bones are then
 //       rebuilt from that pose, so the next step starts from the held foot.
+//   keep_feet_above_ground (end of hold_feet, params.feet_above_input_ground; issue 27, session 17)
+//       a foot, held or swinging, whose sole lies more than 5 mm below the input's ground, min(0, the
+//       input's sole), is lifted back to 5 mm below it by the same leg IK, its world rotation kept. Traced
+//       per stage on the corridor (docs/correction.md, session 17), the correction's feet below the ground
+//       are those of bodies standing 7-22 mm lower than the input's: the projection to a pose puts a foot
+//       where the lowered leg ends (+3.8 mm per step on swinging feet, against -2.5 mm from the ground
+//       springs of the solve), and the depenetration pass and the pelvis drop of hold_feet add 3-5 mm on held
+//       feet. Off by default: the lifts flip knees and ankles (the numbers are in corrector_params.hpp).
 //
 // The same criterion (1 mm per frame at 30 fps, 15 cm) defines "planted" in the quality measure
 // (metrics/correction_quality.hpp), the usual foot-contact test on joint speed and height (e.g.
@@ -54,6 +62,11 @@ constexpr double kTiltReturn_radps = 1.0;
 /// 144-188 flips (main 188-218), no pops. Off by default: a ball the input still plants, let go, slides
 /// (the 2 s walking corridor's foot skate max 2.8 -> 17.2 cm).
 constexpr double kLiftOffKneeTurns = 4.0;
+/// How deep below the input's ground keep_feet_above_ground leaves a foot (m): lifting every foot back
+/// to within foot_hold_tolerance_m flipped knees and ankles at 4.44 /m^2 (11-15 -> 24-37 over three runs,
+/// docs/correction.md, session 17); lifting only what lies deeper than 5 mm (half the issue's 10 mm
+/// target, the depenetration pass's own tolerance) flips 9-22 there.
+constexpr double kBelowGroundAllowed_m = 0.005;
 
 bool planted(const CorrectorParams& p, double h, const Vec3& before, const Vec3& now) {
   return (now - before).norm() < p.foot_plant_speed_mps * h && now.y() < p.foot_plant_height_m;
@@ -182,7 +195,9 @@ FootGoal foot_goal(const CorrectorModel& model, const CorrectorState& s, int c, 
   return g;
 }
 
-void hold_feet(const CorrectorModel& model, CorrectorState& s, int c, Pose& pose) {
+namespace {
+/// The held feet re-planted (the header's hold_feet).
+void hold_held_feet(const CorrectorModel& model, CorrectorState& s, int c, Pose& pose) {
   const BodyShape& shape = model.bodies[static_cast<size_t>(c)].shape;
   const std::array<bool, 2> held = {s.foot_holds[static_cast<size_t>(2 * c)].held(),
                                     s.foot_holds[static_cast<size_t>(2 * c + 1)].held()};
@@ -223,6 +238,48 @@ void hold_feet(const CorrectorModel& model, CorrectorState& s, int c, Pose& pose
       hold.ball_anchor_m = reached[static_cast<size_t>(lj.foot)].translation;
     }
   }
+}
+}  // namespace
+
+double foot_sole_height_m(const WorldCapsules& capsules, const LegJoints& leg) {
+  double y = 1e9;
+  for (int b : {leg.ankle, leg.foot}) {
+    const Capsule& cap = capsules[static_cast<size_t>(b)];
+    y = std::min(y, std::min(cap.a.y(), cap.b.y()) - cap.radius_m);
+  }
+  return y;
+}
+
+int keep_feet_above_ground(const CorrectorModel& model, const CorrectorState& s, int c, Pose& pose) {
+  if (!model.params.feet_above_input_ground) return 0;
+  const BodyShape& shape = model.bodies[static_cast<size_t>(c)].shape;
+  const BoneTransforms bones = forward_kinematics(shape, pose);
+  const WorldCapsules capsules = world_capsules(shape, bones);
+  const double tol = model.params.foot_hold_tolerance_m;
+  WorldCapsules input{};
+  bool have_input = false;  // the input's capsules only for a foot below y = 0 (most steps have none)
+  int lifted = 0;
+  for (int side = 0; side < 2; ++side) {
+    const LegJoints lj = leg_joints(kLegSides[side]);
+    const double sole_m = foot_sole_height_m(capsules, lj);
+    if (sole_m >= -kBelowGroundAllowed_m - tol) continue;  // the input's ground is at most y = 0
+    if (!have_input) {
+      input = world_capsules(shape, s.target[static_cast<size_t>(c)]);
+      have_input = true;
+    }
+    const double depth_m = std::min(0.0, foot_sole_height_m(input, lj)) - kBelowGroundAllowed_m - sole_m;
+    if (!(depth_m > tol)) continue;
+    // The other leg's bones do not move: the IK edits only this leg's hip, knee and ankle rotations.
+    const RigidTransform& ankle = bones[static_cast<size_t>(lj.ankle)];
+    reach_ankle(shape, pose, kLegSides[side], ankle.translation + Vec3(0.0, depth_m, 0.0), ankle.rotation);
+    ++lifted;
+  }
+  return lifted;
+}
+
+void hold_feet(const CorrectorModel& model, CorrectorState& s, int c, Pose& pose) {
+  hold_held_feet(model, s, c, pose);
+  keep_feet_above_ground(model, s, c, pose);
 }
 
 }  // namespace crowdlab

@@ -30,20 +30,6 @@
 #include "framework/correction/corrector_step.hpp"
 
 namespace crowdlab {
-namespace {
-
-/// Lowest point (m) of one foot's capsules (ankle and ball bones).
-double sole_height_m(const WorldCapsules& capsules, const LegJoints& lj) {
-  double y = 1e9;
-  for (int b : {lj.ankle, lj.foot}) {
-    const Capsule& cap = capsules[static_cast<size_t>(b)];
-    y = std::min(y, std::min(cap.a.y(), cap.b.y()) - cap.radius_m);
-  }
-  return y;
-}
-
-}  // namespace
-
 double held_height_error_m(const CorrectorModel& model, const CorrectorState& s, int c, int side,
                            const BoneTransforms& bones) {
   const FootHold& hold = s.foot_holds[static_cast<size_t>(2 * c + side)];
@@ -80,7 +66,7 @@ bool settle_held_feet(const CorrectorModel& model, const CorrectorState& s, int 
     const WorldCapsules capsules = world_capsules(shape, bones);
     for (int side = 0; side < 2; ++side) {
       if (held[static_cast<size_t>(side)]) continue;
-      const double sole = sole_height_m(capsules, leg_joints(kLegSides[side]));
+      const double sole = foot_sole_height_m(capsules, leg_joints(kLegSides[side]));
       dy = std::max(dy, std::min(0.0, sole) - sole);
     }
   }

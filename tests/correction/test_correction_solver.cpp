@@ -17,6 +17,7 @@
 #include "framework/correction/corrector_step.hpp"
 #include "framework/correction/swaying_crowd_fixture.hpp"
 #include "tests/correction/correction_measures.hpp"
+#include "tests/correction/held_stand.hpp"
 #include "tests/support/test_paths.hpp"
 
 // This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
@@ -528,24 +529,12 @@ TEST_CASE(
 }
 
 namespace {
-/// One standing body whose feet the corrector holds (two steps of a still input).
-struct HeldStand {
-  BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
-  CorrectorModel model;
-  CorrectorState state;
-  Pose stand;
-};
+using test::HeldStand;
 
 HeldStand stand_with_held_feet(bool settle) {
-  HeldStand h;
   CorrectorParams params;
   params.held_feet_at_input_height = settle;
-  h.model = make_corrector_model({h.shape}, params, {}, 30);
-  h.state = make_corrector_state(h.model);
-  h.stand = Pose::rest(h.shape);
-  corrector_step(h.model, h.state, {h.stand});
-  corrector_step(h.model, h.state, {h.stand});  // the feet are held from here on
-  return h;
+  return test::stand_with_held_feet(params);
 }
 
 /// Height (m) above the input's of character 0's held ankles after one step from a state whose body was
