@@ -6,7 +6,8 @@
 // OpenEXR, ...) at every start of the `crowdlab` binary (issue 31, session 17; docs/building.md).
 //
 // Pixels are packed rows of 8-bit samples in OpenCV's order: 1 channel grey, 3 BGR, 4 BGRA; `stride_bytes`
-// between rows. Encoding favours speed over size (PNG_IMAGE_FLAG_FAST), as frames are written per clip.
+// between rows. Encoding uses OpenCV's PNG settings (zlib level 1, run-length, the Sub filter): the same
+// bytes as the cv::imencode it replaced, at its speed (frames are written per clip).
 // Errors: RuntimeError naming the file (or "PNG" in memory) and libpng's message.
 #include <cstddef>
 #include <cstdint>

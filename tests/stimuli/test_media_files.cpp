@@ -84,6 +84,13 @@ TEST_CASE("encode_png and read_png keep every pixel, and OpenCV reads the same f
     REQUIRE(theirs.type() == image.type());
     CHECK(cv::norm(theirs, image, cv::NORM_INF) == 0.0);
   }
+  // The same settings as OpenCV's encoder (zlib level 1, run-length, Sub filter): the same bytes.
+  for (const int type : {CV_8UC1, CV_8UC3, CV_8UC4}) {
+    const cv::Mat image = pattern(29, 37, type);
+    std::vector<std::uint8_t> theirs;
+    REQUIRE(cv::imencode(".png", image, theirs));
+    CHECK(encode_png(image.data, image.cols, image.rows, image.channels(), image.step) == theirs);
+  }
   // And the other way: a file OpenCV wrote reads back the same.
   const cv::Mat bgr = pattern(17, 13, CV_8UC3);
   REQUIRE(cv::imwrite((dir / "opencv.png").string(), bgr));
@@ -99,6 +106,9 @@ TEST_CASE("read_png and encode_png refuse what they cannot do, naming the file",
   CHECK_THROWS_AS(read_png((dir / "missing.png").string()), RuntimeError);
   const cv::Mat two = pattern(4, 4, CV_8UC2);
   CHECK_THROWS_AS(encode_png(two.data, 4, 4, 2, two.step), InputError);
+  const cv::Mat three = pattern(4, 4, CV_8UC3);
+  CHECK_THROWS_AS(encode_png(three.data, 4, 4, 3, 11), InputError);  // rows shorter than 4 pixels
+  CHECK_THROWS_AS(encode_png(three.data, 0, 4, 3, three.step), InputError);
 }
 
 TEST_CASE("VideoReader gives every frame of an H.264 clip, as OpenCV's reader did", "[media]") {
