@@ -328,9 +328,10 @@ TEST_CASE("correction: a looping input gives a looping output with the loop pre-
   CHECK(!report.loop_closure.empty());  // closed (all or some characters) without going deeper
   // Session 17: the next lap runs only for the per-character closure (session 16 ran it whole after every
   // looping clip, +9 % steps at 4 s, +18 % at 20 s); this crowd closes on an exact closure, so none. The
-  // progress still counts the frames it may read (at most 2W), and counts them done.
+  // progress still counts the frames it may read (at most 2W), and counts them done. (The 9-character
+  // crowd closes on the corrected blend, the sanitizers' 6-character one on the blend: both exact.)
   INFO("closure: " << report.loop_closure);
-  CHECK(report.loop_closure == "corrected blend");
+  CHECK((report.loop_closure == "corrected blend" || report.loop_closure == "blend"));
   CHECK(report.next_lap_frames == 0);
   CrowdAnimation longer = crowd;  // ten laps: 600 frames, W = 60 frames of the 2 s pre-roll at 30 fps
   for (CharacterAnimation& c : longer.characters) {
