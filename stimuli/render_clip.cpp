@@ -13,7 +13,6 @@
 
 #include "framework/core/error.hpp"
 #include "framework/core/progress.hpp"
-#include "framework/core/write_file.hpp"
 #include "framework/media/png_image.hpp"
 #include "stimuli/elapsed_ms.hpp"
 #include "stimuli/video_encoder.hpp"
@@ -22,13 +21,11 @@ namespace crowdlab::stimuli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-/// Writes an 8-bit `image` (grey, BGR or BGRA) as a PNG. Encoded in memory and written with
-/// write_text_file, so that a full disk names the file and the OS's reason (issue 21).
+/// Writes an 8-bit `image` (grey, BGR or BGRA) as a PNG (write_png_file: a full disk names the file and
+/// the OS's reason, issue 21).
 void write_png(const std::string& path, const cv::Mat& image) {
   if (image.depth() != CV_8U) throw RuntimeError(path + ": only 8-bit images are written as PNG");
-  const std::vector<std::uint8_t> png =
-      encode_png(image.data, image.cols, image.rows, image.channels(), image.step);
-  write_text_file(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+  write_png_file(path, image.data, image.cols, image.rows, image.channels(), image.step);
 }
 
 cv::Mat bottom_up_rgba_to_bgr(const std::vector<std::uint8_t>& rgba, int width, int height) {

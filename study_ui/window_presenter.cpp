@@ -11,7 +11,6 @@
 #include <optional>
 
 #include "framework/core/error.hpp"
-#include "framework/core/write_file.hpp"
 #include "framework/media/png_image.hpp"
 #include "study_ui/frame_interval_stats.hpp"
 #include "study_ui/scale_keys.hpp"
@@ -141,9 +140,7 @@ struct WindowPresenter::Impl {
     std::filesystem::create_directories(options.snapshot_dir);
     const std::string path = (std::filesystem::path(options.snapshot_dir) / (name + ".png")).string();
     try {  // a snapshot is a record for the experimenter: a full disk must not end the session
-      const std::vector<std::uint8_t> png =
-          encode_png(canvas.data, canvas.cols, canvas.rows, canvas.channels(), canvas.step);
-      write_text_file(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+      write_png_file(path, canvas.data, canvas.cols, canvas.rows, canvas.channels(), canvas.step);
     } catch (const std::exception& e) {
       spdlog::warn("snapshot not written: {}", e.what());
     }

@@ -4,17 +4,13 @@
 #include <zlib.h>
 
 #include <cstdio>
-#include <cstring>
 #include <new>
 
 #include "framework/core/error.hpp"
+#include "framework/core/write_file.hpp"
 
 namespace crowdlab {
 namespace {
-
-std::string libpng_message(const png_image& image) {
-  return image.message[0] ? image.message : "libpng error";
-}
 
 /// libpng's error and write callbacks. libpng reports an error by longjmp out of its own frames, so the
 /// writer below keeps no C++ object with a destructor between setjmp and the calls that may jump.
@@ -95,25 +91,10 @@ std::vector<std::uint8_t> encode_png(const std::uint8_t* pixels, int width, int 
   return bytes;
 }
 
-PngPixels read_png(const std::string& path) {
-  png_image image;
-  std::memset(&image, 0, sizeof image);
-  image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&image, path.c_str()))
-    throw RuntimeError(path + ": cannot read the PNG image: " + libpng_message(image));
-  PngPixels out;
-  const bool colour = (image.format & PNG_FORMAT_FLAG_COLOR) != 0;
-  const bool alpha = (image.format & PNG_FORMAT_FLAG_ALPHA) != 0;
-  out.channels = colour ? (alpha ? 4 : 3) : (alpha ? 4 : 1);
-  image.format = out.channels == 1 ? PNG_FORMAT_GRAY : out.channels == 3 ? PNG_FORMAT_BGR : PNG_FORMAT_BGRA;
-  out.width = static_cast<int>(image.width);
-  out.height = static_cast<int>(image.height);
-  out.bytes.resize(PNG_IMAGE_SIZE(image));
-  if (!png_image_finish_read(&image, nullptr, out.bytes.data(), 0, nullptr)) {
-    png_image_free(&image);
-    throw RuntimeError(path + ": cannot decode the PNG image: " + libpng_message(image));
-  }
-  return out;
+void write_png_file(const std::string& path, const std::uint8_t* pixels, int width, int height, int channels,
+                    std::size_t stride_bytes) {
+  const std::vector<std::uint8_t> png = encode_png(pixels, width, height, channels, stride_bytes);
+  write_text_file(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
 }
 
 }  // namespace crowdlab
