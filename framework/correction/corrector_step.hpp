@@ -77,6 +77,11 @@ double held_height_error_m(const CorrectorModel& model, const CorrectorState& st
 /// Returns whether the pose changed.
 bool settle_held_feet(const CorrectorModel& model, const CorrectorState& state, int c, Pose& pose);
 
+/// How far (rad, >= 0) character c's knee bends off the input's flexion in its last output: the twist of
+/// its output deviation about the hinge axis x (lift_off_knees; issue 27, session 17). 0 before the first
+/// output.
+double knee_flexion_off_input_rad(const CorrectorState& state, int c, int knee);
+
 /// Free joints (stage_free_joints.cpp): in character c's projected pose, every joint that is not
 /// engaged turns back toward its input rotation, and every engaged one toward the pose's, each at most
 /// params.free_joint_return_radps away from the last output's deviation. Returns whether the rate

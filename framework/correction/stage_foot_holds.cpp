@@ -102,11 +102,8 @@ bool lower_pelvis_to_reach(const BodyShape& shape, const std::array<FootGoal, 2>
 /// Whether character c's knee deviates from the input's flexion (its last output's turn about the hinge)
 /// by more than kLiftOffKneeTurns rate turns (params.lift_off_knees, issue 27, session 17).
 bool knee_bent_off_input(const CorrectorModel& model, const CorrectorState& s, int c, int knee) {
-  const auto g = static_cast<size_t>(c * kJointCount + knee);
-  if (g >= s.output_deviation.size()) return false;  // no output yet
-  const Quat& d = s.output_deviation[g];
-  const double flexion_rad = 2.0 * std::atan2(d.x(), d.w());  // the twist about the hinge x
-  return std::abs(flexion_rad) > kLiftOffKneeTurns * model.params.free_joint_return_radps * model.h;
+  return knee_flexion_off_input_rad(s, c, knee) >
+         kLiftOffKneeTurns * model.params.free_joint_return_radps * model.h;
 }
 }  // namespace
 

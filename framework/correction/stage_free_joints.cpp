@@ -93,13 +93,17 @@ bool limited_now(const CorrectorModel& model, const CorrectorState& s, int c, in
   // Only while it returns from a deviation that a turn back within 3 frames would flip: a swinging knee
   // near its input still gets out of the way freely (limited always, the standing crowd's p99 depth at
   // 6.66 /m^2 rose 8.5 -> 11.1 mm).
-  const auto g = static_cast<size_t>(c * kJointCount + j);
-  if (g >= s.output_deviation.size()) return false;
-  const Quat& d = s.output_deviation[g];
-  return std::abs(2.0 * std::atan2(d.x(), d.w())) > 3.0 * model.params.free_joint_return_radps * model.h;
+  return knee_flexion_off_input_rad(s, c, j) > 3.0 * model.params.free_joint_return_radps * model.h;
 }
 
 }  // namespace
+
+double knee_flexion_off_input_rad(const CorrectorState& s, int c, int knee) {
+  const auto g = static_cast<size_t>(c * kJointCount + knee);
+  if (g >= s.output_deviation.size()) return 0.0;  // no output yet
+  const Quat& d = s.output_deviation[g];
+  return std::abs(2.0 * std::atan2(d.x(), d.w()));
+}
 
 Quat off_hinge_part(const Quat& change) {
   // Swing-twist decomposition about x (e.g. Dobrowolski 2015, "Swing-twist decomposition in Clifford
