@@ -17,6 +17,7 @@
 
 #include "framework/core/error.hpp"
 #include "framework/core/file_kind.hpp"
+#include "framework/core/nearest_site.hpp"
 
 namespace crowdlab {
 namespace {
@@ -117,20 +118,13 @@ ShapeTarget read_target_gz(const std::filesystem::path& path, int vertex_count) 
 
 namespace {
 
-/// For every vertex, the nearest of `body` (itself when it is one), by brute force (once per model).
+/// For every vertex, the nearest of `body` (itself when it is one; ties to the body vertex listed first).
 std::vector<int> nearest_body_vertices(const std::vector<Vec3>& vertices, const std::vector<int>& body) {
   std::vector<int> anchor(vertices.size(), -1);
   for (int b : body) anchor[static_cast<size_t>(b)] = b;
+  const NearestSiteGrid grid(vertices, body);
   tbb::parallel_for(size_t{0}, vertices.size(), [&](size_t v) {
-    if (anchor[v] >= 0) return;
-    double best = HUGE_VAL;
-    for (int b : body) {
-      const double d = (vertices[static_cast<size_t>(b)] - vertices[v]).squaredNorm();
-      if (d < best) {
-        best = d;
-        anchor[v] = b;
-      }
-    }
+    if (anchor[v] < 0) anchor[v] = grid.nearest(vertices[v]);
   });
   return anchor;
 }

@@ -1,6 +1,6 @@
 // The MPFB2 asset subset shipped in framework/body/assets/mpfb2: it holds exactly the macro targets the
 // body sampler reaches, it gives the same bodies as the full MPFB2 folder (when ../shared has one), and a
-// missing or corrupt file is reported by name.
+// missing or corrupt file is reported by name. Each vertex's shape anchor is the nearest body vertex.
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -175,6 +175,34 @@ TEST_CASE("a numeric bone parent in the MPFB2 rig names the rig file and key, no
                                           Catch::Contains(".parent: must be a string") &&
                                           Catch::Contains("got a number"));
   }
+}
+
+TEST_CASE("mpfb2 model: every vertex's shape anchor is its nearest body vertex, as a scan chooses it") {
+  const Mpfb2Model& model = shipped_model();
+  const auto& vertices = model.base().vertices;
+  const std::vector<int>& body = model.body_vertices();
+  const std::vector<int>& anchor = model.shape_anchor();
+  REQUIRE(anchor.size() == vertices.size());
+  std::vector<bool> is_body(vertices.size(), false);
+  for (int b : body) is_body[static_cast<size_t>(b)] = true;
+  int checked = 0, wrong = 0;
+  for (size_t v = 0; v < vertices.size(); ++v) {
+    if (is_body[v]) {
+      wrong += anchor[v] != static_cast<int>(v);
+      continue;
+    }
+    if (v % 7 != 0) continue;  // a seventh of the helper vertices: the scan is 13,000 distances each
+    int best = -1;
+    double best_d2 = HUGE_VAL;
+    for (int b : body) {
+      const double d2 = (vertices[static_cast<size_t>(b)] - vertices[v]).squaredNorm();
+      if (d2 < best_d2) best_d2 = d2, best = b;
+    }
+    wrong += anchor[v] != best;
+    ++checked;
+  }
+  CHECK(checked > 500);
+  CHECK(wrong == 0);
 }
 
 }  // namespace test_mpfb2_assets
