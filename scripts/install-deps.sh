@@ -14,7 +14,7 @@ build_pkgs=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
   libplplot-dev plplot-driver-cairo libfreetype-dev fonts-dejavu-core libx11-dev
   libbenchmark-dev catch2 zlib1g-dev libzip-dev
-  libnlopt-dev libpng-dev
+  libnlopt-dev libpng-dev libssl-dev
 )
 # Tools the tests drive: a virtual X server and xdotool for the study window, Node.js for the
 # Khronos glTF validator, GNU parallel for the sharding test, and Slurm with munge for the real-sbatch
