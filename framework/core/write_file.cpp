@@ -6,7 +6,10 @@
 
 #include <cerrno>
 #include <cstring>
+#include <ostream>
+#include <streambuf>
 #include <string>
+#include <vector>
 
 #include "framework/core/error.hpp"
 #include "framework/core/file_kind.hpp"
@@ -32,31 +35,94 @@ void sync_file(const fs::path& path) {
 
 }  // namespace
 
-void write_text_file(const fs::path& path, std::string_view contents) {
-  // Never through a link or into a device, FIFO or folder (issue 32); O_NOFOLLOW closes the gap between
-  // the check and the open for the link itself.
+namespace {
+
+/// Opens `path` for writing (created or truncated), never through a link or into a device, FIFO or
+/// folder (issue 32); O_NOFOLLOW closes the gap between the check and the open for the link itself.
+int open_for_writing(const fs::path& path) {
   require_writable_destination(path);
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (fd < 0) fail(path, "cannot write", errno);
-  const char* p = contents.data();
-  size_t left = contents.size();
-  int error = 0;
-  while (left > 0 && error == 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      error = n < 0 ? errno : ENOSPC;  // write(2) returns 0 only when nothing more fits
-      break;
-    }
-    p += n;
-    left -= static_cast<size_t>(n);
+  return fd;
+}
+
+/// Writes all `n` bytes; returns 0 or the OS's error (write(2) returns 0 only when nothing more fits).
+int write_all(int fd, const char* p, size_t n) {
+  while (n > 0) {
+    const ssize_t written = ::write(fd, p, n);
+    if (written < 0 && errno == EINTR) continue;
+    if (written <= 0) return written < 0 ? errno : ENOSPC;
+    p += written;
+    n -= static_cast<size_t>(written);
   }
-  // close(2) reports deferred write errors on some file systems (NFS, quotas).
+  return 0;
+}
+
+/// Closes the file (close(2) reports deferred write errors on some file systems: NFS, quotas); when
+/// anything failed, removes it, so that a file that could not be written whole is not left behind
+/// half-written under any name, and throws naming the file and the reason.
+void close_or_fail(int fd, const fs::path& path, int error) {
   if (::close(fd) != 0 && error == 0) error = errno;
   if (error == 0) return;
-  // A file that could not be written whole is not left behind half-written under any name.
   ::unlink(path.c_str());
   fail(path, "write failed", error);
+}
+
+/// An output stream buffer that writes to a file descriptor in 1 MiB blocks and keeps the first error
+/// (later writes are dropped): a stream cannot throw through every writer it is handed to.
+class FileSink : public std::streambuf {
+ public:
+  explicit FileSink(int fd) : fd_(fd), block_(1 << 20) { setp(block_.data(), block_.data() + block_.size()); }
+  int error() const { return error_; }
+  void flush_block() {
+    const std::ptrdiff_t n = pptr() - pbase();
+    if (n > 0 && error_ == 0) error_ = write_all(fd_, pbase(), static_cast<size_t>(n));
+    setp(block_.data(), block_.data() + block_.size());
+  }
+
+ protected:
+  int_type overflow(int_type c) override {
+    flush_block();
+    if (!traits_type::eq_int_type(c, traits_type::eof())) sputc(traits_type::to_char_type(c));
+    return traits_type::not_eof(c);
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    if (n < static_cast<std::streamsize>(block_.size())) return std::streambuf::xsputn(s, n);
+    flush_block();  // a large write goes straight to the file, without a copy into the block
+    if (error_ == 0) error_ = write_all(fd_, s, static_cast<size_t>(n));
+    return n;
+  }
+  int sync() override {
+    flush_block();
+    return error_ == 0 ? 0 : -1;
+  }
+
+ private:
+  int fd_;
+  std::vector<char> block_;
+  int error_ = 0;
+};
+
+}  // namespace
+
+void write_text_file(const fs::path& path, std::string_view contents) {
+  const int fd = open_for_writing(path);
+  close_or_fail(fd, path, write_all(fd, contents.data(), contents.size()));
+}
+
+void write_streamed_file(const fs::path& path, const std::function<void(std::ostream&)>& fill) {
+  const int fd = open_for_writing(path);
+  FileSink sink(fd);
+  std::ostream out(&sink);
+  try {
+    fill(out);
+  } catch (...) {
+    ::close(fd);
+    ::unlink(path.c_str());
+    throw;
+  }
+  sink.flush_block();
+  close_or_fail(fd, path, sink.error());
 }
 
 void write_output_via_temporary(const fs::path& output, const std::function<void(const fs::path&)>& write,

@@ -5,6 +5,8 @@
 //   write_text_file             writes every byte (any content, text or binary) with write(2); a failure
 //                               (ENOSPC, EIO, EDQUOT, ...) throws RuntimeError "FILE: write failed: REASON"
 //                               with the OS's reason (strerror), after closing the file
+//   write_streamed_file         the same for a writer that fills an std::ostream (a 100 MB crowd file goes
+//                               to the disk in 1 MiB blocks instead of being built in memory first)
 //   write_output_via_temporary  makes a file atomically: a writer fills "<stem>.tmp.<pid><ext>" beside the
 //                               target, it is fsync'd (when durable) and renamed over the target; on any
 //                               failure the temporary is removed and the error passes on
@@ -20,6 +22,7 @@
 // rename would replace the device node or the link, and an in-place write would follow the link.
 #include <filesystem>
 #include <functional>
+#include <iosfwd>
 #include <string_view>
 
 namespace crowdlab {
@@ -27,6 +30,11 @@ namespace crowdlab {
 /// Writes `contents` to `path` in place (created or truncated). Throws RuntimeError naming the file and
 /// the OS's reason when it cannot be opened, written completely or closed.
 void write_text_file(const std::filesystem::path& path, std::string_view contents);
+
+/// Writes `path` in place with what `fill` writes to the stream (buffered; write(2) in 1 MiB blocks). The
+/// same failures as write_text_file: a failed write or close throws RuntimeError naming the file and the
+/// OS's reason, and the partial file is removed; so is it when `fill` throws (the exception passes on).
+void write_streamed_file(const std::filesystem::path& path, const std::function<void(std::ostream&)>& fill);
 
 /// Makes `output` atomically: `write(tmp)` writes the complete file at `tmp` (same folder, name
 /// "<stem>.tmp.<pid><extension>", so writers that choose a format by extension still work); it is then

@@ -8,13 +8,12 @@
 // The full disk is a small tmpfs mounted for the test, filled to different points so that the failure
 // lands in different writers (trajectories, crowd files, sidecars, clips, the manifest). Mounting needs
 // root (CI runs as root); elsewhere the test is skipped with a warning.
-#include <sys/mount.h>
-
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
 #include "framework/core/sha256.hpp"
 #include "tests/support/run_cli.hpp"
+#include "tests/support/tmpfs_mount.hpp"
 
 // This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
 namespace test_disk_full {
@@ -24,25 +23,6 @@ using namespace crowdlab::test;
 namespace fs = std::filesystem;
 
 namespace {
-
-/// A tmpfs of `size` mounted on `dir` for the object's lifetime (mounted() is false when not allowed).
-class TmpfsMount {
- public:
-  TmpfsMount(fs::path dir, const std::string& size) : dir_(std::move(dir)) {
-    fs::create_directories(dir_);
-    mounted_ = ::mount("tmpfs", dir_.c_str(), "tmpfs", 0, ("size=" + size).c_str()) == 0;
-  }
-  ~TmpfsMount() {
-    if (mounted_) ::umount2(dir_.c_str(), MNT_DETACH);
-  }
-  TmpfsMount(const TmpfsMount&) = delete;
-  TmpfsMount& operator=(const TmpfsMount&) = delete;
-  bool mounted() const { return mounted_; }
-
- private:
-  fs::path dir_;
-  bool mounted_ = false;
-};
 
 /// A GLB is whole when its header's length (bytes 8..11, little-endian) is the file's size: tinygltf's
 /// file writer ignored a failed write, so a full disk published truncated crowd files.
