@@ -150,6 +150,24 @@ void log_open_characters(const CrowdAnimation& crowd, const std::vector<size_t>&
   spdlog::debug("correct_crowd: the loop stays open for{}", names.empty() ? " none" : names);
 }
 
+/// Debug log: why each character the loop closure leaves open stays so (explain_open_characters; session
+/// 18: the neighbours its best candidate meets, and how many candidates the flip filter took from it).
+void log_why_open(const CrowdAnimation& crowd, const std::vector<OpenCharacterReason>& reasons,
+                  const std::vector<int>& kinds, size_t candidates) {
+  static constexpr std::array<const char*, 6> kKind = {
+      "corrected blend", "blend", "next lap's start", "arms", "one arm", "cut from the next lap"};
+  for (const OpenCharacterReason& why : reasons) {
+    std::string met;
+    for (const auto& [o, depth_m] : why.met)
+      met += fmt::format("{} {} {:.1f} mm", met.empty() ? "" : ",", crowd.characters[o].name, 1e3 * depth_m);
+    spdlog::debug(
+        "correct_crowd: {} stays open: {} of {} candidates add joint flips; the best other ({} {}) meets{}",
+        crowd.characters[why.character].name, why.excluded, candidates,
+        why.best < candidates ? kKind[static_cast<size_t>(kinds[why.best])] : "none", why.best,
+        met.empty() ? " nobody" : met);
+  }
+}
+
 /// The targets of frame f: every character's input pose.
 void frame_targets(const CrowdAnimation& crowd, int f, std::vector<Pose>& targets) {
   for (size_t c = 0; c < targets.size(); ++c) targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
@@ -276,6 +294,9 @@ void close_per_character(const CrowdAnimation& input, const std::vector<std::vec
       if (k == exact.size()) k = closures.size();
     join_closures(closures, out_ex, limit, allowed, spans, choice);
     log_open_characters(out, choice, closures.size());
+    if (spdlog::should_log(spdlog::level::debug))
+      log_why_open(out, explain_open_characters(closures, out_ex, limit, allowed, spans, choice), kinds,
+                   closures.size());
     for (size_t c = 0; c < n; ++c) {
       if (choice[c] >= closures.size()) continue;
       ++on[static_cast<size_t>(kinds[choice[c]])];

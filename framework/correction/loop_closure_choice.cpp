@@ -88,6 +88,33 @@ class Join {
     }
   }
 
+  /// Why unclosed character c stays so (explain_open_characters).
+  OpenCharacterReason explain(size_t c, const std::vector<size_t>& rung) const {
+    OpenCharacterReason why{c, 0, open_, {}};
+    double best_deepest = 0.0;
+    for (size_t r = 0; r < open_; ++r) {
+      if (!allowed_[r][c]) {
+        ++why.excluded;
+        continue;
+      }
+      std::vector<std::pair<size_t, double>> met;
+      double deepest = 0.0;
+      for (size_t o = 0; o < n_; ++o) {
+        const double d = o == c ? 0.0 : depth_m(c, r, o, rung[o]);
+        if (d <= limit_m_) continue;
+        met.emplace_back(o, d);
+        deepest = std::max(deepest, d);
+      }
+      if (why.best == open_ || met.size() < why.met.size() ||
+          (met.size() == why.met.size() && deepest < best_deepest)) {
+        why.best = r;
+        why.met = std::move(met);
+        best_deepest = deepest;
+      }
+    }
+    return why;
+  }
+
   /// Closes what it can of the unclosed characters, largest seam first.
   void run(const CrowdAnimation& unclosed, std::vector<size_t>& rung) const {
     std::vector<std::pair<double, size_t>> order;
@@ -174,6 +201,18 @@ void join_closures(const std::vector<const CrowdAnimation*>& closures, const Cro
                    double limit_m, const std::vector<std::vector<bool>>& allowed,
                    const std::vector<FrameSpan>& spans, std::vector<size_t>& rung) {
   Join(closures, unclosed, spans, limit_m, allowed, rung).run(unclosed, rung);
+}
+
+std::vector<OpenCharacterReason> explain_open_characters(const std::vector<const CrowdAnimation*>& closures,
+                                                         const CrowdAnimation& unclosed, double limit_m,
+                                                         const std::vector<std::vector<bool>>& allowed,
+                                                         const std::vector<FrameSpan>& spans,
+                                                         const std::vector<size_t>& rung) {
+  const Join join(closures, unclosed, spans, limit_m, allowed, rung);
+  std::vector<OpenCharacterReason> reasons;
+  for (size_t c = 0; c < rung.size(); ++c)
+    if (rung[c] == closures.size()) reasons.push_back(join.explain(c, rung));
+  return reasons;
 }
 
 std::vector<size_t> choose_closures(const std::vector<const CrowdAnimation*>& closures, size_t descent_rungs,

@@ -24,6 +24,7 @@
 #include <array>
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "framework/core/crowd_animation.hpp"
@@ -69,6 +70,29 @@ std::vector<std::size_t> descend_closures(const std::vector<const CrowdAnimation
 void join_closures(const std::vector<const CrowdAnimation*>& closures, const CrowdAnimation& unclosed,
                    double limit_m, const std::vector<std::vector<bool>>& allowed,
                    const std::vector<FrameSpan>& spans, std::vector<std::size_t>& rung);
+
+/// Why a character stays unclosed after the join: a diagnostic for the debug log (session 18: on the 4 s
+/// concert at 6.66/m^2, seed 2024000001, three characters stayed open and each candidate they may take met
+/// one to seven neighbours 15-80 mm deep; docs/stimuli.md).
+struct OpenCharacterReason {
+  std::size_t character = 0;
+  /// Candidates it may not take (allowed[r][c] false: they add joint flips to it).
+  std::size_t excluded = 0;
+  /// Of those it may take, the one on which it meets the fewest others beyond the limit (then the
+  /// shallowest deepest contact, then the first); closures.size() if it may take none.
+  std::size_t best = 0;
+  /// On `best`, with everyone else as rung places them: each character met beyond the limit, and how deep
+  /// (m), in index order.
+  std::vector<std::pair<std::size_t, double>> met;
+};
+
+/// For every character rung leaves unclosed (rung[c] == closures.size()), in index order, why: the
+/// arguments are join_closures' (spans: one per candidate), rung its result.
+std::vector<OpenCharacterReason> explain_open_characters(const std::vector<const CrowdAnimation*>& closures,
+                                                         const CrowdAnimation& unclosed, double limit_m,
+                                                         const std::vector<std::vector<bool>>& allowed,
+                                                         const std::vector<FrameSpan>& spans,
+                                                         const std::vector<std::size_t>& rung);
 
 /// `unclosed` with each character's frames from its chosen candidate (choose_closures).
 CrowdAnimation mix_closures(const std::vector<const CrowdAnimation*>& closures,

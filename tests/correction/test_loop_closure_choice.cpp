@@ -1,7 +1,8 @@
 // Which loop closure each character takes (framework/correction/loop_closure_choice.hpp; issue 28, session
 // 15): the descent alone left open neighbours that can close only together, and a start from the next lap;
 // session 16: the join checks each candidate over the frames it changes, and joints cut from the next lap;
-// session 17: the join on an excerpt of the clip (loop_closure_excerpt.hpp).
+// session 17: the join on an excerpt of the clip (loop_closure_excerpt.hpp); session 18: why a character
+// stays open (explain_open_characters).
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -186,6 +187,48 @@ TEST_CASE("loop closure choice: the join checks a candidate over the frames it c
   CHECK(choice[0] == 1);
   const std::vector<size_t> window_only = choose_closures(closures, 0, unclosed, first, 0, 0.01, any);
   CHECK(window_only[0] == 0);
+}
+
+TEST_CASE("loop closure choice: explain_open_characters names the neighbours an open character meets",
+          "[correction][loop]") {
+  // A (x = 0) is open. Candidate 0 stands it at x = 1.8 on its first 10 frames and its last, next to B
+  // (x = 2), which candidate 2 closes; candidate 3 stands A at x = 2.0, deeper into B. Candidates 1 and 2
+  // are not A's to take (they would add joint flips to it). The join leaves A open; the explanation says
+  // so: 2 candidates excluded, the best of the others candidate 0 (as many met as candidate 3, shallower),
+  // where A meets B (and nobody else) beyond the limit.
+  const CrowdAnimation unclosed = three_far_apart();
+  const auto stand_at = [&](size_t c, double x_m) {
+    CrowdAnimation crowd = unclosed;
+    for (size_t f : {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 39})
+      crowd.characters[c].frames[f].root_position_m.x() = x_m;
+    return crowd;
+  };
+  const CrowdAnimation a_near_b = stand_at(0, 1.8), b_aside = stand_at(1, 2.6), b_closed = stand_at(1, 2.0),
+                       a_on_b = stand_at(0, 2.0);
+  const std::vector<const CrowdAnimation*> closures = {&a_near_b, &b_aside, &b_closed, &a_on_b};
+  const std::vector<FrameSpan> spans(4, {0, 40});
+  const std::vector<std::vector<bool>> allowed = {
+      {true, false, false}, {false, true, false}, {false, true, false}, {true, false, false}};
+  const double limit_m = 0.01;
+  const size_t open = closures.size();
+  std::vector<size_t> rung = {open, 2, open};
+  join_closures(closures, unclosed, limit_m, allowed, spans, rung);
+  REQUIRE(rung == std::vector<size_t>{open, 2, open});
+  const std::vector<OpenCharacterReason> why =
+      explain_open_characters(closures, unclosed, limit_m, allowed, spans, rung);
+  REQUIRE(why.size() == 2);  // A and C (C may take no candidate)
+  CHECK(why[0].character == 0);
+  CHECK(why[0].excluded == 2);
+  CHECK(why[0].best == 0);
+  REQUIRE(why[0].met.size() == 1);
+  CHECK(why[0].met[0].first == 1);
+  const CrowdAnimation a_closed = mix_closures(closures, unclosed, {0, 2, open});
+  CHECK(why[0].met[0].second == Approx(deepest_per_character(a_closed, 0, 40)[0]));
+  CHECK(why[0].met[0].second > limit_m);
+  CHECK(why[1].character == 2);
+  CHECK(why[1].excluded == 4);
+  CHECK(why[1].best == open);
+  CHECK(why[1].met.empty());
 }
 
 TEST_CASE("loop closure choice: cut_joints_from_next_lap moves the arm's seam inside the clip",
