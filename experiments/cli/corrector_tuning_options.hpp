@@ -82,8 +82,8 @@ inline void add_corrector_tuning_options(Command* cmd, CorrectorParams& params) 
       ->capture_default_str();
   cmd->add_option("--lift-off-knees", params.lift_off_knees,
                   "Engaged knees of legs whose foot is not held return from more than 3 --free-joint-return "
-                  "turns off the input at that rate, and a foot held at its ball only is let go at 4 "
-                  "(true/false; experimental: the feet let go skate)")
+                  "turns off the input at that rate, and a foot held at its ball only pivots about it at 4, "
+                  "its knee returning at that rate (true/false)")
       ->capture_default_str();
   cmd->add_option("--settle-feet", params.held_feet_at_input_height,
                   "Hold planted feet at the input's height: held balls at their own, bodies settled onto "

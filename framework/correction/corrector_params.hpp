@@ -277,16 +277,17 @@ struct CorrectorParams {
   /// window off the hinge on main; with the hinge, flips 21-34 -> 11-15 at 4.44 /m^2 and 192-273 ->
   /// 188-218 at 6.66 /m^2 over three runs each, p99 depth 5.0-6.2 -> 5.3-6.0 and 9.5-10.5 -> 7.0-9.5 mm.
   bool knee_hinge = true;
-  /// Knees at lift-off (issue 27, session 17; off by default): an engaged knee of a leg whose foot is not
-  /// held and whose last output is off the input's flexion by more than 3 turns of free_joint_return_radps
-  /// turns at most that rate (all of it, flexion included; no leg IK sets it), after the Newton step and
-  /// in the depenetration pass; and a foot held at its ball only (the input's heel rising) is let go once
-  /// its knee's flexion deviates by more than 4 such turns (26 deg at 30 fps), so that what a stance built
-  /// up (a held leg kept 15-37 deg straighter than the input's) returns at the rate in the swing instead
-  /// of within 1-3 frames by the Newton step's pull at the end of the hold. Measured on 3 s corridor clips
-  /// (session 17, docs/correction.md): co666 flips 199 -> 170 (knees 96 -> 59); not the default because
-  /// the feet let go skate: the walking corridor's foot skate max 2.8 -> 17.2 cm (tests/correction).
-  bool lift_off_knees = false;
+  /// Knees at lift-off (issue 27, sessions 17-18): an engaged knee of a leg whose foot is not held and
+  /// whose last output is off the input's flexion by more than 3 turns of free_joint_return_radps turns at
+  /// most that rate (all of it, flexion included; no leg IK sets it), after the Newton step and in the
+  /// depenetration pass; and a foot held at its ball only (the input's heel rising) whose knee's flexion
+  /// deviates by more than 4 such turns (26 deg at 30 fps) pivots about the ball, its knee returning at the
+  /// rate (stage_foot_holds.cpp), so that what a stance built up (a held leg kept 15-37 deg straighter than
+  /// the input's) is not turned back within 1-3 frames by the Newton step's pull at the end of the hold.
+  /// Measured on 3 s corridor clips over three runs each (session 18, docs/correction.md): flips at 6.66
+  /// /m^2 188-218 -> 144-195 (knees 93-98 -> 55-68), at 4.44 /m^2 11-15 -> 11-15. Session 17 let the ball
+  /// go instead, and it slid (the walking corridor's foot skate 2.8 -> 17.2 cm): off by default until then.
+  bool lift_off_knees = true;
 
   // ---- Feet on the ground (stage_depenetrate.cpp, stage_settle_feet.cpp, issue 27, sessions 12-13)
   /// Whether held feet are brought to the input's height: a held ball's goal height is its input's (not

@@ -79,6 +79,9 @@ struct FootHold {
   /// How far (m) the anchors were moved this step because the leg was deep in an environment box
   /// (stage_depenetrate.cpp, held feet giving way); reset every step by update_foot_holds.
   double given_way_m = 0.0;
+  /// lift_off_knees (issue 27, session 18): a foot held at its ball only whose knee is far off the input's
+  /// flexion turns about the ball so that the knee returns at the rate (stage_foot_holds.cpp).
+  bool pivot_on_ball = false;
   bool held() const { return ankle || ball; }
 };
 

@@ -14,8 +14,9 @@
 //       the swinging foot for the whole stance: feet landing 10-20 deg toe-up stood on their heels with
 //       the toes 3-6 cm up (issue 27, the corridor's planted-foot float); dropping the tilt at once
 //       turned feet by up to 20 deg in one frame (foot pops). With lift_off_knees a foot held at its
-//       ball only is let go once its knee's flexion is off the input's by more than kLiftOffKneeTurns
-//       rate turns (issue 27, session 17).
+//       ball only whose knee's flexion is off the input's by more than kLiftOffKneeTurns rate turns
+//       pivots about the ball until the input lifts it (FootHold::pivot_on_ball; issue 27, sessions
+//       17-18).
 //   hold_feet (stage_integrate)  after the projection to a pose, a held foot more than
 //       foot_hold_tolerance_m from its anchor is put back by the least-change two-bone leg IK
 //       (core/leg_ik.hpp, reach_ankle: the knee flexes about its own bend axis, about its hinge when
@@ -23,7 +24,10 @@
 //       IK moves it horizontally only: the height stays the solve's, whose planted-foot spring pulls it to
 //       the input's height (foot_goal), so the ground can still lift a foot. For a rolling foot held at the
 //       ball only, the ankle goes where the ball anchor and the foot rotation put it. If the leg cannot
-//       reach, the pelvis is lowered first; if it moved, both held feet are re-planted. The bones are then
+//       reach, the pelvis is lowered first; if it moved, both held feet are re-planted. A foot that pivots
+//       on its ball has its ankle goal where the knee's flexion, turned back toward the input's at the
+//       rate, reaches from the hip (pivot_about_ball): the heel, not the ball, takes the knee's return.
+//       The bones are then
 //       rebuilt from that pose, so the next step starts from the held foot.
 //   keep_feet_above_ground (end of hold_feet, params.feet_above_input_ground; issue 27, session 17)
 //       a foot, held or swinging, whose sole lies more than 5 mm below the input's ground, min(0, the
@@ -53,14 +57,15 @@ namespace {
 constexpr bool kKeepSolvedHeight = true;
 constexpr double kTiltReturn_radps = 1.0;
 /// A foot held at its ball only whose knee deviates from the input's flexion by more than this many turns
-/// of free_joint_return_radps x h is let go (lift_off_knees; issue 27, session 17). The stance can keep
-/// a held leg 15-37 deg straighter than the input's (its pelvis pushed off the planted foot); at the end
-/// of the hold the Newton step's pull turned it back within 1-3 frames (a flip), half of the corridor's
-/// knee flips at 6.66 /m^2. Let go, the knee returns at the rate (limited_now, stage_free_joints.cpp).
-/// Measured on the 3 s corridor clip at 6.66 /m^2 (docs/correction.md): 2 turns (13 deg) left 110 flips
-/// but a stance drift p99 of 19 mm; 3 turns 140-175 flips with 2 foot pops in one of three runs; 4 turns
-/// 144-188 flips (main 188-218), no pops. Off by default: a ball the input still plants, let go, slides
-/// (the 2 s walking corridor's foot skate max 2.8 -> 17.2 cm).
+/// of free_joint_return_radps x h pivots about its ball (lift_off_knees; issue 27, sessions 17-18). The
+/// stance can keep a held leg 15-37 deg straighter than the input's (its pelvis pushed off the planted
+/// foot); at the end of the hold the Newton step's pull turned it back within 1-3 frames (a flip), half of
+/// the corridor's knee flips at 6.66 /m^2. Session 17 let the ball go (the knee then returned at the rate,
+/// limited_now in stage_free_joints.cpp): on the 3 s corridor clip at 6.66 /m^2, 2 turns (13 deg) left 110
+/// flips but a stance drift p99 of 19 mm, 3 turns 140-175 flips with 2 foot pops in one of three runs, 4
+/// turns 144-188 flips (main 188-218), no pops; but the ball the input still planted slid with the leg (the
+/// 2 s walking corridor's foot skate max 2.8 -> 17.2 cm). Pivoting, the ball stays held: 144-195 flips,
+/// skate as without the option (docs/correction.md, session 18).
 constexpr double kLiftOffKneeTurns = 4.0;
 /// How deep below the input's ground keep_feet_above_ground leaves a foot (m): lifting every foot back
 /// to within foot_hold_tolerance_m flipped knees and ankles at 4.44 /m^2 (11-15 -> 24-37 over three runs,
@@ -130,9 +135,12 @@ void update_foot_holds(const CorrectorModel& model, CorrectorState& s, int c,
     const LegJoints lj = leg_joints(kLegSides[side]);
     const size_t ankle = base + static_cast<size_t>(lj.ankle), ball = base + static_cast<size_t>(lj.foot);
     const bool ankle_planted = planted(p, model.h, s.target_origin_old_m[ankle], s.target_origin_m[ankle]);
-    const bool ball_planted =
-        planted(p, model.h, s.target_origin_old_m[ball], s.target_origin_m[ball]) &&
-        !(p.lift_off_knees && !ankle_planted && knee_bent_off_input(model, s, c, lj.knee));
+    const bool ball_planted = planted(p, model.h, s.target_origin_old_m[ball], s.target_origin_m[ball]);
+    // lift_off_knees: a rolling foot whose knee is far off the input's flexion pivots about its ball until
+    // the input lifts the ball or sets its heel down (pivot_about_ball). Let go instead (session 17), the
+    // ball slid with the leg while its knee returned.
+    hold.pivot_on_ball = p.lift_off_knees && !ankle_planted && ball_planted &&
+                         (hold.pivot_on_ball || knee_bent_off_input(model, s, c, lj.knee));
     if ((ankle_planted || ball_planted) && !hold.held())
       hold.rotation_offset =
           (s.rotation[ankle] * old_target_foot_rotation[static_cast<size_t>(side)].conjugate()).normalized();
@@ -193,6 +201,47 @@ FootGoal foot_goal(const CorrectorModel& model, const CorrectorState& s, int c, 
 }
 
 namespace {
+/// The distance (m) from the hip to the ankle of character c's leg `side` with its knee's flexion off the
+/// input's turned back toward none by at most free_joint_return_radps x h from the last output's.
+double rate_limited_leg_reach_m(const CorrectorModel& model, const CorrectorState& s, int c, int side) {
+  const BodyShape& shape = model.bodies[static_cast<size_t>(c)].shape;
+  const LegJoints lj = leg_joints(kLegSides[side]);
+  const double off_rad = knee_flexion_off_input_rad(s, c, lj.knee);
+  const Quat& d = s.output_deviation[static_cast<size_t>(c * kJointCount + lj.knee)];
+  const double sign = 2.0 * std::atan2(d.x(), d.w()) < 0.0 ? -1.0 : 1.0;
+  const double left_rad = std::max(0.0, off_rad - model.params.free_joint_return_radps * model.h);
+  const Quat knee = (s.target[static_cast<size_t>(c)].local_rotations[static_cast<size_t>(lj.knee)] *
+                     Quat(Eigen::AngleAxisd(sign * left_rad, Vec3::UnitX())))
+                        .normalized();
+  return (shape.joint_offsets_m[static_cast<size_t>(lj.knee)] +
+          knee * shape.joint_offsets_m[static_cast<size_t>(lj.ankle)])
+      .norm();
+}
+
+/// A foot held at its ball whose knee is far off the input's flexion (FootHold::pivot_on_ball) pivots about
+/// the ball: its ankle goal is the point nearest the held foot's at the rate-limited knee's reach from the
+/// hip and the foot's length from the ball, and the foot turns to point from it to the ball.
+void pivot_about_ball(const CorrectorModel& model, const CorrectorState& s, int c, int side, const Pose& pose,
+                      FootGoal& g) {
+  const BodyShape& shape = model.bodies[static_cast<size_t>(c)].shape;
+  const LegJoints lj = leg_joints(kLegSides[side]);
+  const Vec3 hip = hip_position(shape, pose, kLegSides[side]);
+  const Vec3 foot = g.rotation * shape.joint_offsets_m[static_cast<size_t>(lj.foot)];
+  const double length = foot.norm(), apart = (g.ball_m - hip).norm();
+  if (!(apart > length) || !(length > 0.0)) return;
+  const double reach =
+      std::clamp(rate_limited_leg_reach_m(model, s, c, side), apart - length, apart + length);
+  const Vec3 along = (g.ball_m - hip) / apart;
+  const double x = (apart * apart + reach * reach - length * length) / (2.0 * apart);
+  const double radius = std::sqrt(std::max(0.0, reach * reach - x * x));
+  Vec3 across = (g.ankle_m - hip) - along * along.dot(g.ankle_m - hip);
+  if (across.norm() < 1e-9) return;
+  across.normalize();
+  const Vec3 ankle = hip + along * x + across * radius;
+  g.rotation = (Quat::FromTwoVectors(foot, g.ball_m - ankle) * g.rotation).normalized();
+  g.ankle_m = ankle;
+}
+
 /// The held feet re-planted (the header's hold_feet).
 void hold_held_feet(const CorrectorModel& model, CorrectorState& s, int c, Pose& pose) {
   const BodyShape& shape = model.bodies[static_cast<size_t>(c)].shape;
@@ -215,6 +264,8 @@ void hold_held_feet(const CorrectorModel& model, CorrectorState& s, int c, Pose&
     const double lift = kKeepSolvedHeight ? ankle.y() - g.ankle_m.y() : 0.0;
     g.ankle_m.y() += lift;
     g.ball_m.y() += lift;
+    if (s.foot_holds[static_cast<size_t>(2 * c + side)].pivot_on_ball)
+      pivot_about_ball(model, s, c, side, pose, g);
     // Within tolerance the solve's leg is kept as it is: a near-straight leg turns a sub-millimetre
     // ankle correction into degrees of knee rotation, which would show as deviation, not as motion.
     const double tol = model.params.foot_hold_tolerance_m;

@@ -82,8 +82,9 @@ struct CorrectionRecipe {
   /// reach 10 mm (issue 28, session 15); 11: engaged necks, heads, collars and shoulders rate-limited too
   /// (issue 27, session 15); 12: engaged knees turn off their hinge at most at that rate, in the step and
   /// the pass (issue 27, session 16); 13: characters still open may take their arms from the next lap up to
-  /// a cut inside the clip (issue 28, session 16).
-  static constexpr std::string_view kCodeVersion = "13";
+  /// a cut inside the clip (issue 28, session 16); 15: knees at lift-off (lift_off_knees) on: a foot held
+  /// at its ball with its knee far off the input's pivots about the ball (issue 27, session 18).
+  static constexpr std::string_view kCodeVersion = "15";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
   /// (correct_crowd.hpp; issue 28): kLoopPrerollS when protocol.loop_video and the clip lasts at least

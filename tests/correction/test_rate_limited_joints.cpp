@@ -7,7 +7,8 @@
 // knees are hinges for the limit (CorrectorParams::knee_hinge): their flexion is free, what they turn off
 // the hinge is limited, after the step and in the pass. Session 17 (CorrectorParams::lift_off_knees): the
 // knee of a leg whose foot is not held is limited whole, and a foot held at its ball only is let go once
-// its knee's flexion is far off the input's.
+// its knee's flexion is far off the input's; session 18: it pivots about the ball instead, the knee
+// returning at the rate (the default since).
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -194,7 +195,7 @@ TEST_CASE(
   const double step = CorrectorParams{}.free_joint_return_radps / 30.0, deg = std::numbers::pi / 180.0;
   const Quat straighter(Eigen::AngleAxisd(-25.0 * deg, Vec3::UnitX()));
   CorrectorParams params;
-  params.lift_off_knees = true;  // opt-in: the feet let go skate (docs/correction.md, session 17)
+  params.lift_off_knees = true;  // the default since session 18
   const Released swinging = after_the_release(params, kLeftKnee, Quat::Identity(), false, straighter);
   CHECK(swinging.local.angularDistance(straighter) == Approx(step).margin(1e-9));
   CHECK(swinging.left_rad == 0.0);
@@ -210,31 +211,93 @@ TEST_CASE(
   CHECK(session16.left_rad == std::numeric_limits<double>::infinity());
 }
 
-TEST_CASE("correction: a foot held at its ball only is let go once its knee's flexion is far off the input's",
-          "[correction][rate_limit]") {
-  // Session 17: the ball of a rolling foot (the input's heel rising) stays planted; with its knee 30 deg
-  // straighter than the input's, the hold ends (the knee then returns at the rate), at 20 deg it stays
-  // (the limit is 4 rate turns, 26 deg at 30 fps), and without lift_off_knees it stays at any deviation.
+TEST_CASE(
+    "correction: a foot held at its ball only pivots about it once its knee's flexion is far off the input's",
+    "[correction][rate_limit]") {
+  // Session 17 let such a ball go (the knee then returned at the rate) and the ball slid with the leg
+  // (the walking corridor's skate 2.8 -> 17.2 cm). Session 18: the ball stays held and the foot pivots
+  // about it (FootHold::pivot_on_ball) from 4 rate turns (26 deg at 30 fps) until the input lifts the ball;
+  // at 20 deg, or without lift_off_knees, it stays an ordinary hold.
   const BodyShape shape = make_procedural_body({});
-  const auto ball_held = [&](bool lift_off, double knee_deviation_rad) {
-    CorrectorParams params;
+  CorrectorParams params;
+  const auto rolling = [&](bool lift_off, double knee_deviation_rad, bool pivoting, bool ball_lifts) {
     params.lift_off_knees = lift_off;
     const CorrectorModel model = make_corrector_model({shape}, params, {}, 30);
     CorrectorState s = make_corrector_state(model);
     s.foot_holds[0].ball = true;  // the left foot rolls on its ball
+    s.foot_holds[0].pivot_on_ball = pivoting;
     s.foot_holds[0].ball_anchor_m = Vec3(0.1, 0.02, 0.3);
     s.target_origin_old_m[kLeftFoot] = s.target_origin_m[kLeftFoot] = Vec3(0.1, 0.02, 0.3);
+    if (ball_lifts) s.target_origin_m[kLeftFoot].y() += 0.01;
     s.target_origin_old_m[kLeftAnkle] = Vec3(0.1, 0.08, 0.2);
     s.target_origin_m[kLeftAnkle] = Vec3(0.1, 0.11, 0.21);  // the heel rises 3 cm in the frame
     s.output_deviation[kLeftKnee] = Quat(Eigen::AngleAxisd(-knee_deviation_rad, Vec3::UnitX()));
     update_foot_holds(model, s, 0, {Quat::Identity(), Quat::Identity()});
     CHECK(!s.foot_holds[0].ankle);
-    return s.foot_holds[0].ball;
+    CHECK(s.foot_holds[0].ball_anchor_m == Vec3(0.1, 0.02, 0.3));
+    return std::pair{s.foot_holds[0].ball, s.foot_holds[0].pivot_on_ball};
   };
   const double deg = std::numbers::pi / 180.0;
-  CHECK(!ball_held(true, 30.0 * deg));
-  CHECK(ball_held(true, 20.0 * deg));
-  CHECK(ball_held(false, 30.0 * deg));
+  CHECK(rolling(true, 30.0 * deg, false, false) == std::pair{true, true});
+  CHECK(rolling(true, 20.0 * deg, false, false) == std::pair{true, false});
+  CHECK(rolling(true, 20.0 * deg, true, false) == std::pair{true, true});  // pivots until the ball lifts
+  CHECK(rolling(true, 20.0 * deg, true, true) == std::pair{false, false});
+  CHECK(rolling(false, 30.0 * deg, false, false) == std::pair{true, false});
+}
+
+TEST_CASE("correction: a foot pivoting about its held ball returns its knee at the rate, the ball kept",
+          "[correction][rate_limit]") {
+  // The input's left knee is bent 40 deg; the last output's is 30 deg straighter, its ball held where it
+  // is. Whatever flexion the solve gives the knee (none off the input's, or still 30 deg off), hold_feet
+  // leaves it 30 - 6.5 deg off the input's with the ball on its anchor: the foot turns about the ball.
+  // As an ordinary hold (no pivot) the knee takes whatever the leg IK needs to re-plant the foot.
+  const BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
+  CorrectorParams params;
+  params.lift_off_knees = true;
+  const CorrectorModel model = make_corrector_model({shape}, params, {}, 30);
+  const double deg = std::numbers::pi / 180.0, step = params.free_joint_return_radps / 30.0;
+  Pose input = Pose::rest(shape);
+  input.local_rotations[kLeftHip] = Quat(Eigen::AngleAxisd(-20.0 * deg, Vec3::UnitX()));
+  input.local_rotations[kLeftKnee] = Quat(Eigen::AngleAxisd(40.0 * deg, Vec3::UnitX()));
+  const Quat off(Eigen::AngleAxisd(-30.0 * deg, Vec3::UnitX()));
+  Pose last = input;
+  last.local_rotations[kLeftKnee] = input.local_rotations[kLeftKnee] * off;
+  const BoneTransforms in_bones = forward_kinematics(shape, input),
+                       last_bones = forward_kinematics(shape, last);
+  const auto knee_off_after = [&](bool pivot, const Quat& solved_knee_off, Vec3& ball_m) {
+    CorrectorState s = make_corrector_state(model);
+    s.target = {input};
+    for (size_t j = 0; j < kJointCount; ++j) {
+      s.target_rotation[j] = in_bones[j].rotation;
+      s.target_origin_m[j] = s.target_origin_old_m[j] = in_bones[j].translation;
+    }
+    for (size_t k = 0; k < 4; ++k)
+      s.foot_start_m[k] = last_bones[static_cast<size_t>(kFootJointOrder[k])].translation;
+    s.output_deviation[kLeftKnee] = off;
+    FootHold& hold = s.foot_holds[0];
+    hold.ball = true;
+    hold.pivot_on_ball = pivot;
+    hold.ball_anchor_m = last_bones[kLeftFoot].translation;
+    hold.rotation_offset =
+        (last_bones[kLeftAnkle].rotation * in_bones[kLeftAnkle].rotation.conjugate()).normalized();
+    Pose pose = last;
+    pose.local_rotations[kLeftKnee] = input.local_rotations[kLeftKnee] * solved_knee_off;
+    hold_feet(model, s, 0, pose);
+    ball_m = forward_kinematics(shape, pose)[kLeftFoot].translation;
+    const Quat d =
+        (input.local_rotations[kLeftKnee].conjugate() * pose.local_rotations[kLeftKnee]).normalized();
+    return 2.0 * std::atan2(d.x(), d.w());
+  };
+  const Vec3 anchor = last_bones[kLeftFoot].translation;
+  for (const Quat& solved : {Quat::Identity(), off}) {
+    Vec3 ball;
+    CHECK(knee_off_after(true, solved, ball) == Approx(-30.0 * deg + step).margin(0.5 * deg));
+    CHECK(Vec3(ball - anchor).cwiseProduct(Vec3(1.0, 0.0, 1.0)).norm() < 0.001);
+  }
+  Vec3 ball;
+  // The ordinary hold: the IK flexes the knee and swings the thigh (measured: 14 deg off), not at the rate.
+  CHECK(std::abs(knee_off_after(false, Quat::Identity(), ball) - (-30.0 * deg + step)) > 5.0 * deg);
+  CHECK(Vec3(ball - anchor).cwiseProduct(Vec3(1.0, 0.0, 1.0)).norm() < 0.001);
 }
 
 TEST_CASE("correction: joint sets are read from group and joint names, and written back",
