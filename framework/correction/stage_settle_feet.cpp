@@ -18,7 +18,13 @@
 //                     past its goal), 0 when one floats and the other sinks (a leg-length question the
 //                     pelvis cannot answer)
 //   |Δy| <= foot_pop_budget_m per step (no foot jumps), and a lowered body keeps its swinging foot's
-//   sole above min(0, its sole before): the settle never pushes a free foot into the ground.
+//   sole above min(0, its sole before) and its held feet's soles above min(-depenetration_tolerance_m,
+//   their soles before): the settle never pushes a free foot into the ground, nor a held foot deeper than
+//   the depenetration pass's ground guards let it go (the pass's tolerance). Without the held feet's
+//   bound (session 18) the settle held a body whose input stands below the ground at the input's height
+//   against the ground's push ("the ground pushes a sunken body up": a body sunk 3 cm with its input, foot
+//   anchors off, rose 0 mm in 30 steps; with the bound 29 mm). The input's own feet below the
+//   ground by less than the tolerance (the procedural stand's 3.5 mm) are still settled onto.
 //
 // The next step starts from the settled pose (velocities unchanged, as in the depenetration pass).
 #include <algorithm>
@@ -62,12 +68,12 @@ bool settle_held_feet(const CorrectorModel& model, const CorrectorState& s, int 
   double dy = held_feet_settle_m(held, error);
   const double cap = model.params.foot_pop_budget_m;
   if (cap > 0.0) dy = std::clamp(dy, -cap, cap);
-  if (dy < 0.0) {  // lowering: a swinging foot goes no lower than min(0, where it is)
+  if (dy < 0.0) {  // lowering: no foot is pushed into the ground (see the header)
     const WorldCapsules capsules = world_capsules(shape, bones);
     for (int side = 0; side < 2; ++side) {
-      if (held[static_cast<size_t>(side)]) continue;
+      const double floor_m = held[static_cast<size_t>(side)] ? -model.params.depenetration_tolerance_m : 0.0;
       const double sole = foot_sole_height_m(capsules, leg_joints(kLegSides[side]));
-      dy = std::max(dy, std::min(0.0, sole) - sole);
+      dy = std::max(dy, std::min(floor_m, sole) - sole);
     }
   }
   if (!(std::abs(dy) > model.params.foot_hold_tolerance_m)) return false;

@@ -199,13 +199,21 @@ TEST_CASE("correction: the ground pushes a sunken body up", "[correction]") {
   sunk.local_rotations[kLeftShoulder] = Quat(Eigen::AngleAxisd(-1.2, Vec3::UnitZ()));
   sunk.local_rotations[kRightShoulder] = Quat(Eigen::AngleAxisd(1.2, Vec3::UnitZ()));
   sunk.root_position_m.y() -= 0.03;
-  CorrectorParams params;
-  params.foot_anchor_stiffness = 0.0;  // let the ground, not the anchors, decide the feet height
-  Corrector corrector({body}, params, {}, 30);
-  Pose out;
-  for (int f = 0; f < 30; ++f) out = corrector.step({sunk})[0];
-  CHECK(out.root_position_m.y() > sunk.root_position_m.y() + 0.015);
-  CHECK(corrector.last_stats().ground_contacts > 0);
+  // With the feet options off, and on (the settle onto the held feet's input heights and the lift: session
+  // 18, where the settle held the body at the input's height, 0 mm up, until it stopped at the ground).
+  for (const bool feet_options : {false, true}) {
+    CorrectorParams params;
+    params.foot_anchor_stiffness = 0.0;  // let the ground, not the anchors, decide the feet height
+    params.held_feet_at_input_height = feet_options;
+    params.feet_above_input_ground = feet_options;
+    Corrector corrector({body}, params, {}, 30);
+    Pose out;
+    for (int f = 0; f < 30; ++f) out = corrector.step({sunk})[0];
+    INFO("feet options " << feet_options << ": root " << sunk.root_position_m.y() << " -> "
+                         << out.root_position_m.y() << " m");
+    CHECK(out.root_position_m.y() > sunk.root_position_m.y() + 0.015);
+    CHECK(corrector.last_stats().ground_contacts > 0);
+  }
 }
 
 TEST_CASE("correction: a rejected step keeps the last stable state and says so", "[correction]") {
@@ -594,6 +602,32 @@ TEST_CASE("correction: the feet settle leaves the bodies the depenetration pass 
   s.depenetration.characters.clear();  // not posed by the pass: settled onto its feet
   stage_settle_feet(model, s);
   CHECK(s.output[0].root_position_m.y() == Approx(lifted_y - 0.015).margin(0.002));
+}
+
+TEST_CASE("correction: the feet settle lowers no foot deeper than the pass's tolerance below the ground",
+          "[correction]") {
+  // Issue 27 (session 18): the settle moved roots toward the held feet's input heights even where the
+  // input stands below the ground, so it held a sunken body down against the ground's push ("the ground
+  // pushes a sunken body up" failed with the settle on: root 0.950 m, not past 0.965 m). It now lowers a
+  // held foot no deeper than max(where it is, the pass's tolerance below y = 0), as the pass's ground guards
+  // do; a swinging foot, as before, no deeper than max(where it is, y = 0).
+  CorrectorParams params;
+  params.held_feet_at_input_height = true;
+  for (const double input_sole_m : {-0.03, -0.0035}) {
+    test::HeldStand h = test::stand_with_held_feet(params, input_sole_m);
+    const double raise_m = -input_sole_m;  // the soles on the ground: the settle lowers toward the input
+    h.state.output[0].root_position_m.y() += raise_m;
+    const double raised_y = h.state.output[0].root_position_m.y();
+    const double sole_before_m = test::lower_sole_m(h.shape, h.state.output[0]);
+    stage_settle_feet(h.model, h.state);
+    const double lowered_m = raised_y - h.state.output[0].root_position_m.y();
+    INFO("input sole " << input_sole_m << " m; sole before the settle " << sole_before_m << " m, lowered by "
+                       << lowered_m << " m");
+    const double tolerance_m = params.depenetration_tolerance_m;
+    // 3 cm below the ground in the input: lowered only to the tolerance (not by the 2 cm budget); 3.5 mm
+    // below: onto the input's height.
+    CHECK(lowered_m == Approx(std::min(raise_m, tolerance_m + sole_before_m)).margin(5e-4));
+  }
 }
 
 }  // namespace test_correction_solver
