@@ -17,31 +17,40 @@ constexpr int kMaxCellsPerAxis = 256;
 
 NearestSiteGrid::NearestSiteGrid(const std::vector<Vec3>& points, const std::vector<int>& sites)
     : sites_(sites) {
-  if (sites.empty()) return;
+  // A site with a non-finite coordinate is never nearer than anything (the scan's `d2 < best` is false
+  // for NaN and infinity), so it is left out of the grid.
+  std::vector<std::uint32_t> ranks;
   Aabb box;
-  for (int s : sites) box.extend(points[static_cast<size_t>(s)]);
+  for (size_t rank = 0; rank < sites.size(); ++rank) {
+    const Vec3& p = points[static_cast<size_t>(sites[rank])];
+    if (!p.allFinite()) continue;
+    ranks.push_back(static_cast<std::uint32_t>(rank));
+    box.extend(p);
+  }
+  if (ranks.empty()) return;
   const Vec3 extent = (box.hi - box.lo).cwiseMax(1e-9);
   // Cubic cells holding about kSitesPerCell sites each if the sites filled their box.
   const double volume = extent.x() * extent.y() * extent.z();
-  cell_m_ = std::max(std::cbrt(volume * kSitesPerCell / static_cast<double>(sites.size())),
+  cell_m_ = std::max(std::cbrt(volume * kSitesPerCell / static_cast<double>(ranks.size())),
                      extent.maxCoeff() / kMaxCellsPerAxis);
   origin_ = box.lo;
-  for (int a = 0; a < 3; ++a)
-    cells_[static_cast<size_t>(a)] =
-        std::clamp(static_cast<int>(std::floor(extent[a] / cell_m_)) + 1, 1, kMaxCellsPerAxis);
+  for (size_t a = 0; a < 3; ++a) {
+    const double count = std::floor(extent[static_cast<int>(a)] / cell_m_) + 1.0;  // huge boxes: inf, NaN
+    cells_[a] = count >= kMaxCellsPerAxis ? kMaxCellsPerAxis : count >= 1.0 ? static_cast<int>(count) : 1;
+  }
   const size_t cell_count = static_cast<size_t>(cells_[0]) * cells_[1] * cells_[2];
-  std::vector<std::uint32_t> bucket(sites.size());
-  for (size_t rank = 0; rank < sites.size(); ++rank) {
-    const Vec3& p = points[static_cast<size_t>(sites[rank])];
+  std::vector<std::uint32_t> bucket(ranks.size());
+  for (size_t k = 0; k < ranks.size(); ++k) {
+    const Vec3& p = points[static_cast<size_t>(sites[ranks[k]])];
     const int x = cell_coordinate(p, 0), y = cell_coordinate(p, 1), z = cell_coordinate(p, 2);
-    bucket[rank] = static_cast<std::uint32_t>((static_cast<size_t>(z) * cells_[1] + y) * cells_[0] + x);
+    bucket[k] = static_cast<std::uint32_t>((static_cast<size_t>(z) * cells_[1] + y) * cells_[0] + x);
   }
   start_.assign(cell_count + 1, 0);
-  sorted_rank_.resize(sites.size());
-  sorted_point_.resize(sites.size());
-  bucket_sort(bucket.data(), bucket.size(), start_, [&](size_t rank, std::uint32_t position) {
-    sorted_rank_[position] = static_cast<std::uint32_t>(rank);
-    sorted_point_[position] = points[static_cast<size_t>(sites[rank])];
+  sorted_rank_.resize(ranks.size());
+  sorted_point_.resize(ranks.size());
+  bucket_sort(bucket.data(), bucket.size(), start_, [&](size_t k, std::uint32_t position) {
+    sorted_rank_[position] = ranks[k];
+    sorted_point_[position] = points[static_cast<size_t>(sites[ranks[k]])];
   });
 }
 
@@ -77,7 +86,7 @@ void NearestSiteGrid::scan_ring(const Vec3& query, const std::array<int, 3>& cen
 }
 
 int NearestSiteGrid::nearest(const Vec3& query) const {
-  if (sites_.empty()) return -1;
+  if (sorted_rank_.empty()) return -1;
   const std::array<int, 3> centre{cell_coordinate(query, 0), cell_coordinate(query, 1),
                                   cell_coordinate(query, 2)};
   double best_d2 = std::numeric_limits<double>::infinity();

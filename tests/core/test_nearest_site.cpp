@@ -76,11 +76,18 @@ TEST_CASE("nearest site: the grid chooses what a scan in listed order chooses") 
     const NearestSiteGrid one(points, {2});
     CHECK(one.nearest({-100, 50, 7}) == 2);
   }
-  SECTION("no site, and a NaN query, choose none") {
-    const std::vector<Vec3> points = {{0, 0, 0}, {1, 1, 1}};
+  SECTION("no site, and a NaN query, choose none; non-finite sites are never chosen; huge boxes") {
+    const double nan = std::numeric_limits<double>::quiet_NaN(),
+                 inf = std::numeric_limits<double>::infinity();
+    const std::vector<Vec3> points = {{0, 0, 0},   {1, 1, 1},      {nan, 0, 0},
+                                      {0, inf, 0}, {-1e300, 0, 0}, {1e300, 0, 0}};
     CHECK(NearestSiteGrid(points, {}).nearest({0, 0, 0}) == -1);
-    const double nan = std::numeric_limits<double>::quiet_NaN();
     CHECK(NearestSiteGrid(points, {0, 1}).nearest({nan, 0, 0}) == -1);
+    CHECK(NearestSiteGrid(points, {2, 3}).nearest({0, 0, 0}) == -1);
+    const std::vector<Vec3> queries = {
+        {0.1, 0.2, 0}, {0.9, 2, 1}, {-5e299, 0, 0}, {6e299, 1, 1}, {0, 0, inf}};
+    CHECK(mismatches(points, {2, 3, 1, 0}, queries) == 0);
+    CHECK(mismatches(points, {4, 0, 5, 1, 2}, queries) == 0);
   }
 }
 
