@@ -150,12 +150,15 @@ void log_open_characters(const CrowdAnimation& crowd, const std::vector<size_t>&
   spdlog::debug("correct_crowd: the loop stays open for{}", names.empty() ? " none" : names);
 }
 
+/// The per-character closures' kinds, by the index close_per_character gives them: its report counts each
+/// and the debug log names the one an open character came nearest to taking.
+constexpr std::array<const char*, 6> kClosureKind = {
+    "corrected blend", "blend", "next lap's start", "arms", "one arm", "arms from the next lap"};
+
 /// Debug log: why each character the loop closure leaves open stays so (explain_open_characters; session
 /// 18: the neighbours its best candidate meets, and how many candidates the flip filter took from it).
 void log_why_open(const CrowdAnimation& crowd, const std::vector<OpenCharacterReason>& reasons,
                   const std::vector<int>& kinds, size_t candidates) {
-  static constexpr std::array<const char*, 6> kKind = {
-      "corrected blend", "blend", "next lap's start", "arms", "one arm", "cut from the next lap"};
   for (const OpenCharacterReason& why : reasons) {
     std::string met;
     for (const auto& [o, depth_m] : why.met)
@@ -163,7 +166,7 @@ void log_why_open(const CrowdAnimation& crowd, const std::vector<OpenCharacterRe
     spdlog::debug(
         "correct_crowd: {} stays open: {} of {} candidates add joint flips; the best other ({} {}) meets{}",
         crowd.characters[why.character].name, why.excluded, candidates,
-        why.best < candidates ? kKind[static_cast<size_t>(kinds[why.best])] : "none", why.best,
+        why.best < candidates ? kClosureKind[static_cast<size_t>(kinds[why.best])] : "none", why.best,
         met.empty() ? " nobody" : met);
   }
 }
@@ -250,7 +253,7 @@ void close_per_character(const CrowdAnimation& input, const std::vector<std::vec
   std::vector<size_t> open;
   for (size_t c = 0; c < n; ++c)
     if (choice[c] == exact.size()) open.push_back(c);
-  std::array<int, 6> on{};  // corrected blend, blend, start, arms, one arm, cut from next lap
+  std::array<int, kClosureKind.size()> on{};  // how many characters took each kind (kClosureKind)
   if (!open.empty()) {
     // The join's candidates, on the excerpt. Whole closures before partial ones (the upper body and both
     // arms cut from the next lap before one arm alone): the join gives each character the first that fits.
@@ -310,10 +313,10 @@ void close_per_character(const CrowdAnimation& input, const std::vector<std::vec
     for (size_t c = 0; c < n; ++c) ++on[static_cast<size_t>(choice[c])];
     out = mix_closures(exact, out, choice);
   }
-  r.loop_closure = fmt::format(
-      "corrected blend for {}, blend for {}, next lap's start for {}, arms for {}, one arm for {}, arms "
-      "from the next lap for {} of {} characters",
-      on[0], on[1], on[2], on[3], on[4], on[5], n);
+  std::string counts;
+  for (size_t k = 0; k < on.size(); ++k)
+    counts += fmt::format("{}{} for {}", k ? ", " : "", kClosureKind[k], on[k]);
+  r.loop_closure = fmt::format("{} of {} characters", counts, n);
 }
 
 /// Loop closure of a corrected clip `out` whose last W = preroll_out[c].size() frames should end where the

@@ -77,9 +77,11 @@ double held_height_error_m(const CorrectorModel& model, const CorrectorState& st
 /// Returns whether the pose changed.
 bool settle_held_feet(const CorrectorModel& model, const CorrectorState& state, int c, Pose& pose);
 
-/// How far (rad, >= 0) character c's knee bends off the input's flexion in its last output: the twist of
-/// its output deviation about the hinge axis x (lift_off_knees; issue 27, session 17). 0 before the first
-/// output.
+/// How far (rad) character c's knee bends off the input's flexion in its last output, signed: the twist of
+/// its output deviation about the hinge axis x, in (-2 pi, 2 pi] (lift_off_knees; issue 27, sessions
+/// 17-18). 0 before the first output.
+double knee_flexion_twist_off_input_rad(const CorrectorState& state, int c, int knee);
+/// Its magnitude (rad, >= 0).
 double knee_flexion_off_input_rad(const CorrectorState& state, int c, int knee);
 
 /// Free joints (stage_free_joints.cpp): in character c's projected pose, every joint that is not

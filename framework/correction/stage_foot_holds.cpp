@@ -206,10 +206,9 @@ namespace {
 double rate_limited_leg_reach_m(const CorrectorModel& model, const CorrectorState& s, int c, int side) {
   const BodyShape& shape = model.bodies[static_cast<size_t>(c)].shape;
   const LegJoints lj = leg_joints(kLegSides[side]);
-  const double off_rad = knee_flexion_off_input_rad(s, c, lj.knee);
-  const Quat& d = s.output_deviation[static_cast<size_t>(c * kJointCount + lj.knee)];
-  const double sign = 2.0 * std::atan2(d.x(), d.w()) < 0.0 ? -1.0 : 1.0;
-  const double left_rad = std::max(0.0, off_rad - model.params.free_joint_return_radps * model.h);
+  const double twist_rad = knee_flexion_twist_off_input_rad(s, c, lj.knee);
+  const double sign = twist_rad < 0.0 ? -1.0 : 1.0;
+  const double left_rad = std::max(0.0, std::abs(twist_rad) - model.params.free_joint_return_radps * model.h);
   const Quat knee = (s.target[static_cast<size_t>(c)].local_rotations[static_cast<size_t>(lj.knee)] *
                      Quat(Eigen::AngleAxisd(sign * left_rad, Vec3::UnitX())))
                         .normalized();

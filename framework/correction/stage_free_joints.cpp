@@ -98,11 +98,15 @@ bool limited_now(const CorrectorModel& model, const CorrectorState& s, int c, in
 
 }  // namespace
 
-double knee_flexion_off_input_rad(const CorrectorState& s, int c, int knee) {
+double knee_flexion_twist_off_input_rad(const CorrectorState& s, int c, int knee) {
   const auto g = static_cast<size_t>(c * kJointCount + knee);
   if (g >= s.output_deviation.size()) return 0.0;  // no output yet
   const Quat& d = s.output_deviation[g];
-  return std::abs(2.0 * std::atan2(d.x(), d.w()));
+  return 2.0 * std::atan2(d.x(), d.w());
+}
+
+double knee_flexion_off_input_rad(const CorrectorState& s, int c, int knee) {
+  return std::abs(knee_flexion_twist_off_input_rad(s, c, knee));
 }
 
 Quat off_hinge_part(const Quat& change) {
