@@ -8,74 +8,12 @@
 #include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/seed.hpp"
+#include "stimuli/mannequin_field.hpp"
 
 namespace crowdlab::stimuli {
 namespace {
 
 constexpr double kSkinSigmaM = 0.015;  // skinning-weight falloff (see header)
-constexpr double kTrunkBlendM = 0.10;  // smooth-min width between trunk capsules (see BodyField::blend_for)
-
-/// Signed distance from p to a capsule (negative inside).
-double capsule_sdf(const Vec3& p, const Capsule& c) {
-  const Vec3 ab = c.b - c.a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - c.a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - (c.a + t * ab)).norm() - c.radius_m;
-}
-
-/// Polynomial smooth minimum of width k (Quilez 2013).
-double smooth_min(double a, double b, double k) {
-  const double h = std::max(k - std::abs(a - b), 0.0) / k;
-  return std::min(a, b) - h * h * k * 0.25;
-}
-
-class BodyField {
- public:
-  BodyField(const WorldCapsules& capsules, double blend_m) : capsules_(capsules), blend_m_(blend_m) {}
-
-  void distances(const Vec3& p, std::array<double, kJointCount>& s) const {
-    for (size_t j = 0; j < s.size(); ++j) s[j] = capsule_sdf(p, capsules_[j]);
-  }
-  double value(const Vec3& p) const {
-    std::array<double, kJointCount> s;
-    distances(p, s);
-    double d = s[0];
-    for (size_t j = 1; j < s.size(); ++j)
-      d = std::min(d,
-                   smooth_min(s[j], s[static_cast<size_t>(kJointParent[j])], blend_for(static_cast<int>(j))));
-    return d;
-  }
-  /// The trunk is a stack of horizontal capsules (pelvis, spine1-3); a wide blend there fills the
-  /// waists between them into one smooth torso instead of a ribbed one.
-  double blend_for(int bone) const {
-    switch (bone) {
-      case kSpine1:
-      case kSpine2:
-      case kSpine3:
-        return std::max(blend_m_, kTrunkBlendM);
-      case kLeftCollar:
-      case kRightCollar:
-      case kNeck:
-        return std::max(blend_m_, 0.5 * kTrunkBlendM);
-      default:
-        return blend_m_;
-    }
-  }
-  Vec3 gradient(const Vec3& p, double h) const {
-    Vec3 g;
-    for (int a = 0; a < 3; ++a) {
-      Vec3 e = Vec3::Zero();
-      e[a] = h;
-      g[a] = value(p + e) - value(p - e);
-    }
-    const double n = g.norm();
-    return n > 0 ? Vec3(g / n) : Vec3::UnitY();
-  }
-
- private:
-  const WorldCapsules& capsules_;
-  double blend_m_;
-};
 
 SkinRegion region_of(int bone, const Vec3& p_rest, const BodyShape& shape, const BoneTransforms& rest) {
   const double H = shape.params.height_m;
@@ -159,34 +97,30 @@ std::uint64_t mannequin_cache_key(const BodyShape& shape, const MannequinOptions
       std::string_view(reinterpret_cast<const char*>(data.data()), data.size() * sizeof(double)));
 }
 
-MannequinMesh build_mannequin_mesh(const BodyShape& shape, const MannequinOptions& options) {
+MannequinMesh build_mannequin_mesh(const BodyShape& shape, const MannequinOptions& options,
+                                   FieldSampling sampling) {
   if (!(options.voxel_m > 0.002) || !(options.blend_m > 0.0))
     throw InputError("mannequin mesh: voxel_m must be > 2 mm and blend_m > 0");
   validate_body_shape(shape, "mannequin mesh");
   const Pose rest = Pose::rest(shape);
   const BoneTransforms bones = forward_kinematics(shape, rest);
   const WorldCapsules caps = world_capsules(shape, bones);
-  const BodyField field(caps, options.blend_m);
+  const MannequinField field(caps, options.blend_m);
 
   // Grid over the capsules' bounding box plus a margin of two cells.
   const Aabb body = capsules_box(caps);
-  Vec3 lo = body.lo, hi = body.hi;
   const double h = options.voxel_m;
-  lo -= Vec3::Constant(2 * h);
-  hi += Vec3::Constant(2 * h);
-  const int nx = static_cast<int>(std::ceil((hi.x() - lo.x()) / h)) + 1;
-  const int ny = static_cast<int>(std::ceil((hi.y() - lo.y()) / h)) + 1;
-  const int nz = static_cast<int>(std::ceil((hi.z() - lo.z()) / h)) + 1;
-  auto point = [&](int i, int j, int k) { return Vec3(lo.x() + i * h, lo.y() + j * h, lo.z() + k * h); };
-  auto idx = [&](int i, int j, int k) {
-    return (static_cast<size_t>(k) * ny + static_cast<size_t>(j)) * nx + static_cast<size_t>(i);
-  };
-
-  std::vector<float> value(static_cast<size_t>(nx) * ny * nz);
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        value[idx(i, j, k)] = static_cast<float>(field.value(point(i, j, k)) + options.inset_m);
+  FieldGrid grid;
+  grid.spacing_m = h;
+  grid.lo = body.lo - Vec3::Constant(2 * h);
+  const Vec3 hi = body.hi + Vec3::Constant(2 * h);
+  grid.nx = static_cast<int>(std::ceil((hi.x() - grid.lo.x()) / h)) + 1;
+  grid.ny = static_cast<int>(std::ceil((hi.y() - grid.lo.y()) / h)) + 1;
+  grid.nz = static_cast<int>(std::ceil((hi.z() - grid.lo.z()) / h)) + 1;
+  const int nx = grid.nx, ny = grid.ny, nz = grid.nz;
+  auto point = [&](int i, int j, int k) { return grid.point(i, j, k); };
+  auto idx = [&](int i, int j, int k) { return grid.index(i, j, k); };
+  const std::vector<float> value = sample_field(field, grid, options.inset_m, sampling);
 
   // One vertex per crossed cell.
   MannequinMesh mesh;
@@ -219,12 +153,13 @@ MannequinMesh build_mannequin_mesh(const BodyShape& shape, const MannequinOption
         }
         const Vec3 p = sum / crossings;
         MannequinVertex mv{};
-        const Vec3 n = field.gradient(p, 0.5 * h);
+        field.distances(p, s);
+        const Vec3 n = sampling == FieldSampling::kEveryPoint ? field.gradient(p, 0.5 * h)
+                                                              : field.gradient(p, 0.5 * h, s);
         for (int a = 0; a < 3; ++a) {
           mv.position[static_cast<size_t>(a)] = static_cast<float>(p[a]);
           mv.normal[static_cast<size_t>(a)] = static_cast<float>(n[a]);
         }
-        field.distances(p, s);
         skin_weights(s, mv);
         mv.region = static_cast<std::uint8_t>(region_of(mv.bones[0], p, shape, bones));
         cell_vertex[idx(i, j, k)] = static_cast<std::int32_t>(mesh.vertices.size());

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "framework/core/body_shape.hpp"
+#include "stimuli/mannequin_field.hpp"
 
 namespace crowdlab::stimuli {
 
@@ -69,8 +70,11 @@ struct MannequinOptions {
 };
 
 /// Builds the mesh of `shape` in its rest pose (Pose::rest: pelvis at joint_offsets_m[0], facing +Z).
-/// Deterministic: the same shape and options give the same mesh bit for bit.
-MannequinMesh build_mannequin_mesh(const BodyShape& shape, const MannequinOptions& options = {});
+/// Deterministic: the same shape and options give the same mesh bit for bit, with either sampling of the
+/// field (mannequin_field.hpp: kEveryPoint is the definition, kept as the reference kNarrowBand is tested
+/// against).
+MannequinMesh build_mannequin_mesh(const BodyShape& shape, const MannequinOptions& options = {},
+                                   FieldSampling sampling = FieldSampling::kNarrowBand);
 
 /// A stable 64-bit key of a shape's geometry (offsets, capsules) and the options, for mesh caches.
 std::uint64_t mannequin_cache_key(const BodyShape& shape, const MannequinOptions& options = {});

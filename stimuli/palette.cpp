@@ -9,10 +9,6 @@
 namespace crowdlab::stimuli {
 namespace {
 
-constexpr Rgb rgb(int r, int g, int b) {
-  return {r / 255.0f, g / 255.0f, b / 255.0f};
-}
-
 // Skin tones, light to dark (the skin tone of an appearance index, core/appearance.hpp, indexes them).
 constexpr std::array<Rgb, kSkinToneCount> kSkin = {rgb(241, 205, 180), rgb(226, 184, 150), rgb(198, 150, 112),
                                                    rgb(160, 112, 80),  rgb(120, 80, 56),   rgb(86, 58, 42)};

@@ -13,6 +13,11 @@ namespace crowdlab::stimuli {
 
 using Rgb = std::array<float, 3>;
 
+/// A colour from its 0-255 sRGB bytes.
+constexpr Rgb rgb(int r, int g, int b) {
+  return {r / 255.0f, g / 255.0f, b / 255.0f};
+}
+
 struct Palette {
   Rgb skin, hair, shirt, trousers, shoes;
   bool long_sleeves = true;

@@ -5,10 +5,6 @@
 namespace crowdlab::stimuli {
 namespace {
 
-constexpr Rgb rgb(int r, int g, int b) {
-  return {r / 255.0f, g / 255.0f, b / 255.0f};
-}
-
 /// A box centred at `c` (x, z on the floor plan; y is its centre height) with half extents `h` in the frame
 /// whose +z axis is `forward` (unit, horizontal).
 DecorBox box_in(const Vec3& c, const Vec3& h, const Vec3& forward, const Rgb& colour, float emission = 0.0f) {
