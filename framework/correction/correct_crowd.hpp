@@ -56,6 +56,11 @@ struct CorrectionReport {
   /// Frames of the next lap after the clip that the loop closure stepped: 0 where an exact closure closes
   /// the whole crowd, W for the next lap's start, up to 2W for its cuts (correct_crowd.cpp, NextLap).
   int next_lap_frames = 0;
+  /// Characters the loop closure left open (session 19).
+  int loop_open_characters = 0;
+  /// Laps recorded after the first because the closure left characters open (session 19,
+  /// loop_closure_laps.hpp); preroll_frames counts the laps before the one kept.
+  int extra_laps = 0;
   int rejected_steps = 0;      ///< steps whose solve failed (state kept)
   int unconverged_steps = 0;   ///< steps where CG stopped above its tolerance (result still used)
   double contacts_mean = 0.0;  ///< mean contacts per step
