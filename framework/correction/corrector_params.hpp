@@ -309,8 +309,12 @@ struct CorrectorParams {
   /// 6.66 /m^2, but alone it flips more at 6.66 /m^2 (188-218 -> 200-267) and leaves the float. With
   /// held_feet_at_input_height too, the corridor's flips (8-12, 92-163), p99 depth (<= 9.3 mm) and the
   /// feet below the ground (<= 6 mm) meet their targets and the float falls (4.44 /m^2: 19.4-19.6 ->
-  /// 11.0-11.2 mm; 6.66: 28.8-30.3 -> 16.0-19.4) with the stationary p99 depth at 7.3-9.3 mm: the
-  /// candidate default, not yet run on the longer clips.
+  /// 11.0-11.2 mm; 6.66: 28.8-30.3 -> 16.0-19.4) with the stationary p99 depth at 7.3-9.3 mm. Not the
+  /// default (session 19, main fe1feeb with the knee pivot): both on reach depth p99 10.5 mm and environment
+  /// p99 5.2 mm in one of three runs at 6.66 /m^2, the dense fixture's 10.5 mm (a ball-only hold whose
+  /// offset keeps a 60 deg tilt hangs its ankle 2.5-3.1 cm low), and on a 20 s corridor clip at 6.66 /m^2
+  /// depth p99 9.8-11.2 mm and 1-3 foot pops (main 14.1-14.5 mm, 2-8 pops; float 38.7-39.4 -> 22.1-22.6,
+  /// feet below 49.7-54.8 -> 6.0 mm; docs/correction.md "Session 19: the feet options at 20 s").
   bool feet_above_input_ground = false;
 
   // ---- Anticipated contacts (correct_crowd only; anticipate_contacts.hpp, issue 27, session 13)
