@@ -85,6 +85,10 @@ inline void add_corrector_tuning_options(Command* cmd, CorrectorParams& params) 
                   "turns off the input at that rate, and a foot held at its ball only pivots about it at 4, "
                   "its knee returning at that rate (true/false)")
       ->capture_default_str();
+  cmd->add_option("--held-ankle-twist", params.held_ankle_twist_in_pass,
+                  "The depenetration pass turns a held foot's ankle about its up axis at most "
+                  "--free-joint-return (true/false)")
+      ->capture_default_str();
   cmd->add_option("--settle-feet", params.held_feet_at_input_height,
                   "Hold planted feet at the input's height: held balls at their own, bodies settled onto "
                   "held feet (true/false)")

@@ -288,6 +288,16 @@ struct CorrectorParams {
   /// /m^2 188-218 -> 144-195 (knees 93-98 -> 55-68), at 4.44 /m^2 11-15 -> 11-15. Session 17 let the ball
   /// go instead, and it slid (the walking corridor's foot skate 2.8 -> 17.2 cm): off by default until then.
   bool lift_off_knees = true;
+  /// Held legs' twist in the depenetration pass (issue 27, session 19): the ankle of a held foot whose
+  /// rotation the rate limits (rate_limited_joints) turns about its up axis (y) at most
+  /// free_joint_return_radps from its last deviation, as a row of the pass's solve on the shank's world turn
+  /// about that axis (depenetration_solve.hpp, AnkleTwist). The held foot keeps its world rotation, so the
+  /// leg's swivel about its hip-ankle line, which the pass used to move knees out of contacts, became the
+  /// ankle's twist when hold_feet re-planted the foot: 22-41 deg per flip window (session 18's trace).
+  /// Measured on 3 s corridor clips over three runs each (session 19, docs/correction.md): flips at 6.66
+  /// /m^2 144-195 -> 87-114 (ankles 57-77 -> 27-33, hips 27-50 -> 7-19), p99 depth 7.6-9.8 -> 8.5-9.1 mm,
+  /// pops 0; at 4.44 /m^2 11-15 -> 10-19; the standing crowds' outputs unchanged.
+  bool held_ankle_twist_in_pass = true;
 
   // ---- Feet on the ground (stage_depenetrate.cpp, stage_settle_feet.cpp, issue 27, sessions 12-13)
   /// Whether held feet are brought to the input's height: a held ball's goal height is its input's (not

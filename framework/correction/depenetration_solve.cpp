@@ -22,6 +22,12 @@ constexpr double kMaxRotation_rad = 0.2;
 /// step; 1e-4 left p99 56 mm where 1e-2 left 16 mm (stationary 5.55 /m^2, 3 passes of 0.1 rad); 1e-3
 /// with 6 passes of 0.2 rad left 7.4 mm there and 7.5 mm in the corridor at 3.33 /m^2.
 constexpr double kRegularisation = 1e-3;
+/// Scale of the ankle twist rows (m per rad): a rotation row's entries are 1 where a point row's are lever
+/// arms; scaled so, it weighs as a guard row (kGuardRowWeight 10, stage_depenetrate.cpp) on a point 10 cm
+/// from the axis: where it conflicts with a contact it mostly wins. The only value measured (session 19).
+constexpr double kTwistRowScale_m = 1.0;
+/// A twist row is added when the change would take the ankle this far (rad) past its bound.
+constexpr double kTwistSlack_rad = 1e-3;
 
 }  // namespace
 
@@ -95,6 +101,58 @@ bool hinged_least_energy_change(const RowBlock& J, const SmallVector& r, const W
     dq.segment<3>(col) = knee.basis * w;
   }
   return true;
+}
+
+double twist_off_reference_rad(const CorrectorState& s, int c, int j, const Pose& pose) {
+  const auto jj = static_cast<size_t>(j), g = static_cast<size_t>(c * kJointCount + j);
+  if (g >= s.output_deviation.size()) return 0.0;
+  const Quat ref =
+      (s.target[static_cast<size_t>(c)].local_rotations[jj] * s.output_deviation[g]).normalized();
+  Quat change = (ref.conjugate() * pose.local_rotations[jj]).normalized();
+  if (change.w() < 0.0) change.coeffs() = -change.coeffs();  // the same rotation; its twist in [-pi, pi]
+  return 2.0 * std::atan2(change.y(), change.w());
+}
+
+int held_ankle_twists(const CorrectorModel& model, const CorrectorState& s, int c,
+                      const BoneTransforms& bones, const Pose& pose, std::array<AnkleTwist, 2>& out) {
+  const CorrectorParams& p = model.params;
+  if (!p.held_ankle_twist_in_pass || !p.release_free_joints) return 0;
+  int n = 0;
+  for (int side = 0; side < 2; ++side) {
+    const LegJoints lj = leg_joints(kLegSides[side]);
+    const auto g = static_cast<size_t>(c * kJointCount + lj.ankle);
+    if (!s.foot_holds[static_cast<size_t>(2 * c + side)].held() ||
+        (p.rate_limited_joints & (BoneMask{1} << lj.ankle)) == 0 || g >= s.output_deviation.size())
+      continue;
+    const auto aj = static_cast<size_t>(lj.ankle);
+    AnkleTwist& t = out[static_cast<size_t>(n++)];
+    t = AnkleTwist{};
+    t.now_rad = twist_off_reference_rad(s, c, lj.ankle, pose);
+    t.most_rad = p.free_joint_return_radps * model.h;
+    const Vec3 up = bones[aj].rotation * Vec3::UnitY();
+    for (int j = kJointParent[aj]; j >= 0; j = kJointParent[static_cast<size_t>(j)])
+      t.row.segment<3>(3 + 3 * j) = -up.transpose();
+  }
+  return n;
+}
+
+int add_twist_rows(std::array<AnkleTwist, 2>& twists, int count, const Weights& dq, RowBlock& J,
+                   SmallVector& r) {
+  int added = 0;
+  for (int k = 0; k < count && J.rows() < kMaxAllRows; ++k) {
+    AnkleTwist& t = twists[static_cast<size_t>(k)];
+    if (t.bounded) continue;
+    const double after = t.now_rad + t.row.dot(dq), bound = std::max(t.most_rad, std::abs(t.now_rad));
+    if (!(std::abs(after) > bound + kTwistSlack_rad)) continue;
+    const Eigen::Index m = J.rows();
+    J.conservativeResize(m + 1, Eigen::NoChange);
+    r.conservativeResize(m + 1);
+    J.row(m) = kTwistRowScale_m * t.row;
+    r(m) = kTwistRowScale_m * (std::copysign(bound, after) - t.now_rad);
+    t.bounded = true;
+    ++added;
+  }
+  return added;
 }
 
 }  // namespace crowdlab::depenetration

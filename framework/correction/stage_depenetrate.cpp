@@ -588,6 +588,9 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
       // session 16: the pass had turned held knees sideways, 14-42 deg per flip window).
       std::array<KneeHinge, 2> knees;
       const int hinged = knee_hinges(model, s, c, w.bones[cc], s.output[cc], knees);
+      // Held ankles turn about their up axis at most what the rate leaves (issue 27, session 19).
+      std::array<AnkleTwist, 2> twists;
+      const int twisting = held_ankle_twists(model, s, c, w.bones[cc], s.output[cc], twists);
       const auto solve = [&] {
         if (!(hinged > 0 ? hinged_least_energy_change(J, r, inv_w, knees, hinged, dq)
                          : least_energy_change(J, r, inv_w, dq)))
@@ -599,11 +602,14 @@ void stage_depenetrate(const CorrectorModel& model, CorrectorState& s) {
         return true;
       };
       if (!solve()) return;
-      // Surface guards: solved again while the change would push a capsule through a box or the ground.
+      // Surface guards and twist rows: solved again while the change would push a capsule through a box
+      // or the ground, or twist a held ankle past the rate.
       std::vector<SurfaceGap>& gaps = w.gaps[cc];
       surface_gaps(model, w, c, p.depenetration_tolerance_m, gaps);
-      for (int round = 0; round < kGuardRounds; ++round)
-        if (add_guard_rows(w.bones[cc], dq, gaps, J, r) == 0 || !solve()) break;
+      for (int round = 0; round < kGuardRounds; ++round) {
+        const int added = add_guard_rows(w.bones[cc], dq, gaps, J, r);
+        if (added + add_twist_rows(twists, twisting, dq, J, r) == 0 || !solve()) break;
+      }
       if (!dq.allFinite()) return;
       apply_change(w.bones[cc], dq, s.output[cc]);
       for (int side = 0; side < 2; ++side) {  // the anchors of feet that gave way move with them

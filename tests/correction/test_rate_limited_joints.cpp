@@ -300,6 +300,64 @@ TEST_CASE("correction: a foot pivoting about its held ball returns its knee at t
   CHECK(Vec3(ball - anchor).cwiseProduct(Vec3(1.0, 0.0, 1.0)).norm() < 0.001);
 }
 
+TEST_CASE("correction: a held leg pressed sideways at the knee twists its ankle at most the rate per step",
+          "[correction][rate_limit]") {
+  // Session 19: the depenetration pass moved knees out of contacts by turning a held leg about its
+  // hip-ankle line; the held foot keeps its world rotation, so hold_feet handed that turn to the ankle
+  // (session 18's trace: 22-41 deg per flip window of the corridor's ankles). A body crouches still (hips
+  // and knees bent, feet flat, planted and held from the second step) with a post pressing 3 cm into the
+  // side of its left knee. With held_ankle_twist_in_pass the left ankle turns about its up axis at most
+  // the rate per step (6.5 deg; the pass's linearised row, so within a small slack), and the knee still
+  // comes out of the post to within the pass's tolerance; without it the ankle twists faster.
+  const BodyShape body = make_procedural_body({});
+  Pose pose = Pose::rest(body);
+  const double hip_rad = -0.4, knee_rad = 0.8;  // thigh forward, shank back: a crouch
+  for (const LegSide side : {LegSide::kLeft, LegSide::kRight}) {
+    const LegJoints lj = leg_joints(side);
+    pose.local_rotations[static_cast<size_t>(lj.hip)] = Quat(Eigen::AngleAxisd(hip_rad, Vec3::UnitX()));
+    pose.local_rotations[static_cast<size_t>(lj.knee)] = Quat(Eigen::AngleAxisd(knee_rad, Vec3::UnitX()));
+    pose.local_rotations[static_cast<size_t>(lj.ankle)] =
+        Quat(Eigen::AngleAxisd(-hip_rad - knee_rad, Vec3::UnitX()));  // the foot flat
+  }
+  const double rest_sole_m =
+      foot_sole_height_m(world_capsules(body, Pose::rest(body)), leg_joints(LegSide::kLeft));
+  pose.root_position_m.y() -=
+      foot_sole_height_m(world_capsules(body, pose), leg_joints(LegSide::kLeft)) - rest_sole_m;
+  const Capsule shank = world_capsules(body, pose)[kLeftKnee];  // from the knee down
+  Environment env;
+  Box post;
+  post.half_extents_m = Vec3(0.05, 0.05, 0.05);
+  post.center_m =
+      Vec3(shank.a.x() + shank.radius_m - 0.03 + post.half_extents_m.x(), shank.a.y(), shank.a.z());
+  env.boxes.push_back(post);
+  const auto run = [&](bool limit, double& depth_m) {
+    CorrectorParams params;
+    params.held_ankle_twist_in_pass = limit;
+    Corrector corrector({body}, params, env, 30);
+    Quat last = pose.local_rotations[kLeftAnkle];
+    double worst = 0.0;
+    for (int f = 0; f < 15; ++f) {
+      const auto out = corrector.step({pose});
+      const Quat ankle = out[0].local_rotations[kLeftAnkle];
+      Quat change = (last.conjugate() * ankle).normalized();
+      if (change.w() < 0.0) change.coeffs() = -change.coeffs();
+      worst = std::max(worst, std::abs(2.0 * std::atan2(change.y(), change.w())));
+      last = ankle;
+      depth_m = -capsule_box_distance(world_capsules(body, out[0])[kLeftKnee], post).distance_m;
+    }
+    return worst;
+  };
+  const double step = CorrectorParams{}.free_joint_return_radps / 30.0;
+  double depth_limited = 0.0, depth_free = 0.0;
+  const double limited = run(true, depth_limited), free = run(false, depth_free);
+  INFO("largest ankle twist per step: limited "
+       << limited << " rad, without " << free << " rad; knee depth after 15 steps " << depth_limited << " / "
+       << depth_free << " m");
+  CHECK(limited <= step + 0.002);
+  CHECK(free > step + 0.01);
+  CHECK(depth_limited <= 0.0055);
+}
+
 TEST_CASE("correction: joint sets are read from group and joint names, and written back",
           "[correction][rate_limit]") {
   CHECK(parse_joint_set("none") == 0);
