@@ -296,8 +296,10 @@ struct CorrectorParams {
   /// ankle's twist when hold_feet re-planted the foot: 22-41 deg per flip window (session 18's trace).
   /// Measured on 3 s corridor clips over three runs each (session 19, docs/correction.md): flips at 6.66
   /// /m^2 144-195 -> 87-114 (ankles 57-77 -> 27-33, hips 27-50 -> 7-19), p99 depth 7.6-9.8 -> 8.5-9.1 mm,
-  /// pops 0; at 4.44 /m^2 11-15 -> 10-19; the standing crowds' outputs unchanged.
-  bool held_ankle_twist_in_pass = true;
+  /// pops 0; at 4.44 /m^2 11-15 -> 10-19; the standing crowds' outputs unchanged. Off by default: on the
+  /// 20 s corridor clip at 6.66 /m^2 it halves the ankle flips (914-933 -> 433-439) but pops 2-8 -> 8-14 and
+  /// one foot ends 147-212 mm below the ground (main 50-64 mm), which no 3 s clip shows (session 19's merge).
+  bool held_ankle_twist_in_pass = false;
 
   // ---- Feet on the ground (stage_depenetrate.cpp, stage_settle_feet.cpp, issue 27, sessions 12-13)
   /// Whether held feet are brought to the input's height: a held ball's goal height is its input's (not

@@ -83,10 +83,9 @@ struct CorrectionRecipe {
   /// (issue 27, session 15); 12: engaged knees turn off their hinge at most at that rate, in the step and
   /// the pass (issue 27, session 16); 13: characters still open may take their arms from the next lap up to
   /// a cut inside the clip (issue 28, session 16); 15: knees at lift-off (lift_off_knees) on: a foot held
-  /// at its ball with its knee far off the input's pivots about the ball (issue 27, session 18); 16: the
-  /// depenetration pass twists a held foot's ankle about its up axis at most at the rate (issue 27,
-  /// session 19).
-  static constexpr std::string_view kCodeVersion = "16";
+  /// at its ball with its knee far off the input's pivots about the ball (issue 27, session 18). (Session
+  /// 19's held-ankle twist row, held_ankle_twist_in_pass, is off by default: the outputs are version 15's.)
+  static constexpr std::string_view kCodeVersion = "15";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
   /// (correct_crowd.hpp; issue 28): kLoopPrerollS when protocol.loop_video and the clip lasts at least
