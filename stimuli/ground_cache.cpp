@@ -119,9 +119,10 @@ void Renderer::draw_ground_shadows(const Rgb& ground, const Vec3& key_dir) {
   const GLuint p = g.ground_shadow.id();
   glUseProgram(p);
   set_rgb(p, g.ground_shadow.uniform("u_base_color"), ground);
-  const Mat4 model = g.environment_meshes.empty() ? shadow_footprint(g.scene.bounds_lo, g.scene.bounds_hi, key_dir,
-                                                                     g.ground_centre, g.ground_half_m)
-                                                  : Mat4::Identity();
+  const Mat4 model =
+      g.environment_meshes.empty()
+          ? shadow_footprint(g.scene.bounds_lo, g.scene.bounds_hi, key_dir, g.ground_centre, g.ground_half_m)
+          : Mat4::Identity();
   set_mat4(p, g.ground_shadow.uniform("u_model"), model);
   glBindVertexArray(g.ground.vao);
   glDrawElements(GL_TRIANGLES, g.ground.count, GL_UNSIGNED_INT, nullptr);

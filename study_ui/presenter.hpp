@@ -37,8 +37,8 @@ struct TrialRequest {
   bool loop_video = true;       ///< loop until answered; otherwise play once, then ask
   double fps = 30.0;            ///< playback rate when the file does not say
   InterTrialScreen inter_trial_screen = InterTrialScreen::fixation;  ///< shown while the clip loads
-  double inter_trial_min_ms = 500.0;            ///< the inter-trial screen's minimum duration
-  double video_share = 0.0;                     ///< video's share of the screen height; 0 = automatic
+  double inter_trial_min_ms = 500.0;  ///< the inter-trial screen's minimum duration
+  double video_share = 0.0;           ///< video's share of the screen height; 0 = automatic
 };
 
 /// What a presenter measured of one trial's presentation (headless presenters measure nothing).

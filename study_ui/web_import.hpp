@@ -44,8 +44,8 @@ struct WebImportOptions {
   std::string out_dir;
   std::string stimuli_dir;  ///< folder of manifest.csv (for manifest_sha256 in the metadata)
   std::uintmax_t max_file_bytes = 256u << 20;  ///< larger result files are refused (--max-file-mb)
-  bool strict = false;      ///< refuse everything when any input has a problem
-  bool dry_run = false;     ///< check everything, write nothing (the CLI's check before it locks --out)
+  bool strict = false;                         ///< refuse everything when any input has a problem
+  bool dry_run = false;  ///< check everything, write nothing (the CLI's check before it locks --out)
 };
 
 struct WebImportResult {
