@@ -5,7 +5,8 @@
 // Scenario kind: condition.params.scenario (its `scenario` factor, else scenario.type). Crowd size: the
 // `characters` factor, else round(density * area) from the `density` factor (characters per m^2), else
 // scenario.agents; the levels are read from condition.params, typed and validated once by the spec layer.
-// Randomness: derive_seed(condition.seed, "<stage key>") per stream. Positions are world (x, z) metres; the ground is y = 0.
+// Randomness: derive_seed(condition.seed, "<stage key>") per stream. Positions are world (x, z) metres;
+// the ground is y = 0.
 //   stationary    (seed 000 §4.1) concert on width x depth: Poisson-disk positions, in-place sway and
 //                 heading toward a stage placed in front of the area.
 //   corridor      (seed 000 §4.1/§4.4) walking along +Z in a corridor of width x length, walls as
