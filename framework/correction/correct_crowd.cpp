@@ -418,7 +418,7 @@ void record_extra_laps(const CrowdAnimation& crowd, const CorrectorParams& param
     rejected += lap.rejected_steps;
     std::vector<std::vector<Pose>> lap_end = last_frames(lap.clip, window);
     next_lap = NextLap(std::move(lap.after), crowd, window, nullptr);
-    close_loop(crowd, lead_end, next_lap, std::move(lap.before_window), params, lap.clip, lap_r);
+    close_loop(crowd, lead_end, next_lap, std::move(*lap.before_window), params, lap.clip, lap_r);
     lap_r.next_lap_frames = next_lap.stepped();
     rejected += lap_r.rejected_steps;  // the closure's re-corrected window
     const ClosedLap closed = closed_lap(lap.clip, lap_r);
@@ -460,13 +460,11 @@ CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorPa
   for (const CharacterAnimation& ch : crowd.characters) shapes.push_back(ch.shape);
   Corrector corrector(std::move(shapes), params, crowd.environment, crowd.meta.fps);
 
-  CrowdAnimation out = crowd;
   const size_t n = crowd.characters.size();
   const int frames = crowd.frame_count();
   std::vector<Pose> targets(n);
   CorrectionReport r;
   r.frames = frames;
-  double contacts = 0.0, iterations = 0.0;
   const int window = loop_window_frames(crowd, params);
   r.preroll_frames = window > 0 ? kLeadLaps * frames : 0;
   if (frames > 0) {
@@ -494,31 +492,23 @@ CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorPa
       if (progress) progress->advance();
     }
   }
-  // The corrector as it stood before frame N - W: the loop closure below runs on from there.
-  std::optional<Corrector> before_window;
-  for (int f = 0; f < frames; ++f) {
-    frame_targets(crowd, f, targets);
-    const std::vector<Pose> corrected = corrector.step(targets);
-    for (size_t c = 0; c < n; ++c) out.characters[c].frames[static_cast<size_t>(f)] = corrected[c];
-    if (window > 0 && f == frames - window - 1) before_window = corrector;
-    const StepStats& st = corrector.last_stats();
-    contacts += st.contacts();
-    iterations += st.cg_iterations;
-    if (st.rejected) ++r.rejected_steps;
-    if (!st.converged) ++r.unconverged_steps;
-    if (progress) progress->advance();
-  }
-  r.contacts_mean = frames > 0 ? contacts / frames : 0.0;
-  r.cg_iterations_mean = frames > 0 ? iterations / frames : 0.0;
-  if (before_window) {
+  // The recorded lap, from the last lead lap's end; the corrector as it stood before frame N - W is kept
+  // for the loop closure below, which runs on from there.
+  RecordedLap recorded = NextLap(std::move(corrector), crowd, window, progress).record();
+  CrowdAnimation out = std::move(recorded.clip);
+  r.rejected_steps += recorded.rejected_steps;
+  r.unconverged_steps += recorded.unconverged_steps;
+  r.contacts_mean = recorded.contacts_mean;
+  r.cg_iterations_mean = recorded.cg_iterations_mean;
+  if (recorded.before_window) {
     // The next lap, continuing from the clip's end (start_from_next_lap, cut_joints_from_next_lap), stepped
     // only as far as the closure reads it; the progress counts the frames it may read.
-    NextLap next_lap(std::move(corrector), crowd, window, progress);
+    NextLap next_lap(std::move(recorded.after), crowd, window, progress);
     if (spdlog::should_log(spdlog::level::debug))
       spdlog::debug("correct_crowd: the recorded lap ends {:.4f} m from the lead lap (worst character)",
                     lap_difference_m(out, lead_end));
     std::vector<std::vector<Pose>> recorded_end = last_frames(out, window);
-    close_loop(crowd, lead_end, next_lap, *before_window, params, out, r);
+    close_loop(crowd, lead_end, next_lap, *recorded.before_window, params, out, r);
     r.next_lap_frames = next_lap.stepped();
     if (progress) progress->advance(static_cast<size_t>(next_lap_bound(frames, window) - next_lap.stepped()));
     if (r.loop_open_characters > 0)

@@ -24,7 +24,7 @@ std::vector<std::vector<Pose>> NextLap::first(int frames) {
     frame_targets(*input_, f, targets);
     const std::vector<Pose> corrected = corrector_.step(targets);
     for (size_t c = 0; c < poses_.size(); ++c) poses_[c].push_back(corrected[c]);
-    if (f == before_window) before_window_ = corrector_;
+    if (window_ > 0 && f == before_window) before_window_ = corrector_;
     const StepStats& st = corrector_.last_stats();
     contacts_ += st.contacts();
     iterations_ += st.cg_iterations;
@@ -42,9 +42,13 @@ RecordedLap NextLap::record() && {
   first(frames);
   CrowdAnimation clip = *input_;
   for (size_t c = 0; c < clip.characters.size(); ++c) clip.characters[c].frames = std::move(poses_[c]);
-  const double per_step = frames > 0 ? 1.0 / frames : 0.0;
-  return RecordedLap{std::move(clip), std::move(*before_window_), std::move(corrector_), rejected_,
-                     unconverged_,    contacts_ * per_step,       iterations_ * per_step};
+  return RecordedLap{std::move(clip),
+                     std::move(before_window_),
+                     std::move(corrector_),
+                     rejected_,
+                     unconverged_,
+                     frames > 0 ? contacts_ / frames : 0.0,
+                     frames > 0 ? iterations_ / frames : 0.0};
 }
 
 namespace {

@@ -25,8 +25,9 @@ void frame_targets(const CrowdAnimation& crowd, int f, std::vector<Pose>& target
 
 /// A lap stepped whole and recorded as the clip (NextLap::record).
 struct RecordedLap {
-  CrowdAnimation clip;         ///< the input with the lap's corrected poses
-  Corrector before_window;     ///< the corrector before the lap's frame N - W (the closure runs on from it)
+  CrowdAnimation clip;                     ///< the input with the lap's corrected poses
+  std::optional<Corrector> before_window;  ///< the corrector before the lap's frame N - W (the closure runs
+                                           ///< on from it); none when the lap was stepped without a window
   Corrector after;             ///< the corrector after the lap's last frame (its next lap starts from it)
   int rejected_steps = 0;      ///< steps of the lap (and of the next lap's start read before) that failed
   int unconverged_steps = 0;   ///< the lap's steps where CG stopped above its tolerance
@@ -50,7 +51,8 @@ class NextLap {
   int stepped() const { return static_cast<int>(poses_.front().size()); }
   /// Steps whose solve failed (state kept), so far.
   int rejected_steps() const { return rejected_; }
-  /// The whole lap, stepped to its end, as a recorded clip (session 19; the lap is spent).
+  /// The whole lap, stepped to its end, as a recorded clip (session 19; the lap is spent). correct_crowd
+  /// records its clip this way too, from the last lead lap's end.
   RecordedLap record() &&;
 
  private:

@@ -74,9 +74,10 @@ TEST_CASE("loop closure laps: the next lap recorded whole is the corrector's nex
   }
   // The corrector before frame N - W continues into the lap's last W frames; the one after it, into the
   // next lap's first frame.
+  REQUIRE(recorded.before_window.has_value());
   for (int f = frames - window; f < frames; ++f) {
     frame_targets(crowd, f, targets);
-    const std::vector<Pose> again = recorded.before_window.step(targets);
+    const std::vector<Pose> again = recorded.before_window->step(targets);
     CHECK(same(again[0], lap[static_cast<size_t>(f)][0]));
   }
   frame_targets(crowd, 0, targets);
