@@ -93,8 +93,7 @@ std::uint64_t mannequin_cache_key(const BodyShape& shape, const MannequinOptions
   for (const Capsule& c : shape.capsules)
     data.insert(data.end(), {c.a.x(), c.a.y(), c.a.z(), c.b.x(), c.b.y(), c.b.z(), c.radius_m});
   data.insert(data.end(), {options.voxel_m, options.blend_m, options.inset_m, shape.params.height_m});
-  return stable_hash(
-      std::string_view(reinterpret_cast<const char*>(data.data()), data.size() * sizeof(double)));
+  return stable_hash_words(data);
 }
 
 MannequinMesh build_mannequin_mesh(const BodyShape& shape, const MannequinOptions& options,

@@ -211,8 +211,7 @@ std::uint64_t skinned_body_mesh_key(const SkinnedMesh& mesh, double inset_m) {
     data.insert(data.end(), {double(t[0]), double(t[1]), double(t[2])});
   for (const std::uint8_t label : mesh.surface) data.push_back(double(label));  // none on a bare body
   data.insert(data.end(), {inset_m, -1.0});  // -1: never equal to a mannequin key's data layout
-  return stable_hash(
-      std::string_view(reinterpret_cast<const char*>(data.data()), data.size() * sizeof(double)));
+  return stable_hash_words(data);
 }
 
 }  // namespace crowdlab::stimuli

@@ -1,5 +1,6 @@
 #include "framework/core/seed.hpp"
 
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -12,6 +13,16 @@ std::uint64_t stable_hash(std::string_view text) {
     h *= 0x100000001b3ULL;
   }
   return h;
+}
+
+std::uint64_t stable_hash_words(std::span<const double> data) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const double d : data) {
+    h ^= std::bit_cast<std::uint64_t>(d);
+    h *= 0x100000001b3ULL;
+    h ^= h >> 29;  // the multiply carries low bits up only: fold the high bits back down
+  }
+  return mix64(h ^ data.size());
 }
 
 std::uint64_t mix64(std::uint64_t x) {

@@ -1,5 +1,8 @@
 // The procedural body, the skeleton topology and forward kinematics.
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <set>
+#include <vector>
 
 #include "framework/core/body_shape.hpp"
 #include "framework/core/error.hpp"
@@ -148,6 +151,26 @@ TEST_CASE("derived seeds are stable and independent of derivation order") {
   CHECK(derive_seed(1, "a") == derive_seed(1, "a"));
   Rng r1(derive_seed(42, "x")), r2(derive_seed(42, "x"));
   for (int i = 0; i < 10; ++i) CHECK(uniform01(r1) == uniform01(r2));
+}
+
+TEST_CASE("the word hash of a block of doubles changes with any one element, sign and length included") {
+  std::vector<double> data(1000);
+  for (size_t i = 0; i < data.size(); ++i) data[i] = 0.001 * static_cast<double>(i * i % 997);
+  const std::uint64_t base = stable_hash_words(data);
+  CHECK(stable_hash_words(data) == base);
+  std::set<std::uint64_t> seen = {base};
+  for (const size_t at : {size_t{0}, size_t{1}, size_t{500}, size_t{999}}) {
+    std::vector<double> changed = data;
+    changed[at] = std::nextafter(changed[at], 1e9);  // the lowest bit
+    CHECK(seen.insert(stable_hash_words(changed)).second);
+    changed[at] = -data[at];  // the sign bit (0.0 becomes -0.0)
+    CHECK(seen.insert(stable_hash_words(changed)).second);
+  }
+  std::vector<double> swapped = data;
+  std::swap(swapped[10], swapped[11]);
+  CHECK(seen.insert(stable_hash_words(swapped)).second);
+  CHECK(seen.insert(stable_hash_words(std::span(data).first(999))).second);
+  CHECK(stable_hash_words({}) != stable_hash_words(std::vector<double>{0.0}));
 }
 
 }  // namespace test_body

@@ -178,7 +178,12 @@ TEST_CASE("a character's own skinned surface round-trips - characters share its 
   auto broken = std::make_shared<SkinnedMesh>(*crowd.characters[2].mesh);
   broken->weights[3] = {0.7, 0.7, 0.0, 0.0};
   crowd.characters[0].mesh = broken;
-  CHECK_THROWS_WITH(write_crowd_glb(crowd, (dir / "bad.glb").string()), Catch::Contains("vertex 3"));
+  CHECK_THROWS_WITH(write_crowd_glb(crowd, (dir / "bad.glb").string()),
+                    Catch::Contains("body mesh: vertex 3: weights sum to 1.4"));
+  broken->weights[3] = {1.0, 0.0, 0.0, 0.0};
+  broken->rest_vertices_m[5].y() = std::nan("");
+  CHECK_THROWS_WITH(write_crowd_glb(crowd, (dir / "bad.glb").string()),
+                    Catch::Contains("body mesh: vertex 5: position or normal is not finite"));
 }
 
 TEST_CASE("a crowd round-trips through .glb: rotations to 1e-6, shapes and metadata exactly") {
