@@ -229,8 +229,9 @@ struct CorrectorState {
   DepenetrationScratch depenetration;
 
   // ---- free joints (stage_free_joints.cpp)
-  std::vector<BoneMask> touched;                      ///< per character: bones in contact this step
-  std::vector<std::array<BoneMask, 2>> pair_touched;  ///< per body pair: its two characters' touched bones
+  std::vector<BoneMask> touched;  ///< per character: bones in contact this step
+  std::vector<std::array<BoneMask, 2>>
+      pair_touched;                         ///< per body pair: its characters' touched bones (narrow phase)
   std::vector<std::int64_t> engaged_until;  ///< per bone (joint): last step on which it stays engaged
   std::vector<Quat> output_deviation;       ///< per bone: target local^-1 * output local, last output
 

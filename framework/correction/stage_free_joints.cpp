@@ -147,23 +147,9 @@ void mark_touched(CorrectorState& s, int global_bone) {
 void stage_contact_scope(const CorrectorModel& model, CorrectorState& s) {
   std::fill(s.touched.begin(), s.touched.end(), BoneMask{0});
   if (!model.params.release_free_joints) return;
+  // The narrow phase tested every near capsule pair against free_joint_margin_m (pair_touched): it
+  // computes their distances anyway, in parallel over pairs (stage_narrow_phase.cpp).
   const size_t pairs = s.body_pairs.size();
-  if (s.pair_touched.size() < pairs) s.pair_touched.resize(pairs);
-  const double margin = model.params.free_joint_margin_m;
-  // Serial: a few capsule distances per near pair; a parallel region costs more than that under load.
-  for (size_t k = 0; k < pairs; ++k) {
-    const auto [ci, cj] = s.body_pairs[k];
-    std::array<BoneMask, 2> t{0, 0};
-    for (const auto& [a, b] : s.per_pair_near[k]) {
-      const int ga = ci * kJointCount + a, gb = cj * kJointCount + b;
-      if (capsule_contact(s.world_capsule[static_cast<size_t>(ga)], s.world_capsule[static_cast<size_t>(gb)])
-              .depth_m > -margin) {
-        t[0] |= BoneMask{1} << a;
-        t[1] |= BoneMask{1} << b;
-      }
-    }
-    s.pair_touched[k] = t;
-  }
   for (size_t k = 0; k < pairs; ++k) {
     s.touched[static_cast<size_t>(s.body_pairs[k].first)] |= s.pair_touched[k][0];
     s.touched[static_cast<size_t>(s.body_pairs[k].second)] |= s.pair_touched[k][1];
