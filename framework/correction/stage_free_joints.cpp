@@ -34,6 +34,8 @@
 #include <cmath>
 #include <limits>
 
+#include <tbb/parallel_for.h>
+
 #include "framework/correction/corrector_step.hpp"
 
 namespace crowdlab {
@@ -246,8 +248,12 @@ double knee_off_hinge_left(const CorrectorModel& model, const CorrectorState& s,
 
 void stage_record_deviation(const CorrectorModel& model, CorrectorState& s) {
   if (!model.params.release_free_joints) return;
-  for (int c = 0; c < model.characters(); ++c) {  // serial: ~24 quaternion products per character
-    engage(model, s, c);                          // the bones the depenetration pass moved apart this step
+  // Per character in parallel: each call writes only character c's slots (engaged_until, output,
+  // foot holds, bones, output_deviation). It had been serial as "~24 quaternion products per character",
+  // but a released joint costs a leg IK and a forward kinematics as well: 0.07-0.13 ms of the
+  // 60-character step, serial (session 20).
+  tbb::parallel_for(0, model.characters(), [&](int c) {
+    engage(model, s, c);  // the bones the depenetration pass moved apart this step
     const auto cc = static_cast<size_t>(c);
     // The pass may have turned joints faster than the rate: limit again, re-plant held feet, and start
     // the next step from that pose (a rejected step keeps its last stable state as it is).
@@ -258,7 +264,7 @@ void stage_record_deviation(const CorrectorModel& model, CorrectorState& s) {
     for (size_t j = 0; j < kJointCount; ++j)
       s.output_deviation[cc * kJointCount + j] =
           (s.target[cc].local_rotations[j].conjugate() * s.output[cc].local_rotations[j]).normalized();
-  }
+  });
 }
 
 }  // namespace crowdlab
