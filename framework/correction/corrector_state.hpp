@@ -209,7 +209,7 @@ struct CorrectorState {
   std::vector<Vec6> rhs;       ///< b = -gradient (tree part + contacts)
   std::vector<Vec6> rhs_tree;  ///< the tree part of b alone (every term but E_collisions)
   std::vector<Vec6> cg_x, cg_r, cg_z, cg_p, cg_q;  ///< CG vectors
-  std::vector<double> contact_scalar;              ///< per contact: k w . x during a matvec
+  std::vector<Vec6> cg_p_next;                     ///< the next p while the last one is still read
   std::vector<double> partial, partial2,
       partial3;                     ///< per character: partial dot products (fixed-order reduce)
   std::vector<char> factor_ok;      ///< per character: preconditioner blocks were SPD
@@ -229,8 +229,9 @@ struct CorrectorState {
   DepenetrationScratch depenetration;
 
   // ---- free joints (stage_free_joints.cpp)
-  std::vector<BoneMask> touched;                      ///< per character: bones in contact this step
-  std::vector<std::array<BoneMask, 2>> pair_touched;  ///< per body pair: its two characters' touched bones
+  std::vector<BoneMask> touched;  ///< per character: bones in contact this step
+  std::vector<std::array<BoneMask, 2>>
+      pair_touched;                         ///< per body pair: its characters' touched bones (narrow phase)
   std::vector<std::int64_t> engaged_until;  ///< per bone (joint): last step on which it stays engaged
   std::vector<Quat> output_deviation;       ///< per bone: target local^-1 * output local, last output
 

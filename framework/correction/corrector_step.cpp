@@ -58,7 +58,7 @@ CorrectorState make_corrector_state(const CorrectorModel& model) {
   s.pred_rotation.assign(bones, Quat::Identity());
   s.coupling.assign(bones, JointCoupling{});
   s.precond.assign(bones, Mat6::Zero());
-  for (auto* v : {&s.rhs, &s.rhs_tree, &s.cg_x, &s.cg_r, &s.cg_z, &s.cg_p, &s.cg_q})
+  for (auto* v : {&s.rhs, &s.rhs_tree, &s.cg_x, &s.cg_r, &s.cg_z, &s.cg_p, &s.cg_q, &s.cg_p_next})
     v->assign(bones, Vec6::Zero());
   s.partial.assign(n, 0.0);
   s.partial2.assign(n, 0.0);

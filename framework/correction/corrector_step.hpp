@@ -10,8 +10,9 @@
 //                           at the end of the step if nothing touched it
 //   stage_broad_phase       world capsules at that predicted state, body AABBs, sweep -> body pairs
 //   stage_narrow_phase      bounding spheres -> exact capsule-capsule / ground / environment contacts
-//   stage_contact_scope     which bones are within free_joint_margin_m of another character or the
-//                           environment; which joints stay engaged (stage_free_joints.cpp)
+//   stage_contact_scope     which bones are within free_joint_margin_m of another character (tested
+//                           by the narrow phase) or the environment; which joints stay engaged
+//                           (stage_free_joints.cpp)
 //   stage_assemble_contacts E_collisions linearised at the predicted state (rows w, depth0)
 //   stage_solve             per-character tree factorisation with contact blocks (preconditioner) +
 //                           PCG warm-started at dq_free; pulling contacts removed (active set)

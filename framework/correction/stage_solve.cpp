@@ -9,8 +9,8 @@
 // CG starts from the contact-free prediction dq_free (stage_predict), the exact answer for every
 // body that touches nothing.
 //
-// One CG iteration is three passes over the data (a pass over contacts, then two over characters),
-// each split over characters/contacts (TBB) writing per-index slots; dot products are summed per
+// One CG iteration is two passes over the characters (TBB), each writing per-index slots (a contact's
+// term k w . p is computed by each character it touches); dot products are summed per
 // character and then in character order, so results do not depend on the number of threads.
 //
 // Active set: E_collisions = 1/2 k max(0, delta)^2 is one-sided, but its linearisation is a full
@@ -19,6 +19,7 @@
 // re-solved from the current iterate (a primal active-set step, Nocedal & Wright 2006, §16.5), at most
 // CorrectorParams::active_set_passes times.
 #include <cmath>
+#include <utility>
 
 #include <tbb/parallel_for.h>
 
@@ -32,23 +33,25 @@ namespace {
 /// far below anything visible, so that contacts resting exactly at the surface are kept.
 constexpr double kPullTolerance = 1e-4;
 
-/// Per contact: k (w . (z + beta p)) for both sides, i.e. k w . p_new with p_new = z + beta p computed
-/// on the fly (the character pass below then forms p_new itself), so no separate update pass is needed.
-void contact_pass(CorrectorState& s, const std::vector<Vec6>& z, const std::vector<Vec6>& p, double beta) {
-  tbb::parallel_for(size_t{0}, s.contacts.size(), [&](size_t k) {
-    const Contact& c = s.contacts[k];
-    const auto a = static_cast<size_t>(c.bone_a);
-    double v = c.w_a.dot(z[a] + beta * p[a]);
-    if (c.bone_b >= 0) {
-      const auto b = static_cast<size_t>(c.bone_b);
-      v += c.w_b.dot(z[b] + beta * p[b]);
-    }
-    s.contact_scalar[k] = c.stiffness * v;
-  });
+/// k (w . (z + beta p)) of contact c, both sides: k w . p_new with p_new = z + beta p formed on the fly from
+/// the last iteration's p, so each character's pass can compute the scalars of its own contacts while
+/// the other characters' passes write their new p (into another buffer). A contact between two
+/// characters is computed by both, with the same operations in the same order, so both get the same
+/// value (this replaced a separate pass over the contacts and the barrier after it; session 20).
+double contact_scalar(const Contact& c, const std::vector<Vec6>& z, const std::vector<Vec6>& p, double beta) {
+  const auto a = static_cast<size_t>(c.bone_a);
+  double v = c.w_a.dot(z[a] + beta * p[a]);
+  if (c.bone_b >= 0) {
+    const auto b = static_cast<size_t>(c.bone_b);
+    v += c.w_b.dot(z[b] + beta * p[b]);
+  }
+  return c.stiffness * v;
 }
 
-/// y = H x for character c's rows; contact_scalar must hold k (w . x) for every contact.
-void multiply_character(CorrectorState& s, int c, const std::vector<Vec6>& x, std::vector<Vec6>& y) {
+/// y = H x for character c's rows, where x = z + beta p (x already formed for c's own bones; the
+/// contact terms form it for the other characters' bones from z and the last p).
+void multiply_character(CorrectorState& s, int c, const std::vector<Vec6>& x, const std::vector<Vec6>& z,
+                        const std::vector<Vec6>& p, double beta, std::vector<Vec6>& y) {
   const size_t base = static_cast<size_t>(c) * kJointCount;
   for (size_t j = 0; j < kJointCount; ++j) y[base + j].noalias() = s.diag[base + j] * x[base + j];
   for (size_t j = 1; j < kJointCount; ++j) {
@@ -61,7 +64,7 @@ void multiply_character(CorrectorState& s, int c, const std::vector<Vec6>& x, st
   for (int e = begin; e < end; ++e) {
     const int entry = s.incidence[static_cast<size_t>(e)];
     const Contact& k = s.contacts[static_cast<size_t>(entry / 2)];
-    const double sk = s.contact_scalar[static_cast<size_t>(entry / 2)];
+    const double sk = contact_scalar(k, z, p, beta);
     if (entry & 1) {
       y[static_cast<size_t>(k.bone_b)] += sk * k.w_b;
     } else {
@@ -90,9 +93,8 @@ CgResult conjugate_gradients(const CorrectorModel& model, CorrectorState& s) {
   const CorrectorParams& p = model.params;
   CgResult out;
   // r = b - H x0, z = P^-1 r, p = z.
-  contact_pass(s, s.cg_x, s.cg_x, 0.0);  // k w . x0
   tbb::parallel_for(0, n, [&](int c) {
-    multiply_character(s, c, s.cg_x, s.cg_q);
+    multiply_character(s, c, s.cg_x, s.cg_x, s.cg_x, 0.0, s.cg_q);  // contacts: k w . (x0 + 0 x0)
     const size_t base = static_cast<size_t>(c) * kJointCount;
     double bb = 0.0, rz = 0.0, rr = 0.0;
     for (size_t j = base; j < base + kJointCount; ++j) {
@@ -116,23 +118,24 @@ CgResult conjugate_gradients(const CorrectorModel& model, CorrectorState& s) {
   out.finite = std::isfinite(out.b_norm2) && std::isfinite(rz);
   double beta = 0.0;  // p = z + beta p, applied lazily by the next contact and character passes
   while (out.finite && out.r_norm2 > tol2 && out.iterations < p.cg_max_iterations) {
-    // Pass 1 (contacts) and 2 (characters): p = z + beta p, q = H p, p . q.
-    contact_pass(s, s.cg_z, s.cg_p, beta);
+    // Pass 1 (characters): p = z + beta p (into cg_p_next: the other characters' contact terms read
+    // the last p), q = H p, p . q.
     tbb::parallel_for(0, n, [&](int c) {
       const size_t base = static_cast<size_t>(c) * kJointCount;
-      for (size_t j = base; j < base + kJointCount; ++j) s.cg_p[j] = s.cg_z[j] + beta * s.cg_p[j];
-      multiply_character(s, c, s.cg_p, s.cg_q);
+      for (size_t j = base; j < base + kJointCount; ++j) s.cg_p_next[j] = s.cg_z[j] + beta * s.cg_p[j];
+      multiply_character(s, c, s.cg_p_next, s.cg_z, s.cg_p, beta, s.cg_q);
       double pq = 0.0;
-      for (size_t j = base; j < base + kJointCount; ++j) pq += s.cg_p[j].dot(s.cg_q[j]);
+      for (size_t j = base; j < base + kJointCount; ++j) pq += s.cg_p_next[j].dot(s.cg_q[j]);
       s.partial[static_cast<size_t>(c)] = pq;
     });
+    std::swap(s.cg_p, s.cg_p_next);
     const double pq = reduce(s.partial);
     if (!(pq > 0.0) || !std::isfinite(pq)) {
       out.finite = std::isfinite(pq);
       break;
     }
     const double alpha = rz / pq;
-    // Pass 3 (characters): x += alpha p, r -= alpha q, z = P^-1 r, r . r, r . z.
+    // Pass 2 (characters): x += alpha p, r -= alpha q, z = P^-1 r, r . r, r . z.
     tbb::parallel_for(0, n, [&](int c) {
       const size_t base = static_cast<size_t>(c) * kJointCount;
       double rr = 0.0, v = 0.0;
@@ -188,7 +191,6 @@ void stage_solve(const CorrectorModel& model, CorrectorState& s) {
                ? 1
                : 0;
   });
-  s.contact_scalar.resize(s.contacts.size());
   // Warm start: the contact-free prediction where a character touches nothing (its exact answer), the
   // last step's motion h v_old where it does (contact-resolved, and smooth from step to step).
   tbb::parallel_for(0, n, [&](int c) {
