@@ -73,10 +73,36 @@ Progress::~Progress() {
   finish();
 }
 
+void Progress::set_observer(std::function<void(const ProgressUpdate&)> observer) {
+  std::lock_guard lock(mutex_);
+  observer_ = std::move(observer);
+}
+
+std::string Progress::time_left(double elapsed_s) const {
+  const double frac = static_cast<double>(done_) / static_cast<double>(total_);
+  return frac > 0 ? duration_text(elapsed_s * (1.0 - frac) / frac) + " left" : std::string();
+}
+
+void Progress::grow(std::size_t units, const std::string& why) {
+  std::lock_guard lock(mutex_);
+  total_ += units;
+  if (observer_) observer_({0, done_, total_});
+  if (!g_enabled || units == 0) return;
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const std::string left = time_left(elapsed);
+  std::fprintf(stderr, "%s[crowdlab] %s: %s: +%zu steps, now %zu/%zu (%d%%)%s%s\n", tty_ ? "\r\033[K" : "",
+               label_.c_str(), why.c_str(), units, done_, total_,
+               static_cast<int>(100.0 * static_cast<double>(done_) / static_cast<double>(total_)),
+               left.empty() ? "" : ", ", left.c_str());
+  if (tty_) draw(false);  // the bar again, under the line
+  std::fflush(stderr);
+}
+
 void Progress::advance(std::size_t units) {
   std::lock_guard lock(mutex_);
   done_ += units;
   if (done_ > total_) done_ = total_;
+  if (observer_) observer_({units, done_, total_});
   const auto now = std::chrono::steady_clock::now();
   const auto interval = tty_ ? std::chrono::milliseconds(100) : std::chrono::milliseconds(5000);
   if (!estimated_ && g_enabled && done_ < total_) {
@@ -118,7 +144,8 @@ void Progress::draw(bool final_line) {
                  static_cast<int>(frac * 100), done_, total_, final_line ? elapsed : eta,
                  final_line ? "      \n" : " left");
   } else {
-    const std::string eta = frac > 0 ? ", " + duration_text(elapsed * (1.0 - frac) / frac) + " left" : "";
+    const std::string left = time_left(elapsed);
+    const std::string eta = left.empty() ? "" : ", " + left;
     std::fprintf(stderr, "[crowdlab] %s: %zu/%zu (%d%%) %.1fs%s\n", label_.c_str(), done_, total_,
                  static_cast<int>(frac * 100), elapsed, final_line ? " done" : eta.c_str());
   }

@@ -7,10 +7,18 @@
 // (announce_estimate; the models are in experiments/cli/command_estimates.hpp).
 #include <chrono>
 #include <cstddef>
+#include <functional>
 #include <mutex>
 #include <string>
 
 namespace crowdlab {
+
+/// What a Progress reports after each advance() or grow() (Progress::set_observer; tests).
+struct ProgressUpdate {
+  std::size_t units = 0;  ///< units this advance() passed (0 for grow())
+  std::size_t done = 0;   ///< units done so far (at most total)
+  std::size_t total = 0;  ///< units of the whole job as known now
+};
 
 class Progress {
  public:
@@ -22,6 +30,13 @@ class Progress {
 
   /// Adds `units` completed work units. Thread-safe.
   void advance(std::size_t units = 1);
+  /// Adds `units` work units to the total, for work found only once the job is under way (correct_crowd's
+  /// extra lap, issue 28): prints "LABEL: WHY: +UNITS steps, now DONE/TOTAL (P%), T left", so the share
+  /// done drops with a reason instead of the job stalling at 100 %. Thread-safe.
+  void grow(std::size_t units, const std::string& why);
+  /// Called (under the progress's lock, from the advancing thread) after every advance() and grow(), even
+  /// when progress output is off: tests check what a job reports.
+  void set_observer(std::function<void(const ProgressUpdate&)> observer);
   /// Marks the job finished (called by the destructor if not called explicitly).
   void finish();
 
@@ -40,6 +55,8 @@ class Progress {
 
  private:
   void draw(bool final_line);
+  /// Time left from the rate so far ("" before any unit is done).
+  std::string time_left(double elapsed_s) const;
   std::string label_;
   std::size_t total_;
   std::size_t done_ = 0;
@@ -47,6 +64,7 @@ class Progress {
   bool estimated_ = false;
   bool tty_;
   std::chrono::steady_clock::time_point start_, last_draw_;
+  std::function<void(const ProgressUpdate&)> observer_;
   std::mutex mutex_;
 };
 

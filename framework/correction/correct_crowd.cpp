@@ -292,10 +292,11 @@ void close_per_character(const CrowdAnimation& input, const std::vector<std::vec
 /// (close_joints: both, left, right), or (e) its upper body or arms from the next lap up to a cut inside
 /// the clip (cut_joints_from_next_lap; session 16), whichever keeps everyone within the limit
 /// (close_per_character: the descent over (a)-(c), then the join over all), or stays unclosed: a seam for
-/// some rather than a collision. The next lap is stepped only for that choice.
+/// some rather than a collision. The next lap is stepped only for that choice. progress (optional) is
+/// advanced once per step of (a) (the next lap advances it for its own steps).
 void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>>& preroll_out,
                 NextLap& next_lap, Corrector before_window, const CorrectorParams& params,
-                CrowdAnimation& out, CorrectionReport& r) {
+                CrowdAnimation& out, CorrectionReport& r, Progress* progress) {
   const size_t n = out.characters.size();
   const int frames = out.frame_count(), preroll = static_cast<int>(preroll_out.front().size());
   const int first = frames - preroll;
@@ -317,6 +318,7 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
     const std::vector<Pose> stepped = before_window.step(targets);
     for (size_t c = 0; c < n; ++c) corrected.characters[c].frames[f] = stepped[c];
     if (before_window.last_stats().rejected) ++r.rejected_steps;
+    if (progress) progress->advance();
   }
   // The second correction lags a swinging foot and can set it down away from where it stood the frame
   // before (loop_seam.yaml: 12 mm, stance-foot drift p99 12.0 mm): planted feet follow the input instead.
@@ -399,14 +401,24 @@ ClosedLap closed_lap(const CrowdAnimation& clip, const CorrectionReport& r) {
 /// next lap stepped whole and recorded in the clip's place, its own end blending into the clip's
 /// (`lead_end`: the unclosed clip's last W frames), closed as the clip was (close_loop), and kept in the
 /// clip's place when keep_extra_lap says so (a smaller seam, no deeper contact). Then (up to kExtraLaps)
-/// its next lap likewise while its closure leaves characters open. The extra laps' steps are not counted
-/// in the progress (correction_steps: the clips that need them are not known before).
+/// its next lap likewise while its closure leaves characters open.
+/// progress (optional): the clips that need an extra lap are not known before (correction_steps), so each
+/// extra lap grows the total by the steps it adds, F + W: the lap's frames not yet stepped as the last next
+/// lap (F - s, whose s are counted), its closure's re-corrected window (W), and its own next lap's bound
+/// (2W at most), less what the last next lap's bound left uncounted (2W - s). Why (session 20): uncounted,
+/// the progress sat at 100 % for a whole lap (a 20 s concert clip: minutes) before the output was written.
+/// The last next lap's frames never read are counted done at the end, as correct_crowd_once does.
 void record_extra_laps(const CrowdAnimation& crowd, const CorrectorParams& params, NextLap next_lap,
-                       std::vector<std::vector<Pose>> lead_end, CrowdAnimation& out, CorrectionReport& r) {
+                       std::vector<std::vector<Pose>> lead_end, CrowdAnimation& out, CorrectionReport& r,
+                       Progress* progress) {
   const int frames = crowd.frame_count(), window = static_cast<int>(lead_end.front().size());
   ClosedLap kept = closed_lap(out, r);
   int rejected = r.rejected_steps;  // over every lap and closure (the next lap's counted when spent)
+  int open = r.loop_open_characters;
   for (int extra = 1; extra <= kExtraLaps; ++extra) {
+    if (progress)
+      progress->grow(static_cast<size_t>(frames + window),
+                     fmt::format("an extra lap for {} open character{}", open, open == 1 ? "" : "s"));
     RecordedLap lap = std::move(next_lap).record();
     CorrectionReport lap_r;
     lap_r.frames = frames;
@@ -417,8 +429,8 @@ void record_extra_laps(const CrowdAnimation& crowd, const CorrectorParams& param
     lap_r.cg_iterations_mean = lap.cg_iterations_mean;
     rejected += lap.rejected_steps;
     std::vector<std::vector<Pose>> lap_end = last_frames(lap.clip, window);
-    next_lap = NextLap(std::move(lap.after), crowd, window, nullptr);
-    close_loop(crowd, lead_end, next_lap, std::move(*lap.before_window), params, lap.clip, lap_r);
+    next_lap = NextLap(std::move(lap.after), crowd, window, progress);
+    close_loop(crowd, lead_end, next_lap, std::move(*lap.before_window), params, lap.clip, lap_r, progress);
     lap_r.next_lap_frames = next_lap.stepped();
     rejected += lap_r.rejected_steps;  // the closure's re-corrected window
     const ClosedLap closed = closed_lap(lap.clip, lap_r);
@@ -434,10 +446,12 @@ void record_extra_laps(const CrowdAnimation& crowd, const CorrectorParams& param
       kept = closed;
     }
     r.extra_laps = extra;
-    if (closed.open_characters == 0) break;
+    open = closed.open_characters;
+    if (open == 0) break;
     lead_end = std::move(lap_end);
   }
   r.rejected_steps = rejected + next_lap.rejected_steps();
+  if (progress) progress->advance(static_cast<size_t>(next_lap_bound(frames, window) - next_lap.stepped()));
 }
 
 }  // namespace
@@ -446,7 +460,7 @@ std::size_t correction_steps(const CrowdAnimation& crowd, const CorrectorParams&
   const auto frames = static_cast<size_t>(crowd.frame_count());
   const auto window = static_cast<size_t>(loop_window_frames(crowd, params));
   return window > 0
-             ? (1 + kLeadLaps) * frames +
+             ? (1 + kLeadLaps) * frames + window +
                    static_cast<size_t>(next_lap_bound(static_cast<int>(frames), static_cast<int>(window)))
              : frames;
 }
@@ -508,13 +522,16 @@ CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorPa
       spdlog::debug("correct_crowd: the recorded lap ends {:.4f} m from the lead lap (worst character)",
                     lap_difference_m(out, lead_end));
     std::vector<std::vector<Pose>> recorded_end = last_frames(out, window);
-    close_loop(crowd, lead_end, next_lap, *recorded.before_window, params, out, r);
+    close_loop(crowd, lead_end, next_lap, *recorded.before_window, params, out, r, progress);
     r.next_lap_frames = next_lap.stepped();
-    if (progress) progress->advance(static_cast<size_t>(next_lap_bound(frames, window) - next_lap.stepped()));
-    if (r.loop_open_characters > 0)
-      record_extra_laps(crowd, params, std::move(next_lap), std::move(recorded_end), out, r);
-    else
+    if (r.loop_open_characters > 0) {
+      // The next lap's frames not read yet are recorded as the extra lap (counted there).
+      record_extra_laps(crowd, params, std::move(next_lap), std::move(recorded_end), out, r, progress);
+    } else {
       r.rejected_steps += next_lap.rejected_steps();
+      if (progress)
+        progress->advance(static_cast<size_t>(next_lap_bound(frames, window) - next_lap.stepped()));
+    }
     if (spdlog::should_log(spdlog::level::debug)) log_seam_carriers(out);
   }
   if (r.rejected_steps > 0)

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "framework/core/progress.hpp"
 #include "tests/support/test_paths.hpp"
@@ -55,6 +56,31 @@ TEST_CASE("progress: a long job's estimated total and memory are printed once, l
   for (std::size_t at = out.find("estimated"); at != std::string::npos; at = out.find("estimated", at + 1))
     ++count;
   CHECK(count == 1);
+}
+
+TEST_CASE("progress: work found under way grows the total with a line that says why") {
+  // Session 20 (issue 28): correct_crowd's extra lap was not counted, so the line sat at 100 % for a lap.
+  Progress::set_enabled(true);
+  std::vector<ProgressUpdate> seen;
+  const std::string out = stderr_of([&] {
+    Progress p("correcting x.glb", 10);
+    p.set_observer([&](const ProgressUpdate& u) { seen.push_back(u); });
+    for (int i = 0; i < 10; ++i) p.advance();
+    p.grow(5, "an extra lap for 2 open characters");
+    for (int i = 0; i < 5; ++i) p.advance();
+    p.finish();
+  });
+  CHECK_THAT(out, Catch::Contains("correcting x.glb: an extra lap for 2 open characters: +5 steps, now 10/15 "
+                                  "(66%)") &&
+                      Catch::Contains("15/15 (100%)"));
+  REQUIRE(seen.size() == 16);
+  CHECK(seen[9].done == 10);
+  CHECK(seen[9].total == 10);
+  CHECK(seen[10].units == 0);  // the growth
+  CHECK(seen[10].done == 10);
+  CHECK(seen[10].total == 15);
+  CHECK(seen.back().done == 15);
+  CHECK(seen.back().total == 15);
 }
 
 }  // namespace test_progress_estimate

@@ -315,8 +315,9 @@ TEST_CASE("correction: a looping input gives a looping output with the loop pre-
   CHECK(report.preroll_frames == 4 * 60);  // four whole laps
   // The progress counts the laps too (session 13: they ran silently, four fifths of the stage's time), and
   // the next lap after the clip (session 15: its first W frames; session 16: the whole lap, whose joints
-  // the closure may take up to a cut inside the clip).
-  CHECK(correction_steps(crowd, params) == 6 * 60);
+  // the closure may take up to a cut inside the clip; session 17: at most 2W, here the whole 60-frame lap),
+  // and (session 20) the closure's re-corrected window, W = 59 frames (2 s at 30 fps, all frames but one).
+  CHECK(correction_steps(crowd, params) == 6 * 60 + 59);
   CHECK(!report.loop_closure.empty());  // closed (all or some characters) without going deeper
   // Session 17: the next lap runs only for the per-character closure (session 16 ran it whole after every
   // looping clip, +9 % steps at 4 s, +18 % at 20 s); this crowd closes on an exact closure, so none. The
@@ -333,7 +334,7 @@ TEST_CASE("correction: a looping input gives a looping output with the loop pre-
     const std::vector<Pose> lap = c.frames;
     for (int k = 1; k < 10; ++k) c.frames.insert(c.frames.end(), lap.begin(), lap.end());
   }
-  CHECK(correction_steps(longer, params) == 5 * 600 + 2 * 60);
+  CHECK(correction_steps(longer, params) == 5 * 600 + 60 + 2 * 60);
   INFO("seam / median step: " << world_seam_step_ratio(plain) << " without, " << world_seam_step_ratio(looped)
                               << " with the pre-roll");
   CHECK(world_seam_step_ratio(plain) > 2.0);

@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 #include <catch2/catch.hpp>
 
+#include "framework/core/progress.hpp"
 #include "framework/correction/correct_crowd.hpp"
 #include "framework/correction/corrector.hpp"
 #include "framework/correction/loop_closure_laps.hpp"
@@ -149,6 +150,60 @@ TEST_CASE("loop closure laps: a closure that leaves a character open records the
   for (size_t c = 0; c < one.characters.size(); ++c)
     for (size_t f = 0; f < one.characters[c].frames.size(); ++f)
       CHECK(same(one.characters[c].frames[f], two.characters[c].frames[f]));
+}
+
+TEST_CASE("loop closure laps: the progress counts the extra lap and ends at its total",
+          "[correction][loop]") {
+  // Session 20 (issue 28): the extra lap's steps were not counted, so `crowdlab correct` showed 100 % and
+  // then stalled for a whole lap (minutes on a 20 s clip) before writing its output. Every step is counted
+  // now: the total grows by the extra lap's F + W once it is known, what is reported never goes past the
+  // total or backwards, and the last report is the total, which every advance summed reaches exactly (no
+  // step clamped away). The crowd of the test above: its closure leaves a character open (an extra lap);
+  // at 2x amplitude (seed 1) everyone closes (none).
+  Progress::set_enabled(false);
+  for (const double amplitude : {4.0, 2.0}) {
+    const CrowdAnimation crowd = swaying(9, 60, amplitude, amplitude == 4.0 ? 4 : 1);
+    CorrectorParams params;
+    params.loop_preroll_s = 0.5;
+    const int frames = 60, window = 15;  // W: 0.5 s at the fixture's 30 fps
+    const std::size_t counted = correction_steps(crowd, params);
+    CHECK(counted == static_cast<std::size_t>(5 * frames + window + 2 * window));
+    std::vector<ProgressUpdate> seen;
+    CorrectionReport report;
+    {
+      Progress progress("correcting", counted);
+      progress.set_observer([&](const ProgressUpdate& u) { seen.push_back(u); });
+      correct_crowd(crowd, params, &progress, &report);
+    }
+    INFO("amplitude " << amplitude << ", closure: " << report.loop_closure << "; extra laps "
+                      << report.extra_laps);
+    REQUIRE(!seen.empty());
+    std::size_t advanced = 0, grown = 0, steps = 0;
+    for (size_t k = 0; k < seen.size(); ++k) {
+      advanced += seen[k].units;
+      if (seen[k].units == 1) ++steps;
+      CHECK(seen[k].done <= seen[k].total);
+      CHECK(seen[k].done == std::min(advanced, seen[k].total));
+      if (k == 0) continue;
+      CHECK(seen[k].done >= seen[k - 1].done);
+      CHECK(seen[k].total >= seen[k - 1].total);
+      if (seen[k].total > seen[k - 1].total) {
+        ++grown;
+        CHECK(seen[k].total - seen[k - 1].total == static_cast<std::size_t>(frames + window));
+        CHECK(seen[k].done < seen[k].total);  // announced while the lap is still to run
+      }
+    }
+    CHECK(grown == static_cast<std::size_t>(report.extra_laps));
+    CHECK(advanced == seen.back().total);  // nothing advanced past the total (main: one lap clamped away)
+    CHECK(seen.back().done == seen.back().total);
+    CHECK(seen.back().total == counted + grown * static_cast<std::size_t>(frames + window));
+    // The steps really taken, one advance each: the laps, the recorded one and every closure's window;
+    // only the next laps' frames never read are counted done together.
+    CHECK(steps >=
+          static_cast<std::size_t>((5 + report.extra_laps) * frames + (1 + report.extra_laps) * window));
+    if (amplitude == 4.0) CHECK(report.extra_laps == 1);
+    if (amplitude == 2.0) CHECK(report.extra_laps == 0);
+  }
 }
 
 }  // namespace test_loop_closure_laps
