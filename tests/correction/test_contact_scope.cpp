@@ -4,52 +4,16 @@
 // their distances for the contacts; this checks its masks against a direct test of every near pair.
 #include <catch2/catch.hpp>
 
-#include "framework/correction/corrector_step.hpp"
-#include "framework/correction/swaying_crowd_fixture.hpp"
+#include "tests/correction/dense_crowd_after_narrow_phase.hpp"
 
 // This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
 namespace test_contact_scope {
 
 using namespace crowdlab;
 
-namespace {
-
-/// A dense swaying crowd's corrector stepped up to its narrow phase.
-struct NarrowPhaseState {
-  CorrectorModel model;
-  CorrectorState state;
-};
-
-NarrowPhaseState state_after_narrow_phase() {
-  SwayingCrowdOptions o;
-  o.characters = 12;
-  o.density_per_m2 = 6.66;
-  o.frames = 8;
-  const CrowdAnimation crowd = make_swaying_crowd_fixture(o);
-  std::vector<BodyShape> shapes;
-  for (const auto& ch : crowd.characters) shapes.push_back(ch.shape);
-  NarrowPhaseState in{make_corrector_model(shapes, {}, {}, 30), {}};
-  in.state = make_corrector_state(in.model);
-  std::vector<Pose> targets(crowd.characters.size());
-  auto frame = [&](int f) {
-    for (size_t c = 0; c < targets.size(); ++c)
-      targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
-    return targets;
-  };
-  for (int f = 0; f + 1 < o.frames; ++f) corrector_step(in.model, in.state, frame(f));
-  stage_targets(in.model, in.state, frame(o.frames - 1));
-  stage_assemble(in.model, in.state);
-  stage_predict(in.model, in.state);
-  stage_broad_phase(in.model, in.state);
-  stage_narrow_phase(in.model, in.state);
-  return in;
-}
-
-}  // namespace
-
 TEST_CASE("correction: the narrow phase marks the bones within the free-joint margin of another body",
           "[correction]") {
-  const NarrowPhaseState in = state_after_narrow_phase();
+  const test::CorrectorAtNarrowPhase in = test::dense_crowd_after_narrow_phase();
   const CorrectorState& s = in.state;
   const double margin = in.model.params.free_joint_margin_m;
   REQUIRE(in.model.params.release_free_joints);

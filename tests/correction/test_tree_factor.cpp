@@ -4,10 +4,11 @@
 #include <bit>
 #include <catch2/catch.hpp>
 #include <cstring>
+#include <utility>
 
 #include "framework/correction/corrector_step.hpp"
-#include "framework/correction/swaying_crowd_fixture.hpp"
 #include "framework/correction/tree_factor.hpp"
+#include "tests/correction/dense_crowd_after_narrow_phase.hpp"
 
 // This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
 namespace test_tree_factor {
@@ -24,27 +25,8 @@ struct SolveInput {
 };
 
 SolveInput state_before_solve() {
-  SwayingCrowdOptions o;
-  o.characters = 12;
-  o.density_per_m2 = 6.66;
-  o.frames = 8;
-  const CrowdAnimation crowd = make_swaying_crowd_fixture(o);
-  std::vector<BodyShape> shapes;
-  for (const auto& ch : crowd.characters) shapes.push_back(ch.shape);
-  SolveInput in{make_corrector_model(shapes, {}, {}, 30), {}};
-  in.state = make_corrector_state(in.model);
-  std::vector<Pose> targets(crowd.characters.size());
-  auto frame = [&](int f) {
-    for (size_t c = 0; c < targets.size(); ++c)
-      targets[c] = crowd.characters[c].frames[static_cast<size_t>(f)];
-    return targets;
-  };
-  for (int f = 0; f + 1 < o.frames; ++f) corrector_step(in.model, in.state, frame(f));
-  stage_targets(in.model, in.state, frame(o.frames - 1));
-  stage_assemble(in.model, in.state);
-  stage_predict(in.model, in.state);
-  stage_broad_phase(in.model, in.state);
-  stage_narrow_phase(in.model, in.state);
+  test::CorrectorAtNarrowPhase at = test::dense_crowd_after_narrow_phase();
+  SolveInput in{std::move(at.model), std::move(at.state)};
   stage_contact_scope(in.model, in.state);
   stage_assemble_contacts(in.model, in.state);
   return in;
