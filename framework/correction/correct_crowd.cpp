@@ -178,6 +178,12 @@ int next_lap_bound(int frames, int window) {
   return std::min(frames, kCutSpanWindows * window);
 }
 
+/// Counts the next lap's frames the closure never read as done: correction_steps counted its bound
+/// (next_lap_bound), and the lap was stepped only as far as the closure read it.
+void count_unread_next_lap(Progress* progress, const NextLap& next_lap, int frames, int window) {
+  if (progress) progress->advance(static_cast<size_t>(next_lap_bound(frames, window) - next_lap.stepped()));
+}
+
 /// allowed[r][c] as without_new_flips, for candidates r >= from and the characters in `open` only (false
 /// for the others: the join moves only the characters the descent left unclosed).
 std::vector<std::vector<bool>> without_new_flips_for(const CrowdAnimation& input,
@@ -451,7 +457,7 @@ void record_extra_laps(const CrowdAnimation& crowd, const CorrectorParams& param
     lead_end = std::move(lap_end);
   }
   r.rejected_steps = rejected + next_lap.rejected_steps();
-  if (progress) progress->advance(static_cast<size_t>(next_lap_bound(frames, window) - next_lap.stepped()));
+  count_unread_next_lap(progress, next_lap, frames, window);
 }
 
 }  // namespace
@@ -529,8 +535,7 @@ CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorPa
       record_extra_laps(crowd, params, std::move(next_lap), std::move(recorded_end), out, r, progress);
     } else {
       r.rejected_steps += next_lap.rejected_steps();
-      if (progress)
-        progress->advance(static_cast<size_t>(next_lap_bound(frames, window) - next_lap.stepped()));
+      count_unread_next_lap(progress, next_lap, frames, window);
     }
     if (spdlog::should_log(spdlog::level::debug)) log_seam_carriers(out);
   }
