@@ -84,10 +84,10 @@ echo
 echo "| phase | wall (s) | compile CPU (s) | exit |"
 echo "|---|---|---|---|"
 printf '%s\n' "${rows[@]}"
-# sed reads to the end where head would exit early: under pipefail a SIGPIPE to sort (exit 141) once ended
-# this script before its last table (session 22).
 echo
 echo "Top 15 translation units by wall time (.ninja_log, seconds):"
+# sed -n 1,15p reads to the end where head would exit early: under pipefail a SIGPIPE to sort (exit 141) once ended
+# this script before its last table (session 22).
 awk -F'\t' 'NR > 1 && $4 ~ /\.o$/ { printf "%8.1f  %s\n", ($2 - $1) / 1000, $4 }' "$src/build/.ninja_log" |
   sort -rn | sed -n '1,15p'
 echo
