@@ -7,7 +7,7 @@
 
 #include "experiments/cli/command_table.hpp"
 #include "experiments/cli/corrector_tuning_options.hpp"
-#include "framework/body/cover_capsules.hpp"
+#include "experiments/cli/proxy_fit_options.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/correction/correct_crowd.hpp"
 #include "framework/correction/environment_point_tree.hpp"
@@ -20,31 +20,8 @@ namespace {
 struct CorrectOptions {
   std::string in_path, out_path;
   CorrectorParams params;
-  bool cover_mesh = false;
-  bool fit_proxies = false;
+  ProxyFit proxies = ProxyFit::volume;
 };
-
-/// Fits every meshed character's capsules to its rendered mesh (body/cover_capsules.hpp) and logs the share
-/// of rest-pose vertices within 5 mm of them before and after (and of the bounded ones within their
-/// surface's tolerance).
-void cover_meshes(CrowdAnimation& crowd, const SurfaceTolerances& tolerances, bool move_axes) {
-  double before = 0, after = 0, bounded = 0;
-  int n = 0;
-  for (CharacterAnimation& c : crowd.characters) {
-    if (!c.mesh) continue;
-    const CoverReport r = fit_capsules_to_mesh(c.shape, *c.mesh, tolerances, move_axes);
-    before += r.within_before;
-    after += r.within_after;
-    bounded += r.bounded_within_after;
-    ++n;
-  }
-  if (n > 0)
-    spdlog::info(
-        "capsules fitted to the rendered meshes of {} characters: {:.2f} % -> {:.2f} % of rest-pose "
-        "vertices within 5 mm, {:.2f} % of the bounded ones within their surface's tolerance (means over "
-        "characters)",
-        n, 100 * before / n, 100 * after / n, 100 * bounded / n);
-}
 
 }  // namespace
 
@@ -67,20 +44,10 @@ void add_correct_command(Command& root) {
                   "Refuse an environment that samples into more points than this (about 40 bytes each)")
       ->check(check::positive_number())
       ->capture_default_str();
-  auto* cover = cmd->add_flag(
-      "--cover-mesh", opt->cover_mesh,
-      "Grow each character's capsules until its rendered mesh (MPFB2 skin, garments, hair) lies "
-      "within 5 mm of them in the rest pose, before correcting; the output carries the grown capsules");
-  cmd->add_flag("--fit-proxies", opt->fit_proxies,
-                "Fit each character's capsules to its rendered mesh per surface before correcting: skin, "
-                "face, garments and shoe uppers within 5 mm, hair within 20 mm, soles not bounded, each "
-                "capsule's axis moved toward the surface it must take in (docs/correction.md); the output "
-                "carries the fitted capsules")
-      ->excludes(cover);
+  add_proxy_fit_options(cmd, opt->proxies, "the output carries them");
   cmd->callback([opt] {
     CrowdAnimation in = read_crowd_glb(opt->in_path);
-    if (opt->cover_mesh) cover_meshes(in, SurfaceTolerances::uniform(0.005), false);
-    if (opt->fit_proxies) cover_meshes(in, SurfaceTolerances::per_surface(), true);
+    fit_crowd_proxies(in, opt->proxies);
     check_environment_sampling(in.environment, opt->params.environment_sample_spacing_m,
                                opt->params.max_environment_points, opt->in_path);
     Progress progress("correcting " + opt->in_path, correction_steps(in, opt->params));

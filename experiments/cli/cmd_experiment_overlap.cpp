@@ -13,7 +13,9 @@
 // mesh_overlap_depth_p99_m,proxy_coverage,proxy_outside_p99_m; the foot measures are defined in
 // framework/metrics/foot_contact_quality.hpp, the next five (issue 27) in free_limb_deviation.hpp,
 // joint_flips.hpp and environment_penetration.hpp, the last five (issue 27, rendered meshes; empty for
-// bodies without one) in mesh_overlap.hpp and proxy_coverage.hpp).
+// bodies without one) in mesh_overlap.hpp and proxy_coverage.hpp). With --cover-mesh or --fit-proxies
+// both methods are measured with capsules fitted to the rendered meshes (proxy_fit_options.hpp); with
+// --save-crowds each density's crowds go to DIR/crowds/SCENARIO_density-D/{baseline,ours}.glb.
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -27,12 +29,14 @@
 #include "experiments/cli/experiment_group.hpp"
 #include "experiments/cli/figures/overlap_vs_density.hpp"
 #include "experiments/cli/pipeline/output_folder_lock.hpp"
+#include "experiments/cli/proxy_fit_options.hpp"
 #include "framework/animation/animate_crowd.hpp"
 #include "framework/core/csv.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/core/seed.hpp"
 #include "framework/correction/correct_crowd.hpp"
 #include "framework/crowd/generate_scenario.hpp"
+#include "framework/io/write_crowd_glb.hpp"
 #include "framework/metrics/correction_quality.hpp"
 #include "framework/metrics/measure_crowd.hpp"
 #include "framework/pipeline/body_model.hpp"
@@ -51,6 +55,8 @@ struct Options {
   double fps = 30.0;
   CorrectorParams params;  ///< solver parameters (the spec's damping overrides params.damping)
   bool inertial_prediction = false;
+  ProxyFit proxies = ProxyFit::volume;  ///< the collision proxies both methods are measured with
+  bool save_crowds = false;             ///< write each density's baseline.glb and ours.glb under out/crowds
 };
 
 struct QualityRow {
@@ -62,6 +68,14 @@ struct QualityRow {
   CorrectionReport report;
   MeshOverlap baseline_mesh;  ///< the baseline's own mesh-level overlap (ours': quality.mesh_overlap)
 };
+
+/// Writes what one density measured, so that `crowdlab metrics`, `render` and `correct` can look again.
+void save_crowds(const CrowdAnimation& baseline, const CrowdAnimation& ours, const fs::path& dir) {
+  fs::create_directories(dir);
+  write_crowd_glb(baseline, (dir / "baseline.glb").string());
+  write_crowd_glb(ours, (dir / "ours.glb").string());
+  spdlog::info("wrote {}/{{baseline,ours}}.glb", dir.string());
+}
 
 void run_scenario(const std::string& spec_path, const Options& o, std::vector<OverlapRow>& rows,
                   std::vector<QualityRow>& quality) {
@@ -83,7 +97,8 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
     ctx.seed = crowd_condition.seed;
     ctx.condition_id = "density-" + density;
     apply_body_model(spec.animation, s.trajectories.agents.size(), ctx);
-    const CrowdAnimation baseline = animate_crowd(s.trajectories, s.environment, spec.animation, ctx);
+    CrowdAnimation baseline = animate_crowd(s.trajectories, s.environment, spec.animation, ctx);
+    fit_crowd_proxies(baseline, o.proxies);  // before both are measured: one set of proxies for both
     CorrectorParams params = o.params;
     params.exact_prediction = !o.inertial_prediction;
     params.damping = spec.correction.damping;
@@ -91,6 +106,8 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
     CorrectionReport report;
     const CrowdAnimation ours = correct_crowd(baseline, params, &progress, &report);
     progress.finish();
+    if (o.save_crowds)
+      save_crowds(baseline, ours, fs::path(o.out) / "crowds" / (scenario + "_density-" + density));
     const int n = static_cast<int>(baseline.characters.size());
     rows.push_back(
         {scenario, n, density_per_m2, "baseline", measure_crowd(baseline).mean_character_overlap_l});
@@ -256,6 +273,11 @@ void add_experiment_overlap_command(Command& root) {
       ->capture_default_str();
   cmd->add_option("--settle-steps", o->params.settle_steps, "Steps run on frame 0 before the output starts")
       ->capture_default_str();
+  add_proxy_fit_options(cmd, o->proxies, "both methods are measured with them");
+  cmd->add_flag("--save-crowds", o->save_crowds,
+                "Also write each density's baseline and corrected crowd files, "
+                "OUT/crowds/SCENARIO_density-D/{baseline,ours}.glb, for `crowdlab metrics`, `render` and "
+                "`correct`");
   cmd->callback([o] {
     const OutputFolderLock lock(o->out);  // one process per folder (output_folder_lock.hpp)
     run(*o);

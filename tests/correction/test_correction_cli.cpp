@@ -4,8 +4,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
+#include "framework/core/csv.hpp"
 #include "framework/correction/swaying_crowd_fixture.hpp"
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/io/write_crowd_glb.hpp"
@@ -81,6 +83,57 @@ TEST_CASE("correction cli: experiment damping writes the Fig. 4 series", "[corre
     INFO(name);
     REQUIRE(std::filesystem::exists(dir / name));
     CHECK(std::filesystem::file_size(dir / name) > 1000);
+  }
+}
+
+/// A copy of the shipped spec `name` with its densities reduced to `density` (a YAML list), in `dir`.
+std::string spec_at_density(const std::string& name, const std::string& density,
+                            const std::filesystem::path& dir) {
+  std::ifstream in(test::source_dir() / "experiments" / name);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string reduced =
+      std::regex_replace(text.str(), std::regex(R"(density: \[[^\]]*\])"), "density: " + density);
+  REQUIRE(reduced != text.str());
+  const auto path = dir / name;
+  std::ofstream(path) << reduced;
+  return path.string();
+}
+
+TEST_CASE(
+    "correction cli: experiment overlap-vs-density --fit-proxies --save-crowds measures with the fitted "
+    "proxies and keeps the crowds",
+    "[correction][cli]") {
+  // Issue 27: the experiment measured only with the volume-fitted capsules (40 % of the rendered vertices
+  // within 5 mm of them) and kept no crowd to look at (session 20's 466 mm foot could not be traced).
+  const auto dir = test::scratch_dir("correction_cli_experiment_proxies");
+  const std::string out = (dir / "out").string();
+  const auto r = test::run_cli({"experiment", "overlap-vs-density", "--stationary",
+                                spec_at_density("gomez2024_stationary.yaml", "[2.22]", dir), "--corridor",
+                                spec_at_density("gomez2024_nonstationary.yaml", "[2.22]", dir), "--duration",
+                                "0.2", "--fit-proxies", "--save-crowds", "--out", out});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const CsvTable quality = read_csv(out + "/correction_quality.csv");
+  REQUIRE(quality.rows.size() == 2);
+  const size_t coverage = quality.column("proxy_coverage");
+  for (const auto& row : quality.rows) {
+    INFO(row[0] << ": proxy coverage " << row[coverage]);
+    CHECK(std::stod(row[coverage]) > 0.95);  // the volume-fitted capsules: about 0.40
+  }
+  for (const char* scenario : {"stationary", "corridor"}) {
+    const auto crowds = std::filesystem::path(out) / "crowds" / (std::string(scenario) + "_density-2.22");
+    INFO(crowds);
+    const CrowdAnimation baseline = read_crowd_glb((crowds / "baseline.glb").string());
+    const CrowdAnimation ours = read_crowd_glb((crowds / "ours.glb").string());
+    REQUIRE(baseline.characters.size() == ours.characters.size());
+    CHECK(baseline.frame_count() == 6);
+    // Both carry the fitted capsules the measures used; the correction moved the bodies.
+    for (size_t b = 0; b < kJointCount; ++b)
+      CHECK(baseline.characters[0].shape.capsules[b].radius_m ==
+            ours.characters[0].shape.capsules[b].radius_m);
+    CHECK(test::overlap_volume(test::frame_capsules(ours, 5)) <
+          test::overlap_volume(test::frame_capsules(baseline, 5)));
   }
 }
 
