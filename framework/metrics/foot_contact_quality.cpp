@@ -38,8 +38,8 @@ double depth_below_input(double sole_out_m, double sole_in_m) {
   return std::max(0.0, std::min(0.0, sole_in_m) - sole_out_m);
 }
 
-void measure_character(const CharacterAnimation& in, const CharacterAnimation& out, int first, double dt,
-                       FootContactQuality& q, Samples& s) {
+void measure_character(const CharacterAnimation& in, const CharacterAnimation& out, int character, int first,
+                       double dt, FootContactQuality& q, Samples& s) {
   std::array<Vec3, kJointCount> prev_in{}, prev_out{};
   std::array<Vec3, 4> landing{};
   std::array<bool, 4> contact{};
@@ -58,14 +58,24 @@ void measure_character(const CharacterAnimation& in, const CharacterAnimation& o
       q.ground_penetration_max_m = std::max(q.ground_penetration_max_m, depth);
       const double added = depth_below_input(sole_height(caps_out, side), sole_height(caps_in, side));
       if (added > 0.0) s.below_input.push_back(added);
-      q.ground_penetration_added_max_m = std::max(q.ground_penetration_added_max_m, added);
+      if (added > q.ground_penetration_added_max_m) {
+        q.ground_penetration_added_max_m = added;
+        q.ground_added_worst_character = character;
+        q.ground_added_worst_joint = kSideJoints[static_cast<size_t>(side)][0];
+        q.ground_added_worst_frame = f;
+      }
     }
     if (f > first) {
       for (size_t k = 0; k < kFootJoints.size(); ++k) {
         const auto j = static_cast<size_t>(kFootJoints[k]);
         const double moved_in = (pin[j] - prev_in[j]).norm();
         const double excess = (pout[j] - prev_out[j]).norm() - moved_in;
-        q.pop_excess_max_m = std::max(q.pop_excess_max_m, excess);
+        if (excess > q.pop_excess_max_m) {
+          q.pop_excess_max_m = excess;
+          q.pop_worst_character = character;
+          q.pop_worst_joint = static_cast<int>(j);
+          q.pop_worst_frame = f;
+        }
         if (excess > kPopExcess_m) {
           ++q.foot_pops;
           q.pop_frames.push_back(f);
@@ -101,7 +111,8 @@ FootContactQuality measure_foot_contact_quality(const CrowdAnimation& input, con
   Samples s;
   const double dt = input.meta.fps > 0.0 ? 1.0 / input.meta.fps : 0.0;
   for (size_t c = 0; c < input.characters.size(); ++c)
-    measure_character(input.characters[c], corrected.characters[c], std::max(0, first_frame), dt, q, s);
+    measure_character(input.characters[c], corrected.characters[c], static_cast<int>(c),
+                      std::max(0, first_frame), dt, q, s);
   std::sort(q.pop_frames.begin(), q.pop_frames.end());
   q.pop_frames.erase(std::unique(q.pop_frames.begin(), q.pop_frames.end()), q.pop_frames.end());
   q.stance_drift_p99_m = nearest_rank_quantile(s.drift, 0.99);

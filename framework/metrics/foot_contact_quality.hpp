@@ -21,6 +21,7 @@
 //                                more than kPopExcess_m = 5 cm (a foot jumping in one frame)
 //   pop_excess_max_m             the largest such excess (any frame, also below the threshold)
 //   pop_frames                   the frames on which some foot joint popped
+//   pop_worst_*                  character, foot joint and frame of pop_excess_max_m (-1: none)
 //   ground_penetration_max_m     ABSOLUTE: deepest any foot capsule (ankle and ball bones) goes below
 //                                y = 0, per foot and frame (the input's own depth included)
 //   ground_penetration_p99_m     99th percentile of the positive per-foot per-frame depths
@@ -31,6 +32,8 @@
 //                                input feet are 13.5-14.1 mm below y = 0, and a free foot returns to
 //                                its input, so the absolute measure cannot reach 0 there)
 //   ground_penetration_added_p99_m   99th percentile of the positive per-foot per-frame added depths
+//   ground_added_worst_*         character, ankle (the foot's side) and frame of
+//                                ground_penetration_added_max_m (-1: none), to look at it
 //   float_p99_m, float_max_m     per contact frame of a foot (either of its joints in contact), how much
 //                                higher the corrected sole (lowest point of the foot capsules) is than
 //                                the input's; 99th percentile and maximum
@@ -51,10 +54,12 @@ struct FootContactQuality {
   int foot_pops = 0;
   std::vector<int> pop_frames;  ///< the frames with a pop, ascending, each once (to look at them)
   double pop_excess_max_m = 0.0;
+  int pop_worst_character = -1, pop_worst_joint = -1, pop_worst_frame = -1;
   double ground_penetration_max_m = 0.0;
   double ground_penetration_p99_m = 0.0;
   double ground_penetration_added_max_m = 0.0;
   double ground_penetration_added_p99_m = 0.0;
+  int ground_added_worst_character = -1, ground_added_worst_joint = -1, ground_added_worst_frame = -1;
   double float_p99_m = 0.0;
   double float_max_m = 0.0;
 };
