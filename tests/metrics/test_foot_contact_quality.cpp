@@ -139,4 +139,23 @@ TEST_CASE("feet the input itself puts below the ground count only for what the c
   CHECK(from_ground.ground_penetration_max_m == Approx(0.003));
 }
 
+TEST_CASE("the deepest added foot and the largest pop are named by character, joint and frame") {
+  // Session 23: the corridor's 466 mm foot was a number without a place; the JSON now names it.
+  CrowdAnimation in = standing(zero, zero);
+  in.characters.push_back(in.characters[0]);
+  CrowdAnimation out = in;
+  // The second character's body sinks 3 cm on frame 25 only and jumps 8 cm along x from frame 12 on.
+  out.characters[1] =
+      standing([](int f) { return f >= 12 ? 0.08 : 0.0; }, [](int f) { return f == 25 ? -0.03 : 0.0; })
+          .characters[0];
+  const FootContactQuality q = measure_foot_contact_quality(in, out);
+  CHECK(q.ground_added_worst_character == 1);
+  CHECK(q.ground_added_worst_frame == 25);
+  CHECK((q.ground_added_worst_joint == kLeftAnkle || q.ground_added_worst_joint == kRightAnkle));
+  CHECK(q.pop_worst_character == 1);
+  CHECK(q.pop_worst_frame == 12);
+  const FootContactQuality none = measure_foot_contact_quality(in, in);
+  CHECK(none.ground_added_worst_character == -1);
+}
+
 }  // namespace test_foot_contact_quality
