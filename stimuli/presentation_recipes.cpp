@@ -25,6 +25,11 @@ RenderRecipe render_recipe(const ExperimentSpec& spec, ViewpointId viewpoint) {
   return r;
 }
 
+StimulusCheckRecipe stimulus_check_recipe(const ExperimentSpec& spec, ViewpointId viewpoint) {
+  const RenderRecipe clip = render_recipe(spec, viewpoint);
+  return {clip.look, clip.viewpoint, clip.check_overlap_every_frames};
+}
+
 RenderOptions render_options(const StimulusLook& look) {
   RenderOptions o;
   o.width = look.width;

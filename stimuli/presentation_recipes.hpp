@@ -9,6 +9,8 @@
 //   RenderRecipe        render: clip.mp4 and clip.json of one condition (the look, viewpoint, encoding)
 //   ContactSheetRecipe  contact_sheet: <method>.contact_sheet.png of a crowd group (the look; V1-V4 at
 //                       the middle frame)
+//   StimulusCheckRecipe stimulus_check (`run --check-only`): stimulus_check.json of one condition, the
+//                       render stage's check without its clip (the look, viewpoint, overlap sampling)
 // The character files' contents are the stages' input files, not recipe values.
 #include <string>
 #include <string_view>
@@ -53,10 +55,22 @@ struct ContactSheetRecipe {
   StimulusLook look;
 };
 
+struct StimulusCheckRecipe {
+  static constexpr std::string_view kStage = "stimulus_check";
+  /// The render stage's check/2 and framing (shared-extent/2); look/4 decides the overlap pixels.
+  static constexpr std::string_view kCodeVersion = "shared-extent/2+check/2+look/4";
+  StimulusLook look;
+  ViewpointId viewpoint = ViewpointId::V1;
+  int check_overlap_every_frames = 10;  ///< as RenderRecipe's
+};
+
 /// The look of the spec's stimuli. Throws InputError for a malformed render.background.
 StimulusLook stimulus_look(const RenderSpec& render);
 /// The render recipe of a condition shown from `viewpoint`.
 RenderRecipe render_recipe(const ExperimentSpec& spec, ViewpointId viewpoint);
+/// The check-only recipe of a condition shown from `viewpoint`: render_recipe's look, viewpoint and
+/// overlap sampling, without the encoding.
+StimulusCheckRecipe stimulus_check_recipe(const ExperimentSpec& spec, ViewpointId viewpoint);
 /// The options render_clip and write_contact_sheet take for `look` (the encoding at its defaults).
 RenderOptions render_options(const StimulusLook& look);
 

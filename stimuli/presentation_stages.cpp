@@ -118,11 +118,35 @@ Stage render_stage(const std::shared_ptr<PresentationContext>& ctx, const Render
   return s;
 }
 
-/// Fills the clip's stimulus check (from its sidecar, up to date or just written) into the manifest
-/// entry, and warns about (and records, for --strict) a clip outside the spec's render.check.
+/// `run --check-only`: the render stage's stimulus check of a condition without its clip, in
+/// DIR/conditions/<id>/stimulus_check.json (the clip sidecar's camera and characters, and the check). The
+/// numbers are the render stage's: the same geometry, and overlap from the same frames drawn in overlap
+/// mode (every Nth; every frame when the clip itself would be drawn in overlap mode).
+Stage check_stage(const std::shared_ptr<PresentationContext>& ctx, const StimulusCheckRecipe& recipe,
+                  CrowdGroup& g, CrowdMethod method, const fs::path& condition_dir) {
+  const CrowdAnimation& crowd = g.animation(method);
+  Stage s = stage_for(recipe);
+  s.inputs = presentation_inputs(g, method, recipe.look);
+  const RenderOptions ro = render_options(recipe.look);
+  const int every = recipe.check_overlap_every_frames;
+  s.outputs.push_back(
+      {condition_dir / "stimulus_check.json", [ctx, &g, &crowd, ro, recipe, every](const fs::path& tmp) {
+         const StimulusLook& l = recipe.look;
+         const Viewpoint view(recipe.viewpoint, ctx->extent(g), l.width, l.height, l.viewpoint_overrides);
+         nlohmann::json j = clip_sidecar(view, crowd.frame_count(), crowd);
+         j["stimulus_check"] =
+             stimulus_check_json(measure_check(ctx->renderer(), crowd, ro, view, std::nullopt, every));
+         write_text_file(tmp, j.dump(2) + "\n");
+       }});
+  return s;
+}
+
+/// Fills a clip's stimulus check (from `sidecar`, up to date or just written: the clip's clip.json or
+/// the check-only stimulus_check.json) into the manifest entry, and warns about (and records, for
+/// --strict) a clip outside the spec's render.check.
 void describe_clip(const ExperimentSpec& spec, std::vector<std::string>* failures, const Condition& c,
-                   StimulusEntry& e, const fs::path& condition_dir) {
-  const nlohmann::json j = read_sidecar_json(clip_sidecar_path(condition_dir / "clip.mp4"));
+                   StimulusEntry& e, const fs::path& sidecar) {
+  const nlohmann::json j = read_sidecar_json(sidecar);
   e.check = stimulus_check_from_json(j.value("stimulus_check", nlohmann::json::object()));
   const ClipRole role{c.params.viewpoint, c.params.method == CrowdMethod::baseline, spec.protocol.loop_video,
                       spec.render.height};
@@ -153,19 +177,21 @@ std::vector<PresentationStage> presentation_stages(const ExperimentSpec& spec,
   auto ctx = std::make_shared<PresentationContext>();
   std::vector<PresentationStage> stages;
   const RenderRecipe clip = render_recipe(spec, ConditionParams{}.viewpoint);
+  const bool video = spec.outputs.video;
   stages.push_back(
       {std::string(RenderRecipe::kStage),
-       [ctx, clip](CrowdGroup& g, const Condition& c, const fs::path& dir) -> std::optional<Stage> {
+       [ctx, clip, video](CrowdGroup& g, const Condition& c, const fs::path& dir) -> std::optional<Stage> {
+         if (!video) return std::nullopt;
          RenderRecipe recipe = clip;
          recipe.viewpoint = c.params.viewpoint;
          return render_stage(ctx, recipe, g, c.params.method, dir);
        },
        true,
        [spec, check_failures](const Condition& c, const fs::path& dir, StimulusEntry& e) {
-         describe_clip(spec, check_failures, c, e, dir);
+         describe_clip(spec, check_failures, c, e, clip_sidecar_path(dir / "clip.mp4"));
        }});
   ContactSheetRecipe sheet{stimulus_look(spec.render)};
-  const bool sheets = spec.outputs.contact_sheet;
+  const bool sheets = video && spec.outputs.contact_sheet;
   stages.push_back(
       {std::string(ContactSheetRecipe::kStage),
        [ctx, sheet, sheets](CrowdGroup& g, const Condition& c, const fs::path&) -> std::optional<Stage> {
@@ -175,6 +201,22 @@ std::vector<PresentationStage> presentation_stages(const ExperimentSpec& spec,
        false,
        {}});
   return stages;
+}
+
+std::vector<PresentationStage> check_only_stages(const ExperimentSpec& spec,
+                                                 std::vector<std::string>* check_failures) {
+  auto ctx = std::make_shared<PresentationContext>();
+  const StimulusCheckRecipe check = stimulus_check_recipe(spec, ConditionParams{}.viewpoint);
+  return {{std::string(StimulusCheckRecipe::kStage),
+           [ctx, check](CrowdGroup& g, const Condition& c, const fs::path& dir) -> std::optional<Stage> {
+             StimulusCheckRecipe recipe = check;
+             recipe.viewpoint = c.params.viewpoint;
+             return check_stage(ctx, recipe, g, c.params.method, dir);
+           },
+           false,
+           [spec, check_failures](const Condition& c, const fs::path& dir, StimulusEntry& e) {
+             describe_clip(spec, check_failures, c, e, dir / "stimulus_check.json");
+           }}};
 }
 
 }  // namespace crowdlab::stimuli

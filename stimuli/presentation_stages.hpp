@@ -7,6 +7,9 @@
 //                  stimulus check, also in the manifest entry)         (framing), the character files
 //   contact_sheet  DIR/crowds/<key>/<method>.contact_sheet.png        ContactSheetRecipe; the same
 //                  (only with outputs.contact_sheet)
+// Neither runs without outputs.video. `run --check-only` runs, instead of both, (check_only_stages):
+//   stimulus_check DIR/conditions/<id>/stimulus_check.json: the       StimulusCheckRecipe; as render's
+//                  render stage's check and camera, no clip
 // Both methods of a condition are framed by the crowd group's shared extent (the crowd stage's
 // trajectories and the animation stage's body heights), so `baseline` and `ours` get the same camera.
 // One Renderer (an EGL context and its mesh cache) serves every stage of the run.
@@ -24,5 +27,12 @@ namespace crowdlab::stimuli {
 /// run).
 std::vector<PresentationStage> presentation_stages(const ExperimentSpec& spec,
                                                    std::vector<std::string>* check_failures = nullptr);
+
+/// `run --check-only`'s one stage: every condition's stimulus check, the same numbers the render stage
+/// writes into clip.json (the geometry from the crowd and camera, the overlap measures from the frames
+/// the render stage draws again in overlap mode), without drawing or encoding the clip; whatever
+/// outputs.video says. Failures as presentation_stages().
+std::vector<PresentationStage> check_only_stages(const ExperimentSpec& spec,
+                                                 std::vector<std::string>* check_failures = nullptr);
 
 }  // namespace crowdlab::stimuli

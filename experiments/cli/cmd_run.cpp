@@ -21,6 +21,7 @@ struct Options {
   bool force = false;
   bool collect = false;
   bool strict = false;
+  bool check_only = false;
 };
 
 }  // namespace
@@ -43,6 +44,11 @@ void add_run_command(Command& root) {
       "--strict", o->strict,
       "Fail (exit 1, after writing every output) when a clip's stimulus check is outside the spec's "
       "render.check thresholds; without it such clips are warnings");
+  cmd->add_flag("--check-only", o->check_only,
+                "Measure every clip's stimulus check (the numbers a rendered run writes: crowd in frame, "
+                "character height, overlap visibility from every Nth frame drawn in overlap mode, loop seam) "
+                "into DIR/conditions/ID/stimulus_check.json and manifest.csv, without drawing or encoding "
+                "the clips: minutes where 1080p clips take hours. `check-stimuli DIR` prints the table");
   cmd->add_flag(
       "--collect", o->collect,
       "Merge the shard manifests and provenance records of DIR, verifying every condition is present once");
@@ -63,7 +69,7 @@ void add_run_command(Command& root) {
     ro.force = o->force;
     ro.shard = shard;
     ro.only = o->condition;
-    const RunSummary s = run_with_stimuli(spec, ro, o->strict);
+    const RunSummary s = run_with_stimuli(spec, ro, o->strict, o->check_only);
     std::printf("%d conditions: %d stage outputs made, %d up to date\nmanifest: %s\n", s.conditions,
                 s.stages_run, s.stages_skipped, s.manifest.string().c_str());
   });

@@ -131,7 +131,7 @@ StimulusEntry run_condition(const ExperimentSpec& spec, const RunOptions& opt, S
   e.quality = clip_quality(m);
   e.frames = crowd.frame_count();
   e.duration_s = crowd.duration_s();
-  if (spec.outputs.video) present_condition(spec, opt, runner, g, c, dir, presentation, e);
+  present_condition(spec, opt, runner, g, c, dir, presentation, e);
   return e;
 }
 

@@ -53,9 +53,10 @@ struct RunSummary {
   std::filesystem::path manifest;
 };
 
-/// A stage that shows one condition's crowd (render, contact sheet), described as data by the module
-/// that makes it (stimuli/presentation_stages.hpp) and run, in table order, after the crowd group's
-/// stages when the spec asks for video (outputs.video).
+/// A stage that shows one condition's crowd (render, contact sheet; or `run --check-only`'s stimulus
+/// check), described as data by the module that makes it (stimuli/presentation_stages.hpp) and run, in
+/// table order, after the crowd group's stages. Whether the spec asks for it (outputs.video) is the
+/// stage's own decision (`make`).
 struct PresentationStage {
   std::string name;
   /// The stage for condition `c` of group `group`, writing into `condition_dir` (or the group's folder);

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
 
 #include "framework/core/sha256.hpp"
 #include "framework/core/stimulus_manifest.hpp"
@@ -122,6 +123,55 @@ TEST_CASE("run --strict and check-stimuli judge every clip by the spec's render.
                (source_dir() / "tests/data/pipeline/pair_cameras.yaml").string()});
   CHECK_THAT(r.out, Catch::Contains("4 clip(s): "));
   CHECK(r.exit_code == 0);
+}
+
+TEST_CASE("run --check-only measures every clip as a rendered run does, without making the clips") {
+  const fs::path out = scratch_dir("pipeline_check_only");
+  // pair_cameras.yaml denser and larger, so that the baseline shows overlap pixels and the comparison of
+  // the overlap measures means something.
+  std::string text = slurp(source_dir() / "tests/data/pipeline/pair_cameras.yaml");
+  text = std::regex_replace(text, std::regex(R"(density: \[3\.5\])"), "density: [6.0]");
+  text = std::regex_replace(text, std::regex(R"(resolution: \[160, 96\])"), "resolution: [320, 192]");
+  const fs::path spec = out / "dense.yaml";
+  std::ofstream(spec) << text;
+  const fs::path checked = out / "checked", rendered = out / "rendered";
+  CliResult r = run_cli({"-q", "run", spec.string(), "--out", checked.string(), "--check-only"});
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  r = run_cli({"-q", "run", spec.string(), "--out", rendered.string()});
+  REQUIRE(r.exit_code == 0);
+
+  std::map<std::string, StimulusEntry> by_id;
+  for (const StimulusEntry& e : read_manifest((rendered / "manifest.csv").string()).entries) by_id[e.id] = e;
+  const std::vector<StimulusEntry> entries = read_manifest((checked / "manifest.csv").string()).entries;
+  REQUIRE(entries.size() == 4);
+  for (const StimulusEntry& e : entries) {
+    INFO(e.id);
+    const fs::path dir = checked / "conditions" / e.id;
+    CHECK(fs::exists(dir / "stimulus_check.json"));
+    CHECK_FALSE(fs::exists(dir / "clip.mp4"));
+    CHECK(e.file.empty());
+    const StimulusCheck& c = e.check;
+    const StimulusCheck& rc = by_id.at(e.id).check;
+    CHECK(c.crowd_in_frame_min == rc.crowd_in_frame_min);
+    CHECK(c.character_height_px == rc.character_height_px);
+    CHECK(c.overlap_frame_share == rc.overlap_frame_share);
+    CHECK(c.overlap_pixel_fraction == rc.overlap_pixel_fraction);
+    CHECK(c.seam_step_ratio == rc.seam_step_ratio);
+    if (e.factors.at("method") == "baseline") CHECK(c.overlap_pixel_fraction > 0.0);
+    // The camera recorded beside the check is the one the clip was drawn with.
+    const json j = read_json(dir / "stimulus_check.json");
+    CHECK(j.at("camera") == read_json(rendered / "conditions" / e.id / "clip.json").at("camera"));
+  }
+  CHECK(fs::directory_iterator(checked / "crowds" / "density-6.0_rep-1") != fs::directory_iterator());
+  for (const auto& f : fs::directory_iterator(checked / "crowds" / "density-6.0_rep-1"))
+    CHECK(f.path().string().find("contact_sheet") == std::string::npos);
+  // Up to date on a second run; check-stimuli reads it as a rendered run's.
+  r = run_cli({"-q", "run", spec.string(), "--out", checked.string(), "--check-only"});
+  CHECK_THAT(r.out, Catch::Contains("0 stage outputs made"));
+  r = run_cli({"check-stimuli", checked.string()});
+  CHECK_THAT(r.out, Catch::Contains("4 clip(s): "));
+  CHECK_THAT(r.out, Catch::Contains(", 0 not measured"));
 }
 
 }  // namespace test_clip_sidecar

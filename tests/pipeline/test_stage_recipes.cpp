@@ -40,7 +40,8 @@ std::map<std::string, std::string> recipe_bytes(const ExperimentSpec& spec) {
       {"correction", canonical_bytes(r.correction)},
       {"metrics", canonical_bytes(metrics_recipe(r.crowd, CrowdMethod::corrected, true))},
       {"render", canonical_bytes(stimuli::render_recipe(spec, ViewpointId::V4))},
-      {"contact_sheet", canonical_bytes(stimuli::ContactSheetRecipe{stimuli::stimulus_look(spec.render)})}};
+      {"contact_sheet", canonical_bytes(stimuli::ContactSheetRecipe{stimuli::stimulus_look(spec.render)})},
+      {"stimulus_check", canonical_bytes(stimuli::stimulus_check_recipe(spec, ViewpointId::V4))}};
 }
 
 struct Edit {
@@ -53,7 +54,8 @@ struct Edit {
 
 TEST_CASE("stage recipes: every spec value changes exactly the recipes of the stages that read it") {
   const ExperimentSpec base = load_experiment_spec(tiny_spec());
-  const std::set<std::string> none, crowd{"crowd"}, animation{"animation"}, look{"render", "contact_sheet"};
+  const std::set<std::string> none, crowd{"crowd"}, animation{"animation"},
+      look{"render", "contact_sheet", "stimulus_check"};
   const std::vector<Edit> edits{
       {"scenario.width_m", [](ExperimentSpec& s) { s.scenario.width_m += 1; }, crowd},
       {"scenario.depth_m", [](ExperimentSpec& s) { s.scenario.depth_m += 1; }, crowd},
@@ -107,6 +109,11 @@ TEST_CASE("stage recipes: every spec value changes exactly the recipes of the st
       {"render.characters", [](ExperimentSpec& s) { s.render.characters = {"c.glb"}; }, look},
       {"render.crf", [](ExperimentSpec& s) { s.render.crf = 23; }, {"render"}},
       {"render.frames_png", [](ExperimentSpec& s) { s.render.frames_png = true; }, {"render"}},
+      {"render.check.overlap_every_frames",
+       [](ExperimentSpec& s) { s.render.check.overlap_every_frames = 5; },
+       {"render", "stimulus_check"}},
+      {"render.check's thresholds", [](ExperimentSpec& s) { s.render.check.character_height_px_min = 1; },
+       none},
       {"protocol.instructions", [](ExperimentSpec& s) { s.protocol.instructions = "Watch."; }, none},
       {"protocol.questions", [](ExperimentSpec& s) { s.protocol.questions.at(0).text = "Other"; }, none},
       {"protocol.type", [](ExperimentSpec& s) { s.protocol.type = ProtocolType::rating; }, none},

@@ -9,11 +9,14 @@
 
 namespace crowdlab::cli {
 
-RunSummary run_with_stimuli(const ExperimentSpec& spec, const RunOptions& options, bool strict) {
+RunSummary run_with_stimuli(const ExperimentSpec& spec, const RunOptions& options, bool strict,
+                            bool check_only) {
   RunOptions with_versions = options;
   with_versions.libraries = library_versions();
   std::vector<std::string> failed;
-  const RunSummary summary = run_experiment(spec, with_versions, stimuli::presentation_stages(spec, &failed));
+  const RunSummary summary = run_experiment(
+      spec, with_versions,
+      check_only ? stimuli::check_only_stages(spec, &failed) : stimuli::presentation_stages(spec, &failed));
   if (strict && !failed.empty()) {
     std::string list;
     for (const std::string& f : failed) list += "\n  " + f;
