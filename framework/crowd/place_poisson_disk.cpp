@@ -146,11 +146,15 @@ Placement place_poisson_disk(const Polygon2& area, int count, std::uint64_t seed
     }
   }
 
-  // 2. Relaxation by soft-disc repulsion; keep the best configuration.
+  // 2. Relaxation by soft-disc repulsion; keep the best configuration. With a personal space only where
+  // the dart throwing had to shrink below it (it jams near r ~ 0.78 d_hex), and then only pairs closer
+  // than the personal space push apart: the closest pairs reach it as far as the density allows, and
+  // the others keep their irregular spacing.
   std::vector<Vec2> best = pts, next(n);
   double best_spacing = min_pairwise_distance(pts);
-  const double target = 1.1 * d_hex;
-  for (int it = 0; it < (plain_poisson ? 0 : opt.relaxation_iterations) && n > 1; ++it) {
+  const bool relax = !plain_poisson || r < opt.personal_space_m;
+  const double target = plain_poisson ? opt.personal_space_m : 1.1 * d_hex;
+  for (int it = 0; it < (relax ? opt.relaxation_iterations : 0) && n > 1; ++it) {
     for (std::size_t i = 0; i < n; ++i) xs[i] = pts[i].x(), ys[i] = pts[i].y();
     NeighborGrid g(target);
     g.rebuild(xs.data(), ys.data(), n);

@@ -27,8 +27,10 @@ namespace crowdlab {
 /// The crowd stage: where the characters are and how they move (trajectories.csv).
 struct CrowdRecipe {
   static constexpr std::string_view kStage = "crowd";
-  /// 2: stationary sway and look-around loop over the clip, personal-space placement (issue 28).
-  static constexpr std::string_view kCodeVersion = "2";
+  /// 2: stationary sway and look-around loop over the clip, personal-space placement (issue 28). 3: a
+  /// personal space the dart throwing cannot hold is relaxed back to it (place_poisson_disk.hpp; issue 28,
+  /// session 24).
+  static constexpr std::string_view kCodeVersion = "3";
   ScenarioSpec scenario;  ///< only the fields the condition's scenario kind reads (others at defaults)
   CrowdSpec crowd;        ///< likewise: the navigation model's fields only for kinds that simulate
   double duration_s = 10.0;

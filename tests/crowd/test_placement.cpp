@@ -1,6 +1,7 @@
 // Placement: exact counts, spacing close to the packing optimum, containment, determinism, errors.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 
 #include "framework/core/error.hpp"
 #include "framework/crowd/place_poisson_disk.hpp"
@@ -102,6 +103,39 @@ TEST_CASE("placement: a personal space gives plain Poisson-disk spacing, neighbo
   // Denser than the personal space allows (60 on 9 m^2: d_hex 0.42 m): placed as without it.
   const Placement dense = place_poisson_disk(area, 60, 9, personal);
   CHECK(dense.min_spacing_m == Approx(place_poisson_disk(area, 60, 9).min_spacing_m));
+}
+
+TEST_CASE(
+    "placement: a personal space the dart throwing cannot hold is relaxed back to it, so nobody "
+    "stands closer at a lower density",
+    "[crowd][placement]") {
+  // Seed 000's D3 and D4 on 9 m^2 (40 and 50 people, d_hex 0.51 and 0.46 m) at a 0.45 m personal space:
+  // dart throwing jams near 0.78 d_hex and had shrunk to 0.31-0.36 m, closer than D5's even placement
+  // (60 people, 0.42 m), so the D4 baseline showed more overlap than the D5 one (issue 28, session 24).
+  const Polygon2 area = rectangle_polygon(3.0, 3.0);
+  PlacementOptions personal;
+  personal.personal_space_m = 0.45;
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    double previous = std::numeric_limits<double>::infinity();
+    for (int count : {20, 30, 40, 50, 60}) {
+      const Placement p = place_poisson_disk(area, count, seed, personal);
+      INFO("seed " << seed << ", " << count << " people: min spacing " << p.min_spacing_m);
+      CHECK(p.min_spacing_m <= previous + 1e-3);
+      if (count <= 50) CHECK(p.min_spacing_m >= 0.44);
+      previous = p.min_spacing_m;
+    }
+  }
+  // Pairs farther apart than the personal space are left where the dart throwing put them: at 30
+  // people the spacing stays irregular (many nearest neighbours beyond 0.5 m).
+  const Placement d2 = place_poisson_disk(area, 30, 1, personal);
+  int far = 0;
+  for (size_t i = 0; i < d2.positions.size(); ++i) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (size_t j = 0; j < d2.positions.size(); ++j)
+      if (j != i) nearest = std::min(nearest, (d2.positions[i] - d2.positions[j]).norm());
+    far += nearest > 0.5 ? 1 : 0;
+  }
+  CHECK(far >= 5);
 }
 
 }  // namespace test_placement
