@@ -84,6 +84,15 @@ StimulusCheck measure_check(Renderer& renderer, const CrowdAnimation& crowd, con
   return check;
 }
 
+/// A clip's sidecar (its camera and characters, clip_sidecar.hpp) with its stimulus check, written to
+/// `path`: the render stage's clip.json and the check-only stimulus_check.json.
+void write_checked_sidecar(const fs::path& path, const Viewpoint& view, const CrowdAnimation& crowd,
+                           const StimulusCheck& check) {
+  nlohmann::json j = clip_sidecar(view, crowd.frame_count(), crowd);
+  j["stimulus_check"] = stimulus_check_json(check);
+  write_text_file(path, j.dump(2) + "\n");
+}
+
 Stage render_stage(const std::shared_ptr<PresentationContext>& ctx, const RenderRecipe& recipe, CrowdGroup& g,
                    CrowdMethod method, const fs::path& condition_dir) {
   const CrowdAnimation& crowd = g.animation(method);
@@ -110,10 +119,8 @@ Stage render_stage(const std::shared_ptr<PresentationContext>& ctx, const Render
   const int every = recipe.check_overlap_every_frames;
   s.outputs.push_back(
       {clip_sidecar_path(clip), [ctx, &crowd, view, ro, clip_overlap, every](const fs::path& tmp) {
-         nlohmann::json j = clip_sidecar(**view, crowd.frame_count(), crowd);
-         j["stimulus_check"] =
-             stimulus_check_json(measure_check(ctx->renderer(), crowd, ro, **view, *clip_overlap, every));
-         write_text_file(tmp, j.dump(2) + "\n");
+         write_checked_sidecar(tmp, **view, crowd,
+                               measure_check(ctx->renderer(), crowd, ro, **view, *clip_overlap, every));
        }});
   return s;
 }
@@ -133,10 +140,8 @@ Stage check_stage(const std::shared_ptr<PresentationContext>& ctx, const Stimulu
       {condition_dir / "stimulus_check.json", [ctx, &g, &crowd, ro, recipe, every](const fs::path& tmp) {
          const StimulusLook& l = recipe.look;
          const Viewpoint view(recipe.viewpoint, ctx->extent(g), l.width, l.height, l.viewpoint_overrides);
-         nlohmann::json j = clip_sidecar(view, crowd.frame_count(), crowd);
-         j["stimulus_check"] =
-             stimulus_check_json(measure_check(ctx->renderer(), crowd, ro, view, std::nullopt, every));
-         write_text_file(tmp, j.dump(2) + "\n");
+         write_checked_sidecar(tmp, view, crowd,
+                               measure_check(ctx->renderer(), crowd, ro, view, std::nullopt, every));
        }});
   return s;
 }
