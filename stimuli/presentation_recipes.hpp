@@ -57,8 +57,8 @@ struct ContactSheetRecipe {
 
 struct StimulusCheckRecipe {
   static constexpr std::string_view kStage = "stimulus_check";
-  /// The render stage's check/2 and framing (shared-extent/2); look/4 decides the overlap pixels.
-  static constexpr std::string_view kCodeVersion = "shared-extent/2+check/2+look/4";
+  /// The render stage's: its framing, check and look make these numbers too, so one bump redoes both.
+  static constexpr std::string_view kCodeVersion = RenderRecipe::kCodeVersion;
   StimulusLook look;
   ViewpointId viewpoint = ViewpointId::V1;
   int check_overlap_every_frames = 10;  ///< as RenderRecipe's
