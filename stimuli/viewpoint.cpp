@@ -179,6 +179,16 @@ Viewpoint::Viewpoint(ViewpointId id, const CrowdExtent& extent, int width, int h
     // A travelling crowd: frame its box relative to the follow path, then ride along that path.
     fixed_ = fit_box(extent.follow_lo_m, extent.follow_hi_m, view_axes(extent.front, preset), preset.fov_deg,
                      width, height);
+    if (id == ViewpointId::V4) {
+      // From overhead, turned a quarter about the vertical when that frames the crowd closer: seen from
+      // its front, a corridor's crowd (long along its walk) ran along the image's short side and left
+      // two thirds of a 16:9 frame to the floor (issue 28, session 24: walkers 56-70 px at 1080p).
+      Preset turned = preset;
+      turned.azimuth_deg += 90.0;
+      const Camera side = fit_box(extent.follow_lo_m, extent.follow_hi_m, view_axes(extent.front, turned),
+                                  preset.fov_deg, width, height);
+      if ((side.eye - side.target).norm() < (fixed_.eye - fixed_.target).norm()) fixed_ = side;
+    }
     follow_path_ = extent.follow_path_m;
   } else {
     fixed_ =

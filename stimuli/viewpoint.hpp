@@ -25,7 +25,9 @@
 // crowd), the same rule frames the bodies' box RELATIVE to the crowd's smoothed centroid, and the
 // camera rides along that path at a fixed offset: the crowd stays in frame at any clip length, the
 // camera never enters the crowd (the fit keeps every box corner in front of it), and the ground and
-// walls slide past as they would for a camera dolly.
+// walls slide past as they would for a camera dolly. V4 then also turns a quarter about the vertical
+// (still 80 deg down, seen from the crowd's side) when that frames the box closer: a corridor's crowd,
+// long along its walk, then runs along the image's long side (issue 28, session 24).
 //
 // One camera per condition: build the Viewpoint from a CrowdExtent computed from the data that the
 // methods of a condition share (see crowd_extent.hpp), so `baseline` and `ours` get the same camera.

@@ -75,6 +75,26 @@ TEST_CASE("stimulus check: a walking crowd keeps in frame and in size, and its s
       CHECK_FALSE(inside);
     }
   }
+  // From overhead, walkers in a corridor (3 abreast, 8 deep: longer along the walk than across it)
+  // cross the image along its long side, the camera's right axis along the walk; seen from their front
+  // they were half as tall on screen.
+  SyntheticCrowdOptions o;
+  o.characters = 24;
+  o.columns = 3;
+  o.frames = 120;
+  o.stage = false;
+  o.walk_speed_mps = 1.3;
+  o.corridor_walls = true;
+  const CrowdAnimation corridor = make_synthetic_crowd(o);
+  const CrowdExtent along = crowd_extent(character_tracks(corridor), corridor.meta.fps);
+  const Vec3 size = along.follow_hi_m - along.follow_lo_m, walk = along.front;
+  REQUIRE(std::abs(size.dot(walk)) > 1.5 * std::abs(size.dot(Vec3::UnitY().cross(walk).normalized())));
+  const Viewpoint v4(ViewpointId::V4, along, 640, 360);
+  const Vec3 right = (v4.at(0).target - v4.at(0).eye).cross(Vec3::UnitY()).normalized();
+  CHECK(std::abs(right.dot(walk)) > 0.98);
+  const StimulusCheck overhead = measure_stimulus_geometry(corridor, v4, corridor.frame_count());
+  CHECK(overhead.crowd_in_frame_min == 1.0);
+  CHECK(overhead.character_height_px > 20.0);
   // A crowd that stays put keeps a fixed camera.
   const CrowdAnimation still = synthetic(4, 30);
   CHECK(crowd_extent(character_tracks(still), 30.0).follow_path_m.empty());
