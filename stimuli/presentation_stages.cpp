@@ -70,8 +70,8 @@ nlohmann::json read_sidecar_json(const fs::path& path) {
 
 /// The stimulus check of a clip (issue 28): geometry from the crowd and camera path, overlap from the
 /// clip's own overlap pixels when it was rendered in overlap mode, else from every Nth frame drawn again
-/// in overlap mode.
-StimulusCheck measure_check(Renderer& renderer, const CrowdAnimation& crowd, const RenderOptions& ro,
+/// in overlap mode (N = 0: geometry only, and no renderer is made for it).
+StimulusCheck measure_check(PresentationContext& ctx, const CrowdAnimation& crowd, const RenderOptions& ro,
                             const Viewpoint& view, const std::optional<std::vector<double>>& clip_overlap,
                             int overlap_every_frames) {
   const int frames = crowd.frame_count();
@@ -80,7 +80,7 @@ StimulusCheck measure_check(Renderer& renderer, const CrowdAnimation& crowd, con
   if (clip_overlap)
     add_overlap_measures(check, *clip_overlap);
   else if (every > 0)
-    add_overlap_measures(check, sample_overlap_fractions(renderer, crowd, ro, view, frames, every));
+    add_overlap_measures(check, sample_overlap_fractions(ctx.renderer(), crowd, ro, view, frames, every));
   return check;
 }
 
@@ -120,7 +120,7 @@ Stage render_stage(const std::shared_ptr<PresentationContext>& ctx, const Render
   s.outputs.push_back(
       {clip_sidecar_path(clip), [ctx, &crowd, view, ro, clip_overlap, every](const fs::path& tmp) {
          write_checked_sidecar(tmp, **view, crowd,
-                               measure_check(ctx->renderer(), crowd, ro, **view, *clip_overlap, every));
+                               measure_check(*ctx, crowd, ro, **view, *clip_overlap, every));
        }});
   return s;
 }
@@ -140,8 +140,7 @@ Stage check_stage(const std::shared_ptr<PresentationContext>& ctx, const Stimulu
       {condition_dir / "stimulus_check.json", [ctx, &g, &crowd, ro, recipe, every](const fs::path& tmp) {
          const StimulusLook& l = recipe.look;
          const Viewpoint view(recipe.viewpoint, ctx->extent(g), l.width, l.height, l.viewpoint_overrides);
-         write_checked_sidecar(tmp, view, crowd,
-                               measure_check(ctx->renderer(), crowd, ro, view, std::nullopt, every));
+         write_checked_sidecar(tmp, view, crowd, measure_check(*ctx, crowd, ro, view, std::nullopt, every));
        }});
   return s;
 }

@@ -182,7 +182,8 @@ Viewpoint::Viewpoint(ViewpointId id, const CrowdExtent& extent, int width, int h
     if (id == ViewpointId::V4) {
       // From overhead, turned a quarter about the vertical when that frames the crowd closer: seen from
       // its front, a corridor's crowd (long along its walk) ran along the image's short side and left
-      // two thirds of a 16:9 frame to the floor (issue 28, session 24: walkers 56-70 px at 1080p).
+      // two thirds of a 16:9 frame to the floor (issue 28, session 24: walkers 56-70 px at 1080p). A crowd
+      // that stays put keeps seed 000's orientation (the concert's stage at the top of the image).
       Preset turned = preset;
       turned.azimuth_deg += 90.0;
       const Camera side = fit_box(extent.follow_lo_m, extent.follow_hi_m, view_axes(extent.front, turned),

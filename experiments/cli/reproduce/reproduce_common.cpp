@@ -13,13 +13,15 @@ namespace crowdlab::cli {
 namespace fs = std::filesystem;
 
 SpecRun run_spec_variant(const std::string& yaml_text, const fs::path& dir, const std::string& name,
-                         bool force, const std::function<void(YAML::Node& root)>& edit, bool mesh_measures) {
+                         bool force, const std::function<void(YAML::Node& root)>& edit, bool mesh_measures,
+                         bool stimulus_check) {
   SpecRun r;
   r.spec_path = dir / "specs" / (name + ".yaml");
   r.spec = write_spec_variant(yaml_text, r.spec_path, [&](YAML::Node& root) {
     root["outputs"]["video"] = false;
     root["outputs"]["contact_sheet"] = false;
     root["outputs"]["metrics"] = true;
+    if (stimulus_check) root["render"]["check"]["overlap_every_frames"] = 0;
     edit(root);
   });
   r.run_dir = dir / name;
@@ -27,7 +29,7 @@ SpecRun run_spec_variant(const std::string& yaml_text, const fs::path& dir, cons
   ro.out_dir = r.run_dir;
   ro.force = force;
   ro.mesh_measures = mesh_measures;
-  const RunSummary summary = run_with_stimuli(r.spec, ro);
+  const RunSummary summary = run_with_stimuli(r.spec, ro, false, stimulus_check);
   r.manifest = read_manifest(summary.manifest.string());
   return r;
 }

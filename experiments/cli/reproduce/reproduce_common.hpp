@@ -40,9 +40,12 @@ struct SpecRun {
 /// Writes the variant of `yaml_text` (outputs.video and contact_sheet off, then `edit`) and runs every
 /// stage but rendering for every condition (incremental: a second call reuses what is up to date).
 /// `mesh_measures` false leaves the metrics' mesh-level measures out (RunOptions::mesh_measures).
+/// `stimulus_check`: also `run --check-only`'s stage, its geometry only (render.check.overlap_every_frames
+/// 0: the overlap columns need drawn frames), into the manifest entries' `check`.
 SpecRun run_spec_variant(const std::string& yaml_text, const std::filesystem::path& dir,
                          const std::string& name, bool force,
-                         const std::function<void(YAML::Node& root)>& edit, bool mesh_measures = true);
+                         const std::function<void(YAML::Node& root)>& edit, bool mesh_measures = true,
+                         bool stimulus_check = false);
 
 /// The metrics JSON (metrics_json.hpp) of one manifest entry of a SpecRun.
 nlohmann::json entry_metrics(const SpecRun& run, const StimulusEntry& entry);

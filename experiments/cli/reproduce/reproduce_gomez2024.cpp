@@ -219,9 +219,9 @@ void reproduce_gomez2024(const ReproduceOptions& o) {
   // metrics stage on these MPFB2 crowds: shorter runs leave them out (issue 31: the --quick test's time).
   const bool full_length = size.duration_s >= 20.0;
   const SpecRun stationary =
-      run_spec_variant(kSpecGomez2024Stationary, dir, "stationary", o.force, resize, full_length);
+      run_spec_variant(kSpecGomez2024Stationary, dir, "stationary", o.force, resize, full_length, true);
   const SpecRun corridor =
-      run_spec_variant(kSpecGomez2024Nonstationary, dir, "corridor", o.force, resize, full_length);
+      run_spec_variant(kSpecGomez2024Nonstationary, dir, "corridor", o.force, resize, full_length, true);
   std::vector<OverlapRow> rows;
   add_overlap_rows(stationary, "stationary", rows);
   add_overlap_rows(corridor, "corridor", rows);

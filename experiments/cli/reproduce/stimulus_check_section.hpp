@@ -1,10 +1,10 @@
 #pragma once
 // `reproduce gomez2024`'s stimulus-check table (issue 28): the stimulus check of every condition of a
-// spec run beside the reproduction's other tables. The reproduction runs without video, so only the
-// geometric measures are taken here (crowd in frame, character height, loop seam; stimuli/
-// stimulus_check.hpp), from each condition's crowd file and a camera framed from its baseline's root
-// motion (shared by both methods, as in `run`); the overlap columns need the rendered clips
-// (`crowdlab run` + `crowdlab check-stimuli`).
+// spec run beside the reproduction's other tables. The reproduction runs without video, with `run
+// --check-only`'s stage for its geometric measures (crowd in frame, character height, loop seam;
+// stimuli/stimulus_check.hpp: the cameras `run` frames its clips with; run_spec_variant's
+// stimulus_check); the overlap columns need drawn frames (`crowdlab run` + `crowdlab check-stimuli`, or
+// `run --check-only`).
 #include <string>
 
 #include "experiments/cli/reproduce/reproduce_common.hpp"
