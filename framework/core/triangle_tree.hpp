@@ -13,6 +13,10 @@
 // Negative inside. Units: those of the vertices (metres here). Where the closest point lies on the rim
 // of an open sheet (a hair strand's tip, a sleeve's hem: only vertices on a boundary edge carry it),
 // the normal says nothing about the far side, and the point counts as outside (`on_rim` flags).
+//
+// Ray query (ray_hits): whether a ray meets any triangle (Moller & Trumbore 1997, both faces), the
+// boxes tested by the slab method (Kay & Kajiya 1986). Used to confirm an inside sign: from a point
+// inside a closed surface, every ray meets the surface (surfaces_inside.hpp says where the sign fails).
 #include <vector>
 
 #include "framework/core/aabb.hpp"
@@ -45,8 +49,11 @@ class TriangleTree {
   /// the vertices); +infinity for an empty mesh.
   /// With `on_rim` (per vertex, from boundary_vertices(); may be empty), a closest point whose nonzero
   /// barycentric weights all fall on rim vertices gives +distance.
+  /// `hit` (optional) receives the closest point it was measured from.
   double signed_distance(const Vec3& p, const std::vector<Vec3>& normals,
-                         const std::vector<bool>& on_rim = {}) const;
+                         const std::vector<bool>& on_rim = {}, TriangleHit* hit = nullptr) const;
+  /// Whether the ray origin + t dir (dir unit) meets a triangle at some t in (min_t, max_t).
+  bool ray_hits(const Vec3& origin, const Vec3& dir, double min_t, double max_t) const;
   /// Bounds of every vertex a triangle uses.
   const Aabb& bounds() const { return nodes_.front().box; }
 

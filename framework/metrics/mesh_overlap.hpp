@@ -14,7 +14,9 @@
 // A vertex more than max_depth_m (0.2 m) behind b's surface counts as outside: no point is that deep in
 // a human body (a torso's inscribed radius is about 0.15 m), so the sign test failed there (on 3 s clips
 // about 0.01-0.02 % of the vertices, at 0.25-0.45 m, in crowds whose real overlap was ~0; the rim rule
-// above removed most of the rest).
+// above removed most of the rest). Within that bound, an inside sign counts only when the ray from the
+// vertex away from its closest point meets b again (surfaces_inside.hpp: the sign fails on the folds of
+// thin shells, such as a shoe's collar; session 25).
 // Only vertices inside b's bounding box are tested (nothing outside it can be inside b).
 // Sampled frames are measured in parallel (TBB) and reduced in frame order: thread-count independent.
 #include <vector>

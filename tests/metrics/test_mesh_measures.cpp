@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "framework/body/cover_capsules.hpp"
@@ -18,6 +19,7 @@
 #include "framework/metrics/correction_quality.hpp"
 #include "framework/metrics/mesh_overlap.hpp"
 #include "framework/metrics/proxy_coverage.hpp"
+#include "framework/metrics/surfaces_inside.hpp"
 
 // This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
 namespace test_mesh_measures {
@@ -127,6 +129,79 @@ TEST_CASE("the inside test ignores the far side of an open sheet's rim") {
   CHECK(tree.signed_distance(beside, normals) < 0.0);  // what the normal alone would say
   CHECK(tree.signed_distance(beside, normals, rim) == Approx(0.5));
   CHECK(tree.signed_distance({0.0, 0.3, 0.1}, normals, rim) == Approx(-0.2));  // under the sheet
+}
+
+TEST_CASE("the triangle tree's ray query meets a box from inside and misses it from outside looking away") {
+  std::vector<Vec3> v;
+  std::vector<Eigen::Vector3i> t;
+  add_box(Vec3::Zero(), Vec3::Constant(0.5), 4, v, t);
+  const TriangleTree tree(v, t);
+  const double far = std::numeric_limits<double>::infinity();
+  for (const Vec3& dir : {Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(0.6, 0.0, 0.8), Vec3(-0.48, 0.6, 0.64)})
+    CHECK(tree.ray_hits({0.1, 0.2, -0.1}, dir, 0.0, far));            // every ray from inside meets the box
+  CHECK(tree.ray_hits({0.0, 0.0, 0.0}, {1, 0, 0}, 0.0, far));         // through a grid vertex of the face
+  CHECK(tree.ray_hits({2.0, 0.1, 0.1}, {-1, 0, 0}, 0.0, far));        // from outside, toward the box
+  CHECK_FALSE(tree.ray_hits({2.0, 0.1, 0.1}, {1, 0, 0}, 0.0, far));   // looking away
+  CHECK_FALSE(tree.ray_hits({2.0, 0.1, 0.1}, {-1, 0, 0}, 0.0, 1.4));  // the box is 1.5 away
+  CHECK_FALSE(tree.ray_hits({2.0, 0.1, 0.1}, {0, 1, 0}, 0.0, far));   // passing beside it
+}
+
+TEST_CASE("the inside test needs the surface beyond the point: a face turned inward gives no false inside") {
+  // Box b's +x face is wound the wrong way round (as on a fold of a shoe's collar, its outer face turning
+  // into its lining): its normal points into the box, so the closest-point sign alone puts points just
+  // outside that face inside b (session 25, the D5 concert: feet 15 cm "deep" beside a neighbour's shoe).
+  const BodyShape shape = make_procedural_body({Sex::kMale, 1.75, 1.0});
+  const Vec3 pelvis(0.0, shape.pelvis_height_m(), 0.0);
+  std::vector<Vec3> v;
+  std::vector<Eigen::Vector3i> t;
+  add_box(pelvis, Vec3::Constant(0.5), 4, v, t);
+  std::vector<Eigen::Vector3i> flipped = t;
+  int turned = 0;
+  for (Eigen::Vector3i& tri : flipped)
+    if (v[static_cast<size_t>(tri[0])].x() == pelvis.x() + 0.5 &&
+        v[static_cast<size_t>(tri[1])].x() == pelvis.x() + 0.5 &&
+        v[static_cast<size_t>(tri[2])].x() == pelvis.x() + 0.5) {
+      std::swap(tri[1], tri[2]);
+      ++turned;
+    }
+  REQUIRE(turned == 32);
+  // And a small closed box off b's corner (a hand), so that b's bounding box reaches past the turned face
+  // and takes in the point tested below: only points within b's box are tested.
+  add_box(pelvis + Vec3(0.95, 0.4, 0.4), Vec3::Constant(0.05), 1, v, flipped);
+  add_box(pelvis + Vec3(0.95, 0.4, 0.4), Vec3::Constant(0.05), 1, v, t);
+  v.resize(v.size() - 24);  // the second copy's vertices: t indexes the first copy's (same positions)
+  for (size_t i = t.size() - 12; i < t.size(); ++i) t[i] -= Eigen::Vector3i::Constant(24);
+  CrowdAnimation crowd;
+  crowd.meta.fps = 30.0;
+  crowd.characters.push_back(still(shape, pelvis, pelvis_mesh(v, flipped, pelvis)));
+  {  // a neighbour whose box meets b's, so that b is tested at all (FrameSurfaces)
+    std::vector<Vec3> nv;
+    std::vector<Eigen::Vector3i> nt;
+    add_box(pelvis, Vec3::Constant(0.1), 1, nv, nt);
+    crowd.characters.push_back(still(shape, pelvis + Vec3(0.0, 0.0, 0.55), pelvis_mesh(nv, nt, pelvis)));
+  }
+  const FrameSurfaces surfaces(crowd, 0);
+  const Vec3 outside = pelvis + Vec3(0.6, 0.05, 0.1);  // 10 cm off the turned face
+  {                                                    // what the sign alone says
+    const std::vector<Vec3> normals = vertex_normals(surfaces.meshes()[0].vertices, flipped);
+    const TriangleTree tree(surfaces.meshes()[0].vertices, flipped);
+    REQUIRE(tree.signed_distance(outside, normals) == Approx(-0.1));
+    REQUIRE(surfaces.meshes()[0].bounds.contains(outside));
+  }
+  int by = 7;
+  CHECK(surfaces.inside_depth(outside, -1, 0.2, &by) == 0.0);
+  CHECK(by == -1);
+  // Points inside near the other faces are still inside, at their depth.
+  CHECK(surfaces.inside_depth(pelvis + Vec3(-0.35, 0.05, 0.1), -1, 0.2, &by) == Approx(0.15));
+  CHECK(by == 0);
+  CHECK(surfaces.inside_depth(pelvis + Vec3(0.1, -0.42, 0.0), -1, 0.2) == Approx(0.08));
+  // And with the face wound right, the same outside point is outside by the sign too.
+  const CrowdAnimation right = [&] {
+    CrowdAnimation c = crowd;
+    c.characters[0].mesh = pelvis_mesh(v, t, pelvis);
+    return c;
+  }();
+  CHECK(FrameSurfaces(right, 0).inside_depth(outside, -1, 0.2) == 0.0);
 }
 
 TEST_CASE("mesh overlap: the vertices of two overlapping boxes inside each other, with their depths") {
