@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "experiments/cli/command_table.hpp"
@@ -20,7 +21,7 @@ namespace {
 struct CorrectOptions {
   std::string in_path, out_path;
   CorrectorParams params;
-  ProxyFit proxies = ProxyFit::volume;
+  std::optional<ProxyFit> proxies;  ///< empty: the capsules the crowd file carries
 };
 
 }  // namespace
@@ -47,7 +48,7 @@ void add_correct_command(Command& root) {
   add_proxy_fit_options(cmd, opt->proxies, "the output carries them");
   cmd->callback([opt] {
     CrowdAnimation in = read_crowd_glb(opt->in_path);
-    fit_crowd_proxies(in, opt->proxies);
+    fit_crowd_proxies(in, opt->proxies.value_or(ProxyFit::volume));
     check_environment_sampling(in.environment, opt->params.environment_sample_spacing_m,
                                opt->params.max_environment_points, opt->in_path);
     Progress progress("correcting " + opt->in_path, correction_steps(in, opt->params));

@@ -13,8 +13,10 @@
 // mesh_overlap_depth_p99_m,proxy_coverage,proxy_outside_p99_m; the foot measures are defined in
 // framework/metrics/foot_contact_quality.hpp, the next five (issue 27) in free_limb_deviation.hpp,
 // joint_flips.hpp and environment_penetration.hpp, the last five (issue 27, rendered meshes; empty for
-// bodies without one) in mesh_overlap.hpp and proxy_coverage.hpp). With --cover-mesh or --fit-proxies
-// both methods are measured with capsules fitted to the rendered meshes (proxy_fit_options.hpp); with
+// bodies without one) in mesh_overlap.hpp and proxy_coverage.hpp). Both methods are measured with the
+// capsules `run` gives the spec's scenario (animation.collision_proxies: fitted to the rendered meshes for
+// the concert, volume-fitted for the corridor), or with --cover-mesh / --fit-proxies with capsules fitted
+// to the rendered meshes in both (proxy_fit_options.hpp); with
 // --save-crowds each density's crowds go to DIR/crowds/SCENARIO_density-D/{baseline,ours}.glb.
 #include <spdlog/spdlog.h>
 
@@ -22,6 +24,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "experiments/cli/command_table.hpp"
@@ -55,8 +58,10 @@ struct Options {
   double fps = 30.0;
   CorrectorParams params;  ///< solver parameters (the spec's damping overrides params.damping)
   bool inertial_prediction = false;
-  ProxyFit proxies = ProxyFit::volume;  ///< the collision proxies both methods are measured with
-  bool save_crowds = false;             ///< write each density's baseline.glb and ours.glb under out/crowds
+  /// The collision proxies both methods are measured with; empty: the spec's animation.collision_proxies
+  /// for its scenario, as `run` fits them (pipeline/body_model.hpp).
+  std::optional<ProxyFit> proxies;
+  bool save_crowds = false;  ///< write each density's baseline.glb and ours.glb under out/crowds
 };
 
 struct QualityRow {
@@ -98,7 +103,9 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
     ctx.condition_id = "density-" + density;
     apply_body_model(spec.animation, s.trajectories.agents.size(), ctx);
     CrowdAnimation baseline = animate_crowd(s.trajectories, s.environment, spec.animation, ctx);
-    fit_crowd_proxies(baseline, o.proxies);  // before both are measured: one set of proxies for both
+    // Before both are measured: one set of proxies for both.
+    fit_crowd_proxies(baseline,
+                      o.proxies.value_or(proxy_fit(resolve_collision_proxies(spec.animation, s.scenario))));
     CorrectorParams params = o.params;
     params.exact_prediction = !o.inertial_prediction;
     params.damping = spec.correction.damping;

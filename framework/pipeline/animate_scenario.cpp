@@ -18,6 +18,9 @@ CrowdAnimation animate_scenario(const AnimationRecipe& recipe, const ScenarioRes
   CrowdAnimation crowd = animate_crowd(scenario.trajectories, scenario.environment, recipe.animation, ctx);
   // Surface crowds walk on the developed plane; stand each frame on the surface.
   if (!surface.empty()) orient_to_surface(crowd, scenario.trajectories, surface);
+  // The capsules the correction separates and the metrics measure (resolved by crowd_group_recipes), fitted
+  // once the motion is made: the poses never read them, so only the shapes differ.
+  fit_crowd_proxies(crowd, proxy_fit(recipe.animation.collision_proxies));
   crowd.meta.seed = recipe.seed;
   crowd.meta.condition_id = recipe.key;
   crowd.meta.scenario = kind_name(scenario.scenario);

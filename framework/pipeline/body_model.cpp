@@ -75,4 +75,15 @@ void apply_body_model(const AnimationSpec& spec, std::size_t agents, AnimationCo
                  unreached, agents);
 }
 
+CollisionProxies resolve_collision_proxies(const AnimationSpec& spec, ScenarioKind scenario) {
+  if (spec.collision_proxies != CollisionProxies::automatic) return spec.collision_proxies;
+  return scenario == ScenarioKind::stationary && spec.body_model == BodyModel::mpfb2
+             ? CollisionProxies::fitted
+             : CollisionProxies::volume;
+}
+
+ProxyFit proxy_fit(CollisionProxies resolved) {
+  return resolved == CollisionProxies::fitted ? ProxyFit::per_surface : ProxyFit::volume;
+}
+
 }  // namespace crowdlab

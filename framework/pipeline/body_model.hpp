@@ -9,6 +9,7 @@
 #include <cstddef>
 
 #include "framework/animation/animate_crowd.hpp"
+#include "framework/body/fit_crowd_proxies.hpp"
 
 namespace crowdlab {
 
@@ -20,5 +21,13 @@ void apply_body_model(const AnimationSpec& spec, std::size_t agents, AnimationCo
 /// bodies), so that `validate` refuses a broken folder as `run` would (issue 33). Throws InputError
 /// naming the asset file.
 void load_body_model_assets(const AnimationSpec& spec);
+
+/// The collision proxies spec.collision_proxies asks for in a crowd of `scenario`: `auto` is `fitted` for
+/// a stationary crowd of MPFB2 bodies and `volume` otherwise (experiment_spec.hpp says why).
+CollisionProxies resolve_collision_proxies(const AnimationSpec& spec, ScenarioKind scenario);
+
+/// The body fit of resolved proxies: per_surface for `fitted`, volume for `volume` (and `auto`, which
+/// resolve_collision_proxies never returns).
+ProxyFit proxy_fit(CollisionProxies resolved);
 
 }  // namespace crowdlab

@@ -1,5 +1,6 @@
 #include "framework/pipeline/crowd_recipes.hpp"
 
+#include "framework/pipeline/body_model.hpp"
 #include "framework/pipeline/crowd_key.hpp"
 
 namespace crowdlab {
@@ -96,6 +97,7 @@ CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Conditio
   r.animation.animation = spec.animation;
   if (spec.animation.body_model != BodyModel::mpfb2) r.animation.animation.body_model_path.clear();
   r.animation.scenario = p.scenario;
+  r.animation.animation.collision_proxies = resolve_collision_proxies(spec.animation, p.scenario);
   r.animation.shoulder_count = p.shoulder_count;
   r.animation.trigger_probability = p.trigger_probability;
   r.animation.seed = group.seed;

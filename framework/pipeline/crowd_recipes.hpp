@@ -45,8 +45,10 @@ struct CrowdRecipe {
 struct AnimationRecipe {
   static constexpr std::string_view kStage = "animation";
   /// 2: dressed bodies, the new stage (issue 28); 3: fingers side by side, skin under hems tucked (issue 28,
-  /// session 12); 4: dressed crowds' clothing indices start at a seeded offset (other colours per crowd).
-  static constexpr std::string_view kCodeVersion = "4";
+  /// session 12); 4: dressed crowds' clothing indices start at a seeded offset (other colours per crowd);
+  /// 5: the collision capsules as animation.collision_proxies says, resolved (fitted for a stationary crowd
+  /// of MPFB2 bodies; issue 27, session 25).
+  static constexpr std::string_view kCodeVersion = "5";
   AnimationSpec animation;  ///< body_model_path only with MPFB2 bodies (empty for procedural ones)
   ScenarioKind scenario = ScenarioKind::stationary;  ///< stationary: dancing; otherwise walking
   std::optional<int> shoulder_count;                 ///< `shoulder` factor

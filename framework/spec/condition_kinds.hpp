@@ -14,6 +14,8 @@
 //   ProtocolType  likert (seed 000 §4.4.1) | 2afc | rating (seed 001 §3.2, §4.2.3)  (protocol.type)
 //   BlockOrder    random | fixed | latin_square  (protocol.block_order; study_ui/build_trial_list.hpp)
 //   InterTrialScreen  blank | fixation  (protocol.inter_trial.screen)
+//   CollisionProxies  auto | volume | fitted  (animation.collision_proxies: the capsules the correction
+//                 separates and the capsule metrics measure; framework/body/fit_crowd_proxies.hpp)
 #include <array>
 #include <cstddef>
 #include <optional>
@@ -33,6 +35,7 @@ enum class CrowdModel { orca, social, cost, none };
 enum class ProtocolType { likert, two_afc, rating };
 enum class BlockOrder { random, fixed, latin_square };
 enum class InterTrialScreen { blank, fixation };
+enum class CollisionProxies { automatic, volume, fitted };
 
 inline constexpr std::size_t kCrowdMethodCount = 2;
 inline std::size_t index_of(CrowdMethod method) {
@@ -98,6 +101,14 @@ template <>
 struct KindNames<InterTrialScreen> {
   static constexpr std::array<std::pair<InterTrialScreen, std::string_view>, 2> names{
       {{InterTrialScreen::blank, "blank"}, {InterTrialScreen::fixation, "fixation"}}};
+};
+
+template <>
+struct KindNames<CollisionProxies> {
+  static constexpr std::array<std::pair<CollisionProxies, std::string_view>, 3> names{
+      {{CollisionProxies::automatic, "auto"},
+       {CollisionProxies::volume, "volume"},
+       {CollisionProxies::fitted, "fitted"}}};
 };
 
 /// The spelling of `value` ("corridor", "ours", ...).

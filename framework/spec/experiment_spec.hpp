@@ -74,6 +74,12 @@ struct AnimationSpec {
   std::vector<std::string> dance_clips;      ///< resolved against the spec folder
   double ttca_threshold_s = 0.7;             ///< shoulder reaction trigger (seed 001 §4.1)
   double dtca_threshold_m = 0.6;
+  /// The bodies' collision capsules (issue 27): `volume` fitted to the skin each bone carries (what the
+  /// body model builds), `fitted` to the rendered mesh per surface (skin, garments and shoe uppers within
+  /// 5 mm, hair 20 mm: framework/body/fit_crowd_proxies.hpp), `auto` fitted for a stationary crowd of MPFB2
+  /// bodies and volume otherwise (dense walking flows break down with the larger fitted bodies:
+  /// docs/correction.md, "Fitted proxies by default for the concert").
+  CollisionProxies collision_proxies = CollisionProxies::automatic;
 };
 
 /// correction.* : the collision corrector (seed 000 §3).

@@ -162,7 +162,7 @@ void parse_animation(YamlSection s, ExperimentSpec& spec) {
   AnimationSpec& a = spec.animation;
   SpecDiagnostics& diag = s.diagnostics();
   s.allow_keys({"body_model", "female_fraction", "motion", "walk_clips", "dance_clips", "ttca_threshold_s",
-                "dtca_threshold_m"});
+                "dtca_threshold_m", "collision_proxies"});
   const bool body_model_map = s.has("body_model") && s.get("body_model").IsMap();
   if (body_model_map) {
     YamlSection bm = s.section("body_model");
@@ -185,6 +185,7 @@ void parse_animation(YamlSection s, ExperimentSpec& spec) {
   }
   s.number("female_fraction", a.female_fraction, Range{0.0, 1.0});
   s.choice("motion", a.motion);
+  s.choice("collision_proxies", a.collision_proxies);
   parse_walk_clips(s, a);
   if (s.has("dance_clips")) {
     const YAML::Node list = s.get("dance_clips");

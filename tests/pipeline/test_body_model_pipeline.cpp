@@ -12,6 +12,7 @@
 #include "framework/core/mpfb2_asset_dir.hpp"
 #include "framework/core/seed.hpp"
 #include "framework/io/read_crowd_glb.hpp"
+#include "framework/metrics/proxy_coverage.hpp"
 #include "tests/support/run_cli.hpp"
 
 // This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
@@ -22,11 +23,11 @@ using namespace crowdlab::test;
 namespace fs = std::filesystem;
 
 namespace {
-std::string spec_text(const std::string& body_model) {
+std::string spec_text(const std::string& body_model, const std::string& animation_extra = "") {
   return "crowdlab: 1\nname: mpfb2\nseed: 3\nscenario:\n  type: stationary\n  area: {width_m: 1.2, depth_m: "
          "1.2}\n"
-         "crowd:\n  agent_radius_m: 0.18\nanimation:\n  body_model: " +
-         body_model +
+         "crowd:\n  agent_radius_m: 0.18\nanimation:\n" +
+         animation_extra + "  body_model: " + body_model +
          "\nfactors:\n  density: [4.0]\n  viewpoint: [V1]\n  method: [baseline, ours]\nrepetitions: 1\n"
          "duration_s: 0.6\nfps: 10\nresolution: [160, 96]\nprotocol:\n  type: likert\n  scale: {points: 6, "
          "labels: "
@@ -59,20 +60,24 @@ TEST_CASE("run with the default MPFB2 assets: crowd files carry the shaped meshe
         // The stature the mesh stands at is the shape's height (T-pose: up to ~1 % taller), from the soles
         // (the body wears shoes: a sole of 1-3 cm) to the crown of the skin (hair is higher).
         REQUIRE(ch.mesh->surface.size() == ch.mesh->rest_vertices_m.size());  // dressed by default
-        double lo = 1e9, hi = -1e9;
+        double lo = 1e9, hi = -1e9, top = -1e9;
         for (size_t v = 0; v < ch.mesh->rest_vertices_m.size(); ++v) {
           const double y = ch.mesh->rest_vertices_m[v].y();
           lo = std::min(lo, y);
+          top = std::max(top, y);
           if (ch.mesh->surface[v] == static_cast<std::uint8_t>(SurfaceKind::kSkin)) hi = std::max(hi, y);
         }
         CHECK(hi - lo == Approx(ch.shape.params.height_m + 0.02).margin(0.03));
         CHECK(ch.shape.params.height_m > 1.35);
         CHECK(ch.shape.params.height_m < 2.1);
-        // Capsules were fitted to this mesh: the head capsule's top is near the crown.
+        // Capsules were fitted to this mesh: the head capsule's top reaches the skin's crown, and (a concert
+        // fits them to the drawn surface, hair within 20 mm) not far above the top of the hair (a round cap
+        // wide enough for the hair at the sides rises up to about 4 cm above it).
         const auto rest = joint_positions(ch.shape, Pose::rest(ch.shape));
         const Capsule& head = ch.shape.capsules[kHead];
         const double crown = rest[kHead].y() + std::max(head.a.y(), head.b.y()) + head.radius_m;
-        CHECK(crown == Approx(hi).margin(0.03));
+        CHECK(crown > hi - 0.03);
+        CHECK(crown < top + 0.06);
       }
       const int n = static_cast<int>(crowd.characters.size());
       CHECK(std::abs(women - n / 2) <= 1);  // half women (female_fraction 0.5)
@@ -98,6 +103,33 @@ TEST_CASE("run with the default MPFB2 assets: crowd files carry the shaped meshe
   }
   CHECK(crowds == 1);
   // (Rendering the MPFB2 meshes is tested in tests/stimuli; no video here keeps this test short.)
+}
+
+TEST_CASE("a concert of MPFB2 bodies is corrected with capsules fitted to its rendered meshes, unless told") {
+  // animation.collision_proxies: auto fits the capsules of a stationary MPFB2 crowd to the rendered mesh
+  // (issue 27): its crowd files' capsules hold the drawn surface (within 5 mm, hair 20 mm, soles free),
+  // where the volume-fitted capsules leave most of it outside. `volume` keeps the body's own capsules.
+  ::unsetenv("CROWDLAB_MPFB2");
+  const fs::path out = scratch_dir("pipeline_mpfb2_proxies");
+  auto coverage = [&](const std::string& extra, const std::string& name) {
+    const fs::path spec = out / (name + ".yaml");
+    std::ofstream(spec) << spec_text("mpfb2", extra);
+    const CliResult r = run_cli({"-q", "run", spec.string(), "--out", (out / name).string()});
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    std::vector<double> within;
+    for (const auto& dir : fs::directory_iterator(out / name / "crowds"))
+      for (const char* file : {"baseline.glb", "ours.glb"})
+        within.push_back(measure_proxy_coverage(read_crowd_glb((dir.path() / file).string())).within_share);
+    REQUIRE(within.size() == 2);
+    CHECK(within[0] == Approx(within[1]).margin(0.02));  // one set of capsules for both methods
+    return within[0];
+  };
+  const double fitted = coverage("", "auto");
+  const double volume = coverage("  collision_proxies: volume\n", "volume");
+  CHECK(fitted > 0.97);  // every surface within 5 mm but the hair (20 mm) and the soles (free)
+  CHECK(volume < 0.6);   // the volume-fitted capsules: about 40 % within 5 mm
+  CHECK(coverage("  collision_proxies: fitted\n", "fitted") == Approx(fitted).epsilon(1e-12));
 }
 
 TEST_CASE("mpfb2 without a path takes CROWDLAB_MPFB2, else the shipped assets, a bad folder is named") {

@@ -92,6 +92,11 @@ TEST_CASE("stage recipes: every spec value changes exactly the recipes of the st
       {"animation.walk_clips", [](ExperimentSpec& s) { s.animation.walk_clips = {"w.bvh"}; }, animation},
       {"animation.walk_clip_speeds_mps", [](ExperimentSpec& s) { s.animation.walk_clip_speeds_mps = {1}; },
        animation},
+      // tiny.yaml's procedural bodies resolve `auto` to `volume`: asking for fitted capsules changes them.
+      {"animation.collision_proxies",
+       [](ExperimentSpec& s) { s.animation.collision_proxies = CollisionProxies::fitted; }, animation},
+      {"animation.collision_proxies: volume, what auto resolves to here",
+       [](ExperimentSpec& s) { s.animation.collision_proxies = CollisionProxies::volume; }, none},
       {"correction.stiffness", [](ExperimentSpec& s) { s.correction.stiffness = 10; }, {"correction"}},
       {"correction.damping", [](ExperimentSpec& s) { s.correction.damping = 0.01; }, {"correction"}},
       {"correction.collision_stiffness",

@@ -262,6 +262,7 @@ TEST_CASE("every section's keys, types and ranges are checked") {
       {"animation: {female_fraction: 1.2}\n", "animation.female_fraction: must be in [0, 1]"},
       {"animation: {motion: clips}\n", "motion: clips needs walk_clips or dance_clips"},
       {"animation: {body_model: smpl}\n", "animation.body_model: invalid value 'smpl'"},
+      {"animation: {collision_proxies: fited}\n", "animation.collision_proxies: invalid value 'fited'"},
       {"animation: {walk_clips: [{speed_mps: 1.2}]}\n", "walk_clips[0].file: required key is missing"},
       {"correction: {damping: -0.1}\n", "correction.damping: must be >= 0"},
       {"render: {crf: 60}\n", "render.crf: must be in [0, 51]"},
