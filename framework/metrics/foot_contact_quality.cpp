@@ -23,6 +23,24 @@ double sole_height(const WorldCapsules& caps, int side) {
   return y;
 }
 
+/// How far (m, >= 0) each foot's capsules reach below the body's floor when it stands in its rest pose:
+/// the floor is the rendered mesh's lowest rest vertex (a sole), and a foot capsule fitted around a shoe
+/// wider than its foot reaches below it (`animation.collision_proxies: fitted`: 34-37 mm). That part is
+/// proxy, not foot, so the absolute depth below the ground discounts it. 0 for bodies without a mesh and
+/// for capsules above the floor (the volume-fitted ones).
+std::array<double, 2> proxy_reach_below_floor(const CharacterAnimation& c) {
+  std::array<double, 2> reach{};
+  if (!c.mesh) return reach;
+  const Pose rest = Pose::rest(c.shape);
+  const BoneTransforms bones = forward_kinematics(c.shape, rest);
+  double floor_y = 1e300;
+  for (const Vec3& v : skin_vertices(*c.mesh, bones)) floor_y = std::min(floor_y, v.y());
+  const WorldCapsules caps = world_capsules(c.shape, bones);
+  for (int side = 0; side < 2; ++side)
+    reach[static_cast<size_t>(side)] = std::max(0.0, floor_y - sole_height(caps, side));
+  return reach;
+}
+
 double horizontal(const Vec3& v) {
   return std::hypot(v.x(), v.z());
 }
@@ -44,6 +62,7 @@ void measure_character(const CharacterAnimation& in, const CharacterAnimation& o
   std::array<Vec3, 4> landing{};
   std::array<bool, 4> contact{};
   const int frames = static_cast<int>(in.frames.size());
+  const std::array<double, 2> reach_out = proxy_reach_below_floor(out);
   for (int f = first; f < frames; ++f) {
     const Pose& pin_pose = in.frames[static_cast<size_t>(f)];
     const Pose& pout_pose = out.frames[static_cast<size_t>(f)];
@@ -53,7 +72,7 @@ void measure_character(const CharacterAnimation& in, const CharacterAnimation& o
     const WorldCapsules caps_in = world_capsules(in.shape, pin_pose);
     std::array<bool, 2> side_contact{};
     for (int side = 0; side < 2; ++side) {
-      const double depth = -sole_height(caps_out, side);
+      const double depth = -sole_height(caps_out, side) - reach_out[static_cast<size_t>(side)];
       if (depth > 0.0) s.penetration.push_back(depth);
       q.ground_penetration_max_m = std::max(q.ground_penetration_max_m, depth);
       const double added = depth_below_input(sole_height(caps_out, side), sole_height(caps_in, side));

@@ -23,7 +23,10 @@
 //   pop_frames                   the frames on which some foot joint popped
 //   pop_worst_*                  character, foot joint and frame of pop_excess_max_m (-1: none)
 //   ground_penetration_max_m     ABSOLUTE: deepest any foot capsule (ankle and ball bones) goes below
-//                                y = 0, per foot and frame (the input's own depth included)
+//                                y = 0, per foot and frame (the input's own depth included), less how
+//                                far that foot's capsules reach below the rendered mesh's floor in the
+//                                rest pose (capsules fitted around a shoe: the part below the sole is
+//                                proxy; 0 without a mesh or for capsules above the floor; session 25)
 //   ground_penetration_p99_m     99th percentile of the positive per-foot per-frame depths
 //   ground_penetration_added_max_m   ADDED by the correction: per foot and frame, how far the
 //                                corrected sole is below min(0, the input's sole at that frame), the

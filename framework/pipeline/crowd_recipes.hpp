@@ -102,8 +102,9 @@ struct MetricsRecipe {
   static constexpr std::string_view kStage = "metrics";
   /// 2: free limbs, flips, environment; 3: mesh-level overlap and proxy coverage (issue 27); 5: the feet's
   /// ground penetration added by the correction, below min(0, the input's foot) (issue 27, session 16); 6:
-  /// the mesh-level inside test confirms its sign by a ray (surfaces_inside.hpp; issue 27, session 25)
-  static constexpr std::string_view kCodeVersion = "6";
+  /// the mesh-level inside test confirms its sign by a ray (surfaces_inside.hpp; issue 27, session 25); 7:
+  /// the feet's depth below the ground discounts the capsules' reach below the rendered floor at rest
+  static constexpr std::string_view kCodeVersion = "7";
   CrowdMethod method = CrowdMethod::baseline;  ///< the animation measured (against the baseline)
   bool surface_ground = false;  ///< manifold crowds: the feet's ground is the surface, not y = 0
   bool mesh_measures = true;    ///< the mesh-level overlap and proxy coverage (RunOptions::mesh_measures)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <functional>
+#include <memory>
 
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/metrics/correction_quality.hpp"
@@ -113,6 +114,40 @@ TEST_CASE("feet lowered into the ground and lifted during stance are measured") 
   CHECK(lifted.float_max_m == Approx(0.03));
   CHECK(lifted.float_p99_m == Approx(0.03));
   CHECK(lifted.ground_penetration_max_m == Approx(std::max(0.0, -sole)));
+}
+
+TEST_CASE("the part of a foot capsule below the rendered floor at rest is proxy: the depth discounts it") {
+  // A body with a rendered mesh whose lowest rest vertex (its floor) is the foot capsules' lowest point,
+  // then the foot capsules grown 3 cm (as a capsule fitted around a shoe wider than the foot): standing as
+  // at rest it is not 3 cm below the ground, and sunk 2 cm it is 2 cm below.
+  CrowdAnimation in = standing(zero, zero);
+  CharacterAnimation& c = in.characters[0];
+  const double sole = rest_sole(c);
+  auto mesh = std::make_shared<SkinnedMesh>();
+  const BoneTransforms bones = forward_kinematics(c.shape, Pose::rest(c.shape));
+  const Vec3 pelvis = bones[kPelvis].translation;  // the mesh's rest frame is the rest pose's
+  for (const Vec3& v : {Vec3(0.1, sole, 0.0), Vec3(-0.1, sole, 0.0), Vec3(0.0, sole, 0.1)}) {
+    mesh->rest_vertices_m.push_back(v - Vec3(0.0, c.frames[0].root_position_m.y(), 0.0) + pelvis);
+    mesh->joints.push_back({0, 0, 0, 0});
+    mesh->weights.push_back({1.0, 0.0, 0.0, 0.0});
+  }
+  mesh->triangles.emplace_back(0, 1, 2);
+  mesh->rest_joints_m[kPelvis] = pelvis;
+  c.mesh = mesh;
+  const FootContactQuality plain = measure_foot_contact_quality(in, in);
+  CHECK(plain.ground_penetration_max_m == Approx(std::max(0.0, -sole)).margin(1e-9));
+  CrowdAnimation fat = in;
+  for (int b : {kLeftAnkle, kRightAnkle, kLeftFoot, kRightFoot})
+    fat.characters[0].shape.capsules[static_cast<size_t>(b)].radius_m += 0.03;
+  CHECK(measure_foot_contact_quality(fat, fat).ground_penetration_max_m ==
+        Approx(std::max(0.0, -sole)).margin(1e-9));
+  CrowdAnimation sunk = fat;
+  for (Pose& p : sunk.characters[0].frames) p.root_position_m.y() -= 0.02;
+  CHECK(measure_foot_contact_quality(fat, sunk).ground_penetration_max_m == Approx(0.02 - sole).margin(1e-9));
+  CHECK(measure_foot_contact_quality(fat, sunk).ground_penetration_added_max_m == Approx(0.02).margin(1e-9));
+  // Without the mesh the grown capsules are the feet: 3 cm deeper.
+  fat.characters[0].mesh = nullptr;
+  CHECK(measure_foot_contact_quality(fat, fat).ground_penetration_max_m == Approx(0.03 - sole).margin(1e-9));
 }
 
 TEST_CASE("feet the input itself puts below the ground count only for what the correction adds") {
