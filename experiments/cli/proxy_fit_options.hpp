@@ -1,7 +1,8 @@
 #pragma once
 // The collision proxies a correction runs with, shared by `crowdlab correct` and `crowdlab experiment
-// overlap-vs-density`: the volume-fitted capsules every body is built with (the default), or capsules
-// fitted to each character's rendered mesh before correcting (framework/body/cover_capsules.hpp;
+// overlap-vs-density`: without a flag, the capsules the crowd file carries (`correct`) or the spec gives its
+// scenario (`overlap-vs-density`, animation.collision_proxies); with one, capsules fitted to each character's
+// rendered mesh before correcting (framework/body/cover_capsules.hpp;
 // docs/correction.md "Proxies fitted per surface" for what each costs in motion). The fit itself is
 // framework/body/fit_crowd_proxies.hpp.
 #include <optional>
