@@ -7,7 +7,7 @@ namespace crowdlab {
 namespace {
 
 /// The inside sign's confirmation (header): the ray from p away from its closest point c meets the
-/// surface again. A point c is too close to to give a direction (1 micrometre) is not judged here.
+/// surface again. A point too close to c to give a direction (1 micrometre) is not judged here.
 bool sees_surface_beyond(const TriangleTree& tree, const Vec3& p, const Vec3& c) {
   const Vec3 away = p - c;
   const double length = away.norm();
