@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "framework/core/segment_triangle.hpp"
+
 namespace crowdlab {
 
 Vec3 closest_point_barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -135,58 +137,14 @@ TriangleHit TriangleTree::closest(const Vec3& p) const {
   return best;
 }
 
-namespace {
-
-/// Whether the ray meets the box (its faces included) at some t in [min_t, max_t] (slab method; inv_dir =
-/// 1 / dir). A ray parallel to a slab meets it when its origin lies within the slab, on its faces too: a
-/// ray along a flat face's box (a grid face's leaf) must not be lost to 0 x infinity.
-bool ray_meets_box(const Aabb& box, const Vec3& origin, const Vec3& dir, const Vec3& inv_dir, double min_t,
-                   double max_t) {
-  for (int k = 0; k < 3; ++k) {
-    if (dir[k] == 0.0) {
-      if (origin[k] < box.lo[k] || origin[k] > box.hi[k]) return false;
-      continue;
-    }
-    double t0 = (box.lo[k] - origin[k]) * inv_dir[k];
-    double t1 = (box.hi[k] - origin[k]) * inv_dir[k];
-    if (t0 > t1) std::swap(t0, t1);
-    min_t = std::max(min_t, t0);
-    max_t = std::min(max_t, t1);
-    if (min_t > max_t) return false;
-  }
-  return true;
-}
-
-/// Ray-triangle distance t, or a negative value when the ray misses (parallel rays miss).
-double ray_triangle_t(const Vec3& origin, const Vec3& dir, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 e1 = b - a, e2 = c - a;
-  const Vec3 p = dir.cross(e2);
-  const double det = e1.dot(p);
-  if (std::abs(det) < 1e-15) return -1.0;
-  const double inv = 1.0 / det;
-  const Vec3 s = origin - a;
-  // A hair's breadth of slack on the edges, so that a ray through an edge shared by two triangles cannot
-  // slip between them by rounding.
-  constexpr double kEdgeSlack = 1e-9;
-  const double u = s.dot(p) * inv;
-  if (u < -kEdgeSlack || u > 1.0 + kEdgeSlack) return -1.0;
-  const Vec3 q = s.cross(e1);
-  const double v = dir.dot(q) * inv;
-  if (v < -kEdgeSlack || u + v > 1.0 + kEdgeSlack) return -1.0;
-  return e2.dot(q) * inv;
-}
-
-}  // namespace
-
 bool TriangleTree::ray_hits(const Vec3& origin, const Vec3& dir, double min_t, double max_t) const {
   if (triangles_.empty()) return false;
-  const Vec3 inv_dir = dir.cwiseInverse();
   int stack[128];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const Node& node = nodes_[static_cast<size_t>(stack[--top])];
-    if (!ray_meets_box(node.box, origin, dir, inv_dir, min_t, max_t)) continue;
+    if (!segment_meets_box(origin, dir, node.box.lo, node.box.hi, min_t, max_t)) continue;
     if (node.left >= 0) {
       stack[top++] = node.left;
       stack[top++] = node.right;
@@ -195,8 +153,8 @@ bool TriangleTree::ray_hits(const Vec3& origin, const Vec3& dir, double min_t, d
     for (int i = node.first; i < node.first + node.count; ++i) {
       const Eigen::Vector3i& tri = triangles_[static_cast<size_t>(order_[static_cast<size_t>(i)])];
       const double t =
-          ray_triangle_t(origin, dir, vertices_[static_cast<size_t>(tri[0])],
-                         vertices_[static_cast<size_t>(tri[1])], vertices_[static_cast<size_t>(tri[2])]);
+          segment_triangle_t(origin, dir, vertices_[static_cast<size_t>(tri[0])],
+                             vertices_[static_cast<size_t>(tri[1])], vertices_[static_cast<size_t>(tri[2])]);
       if (t > min_t && t < max_t) return true;
     }
   }

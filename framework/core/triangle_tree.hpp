@@ -14,8 +14,8 @@
 // of an open sheet (a hair strand's tip, a sleeve's hem: only vertices on a boundary edge carry it),
 // the normal says nothing about the far side, and the point counts as outside (`on_rim` flags).
 //
-// Ray query (ray_hits): whether a ray meets any triangle (Moller & Trumbore 1997, both faces), the
-// boxes tested by the slab method (Kay & Kajiya 1986). Used to confirm an inside sign: from a point
+// Ray query (ray_hits): whether a ray meets any triangle, either face (segment_triangle.hpp: the slab
+// method for the boxes, Moller-Trumbore for the triangles). Used to confirm an inside sign: from a point
 // inside a closed surface, every ray meets the surface (surfaces_inside.hpp says where the sign fails).
 #include <vector>
 

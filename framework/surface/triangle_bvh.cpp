@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "framework/core/segment_triangle.hpp"
+
 namespace crowdlab {
 
 TriangleBvh::TriangleBvh(const SurfaceMesh& mesh) : mesh_(mesh) {
@@ -44,24 +46,6 @@ int TriangleBvh::build(int first, int count, int depth) {
   return index;
 }
 
-namespace {
-bool segment_box(const Vec3& p, const Vec3& d, const Eigen::AlignedBox3d& box) {
-  double t0 = 0.0, t1 = 1.0;
-  for (int k = 0; k < 3; ++k) {
-    if (std::abs(d[k]) < 1e-300) {
-      if (p[k] < box.min()[k] || p[k] > box.max()[k]) return false;
-      continue;
-    }
-    double a = (box.min()[k] - p[k]) / d[k], b = (box.max()[k] - p[k]) / d[k];
-    if (a > b) std::swap(a, b);
-    t0 = std::max(t0, a);
-    t1 = std::min(t1, b);
-    if (t0 > t1) return false;
-  }
-  return true;
-}
-}  // namespace
-
 bool TriangleBvh::segment_hits(const Vec3& p, const Vec3& q, double margin) const {
   const Vec3 d = q - p;
   int stack[128];
@@ -69,21 +53,11 @@ bool TriangleBvh::segment_hits(const Vec3& p, const Vec3& q, double margin) cons
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[static_cast<size_t>(stack[--top])];
-    if (!segment_box(p, d, n.box)) continue;
+    if (!segment_meets_box(p, d, n.box.min(), n.box.max(), 0.0, 1.0)) continue;
     if (n.left < 0) {
       for (int i = n.first; i < n.first + n.count; ++i) {
         const int f = order_[static_cast<size_t>(i)];
-        const Vec3 a = mesh_.corner(f, 0), e1 = mesh_.corner(f, 1) - a, e2 = mesh_.corner(f, 2) - a;
-        const Vec3 h = d.cross(e2);
-        const double det = e1.dot(h);
-        if (std::abs(det) < 1e-14) continue;
-        const Vec3 s = p - a;
-        const double u = s.dot(h) / det;
-        if (u < 0 || u > 1) continue;
-        const Vec3 qv = s.cross(e1);
-        const double v = d.dot(qv) / det;
-        if (v < 0 || u + v > 1) continue;
-        const double t = e2.dot(qv) / det;
+        const double t = segment_triangle_t(p, d, mesh_.corner(f, 0), mesh_.corner(f, 1), mesh_.corner(f, 2));
         if (t > margin && t < 1 - margin) return true;
       }
     } else if (top + 2 <= 128) {
