@@ -26,7 +26,7 @@ double sole_height(const WorldCapsules& caps, int side) {
 /// How far (m, >= 0) each foot's capsules reach below the body's floor when it stands in its rest pose:
 /// the floor is the rendered mesh's lowest rest vertex (a sole), and a foot capsule fitted around a shoe
 /// wider than its foot reaches below it (`animation.collision_proxies: fitted`: 34-37 mm). That part is
-/// proxy, not foot, so the absolute depth below the ground discounts it. 0 for bodies without a mesh and
+/// proxy, not foot: the sole heights below add it back (sole_heights). 0 for bodies without a mesh and
 /// for capsules above the floor (the volume-fitted ones).
 std::array<double, 2> proxy_reach_below_floor(const CharacterAnimation& c) {
   std::array<double, 2> reach{};
@@ -39,6 +39,13 @@ std::array<double, 2> proxy_reach_below_floor(const CharacterAnimation& c) {
   for (int side = 0; side < 2; ++side)
     reach[static_cast<size_t>(side)] = std::max(0.0, floor_y - sole_height(caps, side));
   return reach;
+}
+
+/// The height (m) of each foot's sole on one frame: its capsules' lowest point plus their reach below the
+/// rendered floor at rest, so that an input and a corrected animation carrying other capsules (`correct
+/// --fit-proxies` on a crowd with volume-fitted ones) compare the same soles.
+std::array<double, 2> sole_heights(const WorldCapsules& caps, const std::array<double, 2>& reach) {
+  return {sole_height(caps, 0) + reach[0], sole_height(caps, 1) + reach[1]};
 }
 
 double horizontal(const Vec3& v) {
@@ -62,7 +69,8 @@ void measure_character(const CharacterAnimation& in, const CharacterAnimation& o
   std::array<Vec3, 4> landing{};
   std::array<bool, 4> contact{};
   const int frames = static_cast<int>(in.frames.size());
-  const std::array<double, 2> reach_out = proxy_reach_below_floor(out);
+  const std::array<double, 2> reach_in = proxy_reach_below_floor(in),
+                              reach_out = proxy_reach_below_floor(out);
   for (int f = first; f < frames; ++f) {
     const Pose& pin_pose = in.frames[static_cast<size_t>(f)];
     const Pose& pout_pose = out.frames[static_cast<size_t>(f)];
@@ -70,12 +78,15 @@ void measure_character(const CharacterAnimation& in, const CharacterAnimation& o
     const auto pout = joint_positions(out.shape, pout_pose);
     const WorldCapsules caps_out = world_capsules(out.shape, pout_pose);
     const WorldCapsules caps_in = world_capsules(in.shape, pin_pose);
+    const std::array<double, 2> sole_in = sole_heights(caps_in, reach_in),
+                                sole_out = sole_heights(caps_out, reach_out);
     std::array<bool, 2> side_contact{};
     for (int side = 0; side < 2; ++side) {
-      const double depth = -sole_height(caps_out, side) - reach_out[static_cast<size_t>(side)];
+      const double depth = -sole_out[static_cast<size_t>(side)];
       if (depth > 0.0) s.penetration.push_back(depth);
       q.ground_penetration_max_m = std::max(q.ground_penetration_max_m, depth);
-      const double added = depth_below_input(sole_height(caps_out, side), sole_height(caps_in, side));
+      const double added =
+          depth_below_input(sole_out[static_cast<size_t>(side)], sole_in[static_cast<size_t>(side)]);
       if (added > 0.0) s.below_input.push_back(added);
       if (added > q.ground_penetration_added_max_m) {
         q.ground_penetration_added_max_m = added;
@@ -109,7 +120,7 @@ void measure_character(const CharacterAnimation& in, const CharacterAnimation& o
       }
       for (int side = 0; side < 2; ++side) {
         if (!side_contact[static_cast<size_t>(side)]) continue;
-        const double lift = sole_height(caps_out, side) - sole_height(caps_in, side);
+        const double lift = sole_out[static_cast<size_t>(side)] - sole_in[static_cast<size_t>(side)];
         s.floating.push_back(std::max(0.0, lift));
       }
     }

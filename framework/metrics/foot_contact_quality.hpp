@@ -23,10 +23,11 @@
 //   pop_frames                   the frames on which some foot joint popped
 //   pop_worst_*                  character, foot joint and frame of pop_excess_max_m (-1: none)
 //   ground_penetration_max_m     ABSOLUTE: deepest any foot capsule (ankle and ball bones) goes below
-//                                y = 0, per foot and frame (the input's own depth included), less how
-//                                far that foot's capsules reach below the rendered mesh's floor in the
-//                                rest pose (capsules fitted around a shoe: the part below the sole is
-//                                proxy; 0 without a mesh or for capsules above the floor; session 25)
+//                                y = 0, per foot and frame (the input's own depth included)
+//   (every sole height here, for this and the measures below, is the foot capsules' lowest point plus
+//   how far they reach below the rendered mesh's floor in the rest pose: a capsule fitted around a shoe
+//   reaches below the sole, and that part is proxy; 0 without a mesh or for capsules above the floor;
+//   session 25. So an input and an output with other capsules compare the same soles.)
 //   ground_penetration_p99_m     99th percentile of the positive per-foot per-frame depths
 //   ground_penetration_added_max_m   ADDED by the correction: per foot and frame, how far the
 //                                corrected sole is below min(0, the input's sole at that frame), the

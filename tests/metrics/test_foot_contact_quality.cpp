@@ -145,6 +145,12 @@ TEST_CASE("the part of a foot capsule below the rendered floor at rest is proxy:
   for (Pose& p : sunk.characters[0].frames) p.root_position_m.y() -= 0.02;
   CHECK(measure_foot_contact_quality(fat, sunk).ground_penetration_max_m == Approx(0.02 - sole).margin(1e-9));
   CHECK(measure_foot_contact_quality(fat, sunk).ground_penetration_added_max_m == Approx(0.02).margin(1e-9));
+  // An input with the body's own capsules corrected into one with the grown ones (`correct --fit-proxies`):
+  // the same soles, so nothing added and nothing floating.
+  const FootContactQuality refitted = measure_foot_contact_quality(in, fat);
+  CHECK(refitted.ground_penetration_added_max_m == Approx(0.0).margin(1e-9));
+  CHECK(refitted.float_max_m == Approx(0.0).margin(1e-9));
+  CHECK(measure_foot_contact_quality(fat, in).float_max_m == Approx(0.0).margin(1e-9));
   // Without the mesh the grown capsules are the feet: 3 cm deeper.
   fat.characters[0].mesh = nullptr;
   CHECK(measure_foot_contact_quality(fat, fat).ground_penetration_max_m == Approx(0.03 - sole).margin(1e-9));
