@@ -2,13 +2,27 @@
 
 #include <algorithm>
 
+#include <cmath>
+#include <string>
+
+#include "framework/core/error.hpp"
 #include "framework/core/rotation_angle.hpp"
 
 namespace crowdlab {
 
+FlipWindow flip_window(double fps) {
+  if (!std::isfinite(fps) || fps <= 0.0)
+    throw InputError("joint flips: frame rate " + std::to_string(fps) + " fps is not positive");
+  FlipWindow w;
+  w.frames = std::max(1, static_cast<int>(std::lround(kFlipWindow_s * fps)));
+  w.angle_deg = kFlipRate_degps * w.frames / fps;
+  return w;
+}
+
 JointFlips measure_joint_flips(const CrowdAnimation& input, const CrowdAnimation& corrected,
                                int first_frame) {
   JointFlips q;
+  const FlipWindow window = flip_window(corrected.meta.fps);
   const int frames = input.frame_count();
   const int first = std::max(0, first_frame);
   std::vector<Quat> dev(static_cast<size_t>(std::max(0, frames)));
@@ -19,10 +33,10 @@ JointFlips measure_joint_flips(const CrowdAnimation& input, const CrowdAnimation
         dev[ff] = input.characters[c].frames[ff].local_rotations[jj].normalized().conjugate() *
                   corrected.characters[c].frames[ff].local_rotations[jj].normalized();
         double change = 0.0;
-        for (int k = 1; k <= kFlipFrames && f - k >= first; ++k)
+        for (int k = 1; k <= window.frames && f - k >= first; ++k)
           change = std::max(change, rotation_angle_deg(dev[static_cast<size_t>(f - k)], dev[ff]));
         q.max_change_deg = std::max(q.max_change_deg, change);
-        if (!(change > kFlipAngle_deg)) continue;
+        if (!(change > window.angle_deg)) continue;
         ++q.count;
         ++q.per_joint[static_cast<size_t>(j)];
         if (q.first.size() < kListedFlips) q.first.push_back({static_cast<int>(c), j, f, change});

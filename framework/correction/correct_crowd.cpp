@@ -225,7 +225,8 @@ void close_per_character(const CrowdAnimation& input, const std::vector<std::vec
     // Session 16, seed 2024000001: with the cuts after the one-arm closures, 2 characters took a cut (V3
     // seam 1.450); before them, 6 (1.411).
     const int last_cut_end = next_lap_bound(frames, preroll);
-    const ClosureExcerpt ex = ClosureExcerpt::of(frames, last_cut_end, preroll, kFlipFrames);
+    const ClosureExcerpt ex =
+        ClosureExcerpt::of(frames, last_cut_end, preroll, flip_window(out.meta.fps).frames);
     const std::vector<std::vector<Pose>> lap = next_lap.first(last_cut_end);
     const CrowdAnimation out_ex = ex.cut(out), input_ex = ex.cut(input);
     // The join reads the new candidates' unclosed characters only (join_closures): they alone keep frames.

@@ -6,9 +6,10 @@
 //   every frame: std::vector<Pose> corrected = corrector.step(animation_poses_this_frame);
 //
 // Inputs: one BodyShape per character (fixed for the corrector's life), the static environment, the
-// frame rate (the step is h = 1/fps). step() takes one target Pose per character (the uncorrected
-// animation at this frame) and returns the corrected poses in the same order. The first step returns
-// its targets (the state starts at rest on them). Throws InputError for bad shapes, params, fps, an
+// frame rate (the step is h = 1/fps, or 1/(n fps) in n substeps when 1/fps is longer than
+// params.max_step_s, the targets interpolated between frames). step() takes one target Pose per character
+// (the uncorrected animation at this frame) and returns the corrected poses in the same order. The first step
+// returns its targets (the state starts at rest on them). Throws InputError for bad shapes, params, fps, an
 // empty crowd, a wrong number of poses or a NaN/Inf/non-unit pose.
 #include <vector>
 
@@ -23,7 +24,7 @@ class Corrector {
   explicit Corrector(std::vector<BodyShape> shapes, CorrectorParams params = {}, Environment env = {},
                      double fps = 30);
 
-  /// Advances one step of h = 1/fps and returns the corrected poses.
+  /// Advances one frame of 1/fps (model().substeps steps) and returns the corrected poses.
   std::vector<Pose> step(const std::vector<Pose>& targets);
 
   const CorrectorModel& model() const { return model_; }

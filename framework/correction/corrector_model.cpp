@@ -100,6 +100,7 @@ void validate_corrector_params(const CorrectorParams& p) {
   check(p.free_joint_margin_m, "free_joint_margin_m", 0.0);
   check(p.free_joint_hold_s, "free_joint_hold_s", 0.0);
   check(p.free_joint_return_radps, "free_joint_return_radps", 0.0);
+  check(p.max_step_s, "max_step_s", 1e-4);
   if (p.depenetration_passes < 0) throw InputError("corrector parameter depenetration_passes must be >= 0");
   if (p.settle_steps < 0) throw InputError("corrector parameter settle_steps must be >= 0");
   if (p.active_set_passes < 0) throw InputError("corrector parameter active_set_passes must be >= 0");
@@ -224,6 +225,13 @@ CorrectorBody make_body(BodyShape shape, const CorrectorParams& p) {
 
 }  // namespace
 
+int substeps_per_frame(double fps, double max_step_s) {
+  // A frame time within 1 % of max_step_s takes one step (29.97 fps at 1/30 s).
+  constexpr double kSlack = 1.01;
+  const double ratio = 1.0 / (fps * max_step_s);
+  return ratio <= kSlack ? 1 : static_cast<int>(std::ceil(ratio / kSlack));
+}
+
 CorrectorModel make_corrector_model(std::vector<BodyShape> shapes, const CorrectorParams& params,
                                     const Environment& env, double fps) {
   validate_corrector_params(params);
@@ -233,7 +241,8 @@ CorrectorModel make_corrector_model(std::vector<BodyShape> shapes, const Correct
   CorrectorModel model;
   model.params = params;
   model.fps = fps;
-  model.h = 1.0 / fps;
+  model.substeps = substeps_per_frame(fps, params.max_step_s);
+  model.h = 1.0 / (fps * model.substeps);
   model.ground_plane = env.ground_plane;
   model.bodies.reserve(shapes.size());
   for (size_t c = 0; c < shapes.size(); ++c) {

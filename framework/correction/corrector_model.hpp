@@ -45,8 +45,9 @@ struct CorrectorBody {
 
 struct CorrectorModel {
   CorrectorParams params;
-  double fps = 30.0;
-  double h = 1.0 / 30.0;               ///< time step (s) = 1 / fps
+  double fps = 30.0;                   ///< frames per second of the targets
+  int substeps = 1;                    ///< steps per frame (substeps_per_frame)
+  double h = 1.0 / 30.0;               ///< time step (s) = 1 / (fps x substeps)
   std::vector<CorrectorBody> bodies;   ///< one per character
   EnvironmentPointTree environment;    ///< sample points of the environment's triangle meshes
   std::vector<Box> environment_boxes;  ///< the environment's boxes, contacted exactly (stage_narrow_phase)
@@ -56,6 +57,10 @@ struct CorrectorModel {
   int characters() const { return static_cast<int>(bodies.size()); }
   int bones() const { return characters() * kJointCount; }
 };
+
+/// Steps per frame at `fps` so that no step is longer than max_step_s (CorrectorParams::max_step_s):
+/// 1 up to a frame time 1 % longer than max_step_s, else ceil(frame time / (1.01 max_step_s)).
+int substeps_per_frame(double fps, double max_step_s);
 
 /// Builds the model. Throws InputError for an empty crowd, an invalid shape (validate_body_shape),
 /// invalid params or fps <= 0.

@@ -5,8 +5,9 @@
 // next lap: [0, 2W) at most) or its last W (the blends, the arm closures), W the closing window. Each
 // candidate is a copy of the whole crowd, so on a 20 s clip (600 frames, W = 60) the choice held 42
 // copies of 600 frames where 180 differ (60 characters: ~1.2 GB). An excerpt keeps frames [0, head) and
-// [tail_begin, N) only, with a margin of kFlipFrames unchanged frames on each side of the join between
-// them: a joint flip at frame f compares f with its kFlipFrames predecessors (core/joint_flips.hpp), so a
+// [tail_begin, N) only, with a margin of W_flip unchanged frames on each side of the join between them
+// (flip_window(fps).frames): a joint flip at frame f compares f with its W_flip predecessors
+// (core/joint_flips.hpp), so a
 // flip counted across the join is counted alike on a candidate and on the unclosed clip, and "adds no
 // flips" decides as on the whole clip. Depths between unchanged frames are the unclosed clip's, within the
 // choice's limit, so dropping them decides nothing either (loop_closure_choice.hpp).

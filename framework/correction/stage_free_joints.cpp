@@ -43,7 +43,7 @@ namespace {
 
 /// Steps a joint stays engaged after its scope was last touched.
 std::int64_t hold_steps(const CorrectorModel& model) {
-  return static_cast<std::int64_t>(std::lround(model.params.free_joint_hold_s * model.fps));
+  return static_cast<std::int64_t>(std::lround(model.params.free_joint_hold_s / model.h));
 }
 
 /// Engages, until step + hold, every joint of c whose scope meets the touched bones.

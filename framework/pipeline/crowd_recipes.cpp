@@ -1,5 +1,7 @@
 #include "framework/pipeline/crowd_recipes.hpp"
 
+#include <algorithm>
+
 #include "framework/pipeline/body_model.hpp"
 #include "framework/pipeline/crowd_key.hpp"
 
@@ -108,13 +110,15 @@ CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Conditio
   }
 
   r.correction.correction = spec.correction;
-  // The loop pre-roll (correct_crowd.hpp): 2 s for clips shown looping. Its closure keeps planted feet
-  // on their anchors (blend_keeping_planted_feet.hpp); a crowd whose input does not loop (walking) gets
-  // none whatever is asked (correct_crowd.cpp, input_loops). Clips shorter than twice the pre-roll stay
-  // open: the closing blend would span most of the clip (crowd_recipes.hpp).
-  const bool closable = spec.duration_s >= kLoopPrerollMinClipS;
-  r.correction.loop_preroll_s = spec.protocol.loop_video && closable ? kLoopPrerollS : 0.0;
+  // The loop pre-roll (correct_crowd.hpp) for clips shown looping. Its closure keeps planted feet on
+  // their anchors (blend_keeping_planted_feet.hpp); a crowd whose input does not loop (walking) gets none
+  // whatever is asked (correct_crowd.cpp, input_loops).
+  r.correction.loop_preroll_s = spec.protocol.loop_video ? loop_preroll_window_s(spec.duration_s) : 0.0;
   return r;
+}
+
+double loop_preroll_window_s(double duration_s) {
+  return duration_s >= kLoopPrerollMinClipS ? std::min(kLoopPrerollS, 0.5 * duration_s) : 0.0;
 }
 
 MetricsRecipe metrics_recipe(const CrowdRecipe& crowd, CrowdMethod method, bool mesh_measures) {

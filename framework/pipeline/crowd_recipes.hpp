@@ -62,11 +62,19 @@ struct AnimationRecipe {
 /// concert's tempi, so most feet lift inside the window and can move to the pre-roll's spots while they swing
 /// (blend_keeping_planted_feet.hpp).
 inline constexpr double kLoopPrerollS = 2.0;
-/// Shortest looping clip that gets the pre-roll (s): twice the pre-roll. On a shorter clip the closing
-/// blend spans half the clip or more and rewrites it toward a second correction of itself, which edits
-/// limbs that touch nobody: on `reproduce gomez2024 --quick`'s 1 s clips a free wrist ended 6.9 deg off
-/// its input at 5.55/m^2 (issue 27's limit: 5). Such clips stay open (issue 28: or not looped).
-inline constexpr double kLoopPrerollMinClipS = 2.0 * kLoopPrerollS;
+/// Shortest looping clip that gets the pre-roll (s). Its window is half the clip up to kLoopPrerollS
+/// (loop_preroll_window_s). On a clip shorter than 2 s the closing blend would rewrite most of it toward a
+/// second correction of itself, which edits limbs that touch nobody: on `reproduce gomez2024 --quick`'s
+/// 1 s clips a free wrist ended 6.9 deg off its input at 5.55/m^2 (issue 27's limit: 5). Such clips stay
+/// open (issue 28: or not looped). Session 26 lowered it from 4 s (twice the full window): the demo's 2 s
+/// clips, left open, looped with a seam of 2.0-2.6x the median frame step (every `ours` clip warned);
+/// closed over 1 s they loop at 1.01-1.09x, with free limbs within 2.0 deg and p99 capsule depths of
+/// 4.9 / 17.5 mm at 3.33 / 6.66 /m^2 (docs/stimuli.md, "Session 26").
+inline constexpr double kLoopPrerollMinClipS = 2.0;
+
+/// The loop pre-roll window of a looping clip of `duration_s` (s): kLoopPrerollS, or half the clip when
+/// that is shorter; 0 below kLoopPrerollMinClipS.
+double loop_preroll_window_s(double duration_s);
 
 /// The correction stage: the collision corrector on baseline.glb (ours.glb).
 struct CorrectionRecipe {
@@ -89,11 +97,12 @@ struct CorrectionRecipe {
   /// a cut inside the clip (issue 28, session 16); 15: knees at lift-off (lift_off_knees) on: a foot held
   /// at its ball with its knee far off the input's pivots about the ball (issue 27, session 18). (Session
   /// 19's held-ankle twist row, held_ankle_twist_in_pass, is off by default: the outputs are version 15's.)
-  static constexpr std::string_view kCodeVersion = "15";
+  /// 16: clips under 30 fps corrected in substeps of at most 1/30 s (CorrectorParams::max_step_s; issue
+  /// 27, session 26; 30 fps clips unchanged).
+  static constexpr std::string_view kCodeVersion = "16";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
-  /// (correct_crowd.hpp; issue 28): kLoopPrerollS when protocol.loop_video and the clip lasts at least
-  /// kLoopPrerollMinClipS, else 0.
+  /// (correct_crowd.hpp; issue 28): loop_preroll_window_s(duration) when protocol.loop_video, else 0.
   double loop_preroll_s = 0.0;
 };
 
@@ -103,8 +112,9 @@ struct MetricsRecipe {
   /// 2: free limbs, flips, environment; 3: mesh-level overlap and proxy coverage (issue 27); 5: the feet's
   /// ground penetration added by the correction, below min(0, the input's foot) (issue 27, session 16); 6:
   /// the mesh-level inside test confirms its sign by a ray (surfaces_inside.hpp; issue 27, session 25); 7:
-  /// the feet's depth below the ground discounts the capsules' reach below the rendered floor at rest
-  static constexpr std::string_view kCodeVersion = "7";
+  /// the feet's depth below the ground discounts the capsules' reach below the rendered floor at rest; 8:
+  /// the flip window is 0.1 s at 200 deg/s, not 3 frames (core/joint_flips.hpp; session 26; 30 fps unchanged)
+  static constexpr std::string_view kCodeVersion = "8";
   CrowdMethod method = CrowdMethod::baseline;  ///< the animation measured (against the baseline)
   bool surface_ground = false;  ///< manifold crowds: the feet's ground is the surface, not y = 0
   bool mesh_measures = true;    ///< the mesh-level overlap and proxy coverage (RunOptions::mesh_measures)

@@ -37,6 +37,9 @@ CrowdAnimation three_far_apart(int frames = 40) {
   return crowd;
 }
 
+/// The flip window's frames at 30 fps (core/joint_flips.hpp): the excerpt's margin on both sides of its join.
+const int kFlipFrames30 = flip_window(30.0).frames;
+
 /// `crowd` with character c moved to x_m on frames [first, N): a closure of its window.
 void move_window(CrowdAnimation& crowd, size_t c, int first, double x_m) {
   for (size_t f = static_cast<size_t>(first); f < crowd.characters[c].frames.size(); ++f)
@@ -292,17 +295,17 @@ void move(CrowdAnimation& crowd, size_t c, int begin, int end, double x_m) {
 
 TEST_CASE("loop closure excerpt: keeps the first and last frames, or the whole clip where they meet",
           "[correction][loop]") {
-  const ClosureExcerpt ex = ClosureExcerpt::of(100, 40, 20, kFlipFrames);
-  CHECK(ex.head == 40 + kFlipFrames);
-  CHECK(ex.tail_begin == 80 - kFlipFrames);
-  CHECK(ex.size() == 60 + 2 * kFlipFrames);
+  const ClosureExcerpt ex = ClosureExcerpt::of(100, 40, 20, kFlipFrames30);
+  CHECK(ex.head == 40 + kFlipFrames30);
+  CHECK(ex.tail_begin == 80 - kFlipFrames30);
+  CHECK(ex.size() == 60 + 2 * kFlipFrames30);
   CHECK(ex.index(0) == 0);
   CHECK(ex.index(99) == ex.size() - 1);
   CHECK(ex.map({80, 100}).begin == ex.size() - 20);
   CHECK(ex.map({80, 100}).end == ex.size());
   CHECK(ex.map({0, 30}).end == 30);
   // A 4 s clip at W = 60 (head 2W, tail W): nothing to drop, the whole clip.
-  const ClosureExcerpt whole = ClosureExcerpt::of(120, 120, 60, kFlipFrames);
+  const ClosureExcerpt whole = ClosureExcerpt::of(120, 120, 60, kFlipFrames30);
   CHECK(whole.size() == 120);
   CHECK(whole.index(100) == 100);
   // cut and put_back: the kept frames go back where they were, the others stay.
@@ -340,7 +343,7 @@ TEST_CASE("loop closure excerpt: the join on the excerpt chooses as on the whole
   REQUIRE(whole == std::vector<size_t>{0, 0, 1});
 
   std::vector<size_t> rung = descend_closures(closures, 1, unclosed, first, 0, limit_m, any);
-  const ClosureExcerpt ex = ClosureExcerpt::of(100, 30, 20, kFlipFrames);
+  const ClosureExcerpt ex = ClosureExcerpt::of(100, 30, 20, kFlipFrames30);
   REQUIRE(ex.size() < 100);
   const std::vector<CrowdAnimation> cut = {ex.cut(end_closure), ex.cut(start_closure)};
   const std::vector<const CrowdAnimation*> cut_closures = {&cut[0], &cut[1]};

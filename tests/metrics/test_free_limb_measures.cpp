@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "framework/core/capsule_box_distance.hpp"
+#include "framework/core/error.hpp"
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/joint_flips.hpp"
 #include "framework/metrics/correction_quality.hpp"
@@ -115,6 +116,33 @@ TEST_CASE("a wrist that turns 30 deg away from its input within two frames is a 
     for (Quat& r : p.local_rotations) r.coeffs() = -r.coeffs();
   CHECK(measure_joint_flips(in, negated).count == 0);
   CHECK(measure_free_limb_deviation(in, negated).max_deg == Approx(0.0).margin(1e-6));
+}
+
+TEST_CASE("the flip threshold is a rate over 0.1 s, so a clip's frame rate does not change what a flip is") {
+  CHECK(flip_window(30.0).frames == 3);
+  CHECK(flip_window(30.0).angle_deg == Approx(20.0));
+  CHECK(flip_window(60.0).frames == 6);
+  CHECK(flip_window(60.0).angle_deg == Approx(20.0));
+  CHECK(flip_window(15.0).frames == 2);
+  CHECK(flip_window(15.0).angle_deg == Approx(200.0 * 2.0 / 15.0));
+  CHECK(flip_window(5.0).frames == 1);  // never less than one frame
+  CHECK_THROWS_AS(flip_window(0.0), InputError);
+  CHECK_THROWS_AS(flip_window(std::nan("")), InputError);
+
+  // The same two motions at 15 fps: a wrist returning at the corrector's release rate (3.4 rad/s, 13 deg
+  // per frame, 39 deg within 3 frames) is no flip; a 40 deg turn within one frame (600 deg/s) is.
+  CrowdAnimation in = standing({0.0});
+  in.meta.fps = 15.0;
+  CrowdAnimation returning = in, jumping = in;
+  const double per_frame_deg = 3.4 / 15.0 * 180.0 / std::numbers::pi;
+  for (int f = 0; f < kFrames; ++f) {
+    Quat& r = returning.characters[0].frames[static_cast<size_t>(f)].local_rotations[kRightWrist];
+    r = r * about_x(std::max(0.0, 60.0 - per_frame_deg * f));
+    Quat& j = jumping.characters[0].frames[static_cast<size_t>(f)].local_rotations[kRightWrist];
+    j = j * about_x(f >= 30 ? 40.0 : 0.0);
+  }
+  CHECK(measure_joint_flips(in, returning).count == 0);
+  CHECK(measure_joint_flips(in, jumping).count == 2);  // frames 30 and 31 see frame 29's deviation
 }
 
 TEST_CASE("capsule-box distance is exact, and environment penetration measures capsules behind a wall") {

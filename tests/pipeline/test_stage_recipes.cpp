@@ -79,7 +79,9 @@ TEST_CASE("stage recipes: every spec value changes exactly the recipes of the st
       {"crowd.dt_s", [](ExperimentSpec& s) { s.crowd.dt_s = 0.05; }, none},
       {"crowd.overlap_free", [](ExperimentSpec& s) { s.crowd.overlap_free = true; }, none},
       {"crowd.cost_weights", [](ExperimentSpec& s) { s.crowd.cost_weights["goal"] = 2; }, none},
-      {"duration_s", [](ExperimentSpec& s) { s.duration_s = 2; }, crowd},
+      {"duration_s", [](ExperimentSpec& s) { s.duration_s = 1.5; }, crowd},
+      // A looping clip of 2 s or more gets the loop pre-roll (kLoopPrerollMinClipS): the correction reads it.
+      {"duration_s", [](ExperimentSpec& s) { s.duration_s = 2; }, {"correction", "crowd"}},
       {"fps", [](ExperimentSpec& s) { s.fps = 30; }, crowd},
       {"seed", [](ExperimentSpec& s) { s.seed = 8; }, {"crowd", "animation"}},
       {"animation.body_model", [](ExperimentSpec& s) { s.animation.body_model = BodyModel::mpfb2; },
@@ -271,15 +273,22 @@ TEST_CASE("stage recipes: a crowd recipe holds only the values its scenario kind
 }
 
 TEST_CASE(
-    "stage recipes: a looping clip gets the loop pre-roll only when it lasts at least twice the pre-roll",
+    "stage recipes: a looping clip of at least 2 s gets the loop pre-roll, over half the clip up to 2 s",
     "[pipeline][loop]") {
   ExperimentSpec spec = load_experiment_spec((source_dir() / "tests/data/pipeline/loop_seam.yaml").string());
   REQUIRE(spec.protocol.loop_video);
   auto preroll = [&] {
     return crowd_group_recipes(spec, enumerate_conditions(spec).front()).correction.loop_preroll_s;
   };
-  spec.duration_s = kLoopPrerollMinClipS;
+  spec.duration_s = 20.0;
   CHECK(preroll() == kLoopPrerollS);
+  spec.duration_s = 2.0 * kLoopPrerollS;
+  CHECK(preroll() == kLoopPrerollS);
+  // The demo's 2 s clips close over their last second.
+  spec.duration_s = kLoopPrerollMinClipS;
+  CHECK(preroll() == Approx(0.5 * kLoopPrerollMinClipS));
+  spec.duration_s = 3.0;
+  CHECK(preroll() == Approx(1.5));
   // A shorter clip stays open: the closing blend would span most of it and edit limbs that touch nobody.
   spec.duration_s = 1.0;
   CHECK(preroll() == 0.0);
