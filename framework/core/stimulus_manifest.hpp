@@ -37,7 +37,7 @@ struct ClipQuality {
   double foot_float_p99_m = -1.0;               ///< planted feet higher than the input's, p99
   double free_limb_dev_p99_deg = -1.0;          ///< deviation of joints touching nobody, p99 (degrees)
   double free_limb_dev_max_deg = -1.0;          ///< and max
-  int joint_flips = -1;                         ///< joint-frames whose deviation jumps > 20 deg in 3 frames
+  int joint_flips = -1;                         ///< joint-frames whose deviation jumps > 200 deg/s over 0.1 s
   double env_penetration_p99_m = -1.0;          ///< capsule depth behind walls / barriers / stage, p99
   double env_penetration_max_m = -1.0;          ///< and max
   double mesh_overlap_fraction = -1.0;          ///< rendered vertices inside another character, mean share

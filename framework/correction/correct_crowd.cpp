@@ -112,6 +112,13 @@ std::vector<std::vector<bool>> without_new_flips(const CrowdAnimation& input,
   return allowed;
 }
 
+/// Whether `closed` gives no character more joint flips than the unclosed clip.
+bool adds_no_flips(const CrowdAnimation& input, const CrowdAnimation& closed,
+                   const CrowdAnimation& unclosed) {
+  const std::vector<bool> allowed = without_new_flips(input, {&closed}, unclosed).front();
+  return std::all_of(allowed.begin(), allowed.end(), [](bool ok) { return ok; });
+}
+
 /// Closing window of the candidates that take joints from the next lap up to a cut inside the clip
 /// (cut_joints_from_next_lap), in fifths of the closure's window W: 2/5 (24 frames, 0.8 s, at W = 60 and
 /// 30 fps), with a cut every half such window from frame 0 to the clip's last window (9 cuts on a 4 s
@@ -291,7 +298,8 @@ void close_per_character(const CrowdAnimation& input, const std::vector<std::vec
 /// to 1, raised cosine). (a) the blend corrected again, from `before_window` (the corrector before frame
 /// N - W), so contacts that the two laps resolved on different sides are resolved in the blend too, and
 /// what then remains blended out; (b) the plain blend. The shallower is kept when it is no deeper than the
-/// limit: the unclosed clip's deepest + 1 mm, or kClosureDepthFloorM if deeper. A plain blend re-opened
+/// limit (the unclosed clip's deepest + 1 mm, or kClosureDepthFloorM if deeper) and adds no joint flips to
+/// any character. A plain blend re-opened
 /// contacts mid-way (issue 28: 17-66 mm on 1 s clips, 76 mm on a 4 s concert at 6.66/m^2, where the
 /// unclosed clip has 0 and 16 mm), and so, less often, does (a); then each character takes (a), (b),
 /// (c) the clip's START blended from `next_lap` (the corrector's next lap after the clip's own end;
@@ -342,10 +350,15 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
   spdlog::debug(
       "correct_crowd: loop closure depths (m): unclosed {:.4f}, corrected blend {:.4f}, blend {:.4f}",
       unclosed_m, d_finished, d_blended);
-  if (d_finished <= limit && d_finished <= d_blended) {
+  // Whole-crowd closures too must add no joint flips to any character (without_new_flips), as the
+  // per-character ones must. Session 26: the demo's 2 s clips at 3.33/m^2 took the corrected blend whole
+  // and gained 9 flips (feet and a hand inside the window) over the unclosed clip's 0.
+  const bool finished_ok = d_finished <= limit && adds_no_flips(input, finished, out);
+  const bool blended_ok = d_blended <= limit && adds_no_flips(input, blended, out);
+  if (finished_ok && (!blended_ok || d_finished <= d_blended)) {
     out = std::move(finished);
     r.loop_closure = "corrected blend";
-  } else if (d_blended <= limit) {
+  } else if (blended_ok) {
     out = std::move(blended);
     r.loop_closure = "blend";
   } else {

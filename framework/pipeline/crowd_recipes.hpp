@@ -98,8 +98,9 @@ struct CorrectionRecipe {
   /// at its ball with its knee far off the input's pivots about the ball (issue 27, session 18). (Session
   /// 19's held-ankle twist row, held_ankle_twist_in_pass, is off by default: the outputs are version 15's.)
   /// 16: clips under 30 fps corrected in substeps of at most 1/30 s (CorrectorParams::max_step_s; issue
-  /// 27, session 26; 30 fps clips unchanged).
-  static constexpr std::string_view kCodeVersion = "16";
+  /// 27, session 26; 30 fps clips unchanged); 17: a whole-crowd loop closure only if it adds no joint flips
+  /// to any character, else the per-character choice (issue 28, session 26).
+  static constexpr std::string_view kCodeVersion = "17";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
   /// (correct_crowd.hpp; issue 28): loop_preroll_window_s(duration) when protocol.loop_video, else 0.
