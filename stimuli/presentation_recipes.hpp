@@ -37,8 +37,9 @@ struct RenderRecipe {
   /// from the rendered meshes' inside test, not the capsules (issue 27, session 11). look/4: smooth lip
   /// outlines, fewer grey heads (issue 28, session 12). shared-extent/3: the overhead view of a travelling
   /// crowd turns to frame it along the image's long side (viewpoint.cpp; issue 28, session 24). check/3:
-  /// the inside test confirms its sign by a ray (metrics/surfaces_inside.hpp; issue 27, session 25).
-  static constexpr std::string_view kCodeVersion = "shared-extent/3+check/3+look/4";
+  /// the inside test confirms its sign by a ray (metrics/surfaces_inside.hpp; issue 27, session 25). look/5:
+  /// FXAA's edge test from the pixel's four neighbours, point-sampled (shaders.cpp; issue 28, session 26).
+  static constexpr std::string_view kCodeVersion = "shared-extent/3+check/3+look/5";
   StimulusLook look;
   ViewpointId viewpoint = ViewpointId::V1;  ///< the catalogue id (framework/core/viewpoint_catalogue.hpp)
   int crf = 18;
@@ -51,9 +52,9 @@ struct RenderRecipe {
 
 struct ContactSheetRecipe {
   static constexpr std::string_view kStage = "contact_sheet";
-  /// look/3, look/4, shared-extent/3: as RenderRecipe; overlap/2: overlap mode from the rendered meshes
-  /// (issue 27, session 11); overlap/3: their inside test confirmed by a ray (session 25).
-  static constexpr std::string_view kCodeVersion = "shared-extent/3+look/4+overlap/3";
+  /// look/3, look/4, look/5, shared-extent/3: as RenderRecipe; overlap/2: overlap mode from the rendered
+  /// meshes (issue 27, session 11); overlap/3: their inside test confirmed by a ray (session 25).
+  static constexpr std::string_view kCodeVersion = "shared-extent/3+look/5+overlap/3";
   StimulusLook look;
 };
 
