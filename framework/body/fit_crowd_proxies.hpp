@@ -7,6 +7,8 @@
 //          (nothing for ProxyFit::volume); characters without a mesh (procedural bodies) keep theirs.
 //          Poses are untouched: only BodyShape::capsules change.
 // Logs the mean share of rest-pose vertices within 5 mm of the capsules before and after.
+#include <array>
+
 #include "framework/core/crowd_animation.hpp"
 
 namespace crowdlab {
@@ -15,7 +17,16 @@ enum class ProxyFit {
   volume,       ///< the body's own capsules, fitted to the volume of the skin each bone carries
   cover_mesh,   ///< grown until every rendered surface lies within 5 mm (`correct --cover-mesh`)
   per_surface,  ///< fitted per surface, axes moved (SurfaceTolerances::per_surface; `--fit-proxies`)
+  /// per_surface for the upper body only (kUpperBodyProxies: chest, neck, head, collars, arms); the pelvis,
+  /// lower spine and legs keep their volume capsules (`--fit-upper-proxies`; session 26: walking crowds,
+  /// whose visible overlap is mostly arms against neighbours' chests, break down with fitted legs and hips)
+  upper_body,
 };
+
+/// The bones ProxyFit::upper_body fits: spine3, neck, both collars, head, shoulders, elbows, wrists, hands.
+inline constexpr std::array<Joint, 13> kUpperBodyProxies = {
+    kSpine3,    kNeck,       kLeftCollar, kRightCollar, kHead,     kLeftShoulder, kRightShoulder,
+    kLeftElbow, kRightElbow, kLeftWrist,  kRightWrist,  kLeftHand, kRightHand};
 
 void fit_crowd_proxies(CrowdAnimation& crowd, ProxyFit fit);
 

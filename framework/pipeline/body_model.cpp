@@ -83,7 +83,14 @@ CollisionProxies resolve_collision_proxies(const AnimationSpec& spec, ScenarioKi
 }
 
 ProxyFit proxy_fit(CollisionProxies resolved) {
-  return resolved == CollisionProxies::fitted ? ProxyFit::per_surface : ProxyFit::volume;
+  switch (resolved) {
+    case CollisionProxies::fitted:
+      return ProxyFit::per_surface;
+    case CollisionProxies::fitted_upper:
+      return ProxyFit::upper_body;
+    default:
+      return ProxyFit::volume;
+  }
 }
 
 }  // namespace crowdlab

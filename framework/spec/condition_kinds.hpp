@@ -14,7 +14,8 @@
 //   ProtocolType  likert (seed 000 §4.4.1) | 2afc | rating (seed 001 §3.2, §4.2.3)  (protocol.type)
 //   BlockOrder    random | fixed | latin_square  (protocol.block_order; study_ui/build_trial_list.hpp)
 //   InterTrialScreen  blank | fixation  (protocol.inter_trial.screen)
-//   CollisionProxies  auto | volume | fitted  (animation.collision_proxies: the capsules the correction
+//   CollisionProxies  auto | volume | fitted | fitted_upper  (animation.collision_proxies: the capsules the
+//   correction
 //                 separates and the capsule metrics measure; framework/body/fit_crowd_proxies.hpp)
 #include <array>
 #include <cstddef>
@@ -35,7 +36,7 @@ enum class CrowdModel { orca, social, cost, none };
 enum class ProtocolType { likert, two_afc, rating };
 enum class BlockOrder { random, fixed, latin_square };
 enum class InterTrialScreen { blank, fixation };
-enum class CollisionProxies { automatic, volume, fitted };
+enum class CollisionProxies { automatic, volume, fitted, fitted_upper };
 
 inline constexpr std::size_t kCrowdMethodCount = 2;
 inline std::size_t index_of(CrowdMethod method) {
@@ -105,10 +106,11 @@ struct KindNames<InterTrialScreen> {
 
 template <>
 struct KindNames<CollisionProxies> {
-  static constexpr std::array<std::pair<CollisionProxies, std::string_view>, 3> names{
+  static constexpr std::array<std::pair<CollisionProxies, std::string_view>, 4> names{
       {{CollisionProxies::automatic, "auto"},
        {CollisionProxies::volume, "volume"},
-       {CollisionProxies::fitted, "fitted"}}};
+       {CollisionProxies::fitted, "fitted"},
+       {CollisionProxies::fitted_upper, "fitted_upper"}}};
 };
 
 /// The spelling of `value` ("corridor", "ours", ...).

@@ -2,10 +2,12 @@
 // the crowd files carry the shaped, skinned meshes with their real sex and measured stature, the
 // skeletons and capsules come from those meshes (correction and metrics run on them), and the spec can
 // name other assets by path or through CROWDLAB_MPFB2.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <fstream>
 
+#include "framework/body/fit_crowd_proxies.hpp"
 #include "framework/body/sample_mpfb2_bodies.hpp"
 #include "framework/core/appearance.hpp"
 #include "framework/core/forward_kinematics.hpp"
@@ -130,6 +132,30 @@ TEST_CASE("a concert of MPFB2 bodies is corrected with capsules fitted to its re
   CHECK(fitted > 0.97);  // every surface within 5 mm but the hair (20 mm) and the soles (free)
   CHECK(volume < 0.6);   // the volume-fitted capsules: about 40 % within 5 mm
   CHECK(coverage("  collision_proxies: fitted\n", "fitted") == Approx(fitted).epsilon(1e-12));
+  // fitted_upper (session 26): the chest, neck, head, collars and arms fitted, the pelvis, lower spine and
+  // legs as `volume` has them.
+  const double upper = coverage("  collision_proxies: fitted_upper\n", "fitted_upper");
+  CHECK(upper > volume + 0.2);
+  CHECK(upper < fitted);
+  auto first_crowd = [&](const std::string& name) {
+    for (const auto& dir : fs::directory_iterator(out / name / "crowds"))
+      return read_crowd_glb((dir.path() / "baseline.glb").string());
+    FAIL("no crowd in " << name);
+    return CrowdAnimation{};
+  };
+  const CrowdAnimation v = first_crowd("volume"), u = first_crowd("fitted_upper");
+  REQUIRE(v.characters.size() == u.characters.size());
+  for (size_t c = 0; c < v.characters.size(); ++c)
+    for (int j = 0; j < kJointCount; ++j) {
+      const Capsule& a = v.characters[c].shape.capsules[static_cast<size_t>(j)];
+      const Capsule& b = u.characters[c].shape.capsules[static_cast<size_t>(j)];
+      const bool same = a.radius_m == b.radius_m && a.a == b.a && a.b == b.b;
+      const bool upper_bone =
+          std::find(kUpperBodyProxies.begin(), kUpperBodyProxies.end(), j) != kUpperBodyProxies.end();
+      INFO("character " << c << ", joint " << j);
+      if (!upper_bone) CHECK(same);
+      if (j == kLeftShoulder || j == kHead) CHECK_FALSE(same);
+    }
 }
 
 TEST_CASE("mpfb2 without a path takes CROWDLAB_MPFB2, else the shipped assets, a bad folder is named") {
