@@ -273,14 +273,19 @@ void close_per_character(const CrowdAnimation& input, const std::vector<std::vec
     if (spdlog::should_log(spdlog::level::debug))
       log_why_open(out, explain_open_characters(closures, out_ex, limit, allowed, spans, choice), kinds,
                    closures.size());
+    std::string partial;  // the characters closed in part (their other limbs keep the seam)
     for (size_t c = 0; c < n; ++c) {
       if (choice[c] >= closures.size()) continue;
       ++on[static_cast<size_t>(kinds[choice[c]])];
+      if (kinds[choice[c]] >= 3)
+        partial += fmt::format(" {} ({})", out.characters[c].name,
+                               kClosureKind[static_cast<size_t>(kinds[choice[c]])]);
       if (choice[c] < exact.size())
         out.characters[c].frames = exact[choice[c]]->characters[c].frames;
       else
         ex.put_back(closures[choice[c]]->characters[c], out.characters[c]);
     }
+    spdlog::debug("correct_crowd: closed in part:{}", partial.empty() ? " none" : partial);
   } else {
     log_open_characters(out, choice, exact.size());
     for (size_t c = 0; c < n; ++c) ++on[static_cast<size_t>(choice[c])];
