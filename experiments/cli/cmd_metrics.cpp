@@ -16,6 +16,7 @@
 #include "experiments/cli/command_estimates.hpp"
 #include "experiments/cli/command_table.hpp"
 #include "framework/core/error.hpp"
+#include "framework/core/joint_flips.hpp"
 #include "framework/core/progress.hpp"
 #include "framework/core/skeleton.hpp"
 #include "framework/core/surface_kind_name.hpp"
@@ -66,7 +67,7 @@ void print_text(const CrowdMetrics& m, const std::string& path, bool per_frame) 
   }
 }
 
-void print_quality(const CorrectionQuality& q) {
+void print_quality(const CorrectionQuality& q, double fps) {
   const FootContactQuality& f = q.feet;
   std::printf(
       "  against the input: p99 / max inter-body depth %.1f / %.1f mm, mean / p99 joint deviation "
@@ -91,8 +92,10 @@ void print_quality(const CorrectionQuality& q) {
   if (fl.worst_character >= 0)
     std::printf(" (max: character %d, %s, frame %d)", fl.worst_character,
                 std::string(joint_name(fl.worst_joint)).c_str(), fl.worst_frame);
-  std::printf("\n  joint flips (deviation change > 20 deg within 3 frames): %ld (largest change %.1f deg)\n",
-              q.flips.count, q.flips.max_change_deg);
+  const FlipWindow window = flip_window(fps);
+  std::printf(
+      "\n  joint flips (deviation change > %.1f deg within %d frame%s): %ld (largest change %.1f deg)\n",
+      window.angle_deg, window.frames, window.frames == 1 ? "" : "s", q.flips.count, q.flips.max_change_deg);
   for (const JointFlip& j : q.flips.first)
     std::printf("    character %d, %s, frame %d: %.1f deg\n", j.character,
                 std::string(joint_name(j.joint)).c_str(), j.frame, j.change_deg);
@@ -155,7 +158,7 @@ void run(const MetricsArgs& args) {
     std::printf("%s\n", j.dump().c_str());
   } else {
     print_text(m, args.path, args.per_frame);
-    if (quality) print_quality(*quality);
+    if (quality) print_quality(*quality, crowd.meta.fps);
   }
 }
 

@@ -96,6 +96,17 @@ TEST_CASE("crowdlab metrics --input adds the correction-quality measures against
   CHECK(text.exit_code == 0);
   CHECK(text.out.find("foot pops 4") != std::string::npos);
   CHECK(text.out.find("added by the correction") != std::string::npos);
+  // The flip threshold printed is the clip's own (200 deg/s over 0.1 s; core/joint_flips.hpp): 20 deg
+  // within 3 frames at 30 fps, 26.7 deg within 2 at 15 fps.
+  CHECK(text.out.find("> 20.0 deg within 3 frames") != std::string::npos);
+  CrowdAnimation in15 = in, out15 = out;
+  in15.meta.fps = out15.meta.fps = 15.0;
+  const std::string in15_path = (dir / "in15.glb").string(), out15_path = (dir / "out15.glb").string();
+  write_crowd_glb(in15, in15_path);
+  write_crowd_glb(out15, out15_path);
+  const test::CliResult text15 = test::run_cli({"-q", "metrics", out15_path, "--input", in15_path});
+  INFO(text15.out << text15.err);
+  CHECK(text15.out.find("> 26.7 deg within 2 frames") != std::string::npos);
   // An input that does not match the crowd is bad input (exit code 2).
   CrowdAnimation shorter = in;
   for (auto& c : shorter.characters) c.frames.pop_back();
