@@ -97,25 +97,25 @@ long flips_of(const CrowdAnimation& input, const CrowdAnimation& crowd, size_t c
   return measure_joint_flips(one_in, one).count;
 }
 
-/// allowed[r][c]: candidate r gives character c no more joint flips than the unclosed clip. Why (session
-/// 15): the start from the next lap and the arm closures brought the corrector's own hand flips of those
-/// frames into the clip (4 s concert at 6.66/m^2: flips 23 -> 35 and 25 -> 30, all hands).
-std::vector<std::vector<bool>> without_new_flips(const CrowdAnimation& input,
-                                                 const std::vector<const CrowdAnimation*>& closures,
-                                                 const CrowdAnimation& unclosed) {
-  const size_t n = unclosed.characters.size();
-  std::vector<long> own(n);
-  for (size_t c = 0; c < n; ++c) own[c] = flips_of(input, unclosed, c);
-  std::vector<std::vector<bool>> allowed(closures.size(), std::vector<bool>(n));
-  for (size_t r = 0; r < closures.size(); ++r)
-    for (size_t c = 0; c < n; ++c) allowed[r][c] = flips_of(input, *closures[r], c) <= own[c];
+/// Per character, its joint flips in `crowd` against the input (flips_of).
+std::vector<long> flips_per_character(const CrowdAnimation& input, const CrowdAnimation& crowd) {
+  std::vector<long> flips(crowd.characters.size());
+  for (size_t c = 0; c < flips.size(); ++c) flips[c] = flips_of(input, crowd, c);
+  return flips;
+}
+
+/// allowed[c]: the closure `closed` gives character c no more joint flips than it has unclosed
+/// (`unclosed_flips`, flips_per_character). Why (session 15): the start from the next lap and the arm
+/// closures brought the corrector's own hand flips of those frames into the clip (4 s concert at 6.66/m^2:
+/// flips 23 -> 35 and 25 -> 30, all hands).
+std::vector<bool> without_new_flips(const CrowdAnimation& input, const CrowdAnimation& closed,
+                                    const std::vector<long>& unclosed_flips) {
+  std::vector<bool> allowed(unclosed_flips.size());
+  for (size_t c = 0; c < allowed.size(); ++c) allowed[c] = flips_of(input, closed, c) <= unclosed_flips[c];
   return allowed;
 }
 
-/// Whether `closed` gives no character more joint flips than the unclosed clip.
-bool adds_no_flips(const CrowdAnimation& input, const CrowdAnimation& closed,
-                   const CrowdAnimation& unclosed) {
-  const std::vector<bool> allowed = without_new_flips(input, {&closed}, unclosed).front();
+bool all_allowed(const std::vector<bool>& allowed) {
   return std::all_of(allowed.begin(), allowed.end(), [](bool ok) { return ok; });
 }
 
@@ -191,8 +191,8 @@ void count_unread_next_lap(Progress* progress, const NextLap& next_lap, int fram
   if (progress) progress->advance(static_cast<size_t>(next_lap_bound(frames, window) - next_lap.stepped()));
 }
 
-/// allowed[r][c] as without_new_flips, for candidates r >= from and the characters in `open` only (false
-/// for the others: the join moves only the characters the descent left unclosed).
+/// allowed[r][c] as without_new_flips gives it, for candidates r >= from and the characters in `open` only
+/// (false for the others: the join moves only the characters the descent left unclosed).
 std::vector<std::vector<bool>> without_new_flips_for(const CrowdAnimation& input,
                                                      const std::vector<const CrowdAnimation*>& closures,
                                                      size_t from, const CrowdAnimation& unclosed,
@@ -210,16 +210,20 @@ std::vector<std::vector<bool>> without_new_flips_for(const CrowdAnimation& input
 /// arm closures and the cuts built on an excerpt of the clip (loop_closure_excerpt.hpp) from the next
 /// lap's first 2W frames. Why (session 17): the candidates are whole-crowd copies (36 cuts on a 4 s
 /// clip, ~1.2 GB on a 20 s one) and most crowds need none of them; the result is the whole choice's.
+/// `unclosed_flips` and `whole_allowed` are close_loop's: the clip's flips per character and
+/// without_new_flips of `finished` and `blended`.
 void close_per_character(const CrowdAnimation& input, const std::vector<std::vector<Pose>>& preroll_out,
                          NextLap& next_lap, const CorrectorParams& params, const CrowdAnimation& finished,
-                         const CrowdAnimation& blended, double limit, CrowdAnimation& out,
+                         const CrowdAnimation& blended, const std::vector<long>& unclosed_flips,
+                         std::vector<std::vector<bool>> whole_allowed, double limit, CrowdAnimation& out,
                          CorrectionReport& r) {
   const size_t n = out.characters.size();
   const int frames = out.frame_count(), preroll = static_cast<int>(preroll_out.front().size());
   const int first = frames - preroll;
   const CrowdAnimation started = start_from_next_lap(input, next_lap.first(preroll), params, out);
   const std::vector<const CrowdAnimation*> exact = {&finished, &blended, &started};
-  const std::vector<std::vector<bool>> allowed_exact = without_new_flips(input, exact, out);
+  std::vector<std::vector<bool>> allowed_exact = std::move(whole_allowed);
+  allowed_exact.push_back(without_new_flips(input, started, unclosed_flips));
   std::vector<size_t> choice =
       descend_closures(exact, exact.size(), out, first, preroll, limit, allowed_exact);
   std::vector<size_t> open;
@@ -358,8 +362,11 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
   // Whole-crowd closures too must add no joint flips to any character (without_new_flips), as the
   // per-character ones must. Session 26: the demo's 2 s clips at 3.33/m^2 took the corrected blend whole
   // and gained 9 flips (feet and a hand inside the window) over the unclosed clip's 0.
-  const bool finished_ok = d_finished <= limit && adds_no_flips(input, finished, out);
-  const bool blended_ok = d_blended <= limit && adds_no_flips(input, blended, out);
+  const std::vector<long> unclosed_flips = flips_per_character(input, out);
+  std::vector<std::vector<bool>> allowed = {without_new_flips(input, finished, unclosed_flips),
+                                            without_new_flips(input, blended, unclosed_flips)};
+  const bool finished_ok = d_finished <= limit && all_allowed(allowed[0]);
+  const bool blended_ok = d_blended <= limit && all_allowed(allowed[1]);
   if (finished_ok && (!blended_ok || d_finished <= d_blended)) {
     out = std::move(finished);
     r.loop_closure = "corrected blend";
@@ -367,7 +374,8 @@ void close_loop(const CrowdAnimation& input, const std::vector<std::vector<Pose>
     out = std::move(blended);
     r.loop_closure = "blend";
   } else {
-    close_per_character(input, preroll_out, next_lap, params, finished, blended, limit, out, r);
+    close_per_character(input, preroll_out, next_lap, params, finished, blended, unclosed_flips,
+                        std::move(allowed), limit, out, r);
   }
 }
 
