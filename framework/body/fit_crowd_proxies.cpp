@@ -3,8 +3,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
-
 #include "framework/body/cover_capsules.hpp"
 
 namespace crowdlab {
@@ -14,7 +12,7 @@ namespace {
 /// pairs found again for the mixed set.
 void keep_volume_below_chest(BodyShape& shape, const std::array<Capsule, kJointCount>& volume) {
   for (int j = 0; j < kJointCount; ++j)
-    if (std::find(kUpperBodyProxies.begin(), kUpperBodyProxies.end(), j) == kUpperBodyProxies.end())
+    if (!(kUpperBodyProxies >> j & 1u))
       shape.capsules[static_cast<size_t>(j)] = volume[static_cast<size_t>(j)];
   compute_rest_contact_pairs(shape);
 }

@@ -7,9 +7,8 @@
 //          (nothing for ProxyFit::volume); characters without a mesh (procedural bodies) keep theirs.
 //          Poses are untouched: only BodyShape::capsules change.
 // Logs the mean share of rest-pose vertices within 5 mm of the capsules before and after.
-#include <array>
-
 #include "framework/core/crowd_animation.hpp"
+#include "framework/core/joint_scope.hpp"
 
 namespace crowdlab {
 
@@ -23,10 +22,9 @@ enum class ProxyFit {
   upper_body,
 };
 
-/// The bones ProxyFit::upper_body fits: spine3, neck, both collars, head, shoulders, elbows, wrists, hands.
-inline constexpr std::array<Joint, 13> kUpperBodyProxies = {
-    kSpine3,    kNeck,       kLeftCollar, kRightCollar, kHead,     kLeftShoulder, kRightShoulder,
-    kLeftElbow, kRightElbow, kLeftWrist,  kRightWrist,  kLeftHand, kRightHand};
+/// The bones ProxyFit::upper_body fits: spine3 and every bone it carries (neck, head, collars, shoulders,
+/// elbows, wrists, hands).
+inline constexpr BoneMask kUpperBodyProxies = subtree_mask(kSpine3);
 
 void fit_crowd_proxies(CrowdAnimation& crowd, ProxyFit fit);
 

@@ -14,9 +14,9 @@
 //   ProtocolType  likert (seed 000 §4.4.1) | 2afc | rating (seed 001 §3.2, §4.2.3)  (protocol.type)
 //   BlockOrder    random | fixed | latin_square  (protocol.block_order; study_ui/build_trial_list.hpp)
 //   InterTrialScreen  blank | fixation  (protocol.inter_trial.screen)
-//   CollisionProxies  auto | volume | fitted | fitted_upper  (animation.collision_proxies: the capsules the
-//   correction
-//                 separates and the capsule metrics measure; framework/body/fit_crowd_proxies.hpp)
+//   CollisionProxies  auto | volume | fitted | fitted_upper  (animation.collision_proxies: the capsules
+//                 the correction separates and the capsule metrics measure;
+//                 framework/body/fit_crowd_proxies.hpp)
 #include <array>
 #include <cstddef>
 #include <optional>
