@@ -298,29 +298,28 @@ const char* const kFxaaFragment = R"(#version 450 core
 uniform sampler2D u_image;
 layout(location = 0) out vec4 o_color;
 float luma(vec3 c) { return dot(c, vec3(0.299, 0.587, 0.114)); }
-float luma_at(ivec2 p) { return luma(texelFetch(u_image, p, 0).rgb); }
+// The luma of the pixel `o` away from this one, the image's edge repeated beyond it.
+float luma_at(ivec2 o) {
+  ivec2 last = textureSize(u_image, 0) - 1;
+  return luma(texelFetch(u_image, clamp(ivec2(gl_FragCoord.xy) + o, ivec2(0), last), 0).rgb);
+}
 void main() {
-  ivec2 size = textureSize(u_image, 0);
-  ivec2 p = ivec2(gl_FragCoord.xy);
-  ivec2 lo_p = ivec2(0), hi_p = size - 1;
-  vec3 m = texelFetch(u_image, p, 0).rgb;
+  vec3 m = texelFetch(u_image, ivec2(gl_FragCoord.xy), 0).rgb;
   float lm = luma(m);
-  float n = luma_at(clamp(p + ivec2(0, 1), lo_p, hi_p)), s = luma_at(clamp(p - ivec2(0, 1), lo_p, hi_p));
-  float e = luma_at(clamp(p + ivec2(1, 0), lo_p, hi_p)), w = luma_at(clamp(p - ivec2(1, 0), lo_p, hi_p));
+  float n = luma_at(ivec2(0, 1)), s = luma_at(ivec2(0, -1)), e = luma_at(ivec2(1, 0)), w = luma_at(ivec2(-1, 0));
   float lo = min(lm, min(min(n, s), min(e, w)));
   float hi = max(lm, max(max(n, s), max(e, w)));
   if (hi - lo < max(1.0 / 24.0, hi * 0.125)) {
     o_color = vec4(m, 1.0);
     return;
   }
-  float nw = luma_at(clamp(p + ivec2(-1, 1), lo_p, hi_p)), ne = luma_at(clamp(p + ivec2(1, 1), lo_p, hi_p));
-  float sw = luma_at(clamp(p + ivec2(-1, -1), lo_p, hi_p)), se = luma_at(clamp(p + ivec2(1, -1), lo_p, hi_p));
+  float nw = luma_at(ivec2(-1, 1)), ne = luma_at(ivec2(1, 1)), sw = luma_at(ivec2(-1, -1)), se = luma_at(ivec2(1, -1));
   // The corners of the pixel as the 2x2 means around them (what four bilinear taps would read).
   float cnw = 0.25 * (nw + n + w + lm), cne = 0.25 * (ne + n + e + lm);
   float csw = 0.25 * (sw + s + w + lm), cse = 0.25 * (se + s + e + lm);
   lo = min(lo, min(min(nw, ne), min(sw, se)));
   hi = max(hi, max(max(nw, ne), max(sw, se)));
-  vec2 texel = 1.0 / vec2(size);
+  vec2 texel = 1.0 / vec2(textureSize(u_image, 0));
   vec2 uv = gl_FragCoord.xy * texel;  // the pixel's centre
   vec2 dir = vec2((csw + cse) - (cnw + cne), (cnw + csw) - (cne + cse));
   float reduce = max((cnw + cne + csw + cse) * (0.25 / 8.0), 1.0 / 128.0);
