@@ -12,6 +12,7 @@
 #include "framework/pipeline/body_model.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 #include "tests/correction/correction_measures.hpp"
+#include "tests/correction/corridor_walkers.hpp"
 #include "tests/support/test_paths.hpp"
 
 // This file's names, in a namespace of its own: the test executables are unity builds (issue 31).
@@ -49,29 +50,7 @@ Quality measure(int characters, double density, int frames, std::uint64_t seed) 
   return q;
 }
 
-/// The gomez2024 corridor (seed 000's non-stationary scenario) at its lowest density, `seconds` long:
-/// walkers whose legs touch their neighbours'.
-/// gomez2024's corridor at its lowest density (or its highest, 6.66 /m^2, when `densest`), on
-/// procedural capsule bodies (or the spec's MPFB2 bodies, as the experiments use, when `spec_bodies`).
-/// `length_m` > 0 shortens the corridor (the spec's is 6 m) at the same densities: fewer characters.
-CrowdAnimation corridor_walkers(double seconds, bool densest = false, bool spec_bodies = false,
-                                double length_m = 0.0) {
-  ExperimentSpec spec =
-      load_experiment_spec((test::source_dir() / "experiments/gomez2024_nonstationary.yaml").string());
-  spec.duration_s = seconds;
-  if (length_m > 0.0) spec.scenario.depth_m = length_m;  // the same density on a shorter corridor
-  if (!spec_bodies)
-    spec.animation.body_model = BodyModel::procedural;  // the bodies these thresholds were measured on
-  const std::vector<Condition> conditions = enumerate_conditions(spec);
-  REQUIRE(!conditions.empty());
-  const Condition& condition = densest ? conditions.back() : conditions.front();
-  const ScenarioResult s = generate_scenario(spec, condition);
-  AnimationContext ctx;
-  ctx.scenario = s.scenario;
-  ctx.seed = condition.seed;
-  if (spec_bodies) apply_body_model(spec.animation, s.trajectories.agents.size(), ctx);
-  return animate_crowd(s.trajectories, s.environment, spec.animation, ctx);
-}
+using test::corridor_walkers;
 
 /// The corridor length of the MPFB2-body corridor tests: the spec's 6 m in Release; 3 m (half the
 /// characters, at the same density) under the sanitizers, where the corrector runs about 20 times slower
