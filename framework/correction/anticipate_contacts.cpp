@@ -1,12 +1,14 @@
 #include "framework/correction/anticipate_contacts.hpp"
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "framework/core/error.hpp"
 #include "framework/core/skeleton.hpp"
 #include "framework/correction/correct_crowd.hpp"
+#include "framework/correction/follow_root_offsets.hpp"
 
 namespace crowdlab {
 namespace {
@@ -121,12 +123,23 @@ CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams&
   const std::vector<int> joints = anticipated_joint_set(params.anticipated_joints);
   CorrectionReport last;
   CrowdAnimation out = correct_crowd_once(crowd, params, progress, &last);
+  // The input the later runs aim at: the clip's own, or the one re-planned on the first run's roots.
+  std::optional<CrowdAnimation> replanned;
+  if (follows_root_offsets(crowd, params)) {
+    FollowRootDef def;
+    def.smoothing_s = params.follow_root_smoothing_s;
+    def.foot_plant_speed_mps = params.foot_plant_speed_mps;
+    def.foot_plant_height_m = params.foot_plant_height_m;
+    replanned = follow_root_offsets(crowd, out, def);
+    out = correct_crowd_once(*replanned, params, progress, &last);
+  }
+  const CrowdAnimation& input = replanned ? *replanned : crowd;
   const double max_turn_rad = params.anticipation_rate_radps / crowd.meta.fps;
   for (int run = 0; run < params.anticipation_runs && !joints.empty(); ++run) {
     // A clip the pre-roll closed into a loop is ramped around its seam.
     const bool looping = last.preroll_frames > 0 && last.loop_closure != "none";
-    CrowdAnimation aims = crowd;
-    ramp_contact_deviations(crowd, out, joints, max_turn_rad, looping, aims);
+    CrowdAnimation aims = input;
+    ramp_contact_deviations(input, out, joints, max_turn_rad, looping, aims);
     out = correct_crowd_once(aims, params, nullptr, &last);
   }
   if (report) *report = last;

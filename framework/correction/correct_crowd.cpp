@@ -489,16 +489,21 @@ void record_extra_laps(const CrowdAnimation& crowd, const CorrectorParams& param
 
 }  // namespace
 
+bool follows_root_offsets(const CrowdAnimation& crowd, const CorrectorParams& params) {
+  return params.follow_root_smoothing_s > 0.0 && loop_window_frames(crowd, params) == 0;
+}
+
 std::size_t correction_steps(const CrowdAnimation& crowd, const CorrectorParams& params) {
   const auto frames = static_cast<size_t>(crowd.frame_count());
   const auto window = static_cast<size_t>(loop_window_frames(crowd, params));
-  return window > 0
-             ? (1 + kLeadLaps) * frames + window +
-                   static_cast<size_t>(next_lap_bound(static_cast<int>(frames), static_cast<int>(window)))
-             : frames;
+  if (window > 0)
+    return (1 + kLeadLaps) * frames + window +
+           static_cast<size_t>(next_lap_bound(static_cast<int>(frames), static_cast<int>(window)));
+  return follows_root_offsets(crowd, params) ? 2 * frames : frames;
 }
 
-// correct_crowd itself (one run, or several with anticipated contacts) is in anticipate_contacts.cpp.
+// correct_crowd itself (one run, two where it follows the root offsets, more with anticipated contacts) is
+// in anticipate_contacts.cpp.
 CrowdAnimation correct_crowd_once(const CrowdAnimation& crowd, const CorrectorParams& params,
                                   Progress* progress, CorrectionReport* report) {
   validate_crowd(crowd, "correct_crowd");

@@ -67,17 +67,26 @@ struct CorrectionReport {
   double cg_iterations_mean = 0.0;
 };
 
-/// The corrector steps of correct_crowd's first run, the total its progress counts at the start: the
-/// frames, and for a looping clip with a pre-roll the lead laps before them (four laps of the clip,
-/// correct_crowd.cpp), the closure's re-corrected window (W frames) and the frames of the next lap after
-/// them that the closure may read (its start, and the joints cut from it: at most 2W; stepped only where
-/// the per-character closure needs them, the rest counted as done). Where the closure leaves characters
-/// open, an extra lap grows the progress's total by F + W while it runs (Progress::grow; session 20).
+/// Whether correct_crowd corrects `crowd` twice, the second time toward its input moved where the first
+/// put the bodies (params.follow_root_smoothing_s > 0 and the clip is not corrected into a loop;
+/// follow_root_offsets.hpp).
+bool follows_root_offsets(const CrowdAnimation& crowd, const CorrectorParams& params);
+
+/// The corrector steps of correct_crowd's first run (both runs where it follows the root offsets), the
+/// total its progress counts at the start: the frames, and for a looping clip with a pre-roll the lead
+/// laps before them (four laps of the clip, correct_crowd.cpp), the closure's re-corrected window (W
+/// frames) and the frames of the next lap after them that the closure may read (its start, and the joints cut
+/// from it: at most 2W; stepped only where the per-character closure needs them, the rest counted as done).
+/// Where the closure leaves characters open, an extra lap grows the progress's total by F + W while it runs
+/// (Progress::grow; session 20).
 std::size_t correction_steps(const CrowdAnimation& crowd, const CorrectorParams& params);
 
 /// progress (optional) is advanced once per step of the first run (correction_steps, and the extra laps
 /// it grows by), and reaches its total as the run ends. report (optional)
-/// receives the summary of the last run. With params.anticipated_joints other than "none", the clip is
+/// receives the summary of the last run. Where follows_root_offsets, the clip is corrected once, its input
+/// re-planned on the corrected roots (follow_root_offsets.hpp) and corrected again; the result is that
+/// second correction, and anticipated contacts (below) ramp toward the re-planned input. With
+/// params.anticipated_joints other than "none", the clip is
 /// corrected 1 + params.anticipation_runs times, each run's contact deviations ramped into the next run's
 /// targets (anticipate_contacts.hpp).
 CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams& params,

@@ -101,6 +101,7 @@ void validate_corrector_params(const CorrectorParams& p) {
   check(p.free_joint_hold_s, "free_joint_hold_s", 0.0);
   check(p.free_joint_return_radps, "free_joint_return_radps", 0.0);
   check(p.max_step_s, "max_step_s", 1e-4);
+  check(p.follow_root_smoothing_s, "follow_root_smoothing_s", 0.0);
   if (p.depenetration_passes < 0) throw InputError("corrector parameter depenetration_passes must be >= 0");
   if (p.settle_steps < 0) throw InputError("corrector parameter settle_steps must be >= 0");
   if (p.active_set_passes < 0) throw InputError("corrector parameter active_set_passes must be >= 0");

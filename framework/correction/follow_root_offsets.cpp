@@ -1,0 +1,125 @@
+#include "framework/correction/follow_root_offsets.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "framework/core/forward_kinematics.hpp"
+#include "framework/core/leg_ik.hpp"
+
+namespace crowdlab {
+namespace {
+
+Vec3 horizontal(const Vec3& v) {
+  return {v.x(), 0.0, v.z()};
+}
+
+/// The first correction's horizontal root offsets, Gaussian-smoothed over time.
+std::vector<Vec3> smoothed_root_offsets(const CharacterAnimation& in, const CharacterAnimation& out,
+                                        double sigma_frames) {
+  const int n = static_cast<int>(in.frames.size());
+  std::vector<Vec3> raw(n);
+  for (int f = 0; f < n; ++f)
+    raw[f] = horizontal(out.frames[f].root_position_m - in.frames[f].root_position_m);
+  if (sigma_frames <= 0.0) return raw;
+  const int reach = static_cast<int>(std::ceil(3.0 * sigma_frames));
+  std::vector<Vec3> smooth(n, Vec3::Zero());
+  for (int f = 0; f < n; ++f) {
+    double weight_sum = 0.0;
+    for (int k = std::max(0, f - reach); k <= std::min(n - 1, f + reach); ++k) {
+      const double d = (k - f) / sigma_frames;
+      const double w = std::exp(-0.5 * d * d);
+      smooth[f] += w * raw[k];
+      weight_sum += w;
+    }
+    smooth[f] /= weight_sum;
+  }
+  return smooth;
+}
+
+/// Per frame, whether the input plants this foot (ankle or ball), by the holds' test.
+std::vector<bool> planted_frames(const std::vector<BoneTransforms>& bones, const LegJoints& leg, double fps,
+                                 const FollowRootDef& def) {
+  const size_t n = bones.size();
+  std::vector<bool> planted(n, false);
+  const double step_m = def.foot_plant_speed_mps / fps;
+  for (size_t f = 0; f < n; ++f) {
+    const size_t prev = f == 0 ? std::min<size_t>(1, n - 1) : f - 1;
+    for (int j : {leg.ankle, leg.foot}) {
+      const Vec3& now = bones[f][j].translation;
+      if ((now - bones[prev][j].translation).norm() < step_m && now.y() < def.foot_plant_height_m)
+        planted[f] = true;
+    }
+  }
+  return planted;
+}
+
+/// The foot's offset per frame: one per planted stretch (the root offset at its middle frame), eased
+/// between stretches; the root offset itself when the input never plants the foot.
+std::vector<Vec3> footprint_offsets(const std::vector<bool>& planted, const std::vector<Vec3>& root_offset) {
+  const int n = static_cast<int>(planted.size());
+  struct Stretch {
+    int first, last;
+    Vec3 offset;
+  };
+  std::vector<Stretch> stretches;
+  for (int f = 0; f < n;) {
+    if (!planted[f]) {
+      ++f;
+      continue;
+    }
+    int g = f;
+    while (g + 1 < n && planted[g + 1]) ++g;
+    stretches.push_back({f, g, root_offset[(f + g) / 2]});
+    f = g + 1;
+  }
+  if (stretches.empty()) return root_offset;
+  std::vector<Vec3> offsets(n);
+  for (int f = 0; f <= stretches.front().last; ++f) offsets[f] = stretches.front().offset;
+  for (size_t s = 0; s + 1 < stretches.size(); ++s) {
+    const Stretch& a = stretches[s];
+    const Stretch& b = stretches[s + 1];
+    const int gap = b.first - a.last;
+    for (int f = a.last + 1; f < b.first; ++f) {
+      const double t = static_cast<double>(f - a.last) / gap;
+      const double w = 0.5 - 0.5 * std::cos(M_PI * t);
+      offsets[f] = (1.0 - w) * a.offset + w * b.offset;
+    }
+    for (int f = b.first; f <= b.last; ++f) offsets[f] = b.offset;
+  }
+  for (int f = stretches.back().last + 1; f < n; ++f) offsets[f] = stretches.back().offset;
+  return offsets;
+}
+
+bool all_zero(const std::vector<Vec3>& v) {
+  return std::all_of(v.begin(), v.end(), [](const Vec3& x) { return x.squaredNorm() == 0.0; });
+}
+
+void follow_character(const CharacterAnimation& in, const CharacterAnimation& out, double fps,
+                      const FollowRootDef& def, CharacterAnimation& result) {
+  const std::vector<Vec3> root_offset = smoothed_root_offsets(in, out, def.smoothing_s * fps);
+  if (all_zero(root_offset)) return;
+  std::vector<BoneTransforms> bones(in.frames.size());
+  for (size_t f = 0; f < in.frames.size(); ++f) bones[f] = forward_kinematics(in.shape, in.frames[f]);
+  for (size_t f = 0; f < in.frames.size(); ++f) result.frames[f].root_position_m += root_offset[f];
+  for (LegSide side : kLegSides) {
+    const LegJoints leg = leg_joints(side);
+    const std::vector<Vec3> foot_offset =
+        footprint_offsets(planted_frames(bones, leg, fps, def), root_offset);
+    for (size_t f = 0; f < in.frames.size(); ++f) {
+      const RigidTransform& ankle = bones[f][leg.ankle];
+      reach_ankle(in.shape, result.frames[f], side, ankle.translation + foot_offset[f], ankle.rotation);
+    }
+  }
+}
+
+}  // namespace
+
+CrowdAnimation follow_root_offsets(const CrowdAnimation& input, const CrowdAnimation& corrected,
+                                   const FollowRootDef& def) {
+  CrowdAnimation result = input;
+  for (size_t c = 0; c < input.characters.size(); ++c)
+    follow_character(input.characters[c], corrected.characters[c], input.meta.fps, def, result.characters[c]);
+  return result;
+}
+
+}  // namespace crowdlab
