@@ -14,6 +14,8 @@
 #include "framework/correction/environment_point_tree.hpp"
 #include "framework/io/read_crowd_glb.hpp"
 #include "framework/io/write_crowd_glb.hpp"
+#include "framework/pipeline/crowd_recipes.hpp"
+#include "framework/spec/condition_kinds.hpp"
 
 namespace crowdlab::cli::cmd_correct {
 namespace {
@@ -22,7 +24,15 @@ struct CorrectOptions {
   std::string in_path, out_path;
   CorrectorParams params;
   std::optional<ProxyFit> proxies;  ///< empty: the capsules the crowd file carries
+  double follow_root_s = 0.0;
+  bool follow_root_given = false;  ///< false: as `run` corrects the crowd file's scenario
 };
+
+/// What `run` uses for the crowd file's scenario (meta.scenario; 0 for a name it does not know).
+double default_follow_root_s(const CrowdAnimation& crowd) {
+  const std::optional<ScenarioKind> scenario = parse_kind<ScenarioKind>(crowd.meta.scenario);
+  return scenario ? follow_root_smoothing_s(*scenario) : 0.0;
+}
 
 }  // namespace
 
@@ -45,9 +55,18 @@ void add_correct_command(Command& root) {
                   "Refuse an environment that samples into more points than this (about 40 bytes each)")
       ->check(check::positive_number())
       ->capture_default_str();
+  cmd->add_option("--follow-root", opt->follow_root_s,
+                  "Correct twice, the second time toward the input moved onto the first correction's roots "
+                  "(their horizontal offsets smoothed over this Gaussian sigma, s) with its footprints moved "
+                  "alike; 0 = one correction. Default: as `run`, 0.3 for crowds walking on the flat ground "
+                  "(corridor, flows, crossing pairs; the crowd file's scenario), else 0 (docs/correction.md)")
+      ->check(check::range(0.0, 10.0))
+      ->each([opt](const std::string&) { opt->follow_root_given = true; });
   add_proxy_fit_options(cmd, opt->proxies, "the output carries them");
   cmd->callback([opt] {
     CrowdAnimation in = read_crowd_glb(opt->in_path);
+    opt->params.follow_root_smoothing_s =
+        opt->follow_root_given ? opt->follow_root_s : default_follow_root_s(in);
     fit_crowd_proxies(in, opt->proxies.value_or(ProxyFit::volume));
     check_environment_sampling(in.environment, opt->params.environment_sample_spacing_m,
                                opt->params.max_environment_points, opt->in_path);

@@ -43,6 +43,7 @@
 #include "framework/metrics/correction_quality.hpp"
 #include "framework/metrics/measure_crowd.hpp"
 #include "framework/pipeline/body_model.hpp"
+#include "framework/pipeline/crowd_recipes.hpp"
 #include "framework/pipeline/provenance.hpp"
 #include "framework/spec/load_experiment_spec.hpp"
 
@@ -109,6 +110,7 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
     CorrectorParams params = o.params;
     params.exact_prediction = !o.inertial_prediction;
     params.damping = spec.correction.damping;
+    params.follow_root_smoothing_s = follow_root_smoothing_s(s.scenario);  // as `run` corrects it
     Progress progress(scenario + " density " + density + ": correcting", correction_steps(baseline, params));
     CorrectionReport report;
     const CrowdAnimation ours = correct_crowd(baseline, params, &progress, &report);

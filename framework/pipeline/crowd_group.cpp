@@ -23,10 +23,12 @@ using nlohmann::json;
 namespace {
 
 /// The spec's correction section as corrector parameters (0 keeps the corrector's default), with the
-/// loop pre-roll (correct_crowd.hpp) of the recipe.
-CorrectorParams corrector_params(const CorrectionSpec& c, double loop_preroll_s) {
+/// loop pre-roll and the root following (correct_crowd.hpp) of the recipe.
+CorrectorParams corrector_params(const CorrectionRecipe& recipe) {
+  const CorrectionSpec& c = recipe.correction;
   CorrectorParams params;
-  params.loop_preroll_s = loop_preroll_s;
+  params.loop_preroll_s = recipe.loop_preroll_s;
+  params.follow_root_smoothing_s = recipe.follow_root_smoothing_s;
   if (c.stiffness > 0) params.stiffness = c.stiffness;
   params.damping = c.damping;
   if (c.collision_stiffness > 0) params.contact_stiffness = c.collision_stiffness;
@@ -109,8 +111,7 @@ Stage CrowdGroup::correction_stage() {
   s.inputs = {animation_path(CrowdMethod::baseline)};
   s.compute = [this, i] {
     const CrowdAnimation& input = animation(CrowdMethod::baseline);
-    const CorrectorParams params =
-        corrector_params(recipes_.correction.correction, recipes_.correction.loop_preroll_s);
+    const CorrectorParams params = corrector_params(recipes_.correction);
     Progress progress("correct " + key_, correction_steps(input, params));
     CorrectionReport report;
     animation_[i] = correct_crowd(input, params, &progress, &report);

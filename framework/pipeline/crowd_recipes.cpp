@@ -114,7 +114,14 @@ CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Conditio
   // their anchors (blend_keeping_planted_feet.hpp); a crowd whose input does not loop (walking) gets none
   // whatever is asked (correct_crowd.cpp, input_loops).
   r.correction.loop_preroll_s = spec.protocol.loop_video ? loop_preroll_window_s(spec.duration_s) : 0.0;
+  r.correction.follow_root_smoothing_s = follow_root_smoothing_s(p.scenario);
   return r;
+}
+
+double follow_root_smoothing_s(ScenarioKind scenario) {
+  const bool walks_on_flat_ground =
+      scenario != ScenarioKind::stationary && scenario != ScenarioKind::manifold;
+  return walks_on_flat_ground ? kWalkingFollowRootS : 0.0;
 }
 
 double loop_preroll_window_s(double duration_s) {

@@ -99,13 +99,28 @@ struct CorrectionRecipe {
   /// 19's held-ankle twist row, held_ankle_twist_in_pass, is off by default: the outputs are version 15's.)
   /// 16: clips under 30 fps corrected in substeps of at most 1/30 s (CorrectorParams::max_step_s; issue
   /// 27, session 26; 30 fps clips unchanged); 17: a whole-crowd loop closure only if it adds no joint flips
-  /// to any character, else the per-character choice (issue 28, session 26).
-  static constexpr std::string_view kCodeVersion = "17";
+  /// to any character, else the per-character choice (issue 28, session 26); 18: crowds that walk on the
+  /// flat ground corrected twice, the second time toward their input moved onto the first correction's
+  /// roots (follow_root_smoothing_s; issue 27, session 27; standing crowds unchanged).
+  static constexpr std::string_view kCodeVersion = "18";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
   /// (correct_crowd.hpp; issue 28): loop_preroll_window_s(duration) when protocol.loop_video, else 0.
   double loop_preroll_s = 0.0;
+  /// CorrectorParams::follow_root_smoothing_s: kWalkingFollowRootS for crowds that walk on the flat ground
+  /// (corridor, flows, crossing pairs), else 0 (standing crowds, and crowds on surfaces, whose ground is
+  /// not horizontal).
+  double follow_root_smoothing_s = 0.0;
 };
+
+/// The smoothing (s) of the root offsets a walking crowd's second correction follows
+/// (follow_root_offsets.hpp). Measured on the corridor at 6.66 /m^2 (5 s, docs/correction.md, session 27):
+/// 0.15 / 0.3 / 0.5 / 1.0 s gave 258 / 253 / 377 / 393 flip joint-frames, one run each (one correction: 323;
+/// the clip is chaotic: three runs at 0.3 s gave 159-277, three of one correction 323-339).
+inline constexpr double kWalkingFollowRootS = 0.3;
+/// follow_root_smoothing_s for a crowd of `scenario`: kWalkingFollowRootS where it walks on the flat ground,
+/// else 0. `run`, `correct` (from the crowd file's scenario) and `experiment overlap-vs-density` all use it.
+double follow_root_smoothing_s(ScenarioKind scenario);
 
 /// The metrics stage of one method's crowd file (<method>.metrics.json).
 struct MetricsRecipe {

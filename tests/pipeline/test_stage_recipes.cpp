@@ -272,6 +272,27 @@ TEST_CASE("stage recipes: a crowd recipe holds only the values its scenario kind
   }
 }
 
+TEST_CASE("stage recipes: crowds that walk on the flat ground follow their corrected roots, others do not",
+          "[pipeline]") {
+  // Session 27 (follow_root_offsets.hpp): the correction of a walking crowd runs twice, the second time
+  // toward its input moved onto the first run's roots. Standing crowds and crowds on surfaces run once.
+  auto follow = [](const ExperimentSpec& spec) {
+    return crowd_group_recipes(spec, enumerate_conditions(spec).front()).correction.follow_root_smoothing_s;
+  };
+  CHECK(follow(kind_spec("{type: corridor, area: {width_m: 2, depth_m: 6}}", "  density: [0.8]\n",
+                         "{agent_radius_m: 0.2}")) == kWalkingFollowRootS);
+  CHECK(follow(kind_spec("{type: flow_b, area: {width_m: 3, depth_m: 4}, initial_spacing_m: 1.0}",
+                         "  characters: [6]\n", "{agent_radius_m: 0.2, model: social}")) ==
+        kWalkingFollowRootS);
+  CHECK(follow(kind_spec("{type: stationary, area: {width_m: 1.5, depth_m: 1.5}}", "  density: [2.5]\n",
+                         "{agent_radius_m: 0.18}")) == 0.0);
+  CHECK(follow(load_experiment_spec((source_dir() / "experiments/manifold_demo.yaml").string())) == 0.0);
+  CHECK(follow(load_experiment_spec((source_dir() / "experiments/gomez2024_nonstationary.yaml").string())) ==
+        kWalkingFollowRootS);
+  CHECK(follow(load_experiment_spec((source_dir() / "experiments/gomez2024_stationary.yaml").string())) ==
+        0.0);
+}
+
 TEST_CASE(
     "stage recipes: a looping clip of at least 2 s gets the loop pre-roll, over half the clip up to 2 s",
     "[pipeline][loop]") {
