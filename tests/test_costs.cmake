@@ -49,3 +49,4 @@ set_tests_properties([=[stimuli:crowdlab render: glb -> mp4 with the overlap CSV
 set_tests_properties([=[fuzz:the fuzz harness reports a signal, a hang, memory over the cap and a silent exit 2]=] PROPERTIES COST 5)
 set_tests_properties([=[pipeline:run makes every condition's crowd, metrics and clip, then reuses them]=] PROPERTIES COST 5)
 set_tests_properties([=[pipeline:run: a truncated clip beside its old sidecar is re-rendered, and no temporary is left]=] PROPERTIES COST 5)
+set_tests_properties([=[correction:follow root offsets: the dense corridor corrected twice follows its pushed roots with fewer flips and less float, in twice the steps]=] PROPERTIES COST 6)

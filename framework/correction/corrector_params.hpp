@@ -186,8 +186,8 @@ struct CorrectorParams {
   /// corrector and clips that play once).
   double loop_preroll_s = 0.0;
   /// Walking crowds (session 27; follow_root_offsets.hpp): > 0 and the clip is not corrected into a loop,
-  /// correct_crowd corrects twice: the first correction's horizontal root offsets, smoothed by a Gaussian
-  /// of this sigma (s), move the input's roots and footprints (the legs re-posed onto them), and the
+  /// correct_crowd corrects twice: half the first correction's horizontal root offsets, smoothed by a
+  /// Gaussian of this sigma (s), move the input's roots and footprints (the legs re-posed onto them), and the
   /// second correction runs on that input from scratch. 0: one correction (the default here, for the
   /// online corrector and for crowds that stand). The run sets kWalkingFollowRootS for crowds that walk
   /// and play once (pipeline/crowd_recipes.hpp); a clip corrected into a loop keeps one correction, as its

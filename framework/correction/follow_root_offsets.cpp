@@ -96,7 +96,8 @@ bool all_zero(const std::vector<Vec3>& v) {
 
 void follow_character(const CharacterAnimation& in, const CharacterAnimation& out, double fps,
                       const FollowRootDef& def, CharacterAnimation& result) {
-  const std::vector<Vec3> root_offset = smoothed_root_offsets(in, out, def.smoothing_s * fps);
+  std::vector<Vec3> root_offset = smoothed_root_offsets(in, out, def.smoothing_s * fps);
+  for (Vec3& offset : root_offset) offset *= def.share;
   if (all_zero(root_offset)) return;
   std::vector<BoneTransforms> bones(in.frames.size());
   for (size_t f = 0; f < in.frames.size(); ++f) bones[f] = forward_kinematics(in.shape, in.frames[f]);

@@ -114,9 +114,10 @@ struct CorrectionRecipe {
 };
 
 /// The smoothing (s) of the root offsets a walking crowd's second correction follows
-/// (follow_root_offsets.hpp). Measured on the corridor at 6.66 /m^2 (5 s, docs/correction.md, session 27):
-/// 0.15 / 0.3 / 0.5 / 1.0 s gave 258 / 253 / 377 / 393 flip joint-frames, one run each (one correction: 323;
-/// the clip is chaotic: three runs at 0.3 s gave 159-277, three of one correction 323-339).
+/// (follow_root_offsets.hpp). Measured on the corridor at 6.66 /m^2 following the whole offset (5 s,
+/// docs/correction.md, session 27): 0.15 / 0.3 / 0.5 / 1.0 s gave 258 / 253 / 377 / 393 flip joint-frames,
+/// one run each (one correction: 323; the clip is chaotic: three runs at 0.3 s gave 159-277, three of one
+/// correction 323-339); at 20 s, 0.15 s let planted feet slide (stance drift p99 20-21 mm).
 inline constexpr double kWalkingFollowRootS = 0.3;
 /// follow_root_smoothing_s for a crowd of `scenario`: kWalkingFollowRootS where it walks on the flat ground,
 /// else 0. `run`, `correct` (from the crowd file's scenario) and `experiment overlap-vs-density` all use it.

@@ -2,7 +2,9 @@
 // roots moved by the first correction's smoothed offsets, footprints moved rigidly, nothing else.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/leg_ik.hpp"
@@ -58,7 +60,8 @@ TEST_CASE(
     corrected.characters[0].frames[static_cast<size_t>(f)].root_position_m += side;
     corrected.characters[1].frames[static_cast<size_t>(f)].root_position_m += ramp(f) + Vec3(0, 0.05, 0);
   }
-  const CrowdAnimation replanned = follow_root_offsets(input, corrected, FollowRootDef{});
+  const FollowRootDef def;
+  const CrowdAnimation replanned = follow_root_offsets(input, corrected, def);
   REQUIRE(replanned.characters.size() == input.characters.size());
 
   // Unmoved characters are returned bit for bit.
@@ -72,28 +75,30 @@ TEST_CASE(
                 b.local_rotations[static_cast<size_t>(j)].coeffs());
     }
 
-  // A constant offset moves the whole walker: its root and both ankles by exactly that offset.
+  // A constant offset moves the whole walker: its root and both ankles by exactly its followed share.
   for (int f = 0; f < frames; ++f) {
     const auto ff = static_cast<size_t>(f);
     CHECK((replanned.characters[0].frames[ff].root_position_m -
-           input.characters[0].frames[ff].root_position_m - side)
+           input.characters[0].frames[ff].root_position_m - def.share * side)
               .norm() < 1e-12);
     for (LegSide side_of_leg : kLegSides) {
       const int ankle = leg_joints(side_of_leg).ankle;
-      CHECK((ankle_at(replanned.characters[0], ff, ankle) - ankle_at(input.characters[0], ff, ankle) - side)
+      CHECK((ankle_at(replanned.characters[0], ff, ankle) - ankle_at(input.characters[0], ff, ankle) -
+             def.share * side)
                 .norm() < 1e-6);
     }
   }
 
-  // A push that grows through the stances: the root follows it horizontally (the first correction's
+  // A push that grows through the stances: the root follows its share horizontally (the first correction's
   // height change is not followed; a Gaussian keeps a straight ramp away from the clip's ends), and each
   // planted stretch of the input's foot moves as one footprint, so the re-planned input does not skate.
   const CharacterAnimation& in1 = input.characters[1];
   const CharacterAnimation& re1 = replanned.characters[1];
-  const int reach = static_cast<int>(std::ceil(3.0 * FollowRootDef{}.smoothing_s * fps));
+  const int reach = static_cast<int>(std::ceil(3.0 * def.smoothing_s * fps));
   for (int f = reach; f < frames - reach; ++f) {
     const auto ff = static_cast<size_t>(f);
-    CHECK((re1.frames[ff].root_position_m - in1.frames[ff].root_position_m - ramp(f)).norm() < 1e-9);
+    CHECK((re1.frames[ff].root_position_m - in1.frames[ff].root_position_m - def.share * ramp(f)).norm() <
+          1e-9);
   }
   int stance_frames = 0;
   for (LegSide side_of_leg : kLegSides) {
@@ -114,8 +119,10 @@ TEST_CASE(
 
 TEST_CASE(
     "follow root offsets: the dense corridor corrected twice follows its pushed roots with fewer "
-    "flips and less float, and no more than twice the steps",
+    "flips and less float, in twice the steps",
     "[correction]") {
+  // The corridor is chaotic (a 0.1 % change of the stiffness moves the flips by a quarter), so the claim is
+  // on three runs together, the stiffness at 119.9 / 120 / 120.1 (docs/correction.md, session 27).
   const CrowdAnimation input = test::corridor_walkers(test::kSanitized ? 1.0 : 3.0, true, false, 3.0);
   CorrectorParams once;
   CorrectorParams twice;
@@ -123,20 +130,38 @@ TEST_CASE(
   CHECK(follows_root_offsets(input, twice));
   CHECK_FALSE(follows_root_offsets(input, once));
   CHECK(correction_steps(input, twice) == 2 * correction_steps(input, once));
-  const CorrectionQuality q1 = measure_correction_quality(input, correct_crowd(input, once), 0, 1, false);
-  const CorrectionQuality q2 = measure_correction_quality(input, correct_crowd(input, twice), 0, 1, false);
-  INFO("flips " << q1.flips.count << " -> " << q2.flips.count << ", float p99 mm "
-                << 1e3 * q1.feet.float_p99_m << " -> " << 1e3 * q2.feet.float_p99_m << ", depth p99 mm "
-                << 1e3 * q1.depth_p99_m << " -> " << 1e3 * q2.depth_p99_m << ", mean deviation deg "
-                << q1.rotation_dev_mean_deg << " -> " << q2.rotation_dev_mean_deg << ", free-limb max deg "
-                << q1.free_limbs.max_deg << " -> " << q2.free_limbs.max_deg);
-  CHECK(q2.flips.count <= q1.flips.count);
-  CHECK(q2.feet.float_p99_m <= q1.feet.float_p99_m);
-  CHECK(q2.rotation_dev_mean_deg < q1.rotation_dev_mean_deg);
-  CHECK(q2.depth_p99_m <= q1.depth_p99_m + 0.001);
-  CHECK(q2.free_limbs.max_deg <= 5.0);
+  struct Sum {
+    long flips = 0;
+    double float_m = 0.0, depth_m = 0.0, mean_deg = 0.0, free_limb_max_deg = 0.0;
+  };
+  auto measure = [&](const CorrectorParams& p, Sum& sum) {
+    const CorrectionQuality q = measure_correction_quality(input, correct_crowd(input, p), 0, 1, false);
+    sum.flips += q.flips.count;
+    sum.float_m += q.feet.float_p99_m;
+    sum.depth_m += q.depth_p99_m;
+    sum.mean_deg += q.rotation_dev_mean_deg;
+    sum.free_limb_max_deg = std::max(sum.free_limb_max_deg, q.free_limbs.max_deg);
+  };
+  Sum s1, s2;
+  // Under the sanitizers (about 20 times slower) one short run looks for memory errors; Release checks.
+  for (const double k :
+       test::kSanitized ? std::vector<double>{120.0} : std::vector<double>{119.9, 120.0, 120.1}) {
+    once.stiffness = twice.stiffness = k;
+    measure(once, s1);
+    measure(twice, s2);
+  }
+  INFO("three runs: flips " << s1.flips << " -> " << s2.flips << ", float p99 mm " << 1e3 * s1.float_m
+                            << " -> " << 1e3 * s2.float_m << ", depth p99 mm " << 1e3 * s1.depth_m << " -> "
+                            << 1e3 * s2.depth_m << ", mean deviation deg " << s1.mean_deg << " -> "
+                            << s2.mean_deg << ", free-limb max deg " << s1.free_limb_max_deg << " -> "
+                            << s2.free_limb_max_deg);
+  CHECK(s2.free_limb_max_deg <= 5.0);
+  if (test::kSanitized) return;
+  CHECK(s2.flips < s1.flips);
+  CHECK(s2.float_m < s1.float_m);
+  CHECK(s2.mean_deg < s1.mean_deg);
+  CHECK(s2.depth_m <= 1.1 * s1.depth_m);
 }
-
 TEST_CASE("follow root offsets: a clip corrected into a loop is corrected once", "[correction]") {
   CrowdAnimation input = test::corridor_walkers(1.0, false, false, 2.0);
   // The walkers made to come back to where they started, as a looping clip does.
