@@ -128,9 +128,7 @@ CrowdAnimation correct_crowd(const CrowdAnimation& crowd, const CorrectorParams&
   if (follows_root_offsets(crowd, params)) {
     FollowRootDef def;
     def.smoothing_s = params.follow_root_smoothing_s;
-    def.foot_plant_speed_mps = params.foot_plant_speed_mps;
-    def.foot_plant_height_m = params.foot_plant_height_m;
-    replanned = follow_root_offsets(crowd, out, def);
+    replanned = follow_root_offsets(crowd, out, def, params);
     out = correct_crowd_once(*replanned, params, progress, &last);
   }
   const CrowdAnimation& input = replanned ? *replanned : crowd;

@@ -5,6 +5,8 @@
 
 #include "framework/core/forward_kinematics.hpp"
 #include "framework/core/leg_ik.hpp"
+#include "framework/correction/blend_keeping_planted_feet.hpp"
+#include "framework/correction/input_foot_lifts.hpp"
 
 namespace crowdlab {
 namespace {
@@ -36,20 +38,15 @@ std::vector<Vec3> smoothed_root_offsets(const CharacterAnimation& in, const Char
   return smooth;
 }
 
-/// Per frame, whether the input plants this foot (ankle or ball), by the holds' test.
-std::vector<bool> planted_frames(const std::vector<BoneTransforms>& bones, const LegJoints& leg, double fps,
-                                 const FollowRootDef& def) {
-  const size_t n = bones.size();
-  std::vector<bool> planted(n, false);
-  const double step_m = def.foot_plant_speed_mps / fps;
-  for (size_t f = 0; f < n; ++f) {
-    const size_t prev = f == 0 ? std::min<size_t>(1, n - 1) : f - 1;
-    for (int j : {leg.ankle, leg.foot}) {
-      const Vec3& now = bones[f][j].translation;
-      if ((now - bones[prev][j].translation).norm() < step_m && now.y() < def.foot_plant_height_m)
-        planted[f] = true;
-    }
-  }
+/// Per frame, whether the input plants the foot of `side` (ankle or ball), by the corrector's test
+/// (input_foot_lifts.hpp); frame 0 as frame 1.
+std::vector<bool> planted_frames(const CharacterAnimation& in, size_t side, double fps,
+                                 const CorrectorParams& p) {
+  const int n = static_cast<int>(in.frames.size());
+  if (n < 2) return std::vector<bool>(static_cast<size_t>(n), false);
+  const std::vector<bool> lifted = lifted_frames(in, 1, n - 1, p.foot_plant_speed_mps / fps, p)[side];
+  std::vector<bool> planted = {!lifted.front()};
+  for (const bool l : lifted) planted.push_back(!l);
   return planted;
 }
 
@@ -80,8 +77,7 @@ std::vector<Vec3> footprint_offsets(const std::vector<bool>& planted, const std:
     const Stretch& b = stretches[s + 1];
     const int gap = b.first - a.last;
     for (int f = a.last + 1; f < b.first; ++f) {
-      const double t = static_cast<double>(f - a.last) / gap;
-      const double w = 0.5 - 0.5 * std::cos(M_PI * t);
+      const double w = raised_cosine(f - a.last, gap);
       offsets[f] = (1.0 - w) * a.offset + w * b.offset;
     }
     for (int f = b.first; f <= b.last; ++f) offsets[f] = b.offset;
@@ -95,20 +91,22 @@ bool all_zero(const std::vector<Vec3>& v) {
 }
 
 void follow_character(const CharacterAnimation& in, const CharacterAnimation& out, double fps,
-                      const FollowRootDef& def, CharacterAnimation& result) {
+                      const FollowRootDef& def, const CorrectorParams& plant_test,
+                      CharacterAnimation& result) {
   std::vector<Vec3> root_offset = smoothed_root_offsets(in, out, def.smoothing_s * fps);
   for (Vec3& offset : root_offset) offset *= def.share;
   if (all_zero(root_offset)) return;
   std::vector<BoneTransforms> bones(in.frames.size());
   for (size_t f = 0; f < in.frames.size(); ++f) bones[f] = forward_kinematics(in.shape, in.frames[f]);
   for (size_t f = 0; f < in.frames.size(); ++f) result.frames[f].root_position_m += root_offset[f];
-  for (LegSide side : kLegSides) {
-    const LegJoints leg = leg_joints(side);
+  for (size_t s = 0; s < 2; ++s) {
+    const LegJoints leg = leg_joints(kLegSides[s]);
     const std::vector<Vec3> foot_offset =
-        footprint_offsets(planted_frames(bones, leg, fps, def), root_offset);
+        footprint_offsets(planted_frames(in, s, fps, plant_test), root_offset);
     for (size_t f = 0; f < in.frames.size(); ++f) {
-      const RigidTransform& ankle = bones[f][leg.ankle];
-      reach_ankle(in.shape, result.frames[f], side, ankle.translation + foot_offset[f], ankle.rotation);
+      const RigidTransform& ankle = bones[f][static_cast<size_t>(leg.ankle)];
+      reach_ankle(in.shape, result.frames[f], kLegSides[s], ankle.translation + foot_offset[f],
+                  ankle.rotation);
     }
   }
 }
@@ -116,10 +114,11 @@ void follow_character(const CharacterAnimation& in, const CharacterAnimation& ou
 }  // namespace
 
 CrowdAnimation follow_root_offsets(const CrowdAnimation& input, const CrowdAnimation& corrected,
-                                   const FollowRootDef& def) {
+                                   const FollowRootDef& def, const CorrectorParams& plant_test) {
   CrowdAnimation result = input;
   for (size_t c = 0; c < input.characters.size(); ++c)
-    follow_character(input.characters[c], corrected.characters[c], input.meta.fps, def, result.characters[c]);
+    follow_character(input.characters[c], corrected.characters[c], input.meta.fps, def, plant_test,
+                     result.characters[c]);
   return result;
 }
 

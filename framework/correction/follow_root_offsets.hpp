@@ -11,18 +11,19 @@
 //   o(t)       `share` of the first correction's horizontal root offset from the input, smoothed by a
 //              Gaussian of `smoothing_s` (truncated at 3 sigma, weights renormalised at the clip's ends);
 //   root       input root + o(t);
-//   feet       each planted stretch of the input's foot (ankle or ball planted: foot_plant_speed_mps and
-//              foot_plant_height_m, the holds' own test) moves by o at the stretch's middle frame, as one
-//              rigid footprint, so the new input does not skate; between two stretches the offset eases
-//              from one footprint's to the next (raised cosine), before the first and after the last it is
-//              theirs; legs are re-posed onto these feet by the least-change leg IK (core/leg_ik.hpp
-//              reach_ankle), the foot's world rotation kept.
+//   feet       each planted stretch of the input's foot (ankle or ball planted: the corrector's test on
+//              foot_plant_speed_mps and foot_plant_height_m, input_foot_lifts.hpp) moves by o at the
+//              stretch's middle frame, as one rigid footprint, so the new input does not skate; between two
+//              stretches the offset eases from one footprint's to the next (raised cosine), before the first
+//              and after the last it is theirs; legs are re-posed onto these feet by the least-change leg IK
+//              (core/leg_ik.hpp reach_ankle), the foot's world rotation kept.
 // Everything else (arms, trunk, head, the gait's timing) is the input's, and a character the first
 // correction did not move (o = 0 on every frame) is returned exactly as it was.
 //   inputs:  the input crowd and its first correction (same characters and frames), smoothing_s (s),
-//            share (0..1), the plant test (m/s, m)
+//            share (0..1), the plant test's foot_plant_speed_mps and foot_plant_height_m (m/s, m)
 //   outputs: the re-planned input (shapes, meshes, environment and metadata of `input`)
 #include "framework/core/crowd_animation.hpp"
+#include "framework/correction/corrector_params.hpp"
 
 namespace crowdlab {
 
@@ -35,11 +36,9 @@ struct FollowRootDef {
   /// half kept the drift (6.8-7.0 mm) and removed about as many flips as the whole (2,379-2,615 ->
   /// 2,023-2,229), with less float.
   double share = 0.5;
-  double foot_plant_speed_mps = 0.03;  ///< the holds' plant test (CorrectorParams)
-  double foot_plant_height_m = 0.15;
 };
 
 CrowdAnimation follow_root_offsets(const CrowdAnimation& input, const CrowdAnimation& corrected,
-                                   const FollowRootDef& def);
+                                   const FollowRootDef& def, const CorrectorParams& plant_test);
 
 }  // namespace crowdlab

@@ -26,7 +26,7 @@ Vec3 ankle_at(const CharacterAnimation& ch, size_t f, int ankle) {
 
 /// Per frame, whether the input plants the foot of `leg` (ankle or ball), by the holds' test.
 std::vector<bool> planted(const CharacterAnimation& ch, const LegJoints& leg, double fps) {
-  const FollowRootDef def;
+  const CorrectorParams def;
   std::vector<bool> out(ch.frames.size(), false);
   for (size_t f = 1; f < ch.frames.size(); ++f) {
     const BoneTransforms a = forward_kinematics(ch.shape, ch.frames[f - 1]);
@@ -61,7 +61,7 @@ TEST_CASE(
     corrected.characters[1].frames[static_cast<size_t>(f)].root_position_m += ramp(f) + Vec3(0, 0.05, 0);
   }
   const FollowRootDef def;
-  const CrowdAnimation replanned = follow_root_offsets(input, corrected, def);
+  const CrowdAnimation replanned = follow_root_offsets(input, corrected, def, CorrectorParams{});
   REQUIRE(replanned.characters.size() == input.characters.size());
 
   // Unmoved characters are returned bit for bit.
