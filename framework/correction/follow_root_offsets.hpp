@@ -33,8 +33,8 @@ struct FollowRootDef {
   /// Measured on the corridor at 6.66 /m^2 over 20 s (three runs each, docs/correction.md, session 27):
   /// the whole offset let the second correction push the crowd further still (root offsets p99 13 ->
   /// 17 cm) and its planted feet slid more (stance drift p99 7.2 -> 9.1-11.0 mm, over issue 18's 10 mm);
-  /// half kept the drift (6.8-7.0 mm) and removed about as many flips as the whole (2,379-2,615 ->
-  /// 2,023-2,229), with less float.
+  /// half kept the drift (6.9 mm) and removed about as many flips as the whole (2,379-2,615 ->
+  /// 1,736-2,285), with less float.
   double share = 0.5;
 };
 
