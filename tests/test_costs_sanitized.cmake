@@ -42,3 +42,4 @@ set_tests_properties([=[body:skin, trousers and shoes stay behind the garments t
 set_tests_properties([=[fuzz:mutated specs through validate end in exit 0 or 2 with a message]=] PROPERTIES COST 5)
 set_tests_properties([=[correction:correction: a looping input gives a looping output with the loop pre-roll]=] PROPERTIES COST 5)
 set_tests_properties([=[pipeline:run --strict and check-stimuli judge every clip by the spec's render.check]=] PROPERTIES COST 5)
+set_tests_properties([=[correction:follow root offsets: the dense corridor corrected twice follows its pushed roots with fewer flips and less float, in twice the steps]=] PROPERTIES COST 44)
