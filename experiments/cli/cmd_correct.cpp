@@ -28,10 +28,12 @@ struct CorrectOptions {
   bool follow_root_given = false;  ///< false: as `run` corrects the crowd file's scenario
 };
 
-/// What `run` uses for the crowd file's scenario (meta.scenario; 0 for a name it does not know).
-double default_follow_root_s(const CrowdAnimation& crowd) {
-  const std::optional<ScenarioKind> scenario = parse_kind<ScenarioKind>(crowd.meta.scenario);
-  return scenario ? follow_root_smoothing_s(*scenario) : 0.0;
+/// `params` with what `run` sets for the crowd file's scenario (meta.scenario; nothing for a name it does
+/// not know), its root following as given when it is.
+void as_run_corrects(const CrowdAnimation& crowd, const CorrectOptions& opt, CorrectorParams& params) {
+  if (const std::optional<ScenarioKind> scenario = parse_kind<ScenarioKind>(crowd.meta.scenario))
+    walking_correction(*scenario, params);
+  if (opt.follow_root_given) params.follow_root_smoothing_s = opt.follow_root_s;
 }
 
 }  // namespace
@@ -55,18 +57,19 @@ void add_correct_command(Command& root) {
                   "Refuse an environment that samples into more points than this (about 40 bytes each)")
       ->check(check::positive_number())
       ->capture_default_str();
-  cmd->add_option("--follow-root", opt->follow_root_s,
-                  "Correct twice, the second time toward the input moved onto the first correction's roots "
-                  "(their horizontal offsets smoothed over this Gaussian sigma, s) with its footprints moved "
-                  "alike; 0 = one correction. Default: as `run`, 0.3 for crowds walking on the flat ground "
-                  "(corridor, flows, crossing pairs; the crowd file's scenario), else 0 (docs/correction.md)")
+  cmd->add_option(
+         "--follow-root", opt->follow_root_s,
+         "Correct twice, the second time toward the input moved onto the first correction's roots "
+         "(their horizontal offsets smoothed over this Gaussian sigma, s) with its footprints moved "
+         "alike; 0 = one correction. Default: as `run`, 0.3 for crowds walking on the flat ground "
+         "(the crowd file's scenario: corridor, flows, crossing pairs), which also get --settle-feet "
+         "and --feet-above-ground; else 0 (docs/correction.md)")
       ->check(check::range(0.0, 10.0))
       ->each([opt](const std::string&) { opt->follow_root_given = true; });
   add_proxy_fit_options(cmd, opt->proxies, "the output carries them");
   cmd->callback([opt] {
     CrowdAnimation in = read_crowd_glb(opt->in_path);
-    opt->params.follow_root_smoothing_s =
-        opt->follow_root_given ? opt->follow_root_s : default_follow_root_s(in);
+    as_run_corrects(in, *opt, opt->params);
     fit_crowd_proxies(in, opt->proxies.value_or(ProxyFit::volume));
     check_environment_sampling(in.environment, opt->params.environment_sample_spacing_m,
                                opt->params.max_environment_points, opt->in_path);

@@ -23,12 +23,13 @@ using nlohmann::json;
 namespace {
 
 /// The spec's correction section as corrector parameters (0 keeps the corrector's default), with the
-/// loop pre-roll and the root following (correct_crowd.hpp) of the recipe.
+/// loop pre-roll, the root following (correct_crowd.hpp) and the feet on the input's ground of the recipe.
 CorrectorParams corrector_params(const CorrectionRecipe& recipe) {
   const CorrectionSpec& c = recipe.correction;
   CorrectorParams params;
   params.loop_preroll_s = recipe.loop_preroll_s;
   params.follow_root_smoothing_s = recipe.follow_root_smoothing_s;
+  params.held_feet_at_input_height = params.feet_above_input_ground = recipe.feet_on_input_ground;
   if (c.stiffness > 0) params.stiffness = c.stiffness;
   params.damping = c.damping;
   if (c.collision_stiffness > 0) params.contact_stiffness = c.collision_stiffness;

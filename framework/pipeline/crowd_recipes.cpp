@@ -114,14 +114,22 @@ CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Conditio
   // their anchors (blend_keeping_planted_feet.hpp); a crowd whose input does not loop (walking) gets none
   // whatever is asked (correct_crowd.cpp, input_loops).
   r.correction.loop_preroll_s = spec.protocol.loop_video ? loop_preroll_window_s(spec.duration_s) : 0.0;
-  r.correction.follow_root_smoothing_s = follow_root_smoothing_s(p.scenario);
+  CorrectorParams walking;
+  walking_correction(p.scenario, walking);
+  r.correction.follow_root_smoothing_s = walking.follow_root_smoothing_s;
+  r.correction.feet_on_input_ground = walking.held_feet_at_input_height && walking.feet_above_input_ground;
   return r;
 }
 
-double follow_root_smoothing_s(ScenarioKind scenario) {
-  const bool walks_on_flat_ground =
-      scenario != ScenarioKind::stationary && scenario != ScenarioKind::manifold;
-  return walks_on_flat_ground ? kWalkingFollowRootS : 0.0;
+bool walks_on_flat_ground(ScenarioKind scenario) {
+  return scenario != ScenarioKind::stationary && scenario != ScenarioKind::manifold;
+}
+
+void walking_correction(ScenarioKind scenario, CorrectorParams& params) {
+  if (!walks_on_flat_ground(scenario)) return;
+  params.follow_root_smoothing_s = kWalkingFollowRootS;
+  params.held_feet_at_input_height = true;
+  params.feet_above_input_ground = true;
 }
 
 double loop_preroll_window_s(double duration_s) {

@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "framework/correction/corrector_params.hpp"
 #include "framework/spec/experiment_spec.hpp"
 
 namespace crowdlab {
@@ -101,7 +102,8 @@ struct CorrectionRecipe {
   /// 27, session 26; 30 fps clips unchanged); 17: a whole-crowd loop closure only if it adds no joint flips
   /// to any character, else the per-character choice (issue 28, session 26); 18: crowds that walk on the
   /// flat ground corrected twice, the second time toward their input moved onto the first correction's
-  /// roots (follow_root_smoothing_s; issue 27, session 27; standing crowds unchanged).
+  /// roots (follow_root_smoothing_s; issue 27, session 27; standing crowds unchanged), and with their planted
+  /// feet kept on the input's ground (feet_on_input_ground).
   static constexpr std::string_view kCodeVersion = "18";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
@@ -111,6 +113,9 @@ struct CorrectionRecipe {
   /// (corridor, flows, crossing pairs), else 0 (standing crowds, and crowds on surfaces, whose ground is
   /// not horizontal).
   double follow_root_smoothing_s = 0.0;
+  /// CorrectorParams::held_feet_at_input_height and feet_above_input_ground, both: true for crowds that walk
+  /// on the flat ground (walking_correction), else false.
+  bool feet_on_input_ground = false;
 };
 
 /// The smoothing (s) of the root offsets a walking crowd's second correction follows
@@ -119,9 +124,19 @@ struct CorrectionRecipe {
 /// one run each (one correction: 323; the clip is chaotic: three runs at 0.3 s gave 159-277, three of one
 /// correction 323-339); at 20 s, 0.15 s let planted feet slide (stance drift p99 20-21 mm).
 inline constexpr double kWalkingFollowRootS = 0.3;
-/// follow_root_smoothing_s for a crowd of `scenario`: kWalkingFollowRootS where it walks on the flat ground,
-/// else 0. `run`, `correct` (from the crowd file's scenario) and `experiment overlap-vs-density` all use it.
-double follow_root_smoothing_s(ScenarioKind scenario);
+/// Whether a crowd of `scenario` walks on the flat ground (corridor, flows, crossing pairs): not a standing
+/// crowd, not one on a surface.
+bool walks_on_flat_ground(ScenarioKind scenario);
+/// The corrector settings of a crowd that walks on the flat ground (session 27), set in `params`; other
+/// crowds' are left as they are. `run` (through the correction recipe), `correct` (from the crowd file's
+/// scenario) and `experiment overlap-vs-density` all use it:
+///   follow_root_smoothing_s = kWalkingFollowRootS: the second correction follows the pushed roots;
+///   held_feet_at_input_height and feet_above_input_ground: planted feet on the input's ground. Off for
+///   standing crowds, where they deepen the contacts (corrector_params.hpp); on the corridor, following
+///   the roots, at 20 s and three runs per density (docs/correction.md, session 27): float p99 33-37 ->
+///   21 mm and feet below the ground 18-24 -> 5.9 mm at 6.66 /m^2, 17.5 -> 9.9 mm and 6-6.5 -> 6.3-6.7 mm
+///   at 2.22 /m^2, flips 1,736-2,285 -> 1,498-1,661 at 6.66 /m^2.
+void walking_correction(ScenarioKind scenario, CorrectorParams& params);
 
 /// The metrics stage of one method's crowd file (<method>.metrics.json).
 struct MetricsRecipe {

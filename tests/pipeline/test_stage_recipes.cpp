@@ -272,25 +272,39 @@ TEST_CASE("stage recipes: a crowd recipe holds only the values its scenario kind
   }
 }
 
-TEST_CASE("stage recipes: crowds that walk on the flat ground follow their corrected roots, others do not",
-          "[pipeline]") {
-  // Session 27 (follow_root_offsets.hpp): the correction of a walking crowd runs twice, the second time
-  // toward its input moved onto the first run's roots. Standing crowds and crowds on surfaces run once.
-  auto follow = [](const ExperimentSpec& spec) {
-    return crowd_group_recipes(spec, enumerate_conditions(spec).front()).correction.follow_root_smoothing_s;
+TEST_CASE(
+    "stage recipes: crowds that walk on the flat ground follow their corrected roots and keep their "
+    "feet on the input's ground, others do not",
+    "[pipeline]") {
+  // Session 27 (follow_root_offsets.hpp, walking_correction): the correction of a walking crowd runs twice,
+  // the second time toward its input moved onto the first run's roots, with planted feet on the input's
+  // ground. Standing crowds and crowds on surfaces run once, as before.
+  auto walking = [](const ExperimentSpec& spec) {
+    const CorrectionRecipe r = crowd_group_recipes(spec, enumerate_conditions(spec).front()).correction;
+    CHECK(r.feet_on_input_ground == (r.follow_root_smoothing_s > 0.0));
+    return r.follow_root_smoothing_s == kWalkingFollowRootS && r.feet_on_input_ground;
   };
-  CHECK(follow(kind_spec("{type: corridor, area: {width_m: 2, depth_m: 6}}", "  density: [0.8]\n",
-                         "{agent_radius_m: 0.2}")) == kWalkingFollowRootS);
-  CHECK(follow(kind_spec("{type: flow_b, area: {width_m: 3, depth_m: 4}, initial_spacing_m: 1.0}",
-                         "  characters: [6]\n", "{agent_radius_m: 0.2, model: social}")) ==
-        kWalkingFollowRootS);
-  CHECK(follow(kind_spec("{type: stationary, area: {width_m: 1.5, depth_m: 1.5}}", "  density: [2.5]\n",
-                         "{agent_radius_m: 0.18}")) == 0.0);
-  CHECK(follow(load_experiment_spec((source_dir() / "experiments/manifold_demo.yaml").string())) == 0.0);
-  CHECK(follow(load_experiment_spec((source_dir() / "experiments/gomez2024_nonstationary.yaml").string())) ==
-        kWalkingFollowRootS);
-  CHECK(follow(load_experiment_spec((source_dir() / "experiments/gomez2024_stationary.yaml").string())) ==
-        0.0);
+  CHECK(walking(kind_spec("{type: corridor, area: {width_m: 2, depth_m: 6}}", "  density: [0.8]\n",
+                          "{agent_radius_m: 0.2}")));
+  CHECK(walking(kind_spec("{type: flow_b, area: {width_m: 3, depth_m: 4}, initial_spacing_m: 1.0}",
+                          "  characters: [6]\n", "{agent_radius_m: 0.2, model: social}")));
+  CHECK_FALSE(walking(kind_spec("{type: stationary, area: {width_m: 1.5, depth_m: 1.5}}",
+                                "  density: [2.5]\n", "{agent_radius_m: 0.18}")));
+  CHECK_FALSE(walking(load_experiment_spec((source_dir() / "experiments/manifold_demo.yaml").string())));
+  CHECK(walking(load_experiment_spec((source_dir() / "experiments/gomez2024_nonstationary.yaml").string())));
+  CHECK_FALSE(
+      walking(load_experiment_spec((source_dir() / "experiments/gomez2024_stationary.yaml").string())));
+  // What the recipe holds is what `correct` and the experiment set from the scenario.
+  CorrectorParams params;
+  walking_correction(ScenarioKind::corridor, params);
+  CHECK(params.follow_root_smoothing_s == kWalkingFollowRootS);
+  CHECK(params.held_feet_at_input_height);
+  CHECK(params.feet_above_input_ground);
+  CorrectorParams standing;
+  walking_correction(ScenarioKind::stationary, standing);
+  CHECK(standing.follow_root_smoothing_s == 0.0);
+  CHECK_FALSE(standing.held_feet_at_input_height);
+  CHECK_FALSE(standing.feet_above_input_ground);
 }
 
 TEST_CASE(
