@@ -327,7 +327,8 @@ struct CorrectorParams {
   /// at 6.66 /m^2, 20.2 -> 11.0 at 4.44) with the p99 inter-body depth within issue 18's 10 mm (9.6 -> 9.4,
   /// 6.8 -> 9.2 mm), but issue 27's feet targets (10 mm) are not met and at 4.44 /m^2 the feet below the
   /// ground went 25.5 -> 31.9 mm (docs/correction.md). Session 12's settle of every body after the pass
-  /// raised the depth past 10 mm (12.3, 18.2 mm).
+  /// raised the depth past 10 mm (12.3, 18.2 mm). `run` turns it on, with feet_above_input_ground, for crowds
+  /// that walk on the flat ground (pipeline/crowd_recipes.hpp walking_correction; session 27).
   bool held_feet_at_input_height = false;
   /// Whether hold_feet lifts a foot (held or swinging) that lies more than 5 mm below the input's ground,
   /// min(0, the input's sole), back to 5 mm below it by the least-change leg IK (issue 27, session 17,
@@ -342,7 +343,9 @@ struct CorrectorParams {
   /// p99 5.2 mm in one of three runs at 6.66 /m^2, the dense fixture's 10.5 mm (a ball-only hold whose
   /// offset keeps a 60 deg tilt hangs its ankle 2.5-3.1 cm low), and on a 20 s corridor clip at 6.66 /m^2
   /// depth p99 9.8-11.2 mm and 1-3 foot pops (main 14.1-14.5 mm, 2-8 pops; float 38.7-39.4 -> 22.1-22.6,
-  /// feet below 49.7-54.8 -> 6.0 mm; docs/correction.md "Session 19: the feet options at 20 s").
+  /// feet below 49.7-54.8 -> 6.0 mm; docs/correction.md "Session 19: the feet options at 20 s"). `run` turns
+  /// both on for crowds that walk on the flat ground, where the corridor's feet targets need them (session 27:
+  /// feet below the ground 5.3-6.7 mm at every density, docs/correction.md).
   bool feet_above_input_ground = false;
 
   // ---- Anticipated contacts (correct_crowd only; anticipate_contacts.hpp, issue 27, session 13)
