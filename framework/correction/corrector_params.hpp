@@ -344,8 +344,8 @@ struct CorrectorParams {
   /// offset keeps a 60 deg tilt hangs its ankle 2.5-3.1 cm low), and on a 20 s corridor clip at 6.66 /m^2
   /// depth p99 9.8-11.2 mm and 1-3 foot pops (main 14.1-14.5 mm, 2-8 pops; float 38.7-39.4 -> 22.1-22.6,
   /// feet below 49.7-54.8 -> 6.0 mm; docs/correction.md "Session 19: the feet options at 20 s"). `run` turns
-  /// both on for crowds that walk on the flat ground, where the corridor's feet targets need them (session 27:
-  /// feet below the ground 5.3-6.7 mm at every density, docs/correction.md).
+  /// both on for crowds that walk on the flat ground, where the corridor's feet targets need them (session
+  /// 27: feet below the ground 5.3-6.7 mm at every density, docs/correction.md).
   bool feet_above_input_ground = false;
 
   // ---- Anticipated contacts (correct_crowd only; anticipate_contacts.hpp, issue 27, session 13)
