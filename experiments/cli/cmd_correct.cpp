@@ -31,8 +31,8 @@ struct CorrectOptions {
 /// `params` with what `run` sets for the crowd file's scenario (meta.scenario; nothing for a name it does
 /// not know), its root following as given when it is.
 void as_run_corrects(const CrowdAnimation& crowd, const CorrectOptions& opt, CorrectorParams& params) {
-  if (const std::optional<ScenarioKind> scenario = parse_kind<ScenarioKind>(crowd.meta.scenario))
-    walking_correction(*scenario, params);
+  const std::optional<ScenarioKind> scenario = parse_kind<ScenarioKind>(crowd.meta.scenario);
+  if (scenario && walks_on_flat_ground(*scenario)) walking_correction(params);
   if (opt.follow_root_given) params.follow_root_smoothing_s = opt.follow_root_s;
 }
 

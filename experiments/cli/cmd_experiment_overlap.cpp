@@ -110,7 +110,7 @@ void run_scenario(const std::string& spec_path, const Options& o, std::vector<Ov
     CorrectorParams params = o.params;
     params.exact_prediction = !o.inertial_prediction;
     params.damping = spec.correction.damping;
-    walking_correction(s.scenario, params);  // as `run` corrects it
+    if (walks_on_flat_ground(s.scenario)) walking_correction(params);  // as `run` corrects it
     Progress progress(scenario + " density " + density + ": correcting", correction_steps(baseline, params));
     CorrectionReport report;
     const CrowdAnimation ours = correct_crowd(baseline, params, &progress, &report);

@@ -28,8 +28,7 @@ CorrectorParams corrector_params(const CorrectionRecipe& recipe) {
   const CorrectionSpec& c = recipe.correction;
   CorrectorParams params;
   params.loop_preroll_s = recipe.loop_preroll_s;
-  params.follow_root_smoothing_s = recipe.follow_root_smoothing_s;
-  params.held_feet_at_input_height = params.feet_above_input_ground = recipe.feet_on_input_ground;
+  if (recipe.walking) walking_correction(params);
   if (c.stiffness > 0) params.stiffness = c.stiffness;
   params.damping = c.damping;
   if (c.collision_stiffness > 0) params.contact_stiffness = c.collision_stiffness;

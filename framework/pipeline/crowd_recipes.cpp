@@ -114,10 +114,7 @@ CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Conditio
   // their anchors (blend_keeping_planted_feet.hpp); a crowd whose input does not loop (walking) gets none
   // whatever is asked (correct_crowd.cpp, input_loops).
   r.correction.loop_preroll_s = spec.protocol.loop_video ? loop_preroll_window_s(spec.duration_s) : 0.0;
-  CorrectorParams walking;
-  walking_correction(p.scenario, walking);
-  r.correction.follow_root_smoothing_s = walking.follow_root_smoothing_s;
-  r.correction.feet_on_input_ground = walking.held_feet_at_input_height && walking.feet_above_input_ground;
+  r.correction.walking = walks_on_flat_ground(p.scenario);
   return r;
 }
 
@@ -125,8 +122,7 @@ bool walks_on_flat_ground(ScenarioKind scenario) {
   return scenario != ScenarioKind::stationary && scenario != ScenarioKind::manifold;
 }
 
-void walking_correction(ScenarioKind scenario, CorrectorParams& params) {
-  if (!walks_on_flat_ground(scenario)) return;
+void walking_correction(CorrectorParams& params) {
   params.follow_root_smoothing_s = kWalkingFollowRootS;
   params.held_feet_at_input_height = true;
   params.feet_above_input_ground = true;

@@ -103,19 +103,15 @@ struct CorrectionRecipe {
   /// to any character, else the per-character choice (issue 28, session 26); 18: crowds that walk on the
   /// flat ground corrected twice, the second time toward their input moved onto the first correction's
   /// roots (follow_root_smoothing_s; issue 27, session 27; standing crowds unchanged), and with their planted
-  /// feet kept on the input's ground (feet_on_input_ground).
+  /// feet kept on the input's ground (`walking`, walking_correction).
   static constexpr std::string_view kCodeVersion = "18";
   CorrectionSpec correction;
   /// Seconds of the clip's end run before frame 0 so that a looping clip loops without a seam
   /// (correct_crowd.hpp; issue 28): loop_preroll_window_s(duration) when protocol.loop_video, else 0.
   double loop_preroll_s = 0.0;
-  /// CorrectorParams::follow_root_smoothing_s: kWalkingFollowRootS for crowds that walk on the flat ground
-  /// (corridor, flows, crossing pairs), else 0 (standing crowds, and crowds on surfaces, whose ground is
-  /// not horizontal).
-  double follow_root_smoothing_s = 0.0;
-  /// CorrectorParams::held_feet_at_input_height and feet_above_input_ground, both: true for crowds that walk
-  /// on the flat ground (walking_correction), else false.
-  bool feet_on_input_ground = false;
+  /// Whether the crowd walks on the flat ground (walks_on_flat_ground): its correction then follows the
+  /// pushed roots and keeps planted feet on the input's ground (walking_correction).
+  bool walking = false;
 };
 
 /// The smoothing (s) of the root offsets a walking crowd's second correction follows
@@ -127,16 +123,16 @@ inline constexpr double kWalkingFollowRootS = 0.3;
 /// Whether a crowd of `scenario` walks on the flat ground (corridor, flows, crossing pairs): not a standing
 /// crowd, not one on a surface.
 bool walks_on_flat_ground(ScenarioKind scenario);
-/// The corrector settings of a crowd that walks on the flat ground (session 27), set in `params`; other
-/// crowds' are left as they are. `run` (through the correction recipe), `correct` (from the crowd file's
-/// scenario) and `experiment overlap-vs-density` all use it:
+/// Sets in `params` the corrector settings of a crowd that walks on the flat ground (session 27). `run` (when
+/// the correction recipe says `walking`), `correct` (from the crowd file's scenario) and `experiment
+/// overlap-vs-density` all use it:
 ///   follow_root_smoothing_s = kWalkingFollowRootS: the second correction follows the pushed roots;
 ///   held_feet_at_input_height and feet_above_input_ground: planted feet on the input's ground. Off for
 ///   standing crowds, where they deepen the contacts (corrector_params.hpp); on the corridor, following
 ///   the roots, at 20 s and three runs per density (docs/correction.md, session 27): float p99 33-37 ->
 ///   21 mm and feet below the ground 18-24 -> 5.9 mm at 6.66 /m^2, 17.5 -> 9.9 mm and 6-6.5 -> 6.3-6.7 mm
 ///   at 2.22 /m^2, flips 1,736-2,285 -> 1,498-1,661 at 6.66 /m^2.
-void walking_correction(ScenarioKind scenario, CorrectorParams& params);
+void walking_correction(CorrectorParams& params);
 
 /// The metrics stage of one method's crowd file (<method>.metrics.json).
 struct MetricsRecipe {

@@ -280,9 +280,7 @@ TEST_CASE(
   // the second time toward its input moved onto the first run's roots, with planted feet on the input's
   // ground. Standing crowds and crowds on surfaces run once, as before.
   auto walking = [](const ExperimentSpec& spec) {
-    const CorrectionRecipe r = crowd_group_recipes(spec, enumerate_conditions(spec).front()).correction;
-    CHECK(r.feet_on_input_ground == (r.follow_root_smoothing_s > 0.0));
-    return r.follow_root_smoothing_s == kWalkingFollowRootS && r.feet_on_input_ground;
+    return crowd_group_recipes(spec, enumerate_conditions(spec).front()).correction.walking;
   };
   CHECK(walking(kind_spec("{type: corridor, area: {width_m: 2, depth_m: 6}}", "  density: [0.8]\n",
                           "{agent_radius_m: 0.2}")));
@@ -294,17 +292,15 @@ TEST_CASE(
   CHECK(walking(load_experiment_spec((source_dir() / "experiments/gomez2024_nonstationary.yaml").string())));
   CHECK_FALSE(
       walking(load_experiment_spec((source_dir() / "experiments/gomez2024_stationary.yaml").string())));
-  // What the recipe holds is what `correct` and the experiment set from the scenario.
+  // What a walking crowd's correction is given; the corrector's own defaults are a standing crowd's.
   CorrectorParams params;
-  walking_correction(ScenarioKind::corridor, params);
+  CHECK(params.follow_root_smoothing_s == 0.0);
+  CHECK_FALSE(params.held_feet_at_input_height);
+  CHECK_FALSE(params.feet_above_input_ground);
+  walking_correction(params);
   CHECK(params.follow_root_smoothing_s == kWalkingFollowRootS);
   CHECK(params.held_feet_at_input_height);
   CHECK(params.feet_above_input_ground);
-  CorrectorParams standing;
-  walking_correction(ScenarioKind::stationary, standing);
-  CHECK(standing.follow_root_smoothing_s == 0.0);
-  CHECK_FALSE(standing.held_feet_at_input_height);
-  CHECK_FALSE(standing.feet_above_input_ground);
 }
 
 TEST_CASE(
