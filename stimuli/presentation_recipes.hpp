@@ -39,7 +39,8 @@ struct RenderRecipe {
   /// crowd turns to frame it along the image's long side (viewpoint.cpp; issue 28, session 24). check/3:
   /// the inside test confirms its sign by a ray (metrics/surfaces_inside.hpp; issue 27, session 25). look/5:
   /// FXAA's edge test from the pixel's four neighbours, point-sampled (shaders.cpp; issue 28, session 26).
-  static constexpr std::string_view kCodeVersion = "shared-extent/3+check/3+look/5";
+  /// look/6: FXAA on the CPU after the read (fxaa_rgba.hpp; issue 28, session 28).
+  static constexpr std::string_view kCodeVersion = "shared-extent/3+check/3+look/6";
   StimulusLook look;
   ViewpointId viewpoint = ViewpointId::V1;  ///< the catalogue id (framework/core/viewpoint_catalogue.hpp)
   int crf = 18;

@@ -15,6 +15,7 @@
 #include "framework/core/progress.hpp"
 #include "framework/media/png_image.hpp"
 #include "stimuli/elapsed_ms.hpp"
+#include "stimuli/fxaa_rgba.hpp"
 #include "stimuli/video_encoder.hpp"
 
 namespace crowdlab::stimuli {
@@ -36,11 +37,18 @@ cv::Mat bottom_up_rgba_to_bgr(const std::vector<std::uint8_t>& rgba, int width, 
   return bgr;
 }
 
+/// A frame read back, on its way to the encoder thread.
+struct QueuedFrame {
+  int index = 0;
+  bool needs_aa = false;  ///< the clean image's anti-aliasing is still to run (Renderer::finish_read_rgba)
+  std::vector<std::uint8_t> rgba;
+};
+
 /// A bounded single-producer single-consumer queue of frames for the encoder thread.
 struct FrameQueue {
   std::mutex mutex;
   std::condition_variable changed;
-  std::deque<std::pair<int, std::vector<std::uint8_t>>> items;
+  std::deque<QueuedFrame> items;
   std::vector<std::vector<std::uint8_t>> free_buffers;
   bool done = false, failed = false;
   static constexpr size_t kCapacity = 2;
@@ -100,11 +108,12 @@ RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const 
   result.encode_ms.assign(static_cast<size_t>(n), 0.0);
   result.convert_ms.assign(static_cast<size_t>(n), 0.0);
   result.readback_ms.assign(static_cast<size_t>(n), 0.0);
+  result.aa_ms.assign(static_cast<size_t>(n), 0.0);
   result.done_ms.assign(static_cast<size_t>(n), 0.0);
   std::thread worker([&] {
     try {
       for (;;) {
-        std::pair<int, std::vector<std::uint8_t>> item;
+        QueuedFrame item;
         {
           std::unique_lock lock(queue.mutex);
           queue.changed.wait(lock, [&] { return !queue.items.empty() || queue.done; });
@@ -113,18 +122,24 @@ RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const 
           queue.items.pop_front();
         }
         queue.changed.notify_all();
-        const EncodeTimes times = encoder.add_frame(item.second.data(), true);
-        result.convert_ms[static_cast<size_t>(item.first)] = times.convert_ms;
-        result.encode_ms[static_cast<size_t>(item.first)] = times.encode_ms;
-        result.done_ms[static_cast<size_t>(item.first)] = ms_since(start);
+        const auto frame = static_cast<size_t>(item.index);
+        if (item.needs_aa) {
+          const auto aa_start = Clock::now();
+          fxaa_rgba(item.rgba, options.width, options.height);
+          result.aa_ms[frame] = ms_since(aa_start);
+        }
+        const EncodeTimes times = encoder.add_frame(item.rgba.data(), true);
+        result.convert_ms[frame] = times.convert_ms;
+        result.encode_ms[frame] = times.encode_ms;
+        result.done_ms[frame] = ms_since(start);
         if (!options.frames_png_dir.empty()) {
           char name[32];
-          std::snprintf(name, sizeof name, "frame_%05d.png", item.first);
+          std::snprintf(name, sizeof name, "frame_%05d.png", item.index);
           write_png((std::filesystem::path(options.frames_png_dir) / name).string(),
-                    bottom_up_rgba_to_bgr(item.second, options.width, options.height));
+                    bottom_up_rgba_to_bgr(item.rgba, options.width, options.height));
         }
         std::lock_guard lock(queue.mutex);
-        queue.free_buffers.push_back(std::move(item.second));
+        queue.free_buffers.push_back(std::move(item.rgba));
       }
     } catch (...) {
       worker_error = std::current_exception();
@@ -146,11 +161,11 @@ RenderResult render_clip(Renderer& renderer, const CrowdAnimation& crowd, const 
       }
     }
     const auto read_start = Clock::now();
-    renderer.finish_read_rgba(slot, buffer);
+    const bool needs_aa = renderer.finish_read_rgba(slot, buffer);
     result.readback_ms[static_cast<size_t>(frame)] = ms_since(read_start);
     {
       std::lock_guard lock(queue.mutex);
-      queue.items.emplace_back(frame, std::move(buffer));
+      queue.items.push_back({frame, needs_aa, std::move(buffer)});
     }
     queue.changed.notify_all();
     return true;

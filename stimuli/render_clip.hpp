@@ -34,6 +34,7 @@ struct RenderResult {
   std::vector<double> render_ms;     ///< per frame: CPU skinning + GL draw + resolve + readback
   std::vector<PassTimes> passes;     ///< per frame: the renderer's stages (renderer.hpp)
   std::vector<double> readback_ms;   ///< per frame: waiting for and copying the pixels (PBO)
+  std::vector<double> aa_ms;         ///< per frame: the clean image's anti-aliasing (worker thread; 0 if off)
   std::vector<double> convert_ms;    ///< per frame: RGBA -> yuv420p (worker thread)
   std::vector<double> encode_ms;     ///< per frame: H.264 encode and mux (worker thread)
   std::vector<double> done_ms;       ///< per frame: time its encoding finished, from the clip's start

@@ -23,6 +23,7 @@
 #include "stimuli/character_mesh.hpp"
 #include "stimuli/egl_context.hpp"
 #include "stimuli/elapsed_ms.hpp"
+#include "stimuli/fxaa_rgba.hpp"
 #include "stimuli/gl_program.hpp"
 #include "stimuli/gltf_character.hpp"
 #include "stimuli/gpu_geometry.hpp"
@@ -144,12 +145,6 @@ void Renderer::set_size(int width, int height, int samples, int shadow_map_size)
   for (GLuint fbo : {g.msaa_fbo, g.resolve_fbo, g.shadow_fbo, g.ground_fbo})
     if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw RuntimeError("OpenGL: a framebuffer is incomplete (" + device() + ")");
-  glCreateTextures(GL_TEXTURE_2D, 1, &g.aa_tex);
-  glTextureStorage2D(g.aa_tex, 1, GL_RGBA8, width, height);
-  glTextureParameteri(g.aa_tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTextureParameteri(g.aa_tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(g.aa_tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(g.aa_tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glCreateBuffers(2, g.pbo);
   for (GLuint pbo : g.pbo)
     glNamedBufferData(pbo, static_cast<GLsizeiptr>(width) * height * 4, nullptr, GL_STREAM_READ);
@@ -475,14 +470,11 @@ void Renderer::draw_inside_surfaces(Gl& g) {
 }
 
 // Resolves the multisampled colour attachment (and the overlap mask in overlap mode); nothing to do at
-// one sample per pixel, where the frame is read from the drawn target itself.
+// one sample per pixel, where the frame is read from the drawn target itself and the clean image's
+// anti-aliasing runs on the CPU once the pixels are read (fxaa_rgba.hpp says why).
 void Renderer::resolve_pass(Gl& g, const SceneOptions& options) {
   overlap_drawn_ = options.overlap;
-  g.post_aa = !g.multisampled && options.clean_image;
-  if (g.post_aa) {
-    fxaa_pass(g, options);
-    return;
-  }
+  g.cpu_aa = !g.multisampled && options.clean_image;
   const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   for (int k = 0; k < (!g.multisampled ? 0 : options.overlap ? 2 : 1); ++k) {
     const GLenum attachment = attachments[k];
@@ -516,29 +508,6 @@ void Renderer::draw_contacts(Gl& g, const SceneOptions& options) {
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
   (void)options;
-}
-
-// FXAA from the single-sample colour target into the resolve target (shaders.cpp), and in overlap mode the
-// mask copied beside it, so that everything reads the frame from output_fbo() as after an MSAA resolve.
-void Renderer::fxaa_pass(Gl& g, const SceneOptions& options) {
-  glCopyImageSubData(g.msaa_color, GL_RENDERBUFFER, 0, 0, 0, 0, g.aa_tex, GL_TEXTURE_2D, 0, 0, 0, 0, width_,
-                     height_, 1);
-  if (options.overlap)
-    glCopyImageSubData(g.msaa_mask, GL_RENDERBUFFER, 0, 0, 0, 0, g.resolve_mask, GL_RENDERBUFFER, 0, 0, 0, 0,
-                       width_, height_, 1);
-  glBindFramebuffer(GL_FRAMEBUFFER, g.resolve_fbo);
-  glNamedFramebufferDrawBuffer(g.resolve_fbo, GL_COLOR_ATTACHMENT0);
-  glViewport(0, 0, width_, height_);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glUseProgram(g.fxaa.id());
-  glBindTextureUnit(2, g.aa_tex);
-  glProgramUniform1i(g.fxaa.id(), g.fxaa.uniform("u_image"), 2);
-  glBindVertexArray(g.empty_vao);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
-  glEnable(GL_DEPTH_TEST);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 // The static environment (visible boxes, then meshes in world coordinates), drawn the same way by the
@@ -598,6 +567,7 @@ void Renderer::read_rgba(std::vector<std::uint8_t>& rgba) {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  if (gl_->cpu_aa) fxaa_rgba(rgba, width_, height_);
 }
 
 void Renderer::begin_read_rgba(int slot) {
@@ -605,13 +575,14 @@ void Renderer::begin_read_rgba(int slot) {
   glNamedFramebufferReadBuffer(gl_->output_fbo(), GL_COLOR_ATTACHMENT0);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, gl_->output_fbo());
   glBindBuffer(GL_PIXEL_PACK_BUFFER, gl_->pbo[slot & 1]);
+  gl_->pbo_cpu_aa[slot & 1] = gl_->cpu_aa;
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
 }
 
-void Renderer::finish_read_rgba(int slot, std::vector<std::uint8_t>& rgba) {
+bool Renderer::finish_read_rgba(int slot, std::vector<std::uint8_t>& rgba) {
   gl_->context.make_current();
   const size_t bytes = static_cast<size_t>(width_) * height_ * 4;
   rgba.resize(bytes);
@@ -620,6 +591,7 @@ void Renderer::finish_read_rgba(int slot, std::vector<std::uint8_t>& rgba) {
   if (!data) throw RuntimeError("OpenGL: mapping the pixel buffer failed");
   std::memcpy(rgba.data(), data, bytes);
   glUnmapNamedBuffer(pbo);
+  return gl_->pbo_cpu_aa[slot & 1];
 }
 
 double Renderer::overlap_fraction() {

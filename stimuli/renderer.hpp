@@ -17,6 +17,7 @@
 //      so corridor walls do not hide the crowd from side and tracking views.
 //   4. Resolve (blit) to single-sample buffers; pixels are then read back, optionally through a pair
 //      of pixel-buffer objects so that the read of frame f overlaps the rendering of frame f + 1 on GPUs.
+//      At one sample per pixel the clean image is anti-aliased on the CPU after the read (fxaa_rgba.hpp).
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -91,12 +92,15 @@ class Renderer {
   /// The stage times of the last draw().
   const PassTimes& pass_times() const { return pass_times_; }
 
-  /// Reads the resolved colour buffer as width*height RGBA, bottom row first (synchronous).
+  /// Reads the finished frame as width*height RGBA, bottom row first (synchronous; the clean image's
+  /// anti-aliasing applied).
   void read_rgba(std::vector<std::uint8_t>& rgba);
   /// Asynchronous read: starts copying the resolved colour buffer into PBO `slot` (0 or 1)...
   void begin_read_rgba(int slot);
   /// ...and waits for PBO `slot`'s pixels and copies them out (width*height RGBA, bottom row first).
-  void finish_read_rgba(int slot, std::vector<std::uint8_t>& rgba);
+  /// Returns true when the frame is a clean image still to be anti-aliased: the caller then applies
+  /// fxaa_rgba() (stimuli/fxaa_rgba.hpp), on any thread, so that it can run beside the next draw.
+  [[nodiscard]] bool finish_read_rgba(int slot, std::vector<std::uint8_t>& rgba);
 
   /// Fraction of the image's pixels whose visible surface lies inside another character (overlap
   /// mode; the resolved mask >= 0.5, i.e. at least half the MSAA samples), of the last draw().
@@ -122,7 +126,6 @@ class Renderer {
   void draw_characters(Gl& g, const SceneOptions& options);
   void draw_inside_surfaces(Gl& g);
   void resolve_pass(Gl& g, const SceneOptions& options);
-  void fxaa_pass(Gl& g, const SceneOptions& options);
   void draw_contacts(Gl& g, const SceneOptions& options);
   static GlProgram& character_program(Gl& g, const SceneOptions& options);
   /// Visible boxes (with the set dressing and colours when `environment`, the environment's colour, is

@@ -54,13 +54,12 @@ struct Renderer::Gl {
   GlProgram ground_unshadowed{glsl::kStaticVertex,
                               glsl::specialise(glsl::kLitFragment, "MATERIAL_GROUND NO_SHADOW").c_str(),
                               "ground_unshadowed"};
-  GlProgram fxaa{glsl::kFullscreenVertex, glsl::kFxaaFragment, "fxaa"};
   GlProgram contact{glsl::kContactVertex, glsl::kContactFragment, "contact"};
-  GLuint aa_tex = 0;     ///< the single-sample frame, sampled by the FXAA pass
-  GLuint empty_vao = 0;  ///< full-screen and instanced passes take no vertex attributes
+  GLuint empty_vao = 0;  ///< instanced passes take no vertex attributes
   GLuint contact_ssbo = 0;
   GLsizeiptr contact_capacity = 0;
-  bool post_aa = false;  ///< the last frame went through FXAA into the resolve targets
+  bool cpu_aa = false;  ///< the last frame is still to be anti-aliased on the CPU once read (fxaa_rgba.hpp)
+  bool pbo_cpu_aa[2] = {false, false};  ///< cpu_aa of the frame each pixel buffer holds
   GlProgram ground_shadow{glsl::kStaticVertex,
                           glsl::specialise(glsl::kLitFragment, "MATERIAL_GROUND_SHADOW").c_str(),
                           "ground_shadow"};
@@ -96,7 +95,7 @@ struct Renderer::Gl {
   std::vector<std::uint8_t> mask_pixels;
 
   /// The framebuffer whose colour attachment 0 holds the finished frame (1: the overlap mask).
-  GLuint output_fbo() const { return multisampled || post_aa ? resolve_fbo : msaa_fbo; }
+  GLuint output_fbo() const { return multisampled ? resolve_fbo : msaa_fbo; }
 
   Gl() {
     glCreateBuffers(1, &skin_ssbo);
@@ -131,8 +130,6 @@ struct Renderer::Gl {
     const GLuint rbs[] = {msaa_color, msaa_mask, msaa_depth, resolve_color, resolve_mask};
     glDeleteRenderbuffers(5, rbs);
     glDeleteTextures(1, &shadow_tex);
-    glDeleteTextures(1, &aa_tex);
-    aa_tex = 0;
     glDeleteBuffers(2, pbo);
     msaa_fbo = resolve_fbo = shadow_fbo = shadow_tex = 0;
     pbo[0] = pbo[1] = 0;

@@ -278,59 +278,6 @@ void main() {
 }
 )";
 
-// Fast approximate anti-aliasing (after Lottes, "FXAA", NVIDIA white paper, 2009): a pixel whose luma
-// range over itself and its four edge neighbours is below max(1/24, 1/8 of the brightest) is kept;
-// otherwise the range takes in the diagonal neighbours too, and the pixel is blended along the edge, the
-// direction being perpendicular to the luma gradient of the pixel's corners (each the mean of the 2x2
-// pixels around it), with two taps at +-1/6 of the span and, unless their mean leaves the neighbourhood's
-// luma range, two more at +-1/2. One full-screen pass over the single-sample image. Why the point samples
-// (session 26): most pixels take the early exit, and four bilinear taps per pixel for its test cost
-// llvmpipe 18 ms of a 1080p frame; five point samples cost 12 ms (the whole pass, with its copy, 27 -> 21
-// ms over the raw draw; luma SSIM against the reference within 0.0002 of before).
-const char* const kFullscreenVertex = R"(#version 450 core
-void main() {
-  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
-  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
-
-const char* const kFxaaFragment = R"(#version 450 core
-uniform sampler2D u_image;
-layout(location = 0) out vec4 o_color;
-float luma(vec3 c) { return dot(c, vec3(0.299, 0.587, 0.114)); }
-// The luma of the pixel `o` away from this one, the image's edge repeated beyond it.
-float luma_at(ivec2 o) {
-  ivec2 last = textureSize(u_image, 0) - 1;
-  return luma(texelFetch(u_image, clamp(ivec2(gl_FragCoord.xy) + o, ivec2(0), last), 0).rgb);
-}
-void main() {
-  vec3 m = texelFetch(u_image, ivec2(gl_FragCoord.xy), 0).rgb;
-  float lm = luma(m);
-  float n = luma_at(ivec2(0, 1)), s = luma_at(ivec2(0, -1)), e = luma_at(ivec2(1, 0)), w = luma_at(ivec2(-1, 0));
-  float lo = min(lm, min(min(n, s), min(e, w)));
-  float hi = max(lm, max(max(n, s), max(e, w)));
-  if (hi - lo < max(1.0 / 24.0, hi * 0.125)) {
-    o_color = vec4(m, 1.0);
-    return;
-  }
-  float nw = luma_at(ivec2(-1, 1)), ne = luma_at(ivec2(1, 1)), sw = luma_at(ivec2(-1, -1)), se = luma_at(ivec2(1, -1));
-  // The corners of the pixel as the 2x2 means around them (what four bilinear taps would read).
-  float cnw = 0.25 * (nw + n + w + lm), cne = 0.25 * (ne + n + e + lm);
-  float csw = 0.25 * (sw + s + w + lm), cse = 0.25 * (se + s + e + lm);
-  lo = min(lo, min(min(nw, ne), min(sw, se)));
-  hi = max(hi, max(max(nw, ne), max(sw, se)));
-  vec2 texel = 1.0 / vec2(textureSize(u_image, 0));
-  vec2 uv = gl_FragCoord.xy * texel;  // the pixel's centre
-  vec2 dir = vec2((csw + cse) - (cnw + cne), (cnw + csw) - (cne + cse));
-  float reduce = max((cnw + cne + csw + cse) * (0.25 / 8.0), 1.0 / 128.0);
-  dir = clamp(dir / (min(abs(dir.x), abs(dir.y)) + reduce), vec2(-8.0), vec2(8.0)) * texel;
-  vec3 near = 0.5 * (texture(u_image, uv - dir / 6.0).rgb + texture(u_image, uv + dir / 6.0).rgb);
-  vec3 wide = 0.5 * near + 0.25 * (texture(u_image, uv - dir * 0.5).rgb + texture(u_image, uv + dir * 0.5).rgb);
-  float lw = luma(wide);
-  o_color = vec4(lw < lo || lw > hi ? near : wide, 1.0);
-}
-)";
-
 // Contact darkening: a soft dark disc on the ground under each character (the occlusion of the sky by a
 // body standing on the floor, which the key light's shadow map does not give where that shadow falls
 // elsewhere), drawn as one instanced quad per character and multiplied into the framebuffer:

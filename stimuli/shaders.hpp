@@ -16,11 +16,9 @@ extern const char* const kDepthFragment;
 /// OVERLAP.
 extern const char* const kLitFragment;
 
-/// The clean-image passes (SceneOptions::clean_image): a full-screen triangle (draw 3 vertices, no
-/// attributes) with the FXAA fragment shader over `u_image`; the contact-darkening quads (4 vertices per
-/// instance, a triangle strip; instance i reads root (x, z) from SSBO binding 2).
-extern const char* const kFullscreenVertex;
-extern const char* const kFxaaFragment;
+/// The clean image's contact darkening (SceneOptions::clean_image; its anti-aliasing runs on the CPU,
+/// fxaa_rgba.hpp): quads of 4 vertices per instance, a triangle strip; instance i reads root (x, z) from
+/// SSBO binding 2.
 extern const char* const kContactVertex;
 extern const char* const kContactFragment;
 

@@ -183,6 +183,7 @@ void run(const Args& a) {
           {"colour", stage_median(r_stages, skip, [&](size_t f) { return r_stages.passes[f].colour_ms; })},
           {"resolve", stage_median(r_stages, skip, [&](size_t f) { return r_stages.passes[f].resolve_ms; })},
           {"readback", stage_median(r_stages, skip, [&](size_t f) { return r_stages.readback_ms[f]; })},
+          {"fxaa", stage_median(r_stages, skip, [&](size_t f) { return r_stages.aa_ms[f]; })},
           {"convert", stage_median(r_stages, skip, [&](size_t f) { return r_stages.convert_ms[f]; })},
           {"encode", stage_median(r_stages, skip, [&](size_t f) { return r_stages.encode_ms[f]; })}}},
         {"load_average_1min", load_average()},
@@ -201,6 +202,11 @@ void run(const Args& a) {
     std::printf(
         "encode (yuv420p + x264 %s): %.1f ms median, %.1f ms mean (worker thread, overlaps rendering)\n",
         a.preset.c_str(), median(encode), mean(encode));
+    if (!a.raw && a.msaa == 1) {
+      const std::vector<double> aa(r.aa_ms.begin() + skip, r.aa_ms.end());
+      std::printf("clean image anti-aliasing (FXAA): %.1f ms median (worker thread, overlaps rendering)\n",
+                  median(aa));
+    }
   }
 }
 
