@@ -6,9 +6,12 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <string>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+
+#include "framework/core/error.hpp"
 
 namespace crowdlab::stimuli {
 
@@ -207,10 +210,20 @@ void for_each_edge_pixel(const std::vector<std::uint8_t>& luma, int width, int h
 // output does not depend on the number of threads.
 constexpr int kBandRows = 32;
 
+// width * height, after checking that `rgba` holds that many pixels (indices fit 32 bits).
+std::size_t checked_pixels(const std::vector<std::uint8_t>& rgba, int width, int height) {
+  const std::size_t pixels =
+      static_cast<std::size_t>(std::max(width, 0)) * static_cast<std::size_t>(std::max(height, 0));
+  if (width < 1 || height < 1 || rgba.size() != pixels * kChannels || pixels > UINT32_MAX)
+    throw RuntimeError("fxaa_rgba: " + std::to_string(rgba.size()) + " bytes are not a " +
+                       std::to_string(width) + " x " + std::to_string(height) + " RGBA frame");
+  return pixels;
+}
+
 }  // namespace
 
 void fxaa_rgba(std::vector<std::uint8_t>& rgba, int width, int height) {
-  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  const std::size_t pixels = checked_pixels(rgba, width, height);
   // Reused across frames (per calling thread): a fresh 2 MB a frame costs page faults. Named through
   // references, because a thread_local named inside the parallel loop would be the worker thread's own.
   thread_local std::vector<std::uint8_t> luma_buffer;
@@ -241,7 +254,7 @@ void fxaa_rgba(std::vector<std::uint8_t>& rgba, int width, int height) {
 std::size_t fxaa_edge_pixels(const std::vector<std::uint8_t>& rgba, int width, int height) {
   std::size_t count = 0;
   std::vector<std::uint8_t> luma;
-  fill_luma_plane(rgba, static_cast<std::size_t>(width) * height, luma);
+  fill_luma_plane(rgba, checked_pixels(rgba, width, height), luma);
   for_each_edge_pixel(luma, width, height, 0, height, [&](int, int) { ++count; });
   return count;
 }

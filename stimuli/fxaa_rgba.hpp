@@ -23,7 +23,8 @@
 
 namespace crowdlab::stimuli {
 
-/// Anti-aliases `rgba` (width * height * 4 bytes, width and height >= 1) in place.
+/// Anti-aliases `rgba` (width * height * 4 bytes, width and height >= 1) in place. RuntimeError when the
+/// buffer is not that size (a caller's bug: frames come from the renderer).
 void fxaa_rgba(std::vector<std::uint8_t>& rgba, int width, int height);
 
 /// The number of pixels fxaa_rgba() would filter (its edge test passed), for benchmarks and tests.

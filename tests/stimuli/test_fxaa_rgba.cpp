@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "framework/core/error.hpp"
 #include "stimuli/fxaa_rgba.hpp"
 
 using namespace crowdlab::stimuli;
@@ -153,4 +154,12 @@ TEST_CASE("fxaa_rgba at the image's borders and on tiny images", "[stimuli][fast
         CHECK(f.at(x, y)[3] == 255);
       }
   }
+}
+
+TEST_CASE("fxaa_rgba refuses a buffer that is not the frame it is told", "[stimuli][fast]") {
+  AaFrame f(8, 4, 100);
+  CHECK_THROWS_AS(fxaa_rgba(f.rgba, 8, 5), crowdlab::RuntimeError);
+  CHECK_THROWS_AS(fxaa_rgba(f.rgba, 0, 4), crowdlab::RuntimeError);
+  CHECK_THROWS_AS(fxaa_edge_pixels(f.rgba, 9, 4), crowdlab::RuntimeError);
+  CHECK_NOTHROW(fxaa_rgba(f.rgba, 8, 4));
 }
