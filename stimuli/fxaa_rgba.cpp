@@ -45,14 +45,23 @@ float luma(const Colour& c) {
   return 0.299f * c[0] + 0.587f * c[1] + 0.114f * c[2];
 }
 
-// The 8-bit luma of every pixel: the Rec. 601 weights in 8.8 fixed point (77 + 150 + 29 = 256), rounded.
-// Pixels are read as little-endian 32-bit words (R in the low byte), which the compiler vectorises.
-void fill_luma_plane(const std::vector<std::uint8_t>& rgba, std::size_t pixels,
-                     std::vector<std::uint8_t>& plane) {
-  plane.resize(pixels);
-  const std::uint8_t* src = rgba.data();
-  std::uint8_t* out = plane.data();
-  for (std::size_t i = 0; i < pixels; ++i) {
+// The 8-bit luma of rows [first_row, last_row] of the frame, a band with a row either side: the Rec. 601
+// weights in 8.8 fixed point (77 + 150 + 29 = 256), rounded. Pixels are read as little-endian 32-bit words
+// (R in the low byte), which the compiler vectorises.
+struct BandLuma {
+  std::vector<std::uint8_t> rows;
+  int first_row = 0;
+};
+
+void fill_band_luma(const std::vector<std::uint8_t>& rgba, int width, int first_row, int last_row,
+                    BandLuma& band) {
+  const std::size_t begin = static_cast<std::size_t>(first_row) * width;
+  const std::size_t count = static_cast<std::size_t>(last_row - first_row + 1) * width;
+  band.first_row = first_row;
+  band.rows.resize(count);
+  const std::uint8_t* src = rgba.data() + kChannels * begin;
+  std::uint8_t* out = band.rows.data();
+  for (std::size_t i = 0; i < count; ++i) {
     std::uint32_t w;
     std::memcpy(&w, src + kChannels * i, sizeof w);
     out[i] = static_cast<std::uint8_t>(
@@ -80,7 +89,7 @@ void edge_flags_of_row(const std::uint8_t* below, const std::uint8_t* row, const
   if (last > 0) flags[last] = edge_flag(row[last], below[last], above[last], row[last - 1], row[last]);
 }
 
-// The frame and its luma plane, read by the filter. Interior pixels (at least kReach from every border, all
+// The frame and one band's luma, read by the filter. Interior pixels (at least kReach from every border, all
 // of them but a thin frame) read their neighbours unclamped; the rest clamp to the border, as a
 // GL_CLAMP_TO_EDGE texture does.
 class Image {
@@ -89,7 +98,7 @@ class Image {
   static constexpr int kReach = 6;
   static constexpr float kFloorShift = 16.0f;
 
-  Image(const std::vector<std::uint8_t>& rgba, const std::vector<std::uint8_t>& luma, int width, int height)
+  Image(const std::vector<std::uint8_t>& rgba, const BandLuma& luma, int width, int height)
       : rgba_(rgba), luma_(luma), width_(width), height_(height) {}
 
   bool interior(int x, int y) const {
@@ -103,7 +112,7 @@ class Image {
       x = std::clamp(x, 0, width_ - 1);
       y = std::clamp(y, 0, height_ - 1);
     }
-    return luma_[index(x, y)];
+    return luma_.rows[static_cast<std::size_t>(y - luma_.first_row) * width_ + x];
   }
 
   // Bilinear colour at (x, y) in pixel units (pixel centres on integers): what a GL_LINEAR texture tap reads.
@@ -131,7 +140,7 @@ class Image {
   const std::uint8_t* texel(int x, int y) const { return rgba_.data() + kChannels * index(x, y); }
 
   const std::vector<std::uint8_t>& rgba_;
-  const std::vector<std::uint8_t>& luma_;
+  const BandLuma& luma_;
   int width_, height_;
 };
 
@@ -184,14 +193,17 @@ std::uint32_t bytes_of(const Colour& c) {
 #endif
 }
 
-// Calls visit(x, y) for every pixel of rows [y_begin, y_end) that passes the edge test, row by row. Edge
-// pixels are few (7 % of a dense 1080p crowd frame), so the flags are scanned eight at a time.
+// Fills `luma` for the rows [y_begin, y_end) and a row either side, then calls visit(x, y) for every pixel
+// of those rows that passes the edge test, row by row. A band's luma is computed where it is used, so the
+// filter's taps find the band's pixels still in the cache. Edge pixels are few (7 % of a dense 1080p crowd
+// frame), so the flags are scanned eight at a time.
 template <class Visit>
-void for_each_edge_pixel(const std::vector<std::uint8_t>& luma, int width, int height, int y_begin, int y_end,
-                         Visit&& visit) {
+void for_each_edge_pixel(const std::vector<std::uint8_t>& rgba, int width, int height, int y_begin, int y_end,
+                         BandLuma& luma, Visit&& visit) {
+  fill_band_luma(rgba, width, std::max(0, y_begin - 1), std::min(height - 1, y_end), luma);
   std::vector<std::uint8_t> flags(static_cast<std::size_t>(width) + sizeof(std::uint64_t));
   const auto row = [&](int y) {
-    return luma.data() + static_cast<std::size_t>(std::clamp(y, 0, height - 1)) * width;
+    return luma.rows.data() + static_cast<std::size_t>(std::clamp(y, 0, height - 1) - luma.first_row) * width;
   };
   for (int y = y_begin; y < y_end; ++y) {
     edge_flags_of_row(row(y - 1), row(y), row(y + 1), width, flags.data());
@@ -210,35 +222,32 @@ void for_each_edge_pixel(const std::vector<std::uint8_t>& luma, int width, int h
 // output does not depend on the number of threads.
 constexpr int kBandRows = 32;
 
-// width * height, after checking that `rgba` holds that many pixels (indices fit 32 bits).
-std::size_t checked_pixels(const std::vector<std::uint8_t>& rgba, int width, int height) {
+// Throws unless `rgba` holds width * height pixels (whose indices fit 32 bits).
+void check_frame(const std::vector<std::uint8_t>& rgba, int width, int height) {
   const std::size_t pixels =
       static_cast<std::size_t>(std::max(width, 0)) * static_cast<std::size_t>(std::max(height, 0));
   if (width < 1 || height < 1 || rgba.size() != pixels * kChannels || pixels > UINT32_MAX)
     throw RuntimeError("fxaa_rgba: " + std::to_string(rgba.size()) + " bytes are not a " +
                        std::to_string(width) + " x " + std::to_string(height) + " RGBA frame");
-  return pixels;
 }
 
 }  // namespace
 
 void fxaa_rgba(std::vector<std::uint8_t>& rgba, int width, int height) {
-  const std::size_t pixels = checked_pixels(rgba, width, height);
-  // Reused across frames (per calling thread): a fresh 2 MB a frame costs page faults. Named through
-  // references, because a thread_local named inside the parallel loop would be the worker thread's own.
-  thread_local std::vector<std::uint8_t> luma_buffer;
+  check_frame(rgba, width, height);
+  // Reused across frames (per calling thread). Named through a reference, because a thread_local named
+  // inside the parallel loop would be the worker thread's own.
   thread_local std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> filtered_buffer;
-  std::vector<std::uint8_t>& luma = luma_buffer;
   auto& filtered = filtered_buffer;  // per band: the filtered pixels' indices and RGBA bytes
-  fill_luma_plane(rgba, pixels, luma);
-  const Image image(rgba, luma, width, height);
   const int bands = (height + kBandRows - 1) / kBandRows;
   filtered.resize(static_cast<std::size_t>(bands));
   tbb::parallel_for(0, bands, [&](int band) {
     auto& out = filtered[static_cast<std::size_t>(band)];
     out.clear();
+    BandLuma luma;
+    const Image image(rgba, luma, width, height);
     const int y_begin = band * kBandRows, y_end = std::min(height, y_begin + kBandRows);
-    for_each_edge_pixel(luma, width, height, y_begin, y_end, [&](int x, int y) {
+    for_each_edge_pixel(rgba, width, height, y_begin, y_end, luma, [&](int x, int y) {
       const Colour c =
           image.interior(x, y) ? filter_edge_pixel<false>(image, x, y) : filter_edge_pixel<true>(image, x, y);
       out.emplace_back(static_cast<std::uint32_t>(image.index(x, y)), bytes_of(c));
@@ -252,10 +261,10 @@ void fxaa_rgba(std::vector<std::uint8_t>& rgba, int width, int height) {
 }
 
 std::size_t fxaa_edge_pixels(const std::vector<std::uint8_t>& rgba, int width, int height) {
+  check_frame(rgba, width, height);
   std::size_t count = 0;
-  std::vector<std::uint8_t> luma;
-  fill_luma_plane(rgba, checked_pixels(rgba, width, height), luma);
-  for_each_edge_pixel(luma, width, height, 0, height, [&](int, int) { ++count; });
+  BandLuma luma;
+  for_each_edge_pixel(rgba, width, height, 0, height, luma, [&](int, int) { ++count; });
   return count;
 }
 
