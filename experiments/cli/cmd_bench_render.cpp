@@ -202,11 +202,10 @@ void run(const Args& a) {
     std::printf(
         "encode (yuv420p + x264 %s): %.1f ms median, %.1f ms mean (worker thread, overlaps rendering)\n",
         a.preset.c_str(), median(encode), mean(encode));
-    if (!a.raw && a.msaa == 1) {
-      const std::vector<double> aa(r.aa_ms.begin() + skip, r.aa_ms.end());
+    const std::vector<double> aa(r.aa_ms.begin() + skip, r.aa_ms.end());
+    if (median(aa) > 0.0)  // the clean image at one sample per pixel
       std::printf("clean image anti-aliasing (FXAA): %.1f ms median (worker thread, overlaps rendering)\n",
                   median(aa));
-    }
   }
 }
 
