@@ -35,6 +35,7 @@ struct MetricsArgs {
   bool per_frame = false;
   bool pair_volumes = true;
   bool mesh_measures = true;  ///< with --input: the mesh-level overlap and proxy coverage
+  bool loop = false;          ///< with --input: the clip plays as a loop (the free-limb window wraps)
   int base_cells = OverlapOptions{}.base_cells;
   int depth = OverlapOptions{}.depth;
 };
@@ -151,7 +152,8 @@ void run(const MetricsArgs& args) {
   progress.finish();
   std::optional<CorrectionQuality> quality;
   if (!args.input.empty())
-    quality = measure_correction_quality(read_crowd_glb(args.input), crowd, 0, 1, args.mesh_measures);
+    quality =
+        measure_correction_quality(read_crowd_glb(args.input), crowd, 0, 1, args.mesh_measures, args.loop);
   if (args.json) {
     nlohmann::json j = crowd_metrics_json(m, args.per_frame);
     if (quality) j["correction_quality"] = correction_quality_json(*quality);
@@ -187,6 +189,10 @@ void add_metrics_command(Command& root) {
   cmd->add_flag("!--no-mesh-measures", args->mesh_measures,
                 "With --input: skip the mesh-level measures (about three quarters of the time on MPFB2 "
                 "bodies)");
+  cmd->add_flag(
+      "--loop", args->loop,
+      "With --input: the clip plays as a loop (as `run` shows clips when protocol.loop_video is on): "
+      "a joint is free only if nothing is near it within 0.5 s across the loop's seam too");
   cmd->add_option("--base-cells", args->base_cells, "Overlap quadrature base grid cells")
       ->capture_default_str();
   cmd->add_option("--depth", args->depth, "Overlap quadrature subdivisions per base cell")

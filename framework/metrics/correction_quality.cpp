@@ -17,7 +17,8 @@ double nearest_rank_quantile(std::vector<double> v, double q) {
 }
 
 CorrectionQuality measure_correction_quality(const CrowdAnimation& input, const CrowdAnimation& corrected,
-                                             int first_frame, int frame_stride, bool mesh_measures) {
+                                             int first_frame, int frame_stride, bool mesh_measures,
+                                             bool looped) {
   if (input.characters.size() != corrected.characters.size() ||
       input.frame_count() != corrected.frame_count())
     throw InputError("correction quality: input and corrected animations differ in size");
@@ -72,7 +73,7 @@ CorrectionQuality measure_correction_quality(const CrowdAnimation& input, const 
     }
   }
   q.feet = measure_foot_contact_quality(input, corrected, first_frame);
-  q.free_limbs = measure_free_limb_deviation(input, corrected, first_frame);
+  q.free_limbs = measure_free_limb_deviation(input, corrected, first_frame, looped);
   q.flips = measure_joint_flips(input, corrected, first_frame);
   q.environment = measure_environment_penetration(corrected, first_frame);
   if (mesh_measures) {

@@ -25,7 +25,8 @@
 // Frames are taken from first_frame on (0 = all), every `frame_stride`-th for the depths. With
 // `mesh_measures` false the two mesh-level measures are left empty (frames 0): they cost about three
 // quarters of the whole on MPFB2 crowds (closest-point queries against every neighbour's posed mesh), and
-// a caller that reads none of them (`reproduce gomez2024 --quick`, issue 31) skips them.
+// a caller that reads none of them (`reproduce gomez2024 --quick`, issue 31) skips them. `looped`: the
+// clip plays as a loop (protocol.loop_video), so the free-limb window wraps around its end.
 #include "framework/core/crowd_animation.hpp"
 #include "framework/core/joint_flips.hpp"
 #include "framework/core/rotation_angle.hpp"
@@ -56,7 +57,7 @@ struct CorrectionQuality {
 /// Throws InputError when the two animations differ in characters or frames.
 CorrectionQuality measure_correction_quality(const CrowdAnimation& input, const CrowdAnimation& corrected,
                                              int first_frame = 0, int frame_stride = 1,
-                                             bool mesh_measures = true);
+                                             bool mesh_measures = true, bool looped = false);
 
 /// The q-quantile (0..1) of v by nearest rank (0 for an empty vector).
 double nearest_rank_quantile(std::vector<double> v, double q);

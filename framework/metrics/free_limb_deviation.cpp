@@ -10,7 +10,8 @@
 namespace crowdlab {
 
 FreeLimbDeviation measure_free_limb_deviation(const CrowdAnimation& input, const CrowdAnimation& corrected,
-                                              int first_frame, double margin_m, double window_s) {
+                                              int first_frame, bool looped, double margin_m,
+                                              double window_s) {
   FreeLimbDeviation q;
   const int frames = input.frame_count();
   const int first = std::max(0, first_frame);
@@ -24,16 +25,21 @@ FreeLimbDeviation measure_free_limb_deviation(const CrowdAnimation& input, const
   std::vector<double> samples;
   for (size_t c = 0; c < input.characters.size(); ++c)
     for (int j = 0; j < kJointCount; ++j) {
-      // last_busy: the latest frame <= f + w on which the scope was near something.
-      int last_busy = -1 - w;
-      auto busy = [&](int f) {
-        const std::uint32_t m = near_in[static_cast<size_t>(f)][c] | near_out[static_cast<size_t>(f)][c];
+      // busy(g): the scope is near something on frame g, which may lie outside the clip: around the loop
+      // when it loops, never otherwise. last_busy: the latest such g <= f + w.
+      auto busy = [&](int g) {
+        if (looped)
+          g = ((g % frames) + frames) % frames;
+        else if (g < 0 || g >= frames)
+          return false;
+        const std::uint32_t m = near_in[static_cast<size_t>(g)][c] | near_out[static_cast<size_t>(g)][c];
         return (m & scope[static_cast<size_t>(j)]) != 0;
       };
-      for (int f = 0; f < std::min(frames, w); ++f)
-        if (busy(f)) last_busy = f;
+      int last_busy = -1 - 2 * w;
+      for (int g = -w; g < w; ++g)
+        if (busy(g)) last_busy = g;
       for (int f = 0; f < frames; ++f) {
-        if (f + w < frames && busy(f + w)) last_busy = f + w;
+        if (busy(f + w)) last_busy = f + w;
         if (f < first) continue;
         ++q.joint_frames;
         if (last_busy >= f - w) continue;

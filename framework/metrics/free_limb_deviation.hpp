@@ -4,7 +4,8 @@
 // that holds only where the correction changes nothing but what collides.
 //
 // Joint j of character c is FREE on frame f when, on every frame of [f - w, f + w] (w = window_s x fps,
-// clipped to the clip), no bone of its scope is near anything (bone_proximity.hpp: within margin_m of
+// clipped to the clip; for a clip that loops, taken around the loop, because a viewer sees its last frames
+// just before its first), no bone of its scope is near anything (bone_proximity.hpp: within margin_m of
 // another character's capsules or an environment box) in the input or in the corrected animation.
 // The scope of a joint is contact_scope (core/joint_scope.hpp): the bones its local rotation moves
 // (the joint and its descendants), and the whole body for the root and the legs (a leg of a pushed
@@ -27,9 +28,11 @@ struct FreeLimbDeviation {
   int worst_character = -1, worst_joint = -1, worst_frame = -1;  ///< where max_deg is (-1: none)
 };
 
-/// Frames from first_frame on. The animations must match in characters and frames (caller checks).
+/// Frames from first_frame on; `looped`: the clip plays as a loop (its window wraps around the clip's end).
+/// The animations must match in characters and frames (caller checks).
 FreeLimbDeviation measure_free_limb_deviation(const CrowdAnimation& input, const CrowdAnimation& corrected,
-                                              int first_frame = 0, double margin_m = kFreeLimbMargin_m,
+                                              int first_frame = 0, bool looped = false,
+                                              double margin_m = kFreeLimbMargin_m,
                                               double window_s = kFreeLimbWindow_s);
 
 }  // namespace crowdlab

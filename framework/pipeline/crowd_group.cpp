@@ -128,7 +128,7 @@ Stage CrowdGroup::metrics_stage(CrowdMethod method) {
   // The correction-quality measures compare the animation with its input, the baseline (for the
   // baseline itself: the same animation, so drift and pops read 0 and depth and the feet's ground
   // penetration are its own).
-  const MetricsRecipe recipe = metrics_recipe(recipes_.crowd, method, recipes_.mesh_measures);
+  const MetricsRecipe recipe = metrics_recipe(recipes_, method);
   Stage s = stage_for(recipe);
   s.inputs = {animation_path(method)};
   if (method != CrowdMethod::baseline) s.inputs.push_back(animation_path(CrowdMethod::baseline));
@@ -137,8 +137,8 @@ Stage CrowdGroup::metrics_stage(CrowdMethod method) {
   s.compute = [this, i, recipe] {
     const CrowdAnimation& crowd = animation(recipe.method);
     json m = crowd_metrics_json(measure_crowd(crowd), false);
-    json q = correction_quality_json(
-        measure_correction_quality(animation(CrowdMethod::baseline), crowd, 0, 1, recipe.mesh_measures));
+    json q = correction_quality_json(measure_correction_quality(animation(CrowdMethod::baseline), crowd, 0, 1,
+                                                                recipe.mesh_measures, recipe.looped));
     if (recipe.surface_ground) {  // the feet's ground is the surface there, not y = 0
       q.erase("foot_ground_penetration_max_m");
       q.erase("foot_ground_penetration_p99_m");

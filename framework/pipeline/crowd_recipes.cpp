@@ -115,6 +115,7 @@ CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Conditio
   // whatever is asked (correct_crowd.cpp, input_loops).
   r.correction.loop_preroll_s = spec.protocol.loop_video ? loop_preroll_window_s(spec.duration_s) : 0.0;
   r.correction.walking = walks_on_flat_ground(p.scenario);
+  r.clips_loop = spec.protocol.loop_video;
   return r;
 }
 
@@ -132,11 +133,12 @@ double loop_preroll_window_s(double duration_s) {
   return duration_s >= kLoopPrerollMinClipS ? std::min(kLoopPrerollS, 0.5 * duration_s) : 0.0;
 }
 
-MetricsRecipe metrics_recipe(const CrowdRecipe& crowd, CrowdMethod method, bool mesh_measures) {
+MetricsRecipe metrics_recipe(const CrowdGroupRecipes& group, CrowdMethod method) {
   MetricsRecipe m;
   m.method = method;
-  m.surface_ground = crowd.params.scenario == ScenarioKind::manifold;
-  m.mesh_measures = mesh_measures;
+  m.surface_ground = group.crowd.params.scenario == ScenarioKind::manifold;
+  m.mesh_measures = group.mesh_measures;
+  m.looped = group.clips_loop;
   return m;
 }
 

@@ -141,11 +141,14 @@ struct MetricsRecipe {
   /// ground penetration added by the correction, below min(0, the input's foot) (issue 27, session 16); 6:
   /// the mesh-level inside test confirms its sign by a ray (surfaces_inside.hpp; issue 27, session 25); 7:
   /// the feet's depth below the ground discounts the capsules' reach below the rendered floor at rest; 8:
-  /// the flip window is 0.1 s at 200 deg/s, not 3 frames (core/joint_flips.hpp; session 26; 30 fps unchanged)
-  static constexpr std::string_view kCodeVersion = "8";
+  /// the flip window is 0.1 s at 200 deg/s, not 3 frames (core/joint_flips.hpp; session 26; 30 fps
+  /// unchanged); 9: looping clips' free-limb window wraps around the loop (free_limb_deviation.hpp; session
+  /// 28)
+  static constexpr std::string_view kCodeVersion = "9";
   CrowdMethod method = CrowdMethod::baseline;  ///< the animation measured (against the baseline)
   bool surface_ground = false;  ///< manifold crowds: the feet's ground is the surface, not y = 0
   bool mesh_measures = true;    ///< the mesh-level overlap and proxy coverage (RunOptions::mesh_measures)
+  bool looped = false;          ///< the clips loop (protocol.loop_video): the free-limb window wraps
 };
 
 /// Every recipe of one crowd group, and the files its stages read besides the crowd files.
@@ -157,14 +160,15 @@ struct CrowdGroupRecipes {
   std::vector<std::filesystem::path> animation_files;  ///< walk and dance clips
   std::string source_path;    ///< the spec file, named in error messages only (not hashed)
   bool mesh_measures = true;  ///< RunOptions::mesh_measures, for the metrics recipes
+  bool clips_loop = false;    ///< protocol.loop_video, for the metrics recipes
 };
 
 /// The recipes of the group whose first condition is `first` (crowd_condition() gives its seed).
 CrowdGroupRecipes crowd_group_recipes(const ExperimentSpec& spec, const Condition& first);
 
-/// The metrics recipe of `method`'s crowd file in a group; `mesh_measures`: RunOptions::mesh_measures (no
-/// default, so no caller can build a recipe that differs from the stage's by forgetting it).
-MetricsRecipe metrics_recipe(const CrowdRecipe& crowd, CrowdMethod method, bool mesh_measures);
+/// The metrics recipe of `method`'s crowd file in a group, from the group's recipes (their crowd,
+/// mesh_measures and clips_loop), so no caller can build a recipe that differs from the stage's.
+MetricsRecipe metrics_recipe(const CrowdGroupRecipes& group, CrowdMethod method);
 
 /// What the scenario generators see: a spec holding only the recipe's values (every other section at
 /// its defaults), so they cannot read anything the crowd stage's hash does not cover. `source_path`

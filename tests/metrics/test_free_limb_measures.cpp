@@ -89,6 +89,37 @@ TEST_CASE("a limb near something within half a second is not free, farther in ti
   CHECK(deviate_on(40, 40).worst_frame == 40);
 }
 
+TEST_CASE("a looping clip's free-limb window wraps around the loop: its last frames are near its first") {
+  // Character 1 stands 0.5 m away on the clip's last 5 frames only: character 0's wrist is busy on frames
+  // 55..59. Played once, frame 0 is 55 frames from them; played as a loop, it follows frame 59.
+  CrowdAnimation in = standing({0.0, 3.0});
+  for (int f = kFrames - 5; f < kFrames; ++f)
+    in.characters[1].frames[static_cast<size_t>(f)].root_position_m.x() = 0.5;
+  CrowdAnimation out = in;
+  for (int f = 0; f <= 15; ++f) {  // the wrist turned on frames 0..15, as a loop's closure might leave it
+    Quat& r = out.characters[0].frames[static_cast<size_t>(f)].local_rotations[kLeftWrist];
+    r = about_x(6.0) * r;
+  }
+  const FreeLimbDeviation once = measure_free_limb_deviation(in, out);
+  CHECK(once.max_deg == Approx(6.0).epsilon(1e-6));
+  CHECK(once.worst_frame == 0);
+  const FreeLimbDeviation looped = measure_free_limb_deviation(in, out, 0, true);
+  CHECK(looped.max_deg == Approx(6.0).epsilon(1e-6));  // frame 15 is 16 frames after frame 59
+  CHECK(looped.worst_frame == 15);
+  CHECK(looped.free_joint_frames < once.free_joint_frames);
+  // Frames 0..14 are within 15 frames (0.5 s) of frame 59 around the loop: turned only there, no free limb.
+  CrowdAnimation early = in;
+  for (int f = 0; f <= 14; ++f) {
+    Quat& r = early.characters[0].frames[static_cast<size_t>(f)].local_rotations[kLeftWrist];
+    r = about_x(6.0) * r;
+  }
+  CHECK(measure_free_limb_deviation(in, early, 0, true).max_deg == 0.0);
+  CHECK(measure_free_limb_deviation(in, early).max_deg == Approx(6.0).epsilon(1e-6));
+  // correction_quality passes `looped` on.
+  CHECK(measure_free_limb_deviation(in, in, 0, true).free_joint_frames ==
+        measure_correction_quality(in, in, 0, 1, false, true).free_limbs.free_joint_frames);
+}
+
 TEST_CASE("a wrist that turns 30 deg away from its input within two frames is a flip, a slow turn is not") {
   const CrowdAnimation in = standing({0.0});
   CrowdAnimation fast = in, slow = in;

@@ -1,7 +1,8 @@
 // The stage recipes (framework/pipeline/crowd_recipes.hpp, stimuli/presentation_recipes.hpp) hold
 // exactly what each stage reads (issue 30): every spec value is edited in turn and the recipes whose
 // canonical bytes change, i.e. the stages whose input hash changes, must be exactly the stages that
-// read it. Values no stage reads (the protocol, the outputs' switches, the name) change no recipe.
+// read it. Values no stage reads (the protocol but for loop_video, the outputs' switches, the name) change
+// no recipe.
 #include <catch2/catch.hpp>
 #include <functional>
 #include <map>
@@ -38,7 +39,7 @@ std::map<std::string, std::string> recipe_bytes(const ExperimentSpec& spec) {
       {"crowd", canonical_bytes(r.crowd) + files(r.crowd_files)},
       {"animation", canonical_bytes(r.animation) + files(r.animation_files)},
       {"correction", canonical_bytes(r.correction)},
-      {"metrics", canonical_bytes(metrics_recipe(r.crowd, CrowdMethod::corrected, true))},
+      {"metrics", canonical_bytes(metrics_recipe(r, CrowdMethod::corrected))},
       {"render", canonical_bytes(stimuli::render_recipe(spec, ViewpointId::V4))},
       {"contact_sheet", canonical_bytes(stimuli::ContactSheetRecipe{stimuli::stimulus_look(spec.render)})},
       {"stimulus_check", canonical_bytes(stimuli::stimulus_check_recipe(spec, ViewpointId::V4))}};
@@ -125,6 +126,9 @@ TEST_CASE("stage recipes: every spec value changes exactly the recipes of the st
       {"protocol.questions", [](ExperimentSpec& s) { s.protocol.questions.at(0).text = "Other"; }, none},
       {"protocol.type", [](ExperimentSpec& s) { s.protocol.type = ProtocolType::rating; }, none},
       {"protocol.break_every", [](ExperimentSpec& s) { s.protocol.break_every = 3; }, none},
+      // Looping clips: the free-limb window wraps around the loop (tiny.yaml's 1 s clips get no loop
+      // pre-roll, so the correction does not change).
+      {"protocol.loop_video", [](ExperimentSpec& s) { s.protocol.loop_video = false; }, {"metrics"}},
       {"outputs.contact_sheet", [](ExperimentSpec& s) { s.outputs.contact_sheet = true; }, none},
       {"outputs.metrics", [](ExperimentSpec& s) { s.outputs.metrics = false; }, none},
       {"name", [](ExperimentSpec& s) { s.name = "other"; }, none},
@@ -147,10 +151,12 @@ TEST_CASE("stage recipes: leaving the mesh-level measures out changes the metric
   // RunOptions::mesh_measures (`reproduce gomez2024 --quick`, issue 31) is read by the metrics stage
   // only: a metrics.json with the measures and one without must not pass for each other.
   const ExperimentSpec spec = load_experiment_spec(tiny_spec());
-  const CrowdGroupRecipes r = crowd_group_recipes(spec, enumerate_conditions(spec).front());
+  CrowdGroupRecipes with = crowd_group_recipes(spec, enumerate_conditions(spec).front());
+  with.mesh_measures = true;
+  CrowdGroupRecipes without = with;
+  without.mesh_measures = false;
   for (const CrowdMethod m : {CrowdMethod::baseline, CrowdMethod::corrected})
-    CHECK(canonical_bytes(metrics_recipe(r.crowd, m, false)) !=
-          canonical_bytes(metrics_recipe(r.crowd, m, true)));
+    CHECK(canonical_bytes(metrics_recipe(without, m)) != canonical_bytes(metrics_recipe(with, m)));
 }
 
 TEST_CASE("stage recipes: the MPFB2 folder is part of the animation recipe only with MPFB2 bodies") {
