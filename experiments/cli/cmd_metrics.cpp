@@ -192,7 +192,8 @@ void add_metrics_command(Command& root) {
   cmd->add_flag(
       "--loop", args->loop,
       "With --input: the clip plays as a loop (as `run` shows clips when protocol.loop_video is on): "
-      "a joint is free only if nothing is near it within 0.5 s across the loop's seam too");
+      "a joint is free only if nothing is near it within 0.5 s across the loop's seam too, and a jump at the "
+      "seam counts as a flip");
   cmd->add_option("--base-cells", args->base_cells, "Overlap quadrature base grid cells")
       ->capture_default_str();
   cmd->add_option("--depth", args->depth, "Overlap quadrature subdivisions per base cell")

@@ -19,8 +19,8 @@ FlipWindow flip_window(double fps) {
   return w;
 }
 
-JointFlips measure_joint_flips(const CrowdAnimation& input, const CrowdAnimation& corrected,
-                               int first_frame) {
+JointFlips measure_joint_flips(const CrowdAnimation& input, const CrowdAnimation& corrected, int first_frame,
+                               bool looped) {
   JointFlips q;
   const FlipWindow window = flip_window(corrected.meta.fps);
   const int frames = input.frame_count();
@@ -28,13 +28,24 @@ JointFlips measure_joint_flips(const CrowdAnimation& input, const CrowdAnimation
   std::vector<Quat> dev(static_cast<size_t>(std::max(0, frames)));
   for (size_t c = 0; c < input.characters.size(); ++c)
     for (int j = 0; j < kJointCount; ++j) {
-      for (int f = first; f < frames; ++f) {
-        const auto jj = static_cast<size_t>(j), ff = static_cast<size_t>(f);
+      const auto jj = static_cast<size_t>(j);
+      for (int f = looped ? 0 : first; f < frames; ++f) {
+        const auto ff = static_cast<size_t>(f);
         dev[ff] = input.characters[c].frames[ff].local_rotations[jj].normalized().conjugate() *
                   corrected.characters[c].frames[ff].local_rotations[jj].normalized();
+      }
+      for (int f = first; f < frames; ++f) {
+        const auto ff = static_cast<size_t>(f);
         double change = 0.0;
-        for (int k = 1; k <= window.frames && f - k >= first; ++k)
-          change = std::max(change, rotation_angle_deg(dev[static_cast<size_t>(f - k)], dev[ff]));
+        for (int k = 1; k <= window.frames; ++k) {
+          // The frame k before f: around the loop when the clip loops, else only counted frames.
+          int g = f - k;
+          if (looped)
+            g = ((g % frames) + frames) % frames;
+          else if (g < first)
+            break;
+          change = std::max(change, rotation_angle_deg(dev[static_cast<size_t>(g)], dev[ff]));
+        }
         q.max_change_deg = std::max(q.max_change_deg, change);
         if (!(change > window.angle_deg)) continue;
         ++q.count;

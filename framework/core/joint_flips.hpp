@@ -5,7 +5,8 @@
 // For character c, joint j and frame f let D(f) = R_hat(f)^-1 R(f) be the deviation of the corrected
 // local rotation R from the input's R_hat. Joint-frame (c, j, f) is a FLIP when D changed by more than
 // A degrees within the last W frames (FlipWindow, from the clip's frame rate):
-//     max_{k = 1..W, f - k >= first}  angle(D(f - k)^-1 D(f)) > A.
+//     max_{k = 1..W, f - k >= first}  angle(D(f - k)^-1 D(f)) > A
+// (for a clip that plays as a loop, f - k is taken around the loop instead).
 // Comparing deviations (not rotations) cancels the input's own motion, and the angle of a unit
 // quaternion difference is sign-free (rotation_angle_deg), so q and -q are the same rotation.
 // Issue 27's threshold is 20 degrees within 3 frames, written for 30 fps clips: 200 deg/s of deviation
@@ -52,9 +53,10 @@ struct JointFlips {
   std::array<long, kJointCount> per_joint{};  ///< flip joint-frames per joint (where they are)
 };
 
-/// Frames from first_frame on, the window from corrected.meta.fps. The animations must match in
-/// characters and frames (caller checks).
+/// Frames from first_frame on, the window from corrected.meta.fps; `looped`: the clip plays as a loop, so
+/// the window of its first frames reaches back around the loop to its last (a jump at the seam is a flip
+/// to the viewer). The animations must match in characters and frames (caller checks).
 JointFlips measure_joint_flips(const CrowdAnimation& input, const CrowdAnimation& corrected,
-                               int first_frame = 0);
+                               int first_frame = 0, bool looped = false);
 
 }  // namespace crowdlab

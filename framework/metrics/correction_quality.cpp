@@ -74,7 +74,7 @@ CorrectionQuality measure_correction_quality(const CrowdAnimation& input, const 
   }
   q.feet = measure_foot_contact_quality(input, corrected, first_frame);
   q.free_limbs = measure_free_limb_deviation(input, corrected, first_frame, looped);
-  q.flips = measure_joint_flips(input, corrected, first_frame);
+  q.flips = measure_joint_flips(input, corrected, first_frame, looped);
   q.environment = measure_environment_penetration(corrected, first_frame);
   if (mesh_measures) {
     q.mesh_overlap = measure_mesh_overlap(corrected, first_frame);

@@ -26,7 +26,7 @@
 // `mesh_measures` false the two mesh-level measures are left empty (frames 0): they cost about three
 // quarters of the whole on MPFB2 crowds (closest-point queries against every neighbour's posed mesh), and
 // a caller that reads none of them (`reproduce gomez2024 --quick`, issue 31) skips them. `looped`: the
-// clip plays as a loop (protocol.loop_video), so the free-limb window wraps around its end.
+// clip plays as a loop (protocol.loop_video), so the free-limb and flip windows wrap around its end.
 #include "framework/core/crowd_animation.hpp"
 #include "framework/core/joint_flips.hpp"
 #include "framework/core/rotation_angle.hpp"

@@ -143,12 +143,12 @@ struct MetricsRecipe {
   /// the feet's depth below the ground discounts the capsules' reach below the rendered floor at rest; 8:
   /// the flip window is 0.1 s at 200 deg/s, not 3 frames (core/joint_flips.hpp; session 26; 30 fps
   /// unchanged); 9: looping clips' free-limb window wraps around the loop (free_limb_deviation.hpp; session
-  /// 28)
-  static constexpr std::string_view kCodeVersion = "9";
+  /// 28); 10: and so does their flip window (core/joint_flips.hpp)
+  static constexpr std::string_view kCodeVersion = "10";
   CrowdMethod method = CrowdMethod::baseline;  ///< the animation measured (against the baseline)
   bool surface_ground = false;  ///< manifold crowds: the feet's ground is the surface, not y = 0
   bool mesh_measures = true;    ///< the mesh-level overlap and proxy coverage (RunOptions::mesh_measures)
-  bool looped = false;          ///< the clips loop (protocol.loop_video): the free-limb window wraps
+  bool looped = false;          ///< the clips loop (protocol.loop_video): free-limb and flip windows wrap
 };
 
 /// Every recipe of one crowd group, and the files its stages read besides the crowd files.

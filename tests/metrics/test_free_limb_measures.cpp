@@ -1,6 +1,7 @@
 // Free-limb deviation, joint flips and environment penetration (issue 27;
 // framework/metrics/free_limb_deviation.hpp, core/joint_flips.hpp, metrics/environment_penetration.hpp) on
 // hand-made animations whose answers are known.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
@@ -147,6 +148,28 @@ TEST_CASE("a wrist that turns 30 deg away from its input within two frames is a 
     for (Quat& r : p.local_rotations) r.coeffs() = -r.coeffs();
   CHECK(measure_joint_flips(in, negated).count == 0);
   CHECK(measure_free_limb_deviation(in, negated).max_deg == Approx(0.0).margin(1e-6));
+}
+
+TEST_CASE("a looping clip that jumps back at its seam has flips there; played once it has none") {
+  // The wrist's deviation rises slowly (1 deg a frame) from frame 20 to 30 deg at frame 50 and stays: no
+  // flip within the clip. Around the loop frame 0 (deviation 0) follows frame 59 (30 deg): frames 0, 1
+  // and 2 see that 30 deg jump within their 3-frame window.
+  const CrowdAnimation in = standing({0.0});
+  CrowdAnimation out = in;
+  for (int f = 0; f < kFrames; ++f) {
+    const double deg = std::clamp(static_cast<double>(f - 20), 0.0, 30.0);
+    Quat& r = out.characters[0].frames[static_cast<size_t>(f)].local_rotations[kRightWrist];
+    r = r * about_x(deg);
+  }
+  CHECK(measure_joint_flips(in, out).count == 0);
+  const JointFlips looped = measure_joint_flips(in, out, 0, true);
+  CHECK(looped.count == 3);
+  REQUIRE(looped.first.size() == 3);
+  CHECK(looped.first[0].frame == 0);
+  CHECK(looped.first[2].frame == 2);
+  CHECK(looped.max_change_deg == Approx(30.0).epsilon(1e-6));
+  CHECK(measure_correction_quality(in, out, 0, 1, false, true).flips.count == 3);
+  CHECK(measure_correction_quality(in, out, 0, 1, false, false).flips.count == 0);
 }
 
 TEST_CASE("the flip threshold is a rate over 0.1 s, so a clip's frame rate does not change what a flip is") {
