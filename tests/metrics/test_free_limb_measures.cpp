@@ -150,7 +150,7 @@ TEST_CASE("a wrist that turns 30 deg away from its input within two frames is a 
   CHECK(measure_free_limb_deviation(in, negated).max_deg == Approx(0.0).margin(1e-6));
 }
 
-TEST_CASE("a looping clip that jumps back at its seam has flips there; played once it has none") {
+TEST_CASE("a looping clip that jumps back at its seam has flips there, and played once none") {
   // The wrist's deviation rises slowly (1 deg a frame) from frame 20 to 30 deg at frame 50 and stays: no
   // flip within the clip. Around the loop frame 0 (deviation 0) follows frame 59 (30 deg): frames 0, 1
   // and 2 see that 30 deg jump within their 3-frame window.
