@@ -1,6 +1,7 @@
 #include "framework/correction/follow_root_offsets.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "framework/core/forward_kinematics.hpp"
@@ -38,15 +39,19 @@ std::vector<Vec3> smoothed_root_offsets(const CharacterAnimation& in, const Char
   return smooth;
 }
 
-/// Per frame, whether the input plants the foot of `side` (ankle or ball), by the corrector's test
+/// Per side and frame, whether the input plants that foot (ankle or ball), by the corrector's test
 /// (input_foot_lifts.hpp); frame 0 as frame 1.
-std::vector<bool> planted_frames(const CharacterAnimation& in, size_t side, double fps,
-                                 const CorrectorParams& p) {
+std::array<std::vector<bool>, 2> planted_frames(const CharacterAnimation& in, double fps,
+                                                const CorrectorParams& p) {
   const int n = static_cast<int>(in.frames.size());
-  if (n < 2) return std::vector<bool>(static_cast<size_t>(n), false);
-  const std::vector<bool> lifted = lifted_frames(in, 1, n - 1, p.foot_plant_speed_mps / fps, p)[side];
-  std::vector<bool> planted = {!lifted.front()};
-  for (const bool l : lifted) planted.push_back(!l);
+  std::array<std::vector<bool>, 2> planted;
+  if (n < 2) return {std::vector<bool>(static_cast<size_t>(n)), std::vector<bool>(static_cast<size_t>(n))};
+  const std::array<std::vector<bool>, 2> lifted =
+      lifted_frames(in, 1, n - 1, p.foot_plant_speed_mps / fps, p);
+  for (size_t side = 0; side < 2; ++side) {
+    planted[side] = {!lifted[side].front()};
+    for (const bool l : lifted[side]) planted[side].push_back(!l);
+  }
   return planted;
 }
 
@@ -99,10 +104,10 @@ void follow_character(const CharacterAnimation& in, const CharacterAnimation& ou
   std::vector<BoneTransforms> bones(in.frames.size());
   for (size_t f = 0; f < in.frames.size(); ++f) bones[f] = forward_kinematics(in.shape, in.frames[f]);
   for (size_t f = 0; f < in.frames.size(); ++f) result.frames[f].root_position_m += root_offset[f];
+  const std::array<std::vector<bool>, 2> planted = planted_frames(in, fps, plant_test);
   for (size_t s = 0; s < 2; ++s) {
     const LegJoints leg = leg_joints(kLegSides[s]);
-    const std::vector<Vec3> foot_offset =
-        footprint_offsets(planted_frames(in, s, fps, plant_test), root_offset);
+    const std::vector<Vec3> foot_offset = footprint_offsets(planted[s], root_offset);
     for (size_t f = 0; f < in.frames.size(); ++f) {
       const RigidTransform& ankle = bones[f][static_cast<size_t>(leg.ankle)];
       reach_ankle(in.shape, result.frames[f], kLegSides[s], ankle.translation + foot_offset[f],
