@@ -6,6 +6,7 @@
 #include <string>
 
 #include "framework/core/error.hpp"
+#include "framework/core/frame_in_loop.hpp"
 #include "framework/core/rotation_angle.hpp"
 
 namespace crowdlab {
@@ -41,7 +42,7 @@ JointFlips measure_joint_flips(const CrowdAnimation& input, const CrowdAnimation
           // The frame k before f: around the loop when the clip loops, else only counted frames.
           int g = f - k;
           if (looped)
-            g = ((g % frames) + frames) % frames;
+            g = frame_in_loop(g, frames);
           else if (g < first)
             break;
           change = std::max(change, rotation_angle_deg(dev[static_cast<size_t>(g)], dev[ff]));

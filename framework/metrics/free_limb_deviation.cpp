@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "framework/core/frame_in_loop.hpp"
 #include "framework/core/rotation_angle.hpp"
 #include "framework/metrics/bone_proximity.hpp"
 #include "framework/metrics/correction_quality.hpp"
@@ -29,7 +30,7 @@ FreeLimbDeviation measure_free_limb_deviation(const CrowdAnimation& input, const
       // when it loops, never otherwise. last_busy: the latest such g <= f + w.
       auto busy = [&](int g) {
         if (looped)
-          g = ((g % frames) + frames) % frames;
+          g = frame_in_loop(g, frames);
         else if (g < 0 || g >= frames)
           return false;
         const std::uint32_t m = near_in[static_cast<size_t>(g)][c] | near_out[static_cast<size_t>(g)][c];
