@@ -196,14 +196,19 @@ std::uint32_t bytes_of(const Colour& c) {
 #endif
 }
 
-// Fills `luma` for the rows [y_begin, y_end) and a row either side, then calls visit(x, y) for every pixel
-// of those rows that passes the edge test, row by row. A band's luma is computed where it is used, so the
-// filter's taps find the band's pixels still in the cache. Edge pixels are few (7 % of a dense 1080p crowd
-// frame), so the flags are scanned eight at a time.
-template <class Visit>
-void for_each_edge_pixel(const std::vector<std::uint8_t>& rgba, int width, int height, int y_begin, int y_end,
-                         BandLuma& luma, Visit&& visit) {
+// The luma of the band of rows [y_begin, y_end) with a row either side (inside the frame). A band's luma is
+// computed where it is used, so the filter's taps find the band's pixels still in the cache.
+BandLuma band_luma(const std::vector<std::uint8_t>& rgba, int width, int height, int y_begin, int y_end) {
+  BandLuma luma;
   fill_band_luma(rgba, width, std::max(0, y_begin - 1), std::min(height - 1, y_end), luma);
+  return luma;
+}
+
+// Calls visit(x, y) for every pixel of rows [y_begin, y_end) that passes the edge test, row by row, from
+// `luma` (band_luma of those rows). Edge pixels are few (7 % of a dense 1080p crowd frame), so the flags
+// are scanned eight at a time.
+template <class Visit>
+void for_each_edge_pixel(const BandLuma& luma, int width, int height, int y_begin, int y_end, Visit&& visit) {
   std::vector<std::uint8_t> flags(static_cast<std::size_t>(width) + sizeof(std::uint64_t));
   const auto row = [&](int y) {
     return luma.rows.data() + static_cast<std::size_t>(std::clamp(y, 0, height - 1) - luma.first_row) * width;
@@ -247,10 +252,10 @@ void fxaa_rgba(std::vector<std::uint8_t>& rgba, int width, int height) {
   tbb::parallel_for(0, bands, [&](int band) {
     auto& out = filtered[static_cast<std::size_t>(band)];
     out.clear();
-    BandLuma luma;
-    const Image image(rgba, luma, width, height);
     const int y_begin = band * kBandRows, y_end = std::min(height, y_begin + kBandRows);
-    for_each_edge_pixel(rgba, width, height, y_begin, y_end, luma, [&](int x, int y) {
+    const BandLuma luma = band_luma(rgba, width, height, y_begin, y_end);
+    const Image image(rgba, luma, width, height);
+    for_each_edge_pixel(luma, width, height, y_begin, y_end, [&](int x, int y) {
       const Colour c =
           image.interior(x, y) ? filter_edge_pixel<false>(image, x, y) : filter_edge_pixel<true>(image, x, y);
       out.emplace_back(static_cast<std::uint32_t>(image.index(x, y)), bytes_of(c));
@@ -266,8 +271,8 @@ void fxaa_rgba(std::vector<std::uint8_t>& rgba, int width, int height) {
 std::size_t fxaa_edge_pixels(const std::vector<std::uint8_t>& rgba, int width, int height) {
   check_frame(rgba, width, height);
   std::size_t count = 0;
-  BandLuma luma;
-  for_each_edge_pixel(rgba, width, height, 0, height, luma, [&](int, int) { ++count; });
+  for_each_edge_pixel(band_luma(rgba, width, height, 0, height), width, height, 0, height,
+                      [&](int, int) { ++count; });
   return count;
 }
 
